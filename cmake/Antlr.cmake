@@ -1,0 +1,50 @@
+# ANTLR4 support: generate C++ from a .g4 grammar at build time.
+#
+# The Debian `antlr4` tool is 4.7.2 and the runtime library 4.9; the 4.7.2
+# generator's C++ output compiles and runs against the 4.9 runtime (proved by
+# the grammar smoke test in test/unit/antlr). Generated code lives only in the
+# build directory.
+find_program(NETLIFT_JAVA java REQUIRED)
+find_file(NETLIFT_ANTLR_JAR antlr4.jar PATHS /usr/share/java REQUIRED)
+set(NETLIFT_ANTLR_CLASSPATH
+    "/usr/share/java/stringtemplate4.jar:/usr/share/java/antlr4.jar:/usr/share/java/antlr4-runtime.jar:/usr/share/java/antlr3-runtime.jar:/usr/share/java/treelayout.jar")
+
+# netlift_antlr_grammar(<target> <grammar.g4> [VISITOR] [LISTENER])
+# Creates a static library <target> holding the generated lexer/parser,
+# linked against the ANTLR runtime; its include directory is the generated
+# folder.
+function(netlift_antlr_grammar target grammar)
+  cmake_parse_arguments(ARG "VISITOR;LISTENER" "" "" ${ARGN})
+  get_filename_component(g4 ${grammar} ABSOLUTE)
+  get_filename_component(name ${grammar} NAME_WE)
+  set(outdir ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen)
+  set(outputs ${outdir}/${name}Lexer.cpp ${outdir}/${name}Parser.cpp
+              ${outdir}/${name}Lexer.h ${outdir}/${name}Parser.h)
+  set(flags -no-listener -no-visitor)
+  if(ARG_VISITOR)
+    list(APPEND outputs ${outdir}/${name}Visitor.cpp
+         ${outdir}/${name}BaseVisitor.cpp)
+    list(REMOVE_ITEM flags -no-visitor)
+    list(APPEND flags -visitor)
+  endif()
+  if(ARG_LISTENER)
+    list(APPEND outputs ${outdir}/${name}Listener.cpp
+         ${outdir}/${name}BaseListener.cpp)
+    list(REMOVE_ITEM flags -no-listener)
+    list(APPEND flags -listener)
+  endif()
+  add_custom_command(
+    OUTPUT ${outputs}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${outdir}
+    COMMAND ${NETLIFT_JAVA} -cp ${NETLIFT_ANTLR_CLASSPATH} org.antlr.v4.Tool
+            -Dlanguage=Cpp ${flags} -o ${outdir} -Xexact-output-dir ${g4}
+    DEPENDS ${g4}
+    COMMENT "ANTLR4: generating C++ for ${name}.g4"
+    VERBATIM)
+  add_library(${target} STATIC ${outputs})
+  target_include_directories(${target} SYSTEM PUBLIC ${outdir}
+                             ${ANTLR4_INCLUDE_DIR})
+  # Generated code is not ours to warn about.
+  target_compile_options(${target} PRIVATE -w)
+  target_link_libraries(${target} PUBLIC antlr4_shared)
+endfunction()

@@ -1,0 +1,45 @@
+//===- FrontendRegistry.h - reading any supported input ---------*- C++ -*-===//
+//
+// The single entry point through which every netlift command reads a model:
+// it picks the frontend by --from, else by the file's extension, loads the
+// file (or standard input for "-") into the SourceMgr so diagnostics can
+// point into it, and produces a verified Design. Frontends are listed in
+// FrontendRegistry.def; adding one there makes every subcommand accept it.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_FRONTENDREGISTRY_H
+#define NETLIFT_FRONTENDS_FRONTENDREGISTRY_H
+
+#include "ir/net/Module.h"
+#include "ir/support/Diagnostics.h"
+
+#include "llvm/ADT/StringRef.h"
+
+#include <string>
+#include <vector>
+
+namespace netlift {
+
+struct FrontendInfo {
+  llvm::StringRef id;
+  llvm::StringRef description;
+  llvm::StringRef extensions;
+  bool (*load)(unsigned bufferID, DiagEngine &diag, net::Design &design);
+};
+
+/// All registered frontends, in registry order.
+llvm::ArrayRef<FrontendInfo> frontends();
+
+/// Reads every path ("-" is standard input) with the frontend `from`
+/// (empty: chosen by each file's extension, NetIR text by default) into one
+/// `design`, then verifies it as a whole (a module may instantiate one from
+/// another file). Returns false after reporting an error.
+bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
+                DiagEngine &diag, net::Design &design);
+
+/// Frontend implementations (one per line of FrontendRegistry.def).
+bool loadNetIR(unsigned bufferID, DiagEngine &diag, net::Design &design);
+
+} // namespace netlift
+
+#endif

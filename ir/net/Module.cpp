@@ -1,0 +1,131 @@
+//===- Module.cpp - NetIR modules, nets and designs -----------------------===//
+#include "ir/net/Module.h"
+
+#include "llvm/ADT/DenseSet.h"
+
+using namespace netlift::net;
+using llvm::StringRef;
+
+StringRef netlift::net::spelling(PortKind k) {
+  switch (k) {
+  case PortKind::Event:
+    return "event";
+  case PortKind::Cond:
+    return "cond";
+  case PortKind::Data:
+    return "data";
+  }
+  return "?";
+}
+
+void Module::rebuildSymbols() {
+  symbols.clear();
+  for (uint32_t i = 0; i < ports.size(); ++i)
+    declare(ports[i].name, {SymKind::Port, i});
+  for (uint32_t i = 0; i < places.size(); ++i)
+    declare(places[i].name, {SymKind::Place, i});
+  for (uint32_t i = 0; i < transitions.size(); ++i)
+    declare(transitions[i].name, {SymKind::Transition, i});
+  for (uint32_t i = 0; i < vars.size(); ++i)
+    declare(vars[i].name, {SymKind::Var, i});
+  for (uint32_t i = 0; i < instances.size(); ++i)
+    declare(instances[i].name, {SymKind::Instance, i});
+}
+
+StringRef Module::symbolName(Symbol s) const {
+  switch (s.kind) {
+  case SymKind::Place:
+    return places[s.index].name;
+  case SymKind::Transition:
+    return transitions[s.index].name;
+  case SymKind::Port:
+    return ports[s.index].name;
+  case SymKind::Var:
+    return vars[s.index].name;
+  case SymKind::Instance:
+    return instances[s.index].name;
+  default:
+    return "";
+  }
+}
+
+int Module::findPort(StringRef n) const {
+  Symbol s = lookup(n);
+  return s.kind == SymKind::Port ? int(s.index) : -1;
+}
+
+Design::Design() = default;
+Design::~Design() = default;
+
+Module *Design::createModule(StringRef name, llvm::SMLoc loc, bool isSystem) {
+  StringRef saved = save(name);
+  if (moduleIndex.count(saved))
+    return nullptr;
+  modules.push_back(std::make_unique<Module>(saved, loc, isSystem));
+  Module *m = modules.back().get();
+  moduleIndex[saved] = m;
+  return m;
+}
+
+void Design::eraseModule(Module *m) {
+  moduleIndex.erase(m->name);
+  for (auto it = modules.begin(); it != modules.end(); ++it)
+    if (it->get() == m) {
+      modules.erase(it);
+      return;
+    }
+}
+
+bool Design::renameModule(Module *m, StringRef newName) {
+  StringRef saved = save(newName);
+  if (moduleIndex.count(saved))
+    return false;
+  moduleIndex.erase(m->name);
+  m->name = saved;
+  moduleIndex[saved] = m;
+  return true;
+}
+
+Module *Design::findTop(StringRef name, std::string &why) const {
+  if (!name.empty()) {
+    if (Module *m = lookupModule(name))
+      return m;
+    why = ("no module named '" + name + "'").str();
+    return nullptr;
+  }
+  std::vector<Module *> systems;
+  for (auto &m : modules)
+    if (m->isSystem)
+      systems.push_back(m.get());
+  if (systems.size() == 1)
+    return systems[0];
+  if (systems.size() > 1) {
+    why = "several systems; choose one with top=NAME";
+    return nullptr;
+  }
+  llvm::DenseSet<StringRef> instantiated;
+  for (auto &m : modules)
+    for (const Instance &i : m->instances)
+      instantiated.insert(i.moduleName);
+  Module *top = nullptr;
+  for (auto &m : modules) {
+    if (instantiated.count(m->name))
+      continue;
+    if (top) {
+      why = ("several top-level modules ('" + top->name + "', '" + m->name +
+             "'); choose one with top=NAME")
+                .str();
+      return nullptr;
+    }
+    top = m.get();
+  }
+  if (!top)
+    why = modules.empty() ? "the design has no module"
+                          : "every module is instantiated by another";
+  return top;
+}
+
+TransitionExtras *Design::createExtras() {
+  extrasPool.push_back(std::make_unique<TransitionExtras>());
+  return extrasPool.back().get();
+}

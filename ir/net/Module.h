@@ -1,0 +1,287 @@
+//===- Module.h - NetIR modules, nets and designs ---------------*- C++ -*-===//
+//
+// The NetIR data structures (design §3.1): a Design is what one .net file
+// holds (named types, an optional timescale, modules and systems); a Module is
+// a Net Condition/Event System with an interface of event/cond/data ports,
+// places, transitions with flow, condition and event arcs, data variables,
+// guards and actions, hybrid flows, and instances of other modules wired by
+// connections. Everything is allocated in the Design: names and expression
+// nodes in its arena, so entities are small and a large net costs a few
+// times its text. Entities refer to each other by index within their module.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_IR_NET_MODULE_H
+#define NETLIFT_IR_NET_MODULE_H
+
+#include "ir/net/Expr.h"
+#include "ir/net/Types.h"
+
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/Allocator.h"
+#include "llvm/Support/SMLoc.h"
+#include "llvm/Support/StringSaver.h"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace netlift::net {
+
+/// Unbounded capacity / upper time bound.
+constexpr uint32_t kInf = UINT32_MAX;
+
+enum class PortKind : uint8_t { Event, Cond, Data };
+enum class PortDir : uint8_t { In, Out };
+enum class EventMode : uint8_t { Or, And };
+
+llvm::StringRef spelling(PortKind k);
+
+struct Port {
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  PortKind kind;
+  PortDir dir;
+  /// Data ports: the value type. Cond ports: bool.
+  const Type *type = nullptr;
+  /// Outputs: the defining expression (`at_home = home;`), or null when the
+  /// output is stored state written by actions.
+  Expr *definition = nullptr;
+  llvm::SMLoc definitionLoc;
+  /// Stored outputs: the initial value (null: false / the type's low bound).
+  Expr *init = nullptr;
+
+  bool isInput() const { return dir == PortDir::In; }
+  bool isOutput() const { return dir == PortDir::Out; }
+  /// A cond/data output without a definition holds state.
+  bool isStored() const {
+    return dir == PortDir::Out && kind != PortKind::Event && !definition;
+  }
+};
+
+struct Place {
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  uint32_t tokens = 0;
+  uint32_t capacity = 1; // kInf: unbounded
+};
+
+/// Time interval on a pre-arc: the arc is time-enabled when the clock of
+/// its place lies in [lo, hi]. hi == kInf is unbounded.
+struct Interval {
+  uint32_t lo = 0;
+  uint32_t hi = kInf;
+  bool isTrivial() const { return lo == 0 && hi == kInf; }
+  bool operator==(const Interval &o) const { return lo == o.lo && hi == o.hi; }
+};
+
+struct PreArc {
+  uint32_t place;
+  uint32_t weight = 1;
+  Interval time;
+};
+
+struct PostArc {
+  uint32_t place;
+  uint32_t weight = 1;
+};
+
+/// Source of an event arc into a transition: another transition of the same
+/// module or an event input port.
+struct EventSource {
+  uint32_t index;
+  bool fromPort; // true: index into ports (an event input)
+  bool operator==(const EventSource &o) const {
+    return index == o.index && fromPort == o.fromPort;
+  }
+};
+
+/// Rarely used parts of a transition, allocated only when present so that a
+/// plain place/transition net stays small.
+struct TransitionExtras {
+  llvm::ArrayRef<Expr *> conds;       // condition arcs (Boolean signals)
+  llvm::ArrayRef<EventSource> events; // incoming event arcs
+  llvm::ArrayRef<uint32_t> emits;     // event arcs to event output ports
+  Expr *guard = nullptr;              // data guard
+  Block action;                       // action block
+  bool hasAction = false;             // `{}` written (possibly empty)
+  std::vector<llvm::SMLoc> eventLocs; // where each event source was named
+  std::vector<llvm::SMLoc> emitLocs;
+};
+
+struct Transition {
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  llvm::ArrayRef<PreArc> pre;
+  llvm::ArrayRef<PostArc> post;
+  TransitionExtras *extras = nullptr;
+  EventMode mode = EventMode::Or;
+  bool urgent = false;
+  /// Locations of each pre/post arc's place name, for diagnostics (parsed
+  /// input only; empty otherwise).
+  const llvm::SMLoc *preLocs = nullptr;
+  const llvm::SMLoc *postLocs = nullptr;
+
+  llvm::ArrayRef<Expr *> conds() const {
+    return extras ? extras->conds : llvm::ArrayRef<Expr *>();
+  }
+  llvm::ArrayRef<EventSource> events() const {
+    return extras ? extras->events : llvm::ArrayRef<EventSource>();
+  }
+  llvm::ArrayRef<uint32_t> emits() const {
+    return extras ? extras->emits : llvm::ArrayRef<uint32_t>();
+  }
+  Expr *guard() const { return extras ? extras->guard : nullptr; }
+  Block action() const { return extras ? extras->action : Block(); }
+  bool hasAction() const { return extras && extras->hasAction; }
+  /// Forced transitions have incoming event arcs.
+  bool isForced() const { return !events().empty(); }
+};
+
+struct Var {
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  const Type *type;
+  /// Initial value (null: false / low bound / 0 for clocks).
+  Expr *init = nullptr;
+};
+
+/// `flow place { x' = e; }`: while `place` is marked, real variable x
+/// evolves with derivative e.
+struct Flow {
+  llvm::SMLoc loc;
+  uint32_t place;
+  llvm::StringRef placeName;
+  struct Equation {
+    llvm::SMLoc loc;
+    llvm::StringRef var;
+    uint32_t varIndex = 0; // resolved by the verifier
+    Expr *rate;
+  };
+  llvm::ArrayRef<Equation> equations;
+};
+
+class Module;
+
+struct Instance {
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  llvm::StringRef moduleName;
+  llvm::SMLoc moduleLoc;
+  Module *module = nullptr; // resolved by the verifier
+};
+
+/// One end of a connection: `inst.port`, or `port` of the enclosing module.
+struct Endpoint {
+  llvm::StringRef instance; // empty: the enclosing module's own port
+  llvm::StringRef port;
+  llvm::SMLoc loc;
+};
+
+struct Connection {
+  llvm::SMLoc loc;
+  Endpoint from, to;
+};
+
+/// A NetIR module (or a system: a module with no interface).
+class Module {
+public:
+  Module(llvm::StringRef name, llvm::SMLoc loc, bool isSystem)
+      : name(name), loc(loc), isSystem(isSystem) {}
+
+  llvm::StringRef name;
+  llvm::SMLoc loc;
+  bool isSystem;
+
+  std::vector<Port> ports;
+  std::vector<Place> places;
+  std::vector<Transition> transitions;
+  std::vector<Var> vars;
+  std::vector<Flow> flows;
+  std::vector<Instance> instances;
+  std::vector<Connection> connections;
+
+  /// One namespace for ports, places, transitions, variables and instances.
+  /// Returns SymKind::None if absent.
+  Symbol lookup(llvm::StringRef n) const {
+    auto it = symbols.find(n);
+    return it == symbols.end() ? Symbol() : it->second;
+  }
+  /// Registers a name; false if it is taken.
+  bool declare(llvm::StringRef n, Symbol s) {
+    return symbols.try_emplace(n, s).second;
+  }
+  /// Rebuilds the symbol table from the entity vectors (after a pass
+  /// removed or renamed entities).
+  void rebuildSymbols();
+  llvm::StringRef symbolName(Symbol s) const;
+  int findPort(llvm::StringRef n) const;
+
+private:
+  llvm::DenseMap<llvm::StringRef, Symbol> symbols;
+};
+
+/// Time unit of one tick (`timescale 10ms;`).
+struct Timescale {
+  uint64_t amount = 1;
+  llvm::StringRef unit; // ns, us, ms, s, min, h
+  llvm::SMLoc loc;
+};
+
+/// Everything one .net file holds; owns all memory of its modules.
+class Design {
+public:
+  Design();
+  ~Design();
+  Design(const Design &) = delete;
+  Design &operator=(const Design &) = delete;
+
+  TypeTable types;
+  std::optional<Timescale> timescale;
+  std::vector<std::unique_ptr<Module>> modules;
+
+  Module *lookupModule(llvm::StringRef n) const {
+    auto it = moduleIndex.find(n);
+    return it == moduleIndex.end() ? nullptr : it->second;
+  }
+  /// Creates a module; null if the name is taken.
+  Module *createModule(llvm::StringRef name, llvm::SMLoc loc, bool isSystem);
+  /// Removes a module (e.g. after flatten replaced the hierarchy).
+  void eraseModule(Module *m);
+  /// Renames a module; false if the new name is taken.
+  bool renameModule(Module *m, llvm::StringRef newName);
+  /// The module analyses start from: `name` if given, else the single
+  /// system, else the single module no other module instantiates. Sets
+  /// `why` and returns null when there is none or it is ambiguous.
+  Module *findTop(llvm::StringRef name, std::string &why) const;
+
+  // Arena allocation.
+  llvm::StringRef save(llvm::StringRef s) { return saver.save(s); }
+  template <typename T, typename... Args> T *create(Args &&...args) {
+    return new (arena.Allocate<T>()) T(std::forward<Args>(args)...);
+  }
+  template <typename T> llvm::ArrayRef<T> copy(llvm::ArrayRef<T> a) {
+    if (a.empty())
+      return {};
+    T *p = arena.Allocate<T>(a.size());
+    std::uninitialized_copy(a.begin(), a.end(), p);
+    return llvm::ArrayRef<T>(p, a.size());
+  }
+  TransitionExtras *createExtras();
+  size_t arenaBytes() const { return arena.getTotalMemory(); }
+
+private:
+  llvm::BumpPtrAllocator arena;
+  llvm::StringSaver saver{arena};
+  llvm::StringMap<Module *> moduleIndex;
+  // Extras hold vectors (source locations), so they are owned here and
+  // destroyed properly rather than living in the arena.
+  std::vector<std::unique_ptr<TransitionExtras>> extrasPool;
+};
+
+} // namespace netlift::net
+
+#endif

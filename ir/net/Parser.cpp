@@ -1,0 +1,1405 @@
+//===- Parser.cpp - NetIR text parser -------------------------------------===//
+#include "ir/net/Parser.h"
+
+#include "ir/net/Builder.h"
+#include "ir/net/Lexer.h"
+
+#include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringSwitch.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+using namespace netlift;
+using namespace netlift::net;
+using llvm::SMLoc;
+using llvm::StringRef;
+
+bool netlift::net::isReservedWord(StringRef n) {
+  return llvm::StringSwitch<bool>(n)
+      .Cases("and", "or", "xor", "not", "true", "false", "inf", true)
+      .Cases("if", "elif", "else", "case", "for", "in", true)
+      .Default(false);
+}
+
+namespace {
+
+/// Expressions and blocks nest at most this deep; deeper input is refused
+/// rather than allowed to exhaust the stack.
+constexpr unsigned kMaxDepth = 200;
+
+class Parser {
+public:
+  Parser(StringRef buf, DiagEngine &diag, Design &design)
+      : lex(buf), diag(diag), design(design), b(design) {
+    tok = lex.next();
+  }
+
+  bool parseFile();
+
+private:
+  // Token handling -------------------------------------------------------
+  void consume() { tok = lex.next(); }
+  bool error(SMLoc loc, const llvm::Twine &msg) {
+    if (!failed)
+      diag.error(loc, msg);
+    failed = true;
+    return false;
+  }
+  bool errorHere(const llvm::Twine &msg) {
+    if (tok.is(Tok::Error)) {
+      if (lex.unterminatedComment)
+        return error(tok.loc(), "unterminated /* comment");
+      unsigned char c = tok.text.empty() ? 0 : tok.text[0];
+      if (c >= 0x20 && c < 0x7f)
+        return error(tok.loc(), llvm::Twine("unexpected character '") +
+                                    tok.text + "'");
+      char hex[8];
+      snprintf(hex, sizeof hex, "0x%02X", c);
+      return error(tok.loc(), llvm::Twine("unexpected byte ") + hex +
+                                  " (is this a NetIR text file?)");
+    }
+    return error(tok.loc(), msg);
+  }
+  std::string describe() const {
+    if (tok.is(Tok::Eof))
+      return "end of file";
+    return ("'" + tok.text + "'").str();
+  }
+  bool expect(Tok k, StringRef what) {
+    if (tok.is(k)) {
+      consume();
+      return true;
+    }
+    return errorHere("expected " + what + ", found " + describe());
+  }
+  bool expectIdent(StringRef kw) {
+    if (tok.isIdent(kw)) {
+      consume();
+      return true;
+    }
+    return errorHere("expected '" + kw + "', found " + describe());
+  }
+  bool parseName(StringRef &name, SMLoc &loc, StringRef what) {
+    if (!tok.is(Tok::Ident))
+      return errorHere("expected " + what + ", found " + describe());
+    if (isReservedWord(tok.text))
+      return errorHere("'" + tok.text + "' is a reserved word and cannot be " +
+                       "used as " + what);
+    name = tok.text;
+    loc = tok.loc();
+    consume();
+    return true;
+  }
+  bool parseSimpleName(StringRef &name, SMLoc &loc, StringRef what) {
+    if (!parseName(name, loc, what))
+      return false;
+    if (name.contains('.'))
+      return error(loc, what + " '" + name +
+                            "' must not be qualified (no '.')");
+    return true;
+  }
+  bool parseInt(int64_t &v, StringRef what);
+  bool parseUInt32(uint32_t &v, StringRef what, bool allowInf);
+  bool parseSignedInt(int64_t &v, StringRef what);
+  bool parseRealBound(double &v);
+
+  // Top level ------------------------------------------------------------
+  bool parseTimescale();
+  bool parseTypeDecl();
+  bool parseType(const Type *&type, bool allowReal);
+  bool parseModule(bool isSystem);
+  bool parseModuleItem();
+  bool parsePortDecl(PortKind kind);
+  bool parsePlaceDecl();
+  bool parseTransDecl();
+  bool parseArcList(bool pre, llvm::SmallVectorImpl<PreArc> &preArcs,
+                    llvm::SmallVectorImpl<PostArc> &postArcs,
+                    llvm::SmallVectorImpl<SMLoc> &locs,
+                    llvm::SmallVectorImpl<StringRef> &names);
+  bool parseVarDecl(bool isClock);
+  bool parseRealDecl();
+  bool parseFlowDecl();
+  bool parseInstDecl();
+  bool parseConnectDecl();
+  bool parseEndpoint(Endpoint &e);
+  bool parseDefinition();
+  bool resolveModuleFixups();
+
+  // Expressions and statements ---------------------------------------------
+  Expr *parseExpr();
+  Expr *parseTernary();
+  Expr *parseBinary(int minPrec);
+  Expr *parseUnary();
+  Expr *parsePostfix();
+  Expr *parsePrimary();
+  bool peekBinaryOp(BinaryOp &op) const;
+  bool parseBlock(Block &out);
+  Stmt *parseStmt();
+  Stmt *parseIf();
+  Stmt *parseCase();
+  Stmt *parseFor();
+
+  struct DepthGuard {
+    Parser &p;
+    bool ok;
+    explicit DepthGuard(Parser &p) : p(p), ok(++p.depth <= kMaxDepth) {
+      if (!ok)
+        p.errorHere("nesting too deep (more than " +
+                    llvm::Twine(kMaxDepth) + " levels)");
+    }
+    ~DepthGuard() { --p.depth; }
+  };
+
+  Lexer lex;
+  Token tok;
+  DiagEngine &diag;
+  Design &design;
+  Builder b;
+  bool failed = false;
+  unsigned depth = 0;
+
+  // Names used before their declaration, resolved at the end of a module.
+  enum class FixKind : uint8_t { PrePlace, PostPlace, Event, Emit, FlowPlace };
+  struct Fixup {
+    FixKind kind;
+    uint32_t trans; // or flow index
+    uint32_t slot;
+    StringRef name;
+    SMLoc loc;
+  };
+  std::vector<Fixup> fixups;
+  // Output definitions written as `name = expr;`.
+  struct Definition {
+    StringRef name;
+    SMLoc loc;
+    Expr *expr;
+  };
+  std::vector<Definition> definitions;
+};
+
+} // namespace
+
+bool Parser::parseInt(int64_t &v, StringRef what) {
+  if (!tok.is(Tok::Int))
+    return errorHere("expected " + what + ", found " + describe());
+  if (tok.text.getAsInteger(10, v))
+    return errorHere("integer literal '" + tok.text + "' is too large");
+  consume();
+  return true;
+}
+
+bool Parser::parseSignedInt(int64_t &v, StringRef what) {
+  bool neg = false;
+  if (tok.is(Tok::Minus)) {
+    neg = true;
+    consume();
+  }
+  if (!parseInt(v, what))
+    return false;
+  if (neg)
+    v = -v;
+  return true;
+}
+
+bool Parser::parseUInt32(uint32_t &v, StringRef what, bool allowInf) {
+  if (allowInf && tok.isIdent("inf")) {
+    v = kInf;
+    consume();
+    return true;
+  }
+  if (!tok.is(Tok::Int))
+    return errorHere("expected " + what + ", found " + describe());
+  uint64_t x;
+  if (tok.text.getAsInteger(10, x) || x >= kInf)
+    return errorHere("'" + tok.text + "' is too large for " + what +
+                     " (at most " + llvm::Twine(kInf - 1) + ")");
+  v = uint32_t(x);
+  consume();
+  return true;
+}
+
+bool Parser::parseRealBound(double &v) {
+  bool neg = false;
+  if (tok.is(Tok::Minus)) {
+    neg = true;
+    consume();
+  }
+  if (tok.isIdent("inf")) {
+    v = INFINITY;
+  } else if (tok.is(Tok::Int) || tok.is(Tok::Real)) {
+    v = strtod(tok.text.str().c_str(), nullptr);
+  } else {
+    return errorHere("expected a number or 'inf', found " + describe());
+  }
+  consume();
+  if (neg)
+    v = -v;
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Top level
+//===----------------------------------------------------------------------===//
+
+bool Parser::parseFile() {
+  while (!tok.is(Tok::Eof)) {
+    if (tok.isIdent("module")) {
+      consume();
+      if (!parseModule(false))
+        return false;
+    } else if (tok.isIdent("system")) {
+      consume();
+      if (!parseModule(true))
+        return false;
+    } else if (tok.isIdent("type")) {
+      consume();
+      if (!parseTypeDecl())
+        return false;
+    } else if (tok.isIdent("timescale")) {
+      if (!parseTimescale())
+        return false;
+    } else {
+      return errorHere("expected 'module', 'system', 'type' or 'timescale', "
+                       "found " +
+                       describe());
+    }
+  }
+  return !failed;
+}
+
+bool Parser::parseTimescale() {
+  SMLoc loc = tok.loc();
+  consume();
+  if (design.timescale)
+    return error(loc, "timescale given twice");
+  int64_t amount;
+  if (!parseInt(amount, "a time amount"))
+    return false;
+  if (amount <= 0)
+    return error(loc, "timescale must be positive");
+  if (!tok.is(Tok::Ident))
+    return errorHere("expected a time unit (ns, us, ms, s, min, h), found " +
+                     describe());
+  StringRef unit = tok.text;
+  if (!llvm::StringSwitch<bool>(unit)
+           .Cases("ns", "us", "ms", "s", "min", "h", true)
+           .Default(false))
+    return errorHere("unknown time unit '" + unit +
+                     "' (expected ns, us, ms, s, min or h)");
+  consume();
+  design.timescale = Timescale{uint64_t(amount), design.save(unit), loc};
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseTypeDecl() {
+  StringRef name;
+  SMLoc loc;
+  if (!parseSimpleName(name, loc, "a type name"))
+    return false;
+  if (design.types.lookup(name))
+    return error(loc, "redefinition of type '" + name + "'");
+  if (!expect(Tok::Equal, "'='"))
+    return false;
+  name = design.save(name);
+  if (tok.isIdent("enum")) {
+    consume();
+    if (!expect(Tok::LBrace, "'{'"))
+      return false;
+    std::vector<StringRef> enums;
+    do {
+      StringRef e;
+      SMLoc eloc;
+      if (!parseSimpleName(e, eloc, "an enumerator"))
+        return false;
+      for (StringRef prev : enums)
+        if (prev == e)
+          return error(eloc, "duplicate enumerator '" + e + "'");
+      enums.push_back(design.save(e));
+    } while (tok.is(Tok::Comma) && (consume(), true));
+    if (!expect(Tok::RBrace, "'}'"))
+      return false;
+    design.types.createEnum(name, std::move(enums));
+  } else if (tok.isIdent("struct")) {
+    consume();
+    if (!expect(Tok::LBrace, "'{'"))
+      return false;
+    std::vector<Field> fields;
+    while (!tok.is(Tok::RBrace)) {
+      StringRef f;
+      SMLoc floc;
+      if (!parseSimpleName(f, floc, "a field name"))
+        return false;
+      for (const Field &prev : fields)
+        if (prev.name == f)
+          return error(floc, "duplicate field '" + f + "'");
+      const Type *ft;
+      if (!expect(Tok::Colon, "':'") || !parseType(ft, false) ||
+          !expect(Tok::Semi, "';'"))
+        return false;
+      fields.push_back({design.save(f), ft});
+    }
+    consume();
+    if (fields.empty())
+      return error(loc, "struct '" + name + "' has no fields");
+    design.types.createRecord(name, std::move(fields));
+  } else {
+    const Type *t;
+    if (!parseType(t, false))
+      return false;
+    design.types.addAlias(name, t);
+  }
+  design.types.namedTypes().back().loc = loc;
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseType(const Type *&type, bool allowReal) {
+  SMLoc loc = tok.loc();
+  if (tok.is(Tok::Int) || tok.is(Tok::Minus)) {
+    int64_t lo, hi;
+    if (!parseSignedInt(lo, "a lower bound") || !expect(Tok::DotDot, "'..'") ||
+        !parseSignedInt(hi, "an upper bound"))
+      return false;
+    if (lo > hi)
+      return error(loc, "empty range " + llvm::Twine(lo) + ".." +
+                            llvm::Twine(hi));
+    type = design.types.getRange(lo, hi);
+    return true;
+  }
+  if (!tok.is(Tok::Ident))
+    return errorHere("expected a type, found " + describe());
+  StringRef word = tok.text;
+  if (word == "bool") {
+    consume();
+    type = design.types.getBool();
+    return true;
+  }
+  if (word == "array") {
+    consume();
+    int64_t lo, hi;
+    const Type *elem;
+    if (!expect(Tok::LBrack, "'['") || !parseSignedInt(lo, "an index") ||
+        !expect(Tok::DotDot, "'..'") || !parseSignedInt(hi, "an index") ||
+        !expect(Tok::RBrack, "']'") || !expectIdent("of") ||
+        !parseType(elem, false))
+      return false;
+    if (lo > hi)
+      return error(loc, "array has an empty index range");
+    type = design.types.getArray(elem, lo, hi);
+    return true;
+  }
+  if (word == "clock") {
+    consume();
+    int64_t lo, hi;
+    if (!parseSignedInt(lo, "0") || !expect(Tok::DotDot, "'..'") ||
+        !parseSignedInt(hi, "the clock's cap"))
+      return false;
+    if (lo != 0 || hi < 0)
+      return error(loc, "a clock ranges over 0..cap");
+    type = design.types.getClock(hi);
+    return true;
+  }
+  if (word == "real") {
+    if (!allowReal)
+      return errorHere("'real' is only allowed for hybrid variables "
+                       "(`real x : [lo, hi]`)");
+  }
+  bool isSigned = word.startswith("int");
+  if (isSigned || word.startswith("uint")) {
+    unsigned width;
+    if (!word.drop_front(isSigned ? 3 : 4).getAsInteger(10, width)) {
+      if (width != 8 && width != 16 && width != 32 && width != 64)
+        return errorHere("unsupported integer width in '" + word +
+                         "' (8, 16, 32 or 64)");
+      if (!isSigned && width == 64)
+        return errorHere("'uint64' is not supported (values are held in 64 "
+                         "signed bits); use a range");
+      consume();
+      Overflow ov = Overflow::Error;
+      if (tok.isIdent("wrap")) {
+        ov = Overflow::Wrap;
+        consume();
+      } else if (tok.isIdent("error")) {
+        consume();
+      }
+      type = design.types.getInt(width, isSigned, ov);
+      return true;
+    }
+  }
+  if (const Type *named = design.types.lookup(word)) {
+    consume();
+    type = named;
+    return true;
+  }
+  return errorHere("unknown type '" + word + "'");
+}
+
+bool Parser::parseModule(bool isSystem) {
+  StringRef name;
+  SMLoc loc;
+  if (!parseSimpleName(name, loc, "a module name"))
+    return false;
+  Module *m = b.createModule(name, isSystem, loc);
+  if (!m) {
+    error(loc, "redefinition of module '" + name + "'");
+    diag.note(design.lookupModule(name)->loc, "previous definition is here");
+    return false;
+  }
+  if (!expect(Tok::LBrace, "'{'"))
+    return false;
+  fixups.clear();
+  definitions.clear();
+  while (!tok.is(Tok::RBrace)) {
+    if (tok.is(Tok::Eof))
+      return errorHere("expected '}' to end module '" + name + "'");
+    if (!parseModuleItem())
+      return false;
+  }
+  consume();
+  return resolveModuleFixups();
+}
+
+bool Parser::parseModuleItem() {
+  if (!tok.is(Tok::Ident))
+    return errorHere("expected a declaration, found " + describe());
+  StringRef kw = tok.text;
+  // `name = expr;` defines an output signal, whatever the name.
+  Lexer peekLex = lex;
+  Token after = peekLex.next();
+  if (after.is(Tok::Equal))
+    return parseDefinition();
+  if (kw == "event" || kw == "cond" || kw == "data") {
+    PortKind kind = kw == "event"  ? PortKind::Event
+                    : kw == "cond" ? PortKind::Cond
+                                   : PortKind::Data;
+    consume();
+    return parsePortDecl(kind);
+  }
+  consume();
+  if (kw == "place")
+    return parsePlaceDecl();
+  if (kw == "trans")
+    return parseTransDecl();
+  if (kw == "var")
+    return parseVarDecl(false);
+  if (kw == "clock")
+    return parseVarDecl(true);
+  if (kw == "real")
+    return parseRealDecl();
+  if (kw == "flow")
+    return parseFlowDecl();
+  if (kw == "inst")
+    return parseInstDecl();
+  if (kw == "connect")
+    return parseConnectDecl();
+  return error(SMLoc::getFromPointer(kw.data()),
+               "unknown declaration '" + kw +
+                   "' (expected event, cond, data, place, trans, var, clock, "
+                   "real, flow, inst, connect or 'name = expr;')");
+}
+
+bool Parser::parsePortDecl(PortKind kind) {
+  Module *m = b.getModule();
+  PortDir dir;
+  if (tok.isIdent("input"))
+    dir = PortDir::In;
+  else if (tok.isIdent("output"))
+    dir = PortDir::Out;
+  else
+    return errorHere("expected 'input' or 'output', found " + describe());
+  SMLoc dirLoc = tok.loc();
+  consume();
+  if (m->isSystem)
+    return error(dirLoc, "a system has no interface; declare ports in a "
+                         "module");
+  struct Pending {
+    StringRef name;
+    SMLoc loc;
+    Expr *def = nullptr;
+    SMLoc defLoc;
+    Expr *init = nullptr;
+  };
+  llvm::SmallVector<Pending, 4> names;
+  auto parseTail = [&](Pending &p) {
+    if (dir == PortDir::Out && kind != PortKind::Event) {
+      if (tok.is(Tok::Equal)) {
+        p.defLoc = tok.loc();
+        consume();
+        if (!(p.def = parseExpr()))
+          return false;
+      } else if (tok.isIdent("init")) {
+        consume();
+        if (!(p.init = parseExpr()))
+          return false;
+      }
+    }
+    return true;
+  };
+  do {
+    Pending p;
+    if (!parseSimpleName(p.name, p.loc, "a port name"))
+      return false;
+    // Cond ports and stored outputs may carry their definition inline;
+    // data ports give their type after the last name.
+    if (kind == PortKind::Cond && !parseTail(p))
+      return false;
+    names.push_back(p);
+  } while (tok.is(Tok::Comma) && (consume(), true));
+  const Type *type = nullptr;
+  if (kind == PortKind::Data) {
+    if (!expect(Tok::Colon, "':' and the type of the data port") ||
+        !parseType(type, false))
+      return false;
+    if (names.size() == 1 && !parseTail(names[0]))
+      return false;
+  }
+  if (!expect(Tok::Semi, "';'"))
+    return false;
+  for (Pending &p : names) {
+    uint32_t i = b.addPort(p.name, kind, dir, type, p.loc);
+    m->ports[i].definition = p.def;
+    m->ports[i].definitionLoc = p.defLoc;
+    m->ports[i].init = p.init;
+  }
+  return true;
+}
+
+bool Parser::parsePlaceDecl() {
+  do {
+    StringRef name;
+    SMLoc loc;
+    if (!parseName(name, loc, "a place name"))
+      return false;
+    uint32_t tokens = 0, cap = 1;
+    if (tok.is(Tok::LParen)) {
+      consume();
+      if (!parseUInt32(tokens, "a token count", false) ||
+          !expect(Tok::RParen, "')'"))
+        return false;
+    }
+    if (tok.isIdent("cap")) {
+      consume();
+      if (!parseUInt32(cap, "a capacity", true))
+        return false;
+      if (cap == 0)
+        return error(loc, "place '" + name + "' has capacity 0");
+    }
+    b.addPlace(name, tokens, cap, loc);
+  } while (tok.is(Tok::Comma) && (consume(), true));
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseArcList(bool pre, llvm::SmallVectorImpl<PreArc> &preArcs,
+                          llvm::SmallVectorImpl<PostArc> &postArcs,
+                          llvm::SmallVectorImpl<SMLoc> &locs,
+                          llvm::SmallVectorImpl<StringRef> &names) {
+  if (tok.is(Tok::LParen)) {
+    consume();
+    return expect(Tok::RParen, "')' (an empty arc list is written '()')");
+  }
+  do {
+    uint32_t weight = 1;
+    if (tok.is(Tok::Int)) {
+      if (!parseUInt32(weight, "an arc weight", false) ||
+          !expect(Tok::Star, "'*' after the arc weight"))
+        return false;
+      if (weight == 0)
+        return errorHere("arc weight must be at least 1");
+    }
+    StringRef name;
+    SMLoc loc;
+    if (!parseName(name, loc, "a place name"))
+      return false;
+    Interval iv;
+    if (tok.is(Tok::LBrack)) {
+      if (!pre)
+        return errorHere("time intervals belong on pre-arcs (before '->')");
+      consume();
+      if (!parseUInt32(iv.lo, "a lower time bound", false) ||
+          !expect(Tok::Comma, "','") ||
+          !parseUInt32(iv.hi, "an upper time bound or 'inf'", true))
+        return false;
+      if (iv.lo > iv.hi)
+        return error(loc, "empty time interval [" + llvm::Twine(iv.lo) + "," +
+                              llvm::Twine(iv.hi) + "]");
+      if (!expect(Tok::RBrack, "']'"))
+        return false;
+    }
+    if (pre)
+      preArcs.push_back({0, weight, iv});
+    else
+      postArcs.push_back({0, weight});
+    locs.push_back(loc);
+    names.push_back(name);
+  } while (tok.is(Tok::Comma) && (consume(), true));
+  return true;
+}
+
+bool Parser::parseTransDecl() {
+  StringRef name;
+  SMLoc loc;
+  if (!parseName(name, loc, "a transition name"))
+    return false;
+  if (!expect(Tok::Colon, "':'"))
+    return false;
+  llvm::SmallVector<PreArc, 4> pre;
+  llvm::SmallVector<PostArc, 4> post;
+  llvm::SmallVector<SMLoc, 8> preLocs, postLocs;
+  llvm::SmallVector<StringRef, 8> preNames, postNames;
+  if (!parseArcList(true, pre, post, preLocs, preNames) ||
+      !expect(Tok::Arrow, "'->'") ||
+      !parseArcList(false, pre, post, postLocs, postNames))
+    return false;
+  uint32_t t = b.addTransition(name, pre, post, loc);
+  Transition &tr = b.getModule()->transitions[t];
+  tr.preLocs = design.copy(llvm::ArrayRef<SMLoc>(preLocs)).data();
+  tr.postLocs = design.copy(llvm::ArrayRef<SMLoc>(postLocs)).data();
+  for (unsigned i = 0; i < preNames.size(); ++i)
+    fixups.push_back({FixKind::PrePlace, t, i, preNames[i], preLocs[i]});
+  for (unsigned i = 0; i < postNames.size(); ++i)
+    fixups.push_back({FixKind::PostPlace, t, i, postNames[i], postLocs[i]});
+
+  bool seenCond = false, seenOn = false, seenEmit = false, seenGuard = false;
+  for (;;) {
+    if (tok.isIdent("cond")) {
+      if (seenCond)
+        return errorHere("'cond' given twice");
+      seenCond = true;
+      consume();
+      llvm::SmallVector<Expr *, 4> conds;
+      do {
+        Expr *e = parseExpr();
+        if (!e)
+          return false;
+        conds.push_back(e);
+      } while (tok.is(Tok::Comma) && (consume(), true));
+      b.setConds(t, conds);
+    } else if (tok.isIdent("on")) {
+      if (seenOn)
+        return errorHere("'on' given twice");
+      seenOn = true;
+      consume();
+      llvm::SmallVector<EventSource, 4> srcs;
+      EventMode mode = EventMode::Or;
+      bool sawOr = false, sawAnd = false;
+      TransitionExtras &x = b.extras(t);
+      for (;;) {
+        StringRef ev;
+        SMLoc evLoc;
+        if (!parseName(ev, evLoc, "an event source"))
+          return false;
+        fixups.push_back({FixKind::Event, t, uint32_t(srcs.size()), ev, evLoc});
+        srcs.push_back({0, false});
+        x.eventLocs.push_back(evLoc);
+        if (tok.is(Tok::Pipe))
+          sawOr = true;
+        else if (tok.is(Tok::Amp))
+          sawAnd = true;
+        else
+          break;
+        if (sawOr && sawAnd)
+          return errorHere("mixing '|' and '&' in one event list; a "
+                           "transition has one event mode");
+        consume();
+      }
+      if (sawAnd)
+        mode = EventMode::And;
+      b.setEvents(t, srcs, mode);
+    } else if (tok.isIdent("emit")) {
+      if (seenEmit)
+        return errorHere("'emit' given twice");
+      seenEmit = true;
+      consume();
+      llvm::SmallVector<uint32_t, 4> outs;
+      TransitionExtras &x = b.extras(t);
+      do {
+        StringRef ev;
+        SMLoc evLoc;
+        if (!parseName(ev, evLoc, "an event output"))
+          return false;
+        fixups.push_back({FixKind::Emit, t, uint32_t(outs.size()), ev, evLoc});
+        outs.push_back(0);
+        x.emitLocs.push_back(evLoc);
+      } while (tok.is(Tok::Comma) && (consume(), true));
+      b.setEmits(t, outs);
+    } else if (tok.isIdent("guard")) {
+      if (seenGuard)
+        return errorHere("'guard' given twice");
+      seenGuard = true;
+      consume();
+      Expr *g = parseExpr();
+      if (!g)
+        return false;
+      b.setGuard(t, g);
+    } else if (tok.isIdent("urgent")) {
+      if (b.getModule()->transitions[t].urgent)
+        return errorHere("'urgent' given twice");
+      consume();
+      b.setUrgent(t);
+    } else {
+      break;
+    }
+  }
+  if (tok.is(Tok::LBrace)) {
+    Block body;
+    if (!parseBlock(body))
+      return false;
+    b.setAction(t, body);
+    return true;
+  }
+  if (tok.is(Tok::Semi)) {
+    consume();
+    return true;
+  }
+  return errorHere("expected 'cond', 'on', 'emit', 'guard', 'urgent', an "
+                   "action block or ';', found " +
+                   describe());
+}
+
+bool Parser::parseVarDecl(bool isClock) {
+  llvm::SmallVector<std::pair<StringRef, SMLoc>, 4> names;
+  do {
+    StringRef name;
+    SMLoc loc;
+    if (!parseName(name, loc, "a variable name"))
+      return false;
+    names.push_back({name, loc});
+  } while (tok.is(Tok::Comma) && (consume(), true));
+  if (!expect(Tok::Colon, "':'"))
+    return false;
+  const Type *type;
+  SMLoc typeLoc = tok.loc();
+  if (isClock) {
+    int64_t lo, hi;
+    if (!parseSignedInt(lo, "0") || !expect(Tok::DotDot, "'..'") ||
+        !parseSignedInt(hi, "the clock's cap"))
+      return false;
+    if (lo != 0 || hi < 0)
+      return error(typeLoc, "a clock ranges over 0..cap");
+    type = design.types.getClock(hi);
+  } else if (!parseType(type, false)) {
+    return false;
+  }
+  Expr *init = nullptr;
+  if (tok.is(Tok::Equal)) {
+    consume();
+    if (!(init = parseExpr()))
+      return false;
+  }
+  if (!expect(Tok::Semi, "';'"))
+    return false;
+  for (auto &[n, l] : names)
+    b.addVar(n, type, init, l);
+  return true;
+}
+
+bool Parser::parseRealDecl() {
+  StringRef name;
+  SMLoc loc;
+  if (!parseName(name, loc, "a variable name"))
+    return false;
+  double lo = -INFINITY, hi = INFINITY;
+  if (!expect(Tok::Colon, "':'") || !expect(Tok::LBrack, "'['") ||
+      !parseRealBound(lo) || !expect(Tok::Comma, "','") ||
+      !parseRealBound(hi) || !expect(Tok::RBrack, "']'"))
+    return false;
+  if (lo > hi)
+    return error(loc, "empty real interval");
+  Expr *init = nullptr;
+  if (tok.is(Tok::Equal)) {
+    consume();
+    if (!(init = parseExpr()))
+      return false;
+  }
+  if (!expect(Tok::Semi, "';'"))
+    return false;
+  b.addVar(name, design.types.getReal(lo, hi), init, loc);
+  return true;
+}
+
+bool Parser::parseFlowDecl() {
+  StringRef place;
+  SMLoc loc;
+  if (!parseName(place, loc, "a place name"))
+    return false;
+  if (!expect(Tok::LBrace, "'{'"))
+    return false;
+  std::vector<Flow::Equation> eqs;
+  while (!tok.is(Tok::RBrace)) {
+    Flow::Equation eq;
+    if (!parseName(eq.var, eq.loc, "a real variable"))
+      return false;
+    if (!expect(Tok::Prime, "''' (a flow is written x' = rate)") ||
+        !expect(Tok::Equal, "'='"))
+      return false;
+    if (!(eq.rate = parseExpr()) || !expect(Tok::Semi, "';'"))
+      return false;
+    eqs.push_back(eq);
+  }
+  consume();
+  Module *m = b.getModule();
+  // The place may be declared later: resolve at the end of the module.
+  Flow f;
+  f.loc = loc;
+  f.place = 0;
+  f.placeName = design.save(place);
+  for (auto &e : eqs)
+    e.var = design.save(e.var);
+  f.equations = design.copy(llvm::ArrayRef<Flow::Equation>(eqs));
+  fixups.push_back(
+      {FixKind::FlowPlace, uint32_t(m->flows.size()), 0, place, loc});
+  m->flows.push_back(f);
+  return true;
+}
+
+bool Parser::parseInstDecl() {
+  StringRef name, type;
+  SMLoc loc, typeLoc;
+  if (!parseSimpleName(name, loc, "an instance name") ||
+      !expect(Tok::Colon, "':'") ||
+      !parseSimpleName(type, typeLoc, "a module name"))
+    return false;
+  uint32_t i = b.addInstance(name, type, loc);
+  b.getModule()->instances[i].moduleLoc = typeLoc;
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseEndpoint(Endpoint &e) {
+  StringRef n;
+  SMLoc loc;
+  if (!parseName(n, loc, "a port ('inst.port' or 'port')"))
+    return false;
+  e.loc = loc;
+  auto [inst, port] = n.rsplit('.');
+  if (port.empty()) {
+    e.instance = "";
+    e.port = n;
+  } else {
+    e.instance = inst;
+    e.port = port;
+  }
+  return true;
+}
+
+bool Parser::parseConnectDecl() {
+  SMLoc loc = tok.loc();
+  Endpoint from, to;
+  if (!parseEndpoint(from) || !expect(Tok::Arrow, "'->'") || !parseEndpoint(to))
+    return false;
+  b.addConnection(from, to, loc);
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseDefinition() {
+  Definition d;
+  d.name = tok.text;
+  d.loc = tok.loc();
+  consume(); // name
+  consume(); // '='
+  if (!(d.expr = parseExpr()) || !expect(Tok::Semi, "';'"))
+    return false;
+  definitions.push_back(d);
+  return true;
+}
+
+bool Parser::resolveModuleFixups() {
+  Module *m = b.getModule();
+  for (const Fixup &f : fixups) {
+    Symbol s = m->lookup(f.name);
+    auto kindName = [&]() -> std::string {
+      switch (s.kind) {
+      case SymKind::Place:
+        return "a place";
+      case SymKind::Transition:
+        return "a transition";
+      case SymKind::Port: {
+        const Port &p = m->ports[s.index];
+        return ("a " + spelling(p.kind) +
+                (p.isInput() ? " input" : " output"))
+            .str();
+      }
+      case SymKind::Var:
+        return "a variable";
+      case SymKind::Instance:
+        return "an instance";
+      default:
+        return "undefined";
+      }
+    };
+    switch (f.kind) {
+    case FixKind::PrePlace:
+    case FixKind::PostPlace:
+    case FixKind::FlowPlace: {
+      if (s.kind == SymKind::None)
+        return error(f.loc, "unknown place '" + f.name + "'");
+      if (s.kind != SymKind::Place) {
+        StringRef role = f.kind == FixKind::FlowPlace ? "a flow"
+                                                      : "a flow arc";
+        return error(f.loc, role + " needs a place, but '" + f.name +
+                                "' is " + kindName());
+      }
+      if (f.kind == FixKind::FlowPlace) {
+        m->flows[f.trans].place = s.index;
+      } else {
+        Transition &t = m->transitions[f.trans];
+        if (f.kind == FixKind::PrePlace)
+          const_cast<PreArc &>(t.pre[f.slot]).place = s.index;
+        else
+          const_cast<PostArc &>(t.post[f.slot]).place = s.index;
+      }
+      break;
+    }
+    case FixKind::Event: {
+      if (s.kind == SymKind::None)
+        return error(f.loc, "unknown event source '" + f.name + "'");
+      EventSource src;
+      if (s.kind == SymKind::Transition) {
+        src = {s.index, false};
+      } else if (s.kind == SymKind::Port &&
+                 m->ports[s.index].kind == PortKind::Event &&
+                 m->ports[s.index].isInput()) {
+        src = {s.index, true};
+      } else {
+        return error(f.loc, "event arc source '" + f.name + "' is " +
+                                kindName() +
+                                "; an event arc comes from a transition or "
+                                "an event input");
+      }
+      Transition &t = m->transitions[f.trans];
+      const_cast<EventSource &>(t.extras->events[f.slot]) = src;
+      break;
+    }
+    case FixKind::Emit: {
+      if (s.kind == SymKind::None)
+        return error(f.loc, "unknown event output '" + f.name + "'");
+      if (!(s.kind == SymKind::Port &&
+            m->ports[s.index].kind == PortKind::Event &&
+            m->ports[s.index].isOutput()))
+        return error(f.loc, "'emit' needs an event output, but '" + f.name +
+                                "' is " + kindName());
+      Transition &t = m->transitions[f.trans];
+      const_cast<uint32_t &>(t.extras->emits[f.slot]) = s.index;
+      break;
+    }
+    }
+  }
+  for (const Definition &d : definitions) {
+    int p = m->findPort(d.name);
+    if (p < 0 || !m->ports[p].isOutput() ||
+        m->ports[p].kind == PortKind::Event)
+      return error(d.loc, "'" + d.name +
+                              "' is not a cond or data output of module '" +
+                              m->name + "'; only outputs are defined by '='");
+    Port &port = m->ports[p];
+    if (port.definition) {
+      error(d.loc, "output '" + d.name + "' is defined twice");
+      diag.note(port.definitionLoc, "previous definition is here");
+      return false;
+    }
+    if (port.init)
+      return error(d.loc, "output '" + d.name +
+                              "' has an initial value, so it is stored and "
+                              "cannot also be defined");
+    port.definition = d.expr;
+    port.definitionLoc = d.loc;
+  }
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Expressions
+//===----------------------------------------------------------------------===//
+
+Expr *Parser::parseExpr() {
+  DepthGuard g(*this);
+  if (!g.ok)
+    return nullptr;
+  return parseTernary();
+}
+
+Expr *Parser::parseTernary() {
+  Expr *c = parseBinary(1);
+  if (!c || !tok.is(Tok::Question))
+    return c;
+  SMLoc loc = tok.loc();
+  consume();
+  Expr *a = parseExpr();
+  if (!a || !expect(Tok::Colon, "':' in a conditional expression"))
+    return nullptr;
+  Expr *e = parseExpr();
+  if (!e)
+    return nullptr;
+  return b.cond(c, a, e, loc);
+}
+
+bool Parser::peekBinaryOp(BinaryOp &op) const {
+  switch (tok.kind) {
+  case Tok::Ident:
+    if (tok.text == "or")
+      op = BinaryOp::Or;
+    else if (tok.text == "xor")
+      op = BinaryOp::Xor;
+    else if (tok.text == "and")
+      op = BinaryOp::And;
+    else
+      return false;
+    return true;
+  case Tok::EqEq:
+    op = BinaryOp::Eq;
+    return true;
+  case Tok::Ne:
+    op = BinaryOp::Ne;
+    return true;
+  case Tok::Lt:
+    op = BinaryOp::Lt;
+    return true;
+  case Tok::Le:
+    op = BinaryOp::Le;
+    return true;
+  case Tok::Gt:
+    op = BinaryOp::Gt;
+    return true;
+  case Tok::Ge:
+    op = BinaryOp::Ge;
+    return true;
+  case Tok::Pipe:
+    op = BinaryOp::BitOr;
+    return true;
+  case Tok::Caret:
+    op = BinaryOp::BitXor;
+    return true;
+  case Tok::Amp:
+    op = BinaryOp::BitAnd;
+    return true;
+  case Tok::Shl:
+    op = BinaryOp::Shl;
+    return true;
+  case Tok::Shr:
+    op = BinaryOp::Shr;
+    return true;
+  case Tok::Plus:
+    op = BinaryOp::Add;
+    return true;
+  case Tok::Minus:
+    op = BinaryOp::Sub;
+    return true;
+  case Tok::Star:
+    op = BinaryOp::Mul;
+    return true;
+  case Tok::Slash:
+    op = BinaryOp::Div;
+    return true;
+  case Tok::Percent:
+    op = BinaryOp::Mod;
+    return true;
+  default:
+    return false;
+  }
+}
+
+static bool isComparison(BinaryOp op) {
+  return precedence(op) == 5;
+}
+
+Expr *Parser::parseBinary(int minPrec) {
+  Expr *lhs;
+  if (tok.isIdent("not")) {
+    // `not` binds looser than comparisons: `not a == b` is `not (a == b)`.
+    SMLoc loc = tok.loc();
+    consume();
+    DepthGuard g(*this);
+    if (!g.ok)
+      return nullptr;
+    Expr *operand = parseBinary(4);
+    if (!operand)
+      return nullptr;
+    lhs = b.unary(UnaryOp::Not, operand, loc);
+  } else {
+    lhs = parseUnary();
+  }
+  if (!lhs)
+    return nullptr;
+  BinaryOp op;
+  while (peekBinaryOp(op) && precedence(op) >= minPrec) {
+    SMLoc loc = tok.loc();
+    consume();
+    int p = precedence(op);
+    Expr *rhs = parseBinary(p + 1);
+    if (!rhs)
+      return nullptr;
+    lhs = b.binary(op, lhs, rhs, loc);
+    BinaryOp next;
+    if (isComparison(op) && peekBinaryOp(next) && isComparison(next)) {
+      errorHere("comparisons do not chain; use parentheses or 'and'");
+      return nullptr;
+    }
+  }
+  return lhs;
+}
+
+Expr *Parser::parseUnary() {
+  if (tok.is(Tok::Minus) || tok.is(Tok::Tilde)) {
+    UnaryOp op = tok.is(Tok::Minus) ? UnaryOp::Neg : UnaryOp::BitNot;
+    SMLoc loc = tok.loc();
+    consume();
+    DepthGuard g(*this);
+    if (!g.ok)
+      return nullptr;
+    Expr *a = parseUnary();
+    return a ? b.unary(op, a, loc) : nullptr;
+  }
+  return parsePostfix();
+}
+
+Expr *Parser::parsePostfix() {
+  Expr *e = parsePrimary();
+  while (e) {
+    if (tok.is(Tok::LBrack)) {
+      SMLoc loc = tok.loc();
+      consume();
+      Expr *i = parseExpr();
+      if (!i || !expect(Tok::RBrack, "']'"))
+        return nullptr;
+      e = b.index(e, i, loc);
+    } else if (tok.is(Tok::Dot)) {
+      SMLoc loc = tok.loc();
+      consume();
+      StringRef f;
+      SMLoc floc;
+      if (!parseName(f, floc, "a field name"))
+        return nullptr;
+      // `a[i].x.y` arrives as one name "x.y": split into fields.
+      llvm::SmallVector<StringRef, 4> parts;
+      f.split(parts, '.');
+      for (StringRef part : parts)
+        e = b.field(e, part, loc);
+    } else {
+      break;
+    }
+  }
+  return e;
+}
+
+Expr *Parser::parsePrimary() {
+  SMLoc loc = tok.loc();
+  switch (tok.kind) {
+  case Tok::Int: {
+    int64_t v;
+    if (tok.text.getAsInteger(10, v)) {
+      errorHere("integer literal '" + tok.text + "' is too large");
+      return nullptr;
+    }
+    consume();
+    return b.intLit(v, loc);
+  }
+  case Tok::Real: {
+    double v = strtod(tok.text.str().c_str(), nullptr);
+    consume();
+    return b.realLit(v, loc);
+  }
+  case Tok::LParen: {
+    consume();
+    Expr *e = parseExpr();
+    if (!e || !expect(Tok::RParen, "')'"))
+      return nullptr;
+    return e;
+  }
+  case Tok::Ident: {
+    StringRef n = tok.text;
+    if (n == "true" || n == "false") {
+      consume();
+      return b.boolLit(n == "true", loc);
+    }
+    if (n == "min" || n == "max" || n == "abs") {
+      Lexer peek = lex;
+      if (peek.next().is(Tok::LParen)) {
+        Builtin fn = n == "min"   ? Builtin::Min
+                     : n == "max" ? Builtin::Max
+                                  : Builtin::Abs;
+        consume();
+        consume();
+        llvm::SmallVector<Expr *, 2> args;
+        if (!tok.is(Tok::RParen)) {
+          do {
+            Expr *a = parseExpr();
+            if (!a)
+              return nullptr;
+            args.push_back(a);
+          } while (tok.is(Tok::Comma) && (consume(), true));
+        }
+        if (!expect(Tok::RParen, "')'"))
+          return nullptr;
+        size_t want = fn == Builtin::Abs ? 1 : 2;
+        if (args.size() != want) {
+          error(loc, n + "() takes " + llvm::Twine(want) + " argument" +
+                         (want == 1 ? "" : "s"));
+          return nullptr;
+        }
+        return b.call(fn, args, loc);
+      }
+    }
+    if (isReservedWord(n)) {
+      errorHere("expected an expression, found '" + n + "'");
+      return nullptr;
+    }
+    consume();
+    if (tok.is(Tok::Hash)) {
+      // Typed enumerator: Color#red.
+      consume();
+      if (!tok.is(Tok::Ident)) {
+        errorHere("expected an enumerator after '#', found " + describe());
+        return nullptr;
+      }
+      StringRef full(n.data(), tok.text.end() - n.data());
+      consume();
+      return b.ref(full, loc);
+    }
+    return b.ref(n, loc);
+  }
+  default:
+    errorHere("expected an expression, found " + describe());
+    return nullptr;
+  }
+}
+
+//===----------------------------------------------------------------------===//
+// Statements
+//===----------------------------------------------------------------------===//
+
+bool Parser::parseBlock(Block &out) {
+  DepthGuard g(*this);
+  if (!g.ok)
+    return false;
+  if (!expect(Tok::LBrace, "'{'"))
+    return false;
+  llvm::SmallVector<Stmt *, 8> stmts;
+  while (!tok.is(Tok::RBrace)) {
+    if (tok.is(Tok::Eof))
+      return errorHere("expected '}' to end the block");
+    Stmt *s = parseStmt();
+    if (!s)
+      return false;
+    stmts.push_back(s);
+  }
+  consume();
+  out = design.copy(llvm::ArrayRef<Stmt *>(stmts));
+  return true;
+}
+
+Stmt *Parser::parseStmt() {
+  if (tok.isIdent("if"))
+    return parseIf();
+  if (tok.isIdent("case"))
+    return parseCase();
+  if (tok.isIdent("for"))
+    return parseFor();
+  SMLoc loc = tok.loc();
+  Expr *target = parsePostfix();
+  if (!target)
+    return nullptr;
+  if (!expect(Tok::Assign, "':=' in an assignment"))
+    return nullptr;
+  Expr *value = parseExpr();
+  if (!value || !expect(Tok::Semi, "';'"))
+    return nullptr;
+  return b.assign(target, value, loc);
+}
+
+Stmt *Parser::parseIf() {
+  SMLoc loc = tok.loc();
+  consume();
+  llvm::SmallVector<IfArm, 2> arms;
+  Expr *c = parseExpr();
+  Block body;
+  if (!c || !parseBlock(body))
+    return nullptr;
+  arms.push_back({c, body});
+  while (tok.isIdent("elif")) {
+    consume();
+    c = parseExpr();
+    if (!c || !parseBlock(body))
+      return nullptr;
+    arms.push_back({c, body});
+  }
+  Block elseBody;
+  bool hasElse = false;
+  if (tok.isIdent("else")) {
+    consume();
+    hasElse = true;
+    if (!parseBlock(elseBody))
+      return nullptr;
+  }
+  return b.ifStmt(arms, hasElse, elseBody, loc);
+}
+
+Stmt *Parser::parseCase() {
+  SMLoc loc = tok.loc();
+  consume();
+  Expr *sel = parseExpr();
+  if (!sel || !expect(Tok::LBrace, "'{'"))
+    return nullptr;
+  std::vector<CaseArm> arms;
+  Block elseBody;
+  bool hasElse = false;
+  while (!tok.is(Tok::RBrace)) {
+    if (tok.isIdent("else")) {
+      if (hasElse) {
+        errorHere("'else' given twice in a case");
+        return nullptr;
+      }
+      consume();
+      hasElse = true;
+      if (!parseBlock(elseBody))
+        return nullptr;
+      continue;
+    }
+    if (hasElse) {
+      errorHere("the 'else' arm must come last in a case");
+      return nullptr;
+    }
+    llvm::SmallVector<CaseLabel, 4> labels;
+    do {
+      Expr *lo = parseBinary(6);
+      if (!lo)
+        return nullptr;
+      Expr *hi = nullptr;
+      if (tok.is(Tok::DotDot)) {
+        consume();
+        if (!(hi = parseBinary(6)))
+          return nullptr;
+      }
+      labels.push_back({lo, hi});
+    } while (tok.is(Tok::Comma) && (consume(), true));
+    Block body;
+    if (!parseBlock(body))
+      return nullptr;
+    arms.push_back({design.copy(llvm::ArrayRef<CaseLabel>(labels)), body});
+  }
+  consume();
+  return b.caseStmt(sel, arms, hasElse, elseBody, loc);
+}
+
+Stmt *Parser::parseFor() {
+  SMLoc loc = tok.loc();
+  consume();
+  StringRef var;
+  SMLoc vloc;
+  if (!parseSimpleName(var, vloc, "a loop variable") || !expectIdent("in"))
+    return nullptr;
+  Expr *lo = parseBinary(6);
+  if (!lo || !expect(Tok::DotDot, "'..'"))
+    return nullptr;
+  Expr *hi = parseBinary(6);
+  Block body;
+  if (!hi || !parseBlock(body))
+    return nullptr;
+  return b.forStmt(var, lo, hi, body, loc);
+}
+
+bool netlift::net::parseNetIR(unsigned bufferID, DiagEngine &diag,
+                              Design &design) {
+  const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
+  Parser p(buf->getBuffer(), diag, design);
+  return p.parseFile();
+}

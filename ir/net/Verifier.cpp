@@ -1,0 +1,964 @@
+//===- Verifier.cpp - NetIR well-formedness -------------------------------===//
+#include "ir/net/Verifier.h"
+
+#include "ir/net/Printer.h"
+
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/DenseSet.h"
+#include "llvm/ADT/SmallVector.h"
+
+#include <algorithm>
+#include <functional>
+
+using namespace netlift;
+using namespace netlift::net;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+bool netlift::net::hasHybridParts(const Module &m) {
+  if (!m.flows.empty())
+    return true;
+  for (const Var &v : m.vars)
+    if (v.type->isReal())
+      return true;
+  return false;
+}
+
+namespace {
+
+/// Where an expression is read; decides which names it may use.
+enum class Ctx {
+  Signal,   // condition arcs: places and cond ports only
+  Guard,    // guards, definitions, action right-hand sides, flows
+  Constant, // initial values, case labels, loop bounds
+};
+
+class ModuleVerifier {
+public:
+  ModuleVerifier(Design &d, Module &m, DiagEngine &diag)
+      : d(d), m(m), diag(diag), types(d.types) {}
+  void run();
+
+private:
+  void error(SMLoc loc, const Twine &msg) { diag.error(loc, msg); }
+  std::string typeName(const Type *t) { return t->str(); }
+  SMLoc locOf(Symbol s);
+  void checkNames();
+  void checkPorts();
+  void checkVars();
+  void checkPlaces();
+  void checkTransition(uint32_t ti);
+  void checkFlows();
+  void checkInstancesAndConnections();
+  void checkEventCycles();
+  void checkDefinitionCycles();
+
+  const Type *check(Expr *e, Ctx ctx);
+  const Type *checkRef(Ref *r, Ctx ctx);
+  bool expectBool(Expr *e, Ctx ctx, StringRef what);
+  bool checkInit(Expr *init, const Type *type, StringRef what);
+  void checkBlock(Block b);
+  void checkStmt(Stmt *s);
+  const Type *checkTarget(Expr *e);
+  bool isNumeric(const Type *t) { return t->isInteger() || t->isReal(); }
+
+  Design &d;
+  Module &m;
+  DiagEngine &diag;
+  TypeTable &types;
+  std::vector<StringRef> loopVars;
+};
+
+SMLoc ModuleVerifier::locOf(Symbol s) {
+  switch (s.kind) {
+  case SymKind::Place:
+    return m.places[s.index].loc;
+  case SymKind::Transition:
+    return m.transitions[s.index].loc;
+  case SymKind::Port:
+    return m.ports[s.index].loc;
+  case SymKind::Var:
+    return m.vars[s.index].loc;
+  case SymKind::Instance:
+    return m.instances[s.index].loc;
+  default:
+    return {};
+  }
+}
+
+void ModuleVerifier::checkNames() {
+  auto check = [&](StringRef name, SMLoc loc, Symbol self) {
+    Symbol s = m.lookup(name);
+    if (s == self)
+      return;
+    error(loc, "redefinition of '" + name + "' in module '" + m.name + "'");
+    diag.note(locOf(s), "previous definition is here");
+  };
+  for (uint32_t i = 0; i < m.ports.size(); ++i)
+    check(m.ports[i].name, m.ports[i].loc, {SymKind::Port, i});
+  for (uint32_t i = 0; i < m.places.size(); ++i)
+    check(m.places[i].name, m.places[i].loc, {SymKind::Place, i});
+  for (uint32_t i = 0; i < m.transitions.size(); ++i)
+    check(m.transitions[i].name, m.transitions[i].loc,
+          {SymKind::Transition, i});
+  for (uint32_t i = 0; i < m.vars.size(); ++i)
+    check(m.vars[i].name, m.vars[i].loc, {SymKind::Var, i});
+  for (uint32_t i = 0; i < m.instances.size(); ++i)
+    check(m.instances[i].name, m.instances[i].loc, {SymKind::Instance, i});
+}
+
+bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
+  if (!init)
+    return true;
+  const Type *t = check(init, Ctx::Constant);
+  if (!t)
+    return false;
+  if (!isAssignable(type, t)) {
+    error(init->loc, "initial value of " + what + " has type '" +
+                         typeName(t) + "', expected '" + typeName(type) + "'");
+    return false;
+  }
+  int64_t v;
+  if (type->isInteger() && evalConstInt(init, v) &&
+      (v < type->lo || v > type->hi)) {
+    error(init->loc, "initial value " + Twine(v) + " of " + what +
+                         " is outside its type '" + typeName(type) + "'");
+    return false;
+  }
+  return true;
+}
+
+void ModuleVerifier::checkPorts() {
+  if (m.isSystem && !m.ports.empty())
+    error(m.ports[0].loc, "system '" + m.name + "' cannot have ports");
+  for (Port &p : m.ports) {
+    if (p.kind == PortKind::Data) {
+      if (!p.type) {
+        error(p.loc, "data port '" + p.name + "' has no type");
+        continue;
+      }
+      if (p.type->isClock() || p.type->isReal()) {
+        error(p.loc, "data port '" + p.name + "' cannot have type '" +
+                         typeName(p.type) + "'");
+        continue;
+      }
+    }
+    if (p.kind == PortKind::Event || p.isInput()) {
+      if (p.definition || p.init)
+        error(p.definition ? p.definitionLoc : p.init->loc,
+              "only cond and data outputs can be defined or initialised");
+      continue;
+    }
+    if (p.definition) {
+      const Type *t = check(p.definition, Ctx::Guard);
+      if (t && !isAssignable(p.type, t))
+        error(p.definition->loc, "output '" + p.name + "' of type '" +
+                                     typeName(p.type) +
+                                     "' is defined by an expression of type '" +
+                                     typeName(t) + "'");
+    }
+    checkInit(p.init, p.type, ("output '" + p.name + "'").str());
+  }
+}
+
+void ModuleVerifier::checkVars() {
+  for (Var &v : m.vars) {
+    if (!v.type) {
+      error(v.loc, "variable '" + v.name + "' has no type");
+      continue;
+    }
+    checkInit(v.init, v.type, ("variable '" + v.name + "'").str());
+  }
+}
+
+void ModuleVerifier::checkPlaces() {
+  for (const Place &p : m.places) {
+    if (p.capacity == 0)
+      error(p.loc, "place '" + p.name + "' has capacity 0");
+    else if (p.capacity != kInf && p.tokens > p.capacity)
+      error(p.loc, "initial marking of place '" + p.name + "' (" +
+                       Twine(p.tokens) + ") exceeds its capacity " +
+                       Twine(p.capacity));
+  }
+}
+
+void ModuleVerifier::checkTransition(uint32_t ti) {
+  Transition &t = m.transitions[ti];
+  auto arcLoc = [&](const SMLoc *locs, size_t i) {
+    return locs ? locs[i] : t.loc;
+  };
+  llvm::SmallDenseSet<uint32_t, 8> seen;
+  for (size_t i = 0; i < t.pre.size(); ++i) {
+    const PreArc &a = t.pre[i];
+    if (a.place >= m.places.size()) {
+      error(t.loc, "transition '" + t.name + "' has a pre-arc to no place");
+      return;
+    }
+    if (a.weight == 0)
+      error(arcLoc(t.preLocs, i), "arc weight must be at least 1");
+    if (a.time.lo > a.time.hi)
+      error(arcLoc(t.preLocs, i), "empty time interval on the arc from '" +
+                                      m.places[a.place].name + "'");
+    if (!seen.insert(a.place).second)
+      error(arcLoc(t.preLocs, i),
+            "place '" + m.places[a.place].name +
+                "' appears twice in the pre-set of '" + t.name +
+                "'; give the arc a weight instead");
+  }
+  seen.clear();
+  for (size_t i = 0; i < t.post.size(); ++i) {
+    const PostArc &a = t.post[i];
+    if (a.place >= m.places.size()) {
+      error(t.loc, "transition '" + t.name + "' has a post-arc to no place");
+      return;
+    }
+    if (a.weight == 0)
+      error(arcLoc(t.postLocs, i), "arc weight must be at least 1");
+    if (!seen.insert(a.place).second)
+      error(arcLoc(t.postLocs, i),
+            "place '" + m.places[a.place].name +
+                "' appears twice in the post-set of '" + t.name +
+                "'; give the arc a weight instead");
+  }
+  for (Expr *c : t.conds())
+    expectBool(c, Ctx::Signal, "a condition arc");
+  auto events = t.events();
+  for (size_t i = 0; i < events.size(); ++i) {
+    const EventSource &s = events[i];
+    SMLoc loc = t.extras->eventLocs.size() > i ? t.extras->eventLocs[i] : t.loc;
+    if (s.fromPort) {
+      if (s.index >= m.ports.size() ||
+          m.ports[s.index].kind != PortKind::Event ||
+          !m.ports[s.index].isInput())
+        error(loc, "event arc into '" + t.name +
+                       "' must come from an event input");
+    } else if (s.index >= m.transitions.size()) {
+      error(loc, "event arc into '" + t.name + "' comes from no transition");
+    } else if (s.index == ti) {
+      error(loc, "transition '" + t.name + "' cannot force itself");
+    }
+  }
+  for (uint32_t p : t.emits())
+    if (p >= m.ports.size() || m.ports[p].kind != PortKind::Event ||
+        !m.ports[p].isOutput())
+      error(t.loc, "transition '" + t.name + "' emits to a port that is not "
+                                              "an event output");
+  if (Expr *g = t.guard())
+    expectBool(g, Ctx::Guard, "a guard");
+  checkBlock(t.action());
+}
+
+void ModuleVerifier::checkFlows() {
+  for (Flow &f : m.flows) {
+    if (f.place >= m.places.size()) {
+      error(f.loc, "flow of no place");
+      continue;
+    }
+    llvm::SmallDenseSet<uint32_t, 4> vars;
+    for (const Flow::Equation &ceq : f.equations) {
+      auto &eq = const_cast<Flow::Equation &>(ceq);
+      Symbol s = m.lookup(eq.var);
+      if (s.kind != SymKind::Var || !m.vars[s.index].type->isReal()) {
+        error(eq.loc, "'" + eq.var + "' is not a real variable; flows (x' = "
+                                     "rate) are for real variables");
+        continue;
+      }
+      eq.varIndex = s.index;
+      if (!vars.insert(s.index).second)
+        error(eq.loc, "two flows for '" + eq.var + "' in place '" +
+                          m.places[f.place].name + "'");
+      const Type *t = check(eq.rate, Ctx::Guard);
+      if (t && !isNumeric(t))
+        error(eq.rate->loc, "the rate of '" + eq.var +
+                                "' must be a number, not '" + typeName(t) +
+                                "'");
+    }
+  }
+}
+
+bool ModuleVerifier::expectBool(Expr *e, Ctx ctx, StringRef what) {
+  const Type *t = check(e, ctx);
+  if (!t)
+    return false;
+  if (!t->isBool()) {
+    error(e->loc, what + " must be Boolean, but '" + exprToString(e) +
+                      "' has type '" + typeName(t) + "'");
+    return false;
+  }
+  return true;
+}
+
+const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
+  StringRef name = r->name;
+  // Typed enumerator `Color#red`.
+  if (name.contains('#')) {
+    auto [tn, en] = name.split('#');
+    const Type *t = types.lookup(tn);
+    if (!t || t->kind != TypeKind::Enum) {
+      error(r->loc, "'" + tn + "' is not an enumeration type");
+      return nullptr;
+    }
+    int idx = t->enumIndex(en);
+    if (idx < 0) {
+      error(r->loc, "'" + en + "' is not an enumerator of '" + tn + "'");
+      return nullptr;
+    }
+    r->sym = {SymKind::EnumLit, uint32_t(idx)};
+    return r->type = t;
+  }
+  for (size_t i = loopVars.size(); i-- > 0;)
+    if (loopVars[i] == name) {
+      if (ctx == Ctx::Signal) {
+        error(r->loc, "loop variable '" + name +
+                          "' cannot be used in a condition arc");
+        return nullptr;
+      }
+      r->sym = {SymKind::LoopVar, uint32_t(i)};
+      return r->type = types.getInteger();
+    }
+  Symbol s = m.lookup(name);
+  llvm::SmallVector<StringRef, 2> fieldNames;
+  if (s.kind == SymKind::None && name.contains('.')) {
+    // Longest declared prefix, the rest being record fields.
+    StringRef prefix = name;
+    while (s.kind == SymKind::None && prefix.contains('.')) {
+      auto [head, tail] = prefix.rsplit('.');
+      fieldNames.insert(fieldNames.begin(), tail);
+      prefix = head;
+      s = m.lookup(prefix);
+    }
+    if (s.kind != SymKind::Var && s.kind != SymKind::Port)
+      s = Symbol(), fieldNames.clear();
+  }
+  if (s.kind == SymKind::None) {
+    // A bare enumerator, if exactly one enumeration has it.
+    const Type *found = nullptr;
+    int idx = -1;
+    for (const auto &nt : types.namedTypes()) {
+      if (nt.isAlias || nt.type->kind != TypeKind::Enum)
+        continue;
+      int i = nt.type->enumIndex(name);
+      if (i < 0)
+        continue;
+      if (found) {
+        error(r->loc, "'" + name + "' is an enumerator of both '" +
+                          found->name + "' and '" + nt.type->name +
+                          "'; write " + found->name + "#" + name + " or " +
+                          nt.type->name + "#" + name);
+        return nullptr;
+      }
+      found = nt.type;
+      idx = i;
+    }
+    if (found) {
+      r->sym = {SymKind::EnumLit, uint32_t(idx)};
+      return r->type = found;
+    }
+    error(r->loc, "unknown name '" + name + "' in module '" + m.name + "'");
+    return nullptr;
+  }
+  if (ctx == Ctx::Constant) {
+    error(r->loc, "'" + name + "' is not a constant");
+    return nullptr;
+  }
+  const Type *t = nullptr;
+  switch (s.kind) {
+  case SymKind::Place:
+    // A place read in an expression means "is marked".
+    t = types.getBool();
+    break;
+  case SymKind::Port: {
+    const Port &p = m.ports[s.index];
+    if (p.kind == PortKind::Event) {
+      error(r->loc, "event port '" + name +
+                        "' has no value; use it in 'on' or 'emit'");
+      return nullptr;
+    }
+    if (ctx == Ctx::Signal && p.kind == PortKind::Data) {
+      error(r->loc, "condition arcs carry Boolean signals; data port '" +
+                        name + "' belongs in a guard");
+      return nullptr;
+    }
+    t = p.type;
+    break;
+  }
+  case SymKind::Var:
+    if (ctx == Ctx::Signal) {
+      error(r->loc, "condition arcs carry signals (places and cond ports); "
+                    "variable '" +
+                        name + "' belongs in a guard");
+      return nullptr;
+    }
+    t = m.vars[s.index].type;
+    break;
+  case SymKind::Transition:
+    error(r->loc, "'" + name + "' is a transition and has no value");
+    return nullptr;
+  case SymKind::Instance:
+    error(r->loc, "'" + name + "' is an instance and has no value");
+    return nullptr;
+  default:
+    return nullptr;
+  }
+  r->sym = s;
+  if (!fieldNames.empty()) {
+    llvm::SmallVector<uint32_t, 2> idx;
+    for (StringRef f : fieldNames) {
+      int fi = t->kind == TypeKind::Record ? t->fieldIndex(f) : -1;
+      if (fi < 0) {
+        error(r->loc, "'" + f + "' is not a field of '" + typeName(t) + "'");
+        return nullptr;
+      }
+      idx.push_back(uint32_t(fi));
+      t = t->fields[fi].type;
+    }
+    r->fields = d.copy(llvm::ArrayRef<uint32_t>(idx));
+  }
+  return r->type = t;
+}
+
+const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
+  switch (e->getKind()) {
+  case ExprKind::IntLit:
+    return e->type = types.getInteger();
+  case ExprKind::BoolLit:
+    return e->type = types.getBool();
+  case ExprKind::RealLit:
+    return e->type = types.getAnyReal();
+  case ExprKind::Ref:
+    return checkRef(llvm::cast<Ref>(e), ctx);
+  case ExprKind::Index: {
+    auto *x = llvm::cast<IndexExpr>(e);
+    const Type *bt = check(x->base, ctx);
+    const Type *it = check(x->index, ctx == Ctx::Signal ? Ctx::Guard : ctx);
+    if (!bt || !it)
+      return nullptr;
+    if (bt->kind != TypeKind::Array) {
+      error(e->loc, "'" + exprToString(x->base) + "' of type '" +
+                        typeName(bt) + "' is not an array");
+      return nullptr;
+    }
+    if (!it->isInteger()) {
+      error(x->index->loc, "an array index must be an integer");
+      return nullptr;
+    }
+    int64_t v;
+    if (evalConstInt(x->index, v) && (v < bt->indexLo || v > bt->indexHi)) {
+      error(x->index->loc, "index " + Twine(v) + " is outside " +
+                               Twine(bt->indexLo) + ".." + Twine(bt->indexHi));
+      return nullptr;
+    }
+    return e->type = bt->elem;
+  }
+  case ExprKind::Field: {
+    auto *f = llvm::cast<FieldExpr>(e);
+    const Type *bt = check(f->base, ctx);
+    if (!bt)
+      return nullptr;
+    int fi = bt->kind == TypeKind::Record ? bt->fieldIndex(f->field) : -1;
+    if (fi < 0) {
+      error(e->loc, "'" + f->field + "' is not a field of '" + typeName(bt) +
+                        "'");
+      return nullptr;
+    }
+    f->fieldIndex = uint32_t(fi);
+    return e->type = bt->fields[fi].type;
+  }
+  case ExprKind::Unary: {
+    auto *u = llvm::cast<UnaryExpr>(e);
+    const Type *t = check(u->operand, ctx);
+    if (!t)
+      return nullptr;
+    switch (u->op) {
+    case UnaryOp::Not:
+      if (!t->isBool()) {
+        error(e->loc, "'not' needs a Boolean operand, not '" + typeName(t) +
+                          "'");
+        return nullptr;
+      }
+      return e->type = t;
+    case UnaryOp::Neg:
+      if (!isNumeric(t)) {
+        error(e->loc, "'-' needs a number, not '" + typeName(t) + "'");
+        return nullptr;
+      }
+      return e->type = t->isReal() ? types.getAnyReal() : types.getInteger();
+    case UnaryOp::BitNot:
+      if (!t->isInteger()) {
+        error(e->loc, "'~' needs an integer, not '" + typeName(t) + "'");
+        return nullptr;
+      }
+      return e->type = types.getInteger();
+    }
+    return nullptr;
+  }
+  case ExprKind::Binary: {
+    auto *bin = llvm::cast<BinaryExpr>(e);
+    const Type *a = check(bin->lhs, ctx);
+    const Type *b = check(bin->rhs, ctx);
+    if (!a || !b)
+      return nullptr;
+    StringRef op = spelling(bin->op);
+    auto mismatch = [&](StringRef need) -> const Type * {
+      error(e->loc, "'" + op + "' needs " + need + ", but the operands have "
+                        "types '" +
+                        typeName(a) + "' and '" + typeName(b) + "'");
+      return nullptr;
+    };
+    switch (bin->op) {
+    case BinaryOp::Or:
+    case BinaryOp::Xor:
+    case BinaryOp::And:
+      if (!a->isBool() || !b->isBool())
+        return mismatch("Boolean operands");
+      return e->type = types.getBool();
+    case BinaryOp::Eq:
+    case BinaryOp::Ne:
+      if (!isComparable(a, b))
+        return mismatch("operands of the same type");
+      return e->type = types.getBool();
+    case BinaryOp::Lt:
+    case BinaryOp::Le:
+    case BinaryOp::Gt:
+    case BinaryOp::Ge:
+      if (!isNumeric(a) || !isNumeric(b))
+        return mismatch("numbers");
+      return e->type = types.getBool();
+    case BinaryOp::BitOr:
+    case BinaryOp::BitXor:
+    case BinaryOp::BitAnd:
+    case BinaryOp::Shl:
+    case BinaryOp::Shr:
+      if (!a->isInteger() || !b->isInteger())
+        return mismatch("integers");
+      return e->type = types.getInteger();
+    case BinaryOp::Mod:
+      if (!a->isInteger() || !b->isInteger())
+        return mismatch("integers");
+      return e->type = types.getInteger();
+    case BinaryOp::Add:
+    case BinaryOp::Sub:
+    case BinaryOp::Mul:
+    case BinaryOp::Div:
+      if (!isNumeric(a) || !isNumeric(b))
+        return mismatch("numbers");
+      return e->type = (a->isReal() || b->isReal()) ? types.getAnyReal()
+                                                    : types.getInteger();
+    }
+    return nullptr;
+  }
+  case ExprKind::Cond: {
+    auto *c = llvm::cast<CondExpr>(e);
+    if (!expectBool(c->cond, ctx, "the condition of '?:'"))
+      return nullptr;
+    const Type *a = check(c->thenExpr, ctx);
+    const Type *b = check(c->elseExpr, ctx);
+    if (!a || !b)
+      return nullptr;
+    if (!isComparable(a, b)) {
+      error(e->loc, "the branches of '?:' have types '" + typeName(a) +
+                        "' and '" + typeName(b) + "'");
+      return nullptr;
+    }
+    if (a->isInteger() && b->isInteger() && a != b)
+      return e->type = types.getInteger();
+    if (a->isReal() || b->isReal())
+      return e->type = types.getAnyReal();
+    return e->type = a;
+  }
+  case ExprKind::Call: {
+    auto *c = llvm::cast<CallExpr>(e);
+    bool real = false;
+    for (Expr *a : c->args) {
+      const Type *t = check(a, ctx);
+      if (!t)
+        return nullptr;
+      if (!isNumeric(t)) {
+        error(a->loc, spelling(c->fn) + "() needs numbers, not '" +
+                          typeName(t) + "'");
+        return nullptr;
+      }
+      real |= t->isReal();
+    }
+    return e->type = real ? types.getAnyReal() : types.getInteger();
+  }
+  }
+  return nullptr;
+}
+
+const Type *ModuleVerifier::checkTarget(Expr *e) {
+  // Find the root name of the target.
+  Expr *root = e;
+  while (true) {
+    if (auto *x = llvm::dyn_cast<IndexExpr>(root))
+      root = x->base;
+    else if (auto *f = llvm::dyn_cast<FieldExpr>(root))
+      root = f->base;
+    else
+      break;
+  }
+  auto *r = llvm::dyn_cast<Ref>(root);
+  if (!r) {
+    error(e->loc, "'" + exprToString(e) + "' cannot be assigned");
+    return nullptr;
+  }
+  const Type *t = check(e, Ctx::Guard);
+  if (!t)
+    return nullptr;
+  switch (r->sym.kind) {
+  case SymKind::Var:
+    return t;
+  case SymKind::Port: {
+    const Port &p = m.ports[r->sym.index];
+    if (p.isInput()) {
+      error(e->loc, "cannot assign to input '" + p.name + "'");
+      return nullptr;
+    }
+    if (p.definition) {
+      error(e->loc, "cannot assign to output '" + p.name +
+                        "': it is defined by an expression");
+      return nullptr;
+    }
+    return t;
+  }
+  case SymKind::Place:
+    error(e->loc, "cannot assign to place '" + r->name +
+                      "'; tokens move only along flow arcs");
+    return nullptr;
+  case SymKind::LoopVar:
+    error(e->loc, "cannot assign to loop variable '" + r->name + "'");
+    return nullptr;
+  default:
+    error(e->loc, "'" + exprToString(e) + "' cannot be assigned");
+    return nullptr;
+  }
+}
+
+void ModuleVerifier::checkBlock(Block b) {
+  for (Stmt *s : b)
+    checkStmt(s);
+}
+
+void ModuleVerifier::checkStmt(Stmt *s) {
+  switch (s->getKind()) {
+  case StmtKind::Assign: {
+    auto *a = llvm::cast<AssignStmt>(s);
+    const Type *tt = checkTarget(a->target);
+    const Type *vt = check(a->value, Ctx::Guard);
+    if (!tt || !vt)
+      return;
+    if (!isAssignable(tt, vt)) {
+      error(a->value->loc, "cannot assign a value of type '" + typeName(vt) +
+                               "' to '" + exprToString(a->target) +
+                               "' of type '" + typeName(tt) + "'");
+      return;
+    }
+    int64_t v;
+    if (tt->isInteger() && evalConstInt(a->value, v) &&
+        (v < tt->lo || v > tt->hi) &&
+        !(tt->kind == TypeKind::Int && tt->overflow == Overflow::Wrap))
+      error(a->value->loc, "value " + Twine(v) + " is outside the type '" +
+                               typeName(tt) + "' of '" +
+                               exprToString(a->target) + "'");
+    return;
+  }
+  case StmtKind::If: {
+    auto *i = llvm::cast<IfStmt>(s);
+    for (const IfArm &arm : i->arms) {
+      expectBool(arm.cond, Ctx::Guard, "an 'if' condition");
+      checkBlock(arm.body);
+    }
+    checkBlock(i->elseBody);
+    return;
+  }
+  case StmtKind::Case: {
+    auto *c = llvm::cast<CaseStmt>(s);
+    const Type *st = check(c->selector, Ctx::Guard);
+    if (st && !st->isInteger() && st->kind != TypeKind::Enum) {
+      error(c->selector->loc, "a case selector must be an integer or an "
+                              "enumeration, not '" +
+                                  typeName(st) + "'");
+      st = nullptr;
+    }
+    for (const CaseArm &arm : c->arms) {
+      for (const CaseLabel &l : arm.labels) {
+        for (Expr *x : {l.lo, l.hi}) {
+          if (!x)
+            continue;
+          const Type *lt = check(x, Ctx::Constant);
+          int64_t v;
+          if (lt && !evalConstInt(x, v))
+            error(x->loc, "a case label must be a constant");
+          else if (lt && st && !isComparable(st, lt))
+            error(x->loc, "case label of type '" + typeName(lt) +
+                              "' does not match the selector's type '" +
+                              typeName(st) + "'");
+        }
+      }
+      checkBlock(arm.body);
+    }
+    checkBlock(c->elseBody);
+    return;
+  }
+  case StmtKind::For: {
+    auto *f = llvm::cast<ForStmt>(s);
+    int64_t lo, hi;
+    const Type *a = check(f->lo, Ctx::Constant);
+    const Type *b = check(f->hi, Ctx::Constant);
+    if (a && b && (!evalConstInt(f->lo, lo) || !evalConstInt(f->hi, hi)))
+      error(f->loc, "the bounds of a 'for' loop must be integer constants");
+    loopVars.push_back(f->var);
+    checkBlock(f->body);
+    loopVars.pop_back();
+    return;
+  }
+  }
+}
+
+void ModuleVerifier::checkDefinitionCycles() {
+  // An output defined (transitively) in terms of itself has no value.
+  std::vector<uint8_t> state(m.ports.size(), 0); // 0 new, 1 active, 2 done
+  std::function<bool(uint32_t)> visit;
+  std::function<bool(const Expr *)> walk = [&](const Expr *e) -> bool {
+    switch (e->getKind()) {
+    case ExprKind::Ref: {
+      auto *r = llvm::cast<Ref>(e);
+      if (r->sym.kind == SymKind::Port && m.ports[r->sym.index].definition)
+        return visit(r->sym.index);
+      return true;
+    }
+    case ExprKind::Index:
+      return walk(llvm::cast<IndexExpr>(e)->base) &&
+             walk(llvm::cast<IndexExpr>(e)->index);
+    case ExprKind::Field:
+      return walk(llvm::cast<FieldExpr>(e)->base);
+    case ExprKind::Unary:
+      return walk(llvm::cast<UnaryExpr>(e)->operand);
+    case ExprKind::Binary:
+      return walk(llvm::cast<BinaryExpr>(e)->lhs) &&
+             walk(llvm::cast<BinaryExpr>(e)->rhs);
+    case ExprKind::Cond: {
+      auto *c = llvm::cast<CondExpr>(e);
+      return walk(c->cond) && walk(c->thenExpr) && walk(c->elseExpr);
+    }
+    case ExprKind::Call:
+      for (const Expr *a : llvm::cast<CallExpr>(e)->args)
+        if (!walk(a))
+          return false;
+      return true;
+    default:
+      return true;
+    }
+  };
+  visit = [&](uint32_t p) -> bool {
+    if (state[p] == 2)
+      return true;
+    if (state[p] == 1) {
+      error(m.ports[p].definitionLoc,
+            "output '" + m.ports[p].name + "' is defined in terms of itself");
+      return false;
+    }
+    state[p] = 1;
+    bool ok = walk(m.ports[p].definition);
+    state[p] = 2;
+    return ok;
+  };
+  for (uint32_t p = 0; p < m.ports.size(); ++p)
+    if (m.ports[p].definition && !visit(p))
+      return;
+}
+
+void ModuleVerifier::checkEventCycles() {
+  // u listens to t: edge t -> u. A cycle would make a step force itself.
+  size_t n = m.transitions.size();
+  std::vector<std::vector<uint32_t>> succ(n);
+  bool any = false;
+  for (uint32_t u = 0; u < n; ++u)
+    for (const EventSource &s : m.transitions[u].events())
+      if (!s.fromPort && s.index < n) {
+        succ[s.index].push_back(u);
+        any = true;
+      }
+  if (!any)
+    return;
+  std::vector<uint8_t> color(n, 0);
+  std::vector<uint32_t> stack;
+  // Iterative DFS so that long event chains cannot exhaust the stack.
+  for (uint32_t root = 0; root < n; ++root) {
+    if (color[root])
+      continue;
+    std::vector<std::pair<uint32_t, size_t>> work{{root, 0}};
+    color[root] = 1;
+    stack.push_back(root);
+    while (!work.empty()) {
+      auto &[v, i] = work.back();
+      if (i < succ[v].size()) {
+        uint32_t w = succ[v][i++];
+        if (color[w] == 1) {
+          std::string path;
+          auto it = std::find(stack.begin(), stack.end(), w);
+          for (; it != stack.end(); ++it)
+            path += (m.transitions[*it].name + " -> ").str();
+          path += m.transitions[w].name.str();
+          error(m.transitions[w].loc,
+                "event cycle among forced transitions: " + path);
+          return;
+        }
+        if (color[w] == 0) {
+          color[w] = 1;
+          stack.push_back(w);
+          work.push_back({w, 0});
+        }
+      } else {
+        color[v] = 2;
+        stack.pop_back();
+        work.pop_back();
+      }
+    }
+  }
+}
+
+void ModuleVerifier::checkInstancesAndConnections() {
+  for (Instance &i : m.instances) {
+    i.module = d.lookupModule(i.moduleName);
+    if (!i.module)
+      error(i.moduleLoc.isValid() ? i.moduleLoc : i.loc,
+            "unknown module '" + i.moduleName + "'");
+    else if (i.module->isSystem)
+      error(i.moduleLoc.isValid() ? i.moduleLoc : i.loc,
+            "'" + i.moduleName + "' is a system and cannot be instantiated");
+  }
+  // Resolve an endpoint to (module, port index).
+  auto resolve = [&](const Endpoint &e, const Module *&owner) -> int {
+    owner = &m;
+    if (!e.instance.empty()) {
+      Symbol s = m.lookup(e.instance);
+      if (s.kind != SymKind::Instance) {
+        error(e.loc, "'" + e.instance + "' is not an instance in '" + m.name +
+                         "'");
+        return -1;
+      }
+      owner = m.instances[s.index].module;
+      if (!owner)
+        return -1;
+    }
+    int p = owner->findPort(e.port);
+    if (p < 0) {
+      error(e.loc, "module '" + owner->name + "' has no port '" + e.port +
+                       "'");
+      return -1;
+    }
+    return p;
+  };
+  auto endName = [](const Endpoint &e) {
+    return e.instance.empty() ? e.port.str()
+                              : (e.instance + "." + e.port).str();
+  };
+  llvm::StringMap<SMLoc> driven;
+  for (const Connection &c : m.connections) {
+    const Module *fm, *tm;
+    int fp = resolve(c.from, fm);
+    int tp = resolve(c.to, tm);
+    if (fp < 0 || tp < 0)
+      continue;
+    const Port &f = fm->ports[fp];
+    const Port &t = tm->ports[tp];
+    bool fromOk = c.from.instance.empty() ? f.isInput() : f.isOutput();
+    bool toOk = c.to.instance.empty() ? t.isOutput() : t.isInput();
+    if (!fromOk) {
+      error(c.from.loc, "'" + endName(c.from) + "' is " +
+                            (f.isInput() ? "an input" : "an output") +
+                            " and cannot drive a connection");
+      continue;
+    }
+    if (!toOk) {
+      error(c.to.loc, "'" + endName(c.to) + "' is " +
+                          (t.isInput() ? "an input" : "an output") +
+                          " and cannot be driven by a connection");
+      continue;
+    }
+    if (f.kind != t.kind) {
+      error(c.loc, "cannot connect " + spelling(f.kind) + " port '" +
+                       endName(c.from) + "' to " + spelling(t.kind) +
+                       " port '" + endName(c.to) + "'");
+      continue;
+    }
+    if (f.kind == PortKind::Data && f.type != t.type) {
+      error(c.loc, "cannot connect '" + endName(c.from) + "' of type '" +
+                       typeName(f.type) + "' to '" + endName(c.to) +
+                       "' of type '" + typeName(t.type) + "'");
+      continue;
+    }
+    if (c.to.instance.empty() && (t.definition || t.init)) {
+      error(c.to.loc, "output '" + t.name +
+                          "' is defined in the module and cannot also be "
+                          "driven by a connection");
+      continue;
+    }
+    // Several events may be merged into one event input; a signal has one
+    // driver.
+    if (f.kind != PortKind::Event) {
+      auto [it, inserted] = driven.try_emplace(endName(c.to), c.loc);
+      if (!inserted) {
+        error(c.loc, "'" + endName(c.to) + "' is driven twice");
+        diag.note(it->second, "first driven here");
+      }
+    }
+  }
+}
+
+void ModuleVerifier::run() {
+  checkNames();
+  checkPorts();
+  checkVars();
+  checkPlaces();
+  for (uint32_t i = 0; i < m.transitions.size(); ++i)
+    checkTransition(i);
+  checkFlows();
+  checkInstancesAndConnections();
+  if (!diag.hadError()) {
+    checkDefinitionCycles();
+    checkEventCycles();
+  }
+}
+
+/// Instantiation must be a tree: report a module that contains itself.
+void checkRecursion(Design &d, DiagEngine &diag) {
+  llvm::DenseMap<const Module *, uint8_t> color;
+  std::function<bool(const Module *)> visit = [&](const Module *m) -> bool {
+    uint8_t &c = color[m];
+    if (c == 2)
+      return true;
+    c = 1;
+    for (const Instance &i : m->instances) {
+      if (!i.module)
+        continue;
+      uint8_t ci = color.lookup(i.module);
+      if (ci == 1) {
+        diag.error(i.loc, "recursive instantiation: module '" +
+                              i.module->name + "' contains itself through '" +
+                              m->name + "." + i.name + "'");
+        return false;
+      }
+      if (ci == 0 && !visit(i.module))
+        return false;
+    }
+    color[m] = 2;
+    return true;
+  };
+  for (auto &m : d.modules)
+    if (!visit(m.get()))
+      return;
+}
+
+} // namespace
+
+bool netlift::net::verifyDesign(Design &d, DiagEngine &diag) {
+  unsigned before = diag.numErrors();
+  for (auto &m : d.modules)
+    ModuleVerifier(d, *m, diag).run();
+  if (diag.numErrors() == before)
+    checkRecursion(d, diag);
+  return diag.numErrors() == before;
+}

@@ -1,0 +1,90 @@
+//===- Pass.h - NetIR passes and pipelines ----------------------*- C++ -*-===//
+//
+// A pass transforms a verified Design in place. Passes are registered in
+// PassRegistry.def (one line each) and run by a PassManager built from a
+// pipeline text such as `flatten,foo{k=v}`. The manager verifies after each
+// pass on request, prints the IR after each pass on request, and collects
+// the counters passes report (printed by --stats).
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_PASSES_PASS_H
+#define NETLIFT_PASSES_PASS_H
+
+#include "ir/net/Module.h"
+#include "ir/support/Diagnostics.h"
+
+#include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/raw_ostream.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace netlift {
+
+/// Option values given to one pass in a pipeline (`name{k=v,k2=v2}`).
+using PassOptions = std::map<std::string, std::string>;
+
+/// Named counters, printed by --stats in name order.
+class Statistics {
+public:
+  void add(llvm::StringRef pass, llvm::StringRef counter, uint64_t n,
+           llvm::StringRef desc);
+  void print(llvm::raw_ostream &os) const;
+  bool empty() const { return counters.empty(); }
+
+private:
+  struct Counter {
+    uint64_t value = 0;
+    std::string desc;
+  };
+  std::map<std::pair<std::string, std::string>, Counter> counters;
+};
+
+class Pass {
+public:
+  virtual ~Pass();
+  /// Runs on the design; returns false after reporting an error.
+  virtual bool run(net::Design &design, DiagEngine &diag,
+                   Statistics &stats) = 0;
+};
+
+struct PassInfo {
+  llvm::StringRef name;
+  llvm::StringRef summary;
+  llvm::StringRef options; // "key=VALUE: meaning; ..."
+  std::unique_ptr<Pass> (*create)(const PassOptions &);
+  /// The option keys this pass accepts.
+  std::vector<std::string> optionKeys() const;
+};
+
+llvm::ArrayRef<PassInfo> passRegistry();
+const PassInfo *lookupPass(llvm::StringRef name);
+
+/// Prints the registry (for --list-passes); markdown for docs/passes.md.
+void printPassList(llvm::raw_ostream &os, bool markdown);
+
+class PassManager {
+public:
+  /// Parses a pipeline; reports errors into `diag` with positions in the
+  /// pipeline text.
+  bool parsePipeline(llvm::StringRef text, DiagEngine &diag);
+  bool run(net::Design &design, DiagEngine &diag);
+
+  bool verifyEach = false;
+  llvm::raw_ostream *printAfterAll = nullptr;
+  Statistics stats;
+
+private:
+  struct Entry {
+    const PassInfo *info;
+    std::unique_ptr<Pass> pass;
+  };
+  std::vector<Entry> pipeline;
+};
+
+} // namespace netlift
+
+#endif
