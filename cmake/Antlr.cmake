@@ -44,7 +44,9 @@ function(netlift_antlr_grammar target grammar)
   add_library(${target} STATIC ${outputs})
   target_include_directories(${target} SYSTEM PUBLIC ${outdir}
                              ${ANTLR4_INCLUDE_DIR})
-  # Generated code is not ours to warn about.
-  target_compile_options(${target} PRIVATE -w)
+  # Generated code is not ours to warn about. The 4.7.2 generator writes
+  # u8"" literals into std::string initialisers, which C++20 types as
+  # char8_t: -fno-char8_t restores the C++17 meaning for these files only.
+  target_compile_options(${target} PRIVATE -w -fno-char8_t)
   target_link_libraries(${target} PUBLIC antlr4_shared)
 endfunction()

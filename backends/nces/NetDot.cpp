@@ -12,8 +12,10 @@ using llvm::StringRef;
 
 static std::string quote(StringRef s) {
   std::string out = "\"";
+  // Labels use "\n" line breaks on purpose, so only quotes are escaped;
+  // NetIR names never contain a backslash.
   for (char c : s) {
-    if (c == '"' || c == '\\')
+    if (c == '"')
       out += '\\';
     out += c;
   }

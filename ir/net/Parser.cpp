@@ -538,7 +538,8 @@ bool Parser::parsePortDecl(PortKind kind) {
   };
   do {
     Pending p;
-    if (!parseSimpleName(p.name, p.loc, "a port name"))
+    // Ports of a flattened module carry qualified names (`c.start`).
+    if (!parseName(p.name, p.loc, "a port name"))
       return false;
     // Cond ports and stored outputs may carry their definition inline;
     // data ports give their type after the last name.
@@ -871,7 +872,10 @@ bool Parser::parseEndpoint(Endpoint &e) {
   if (!parseName(n, loc, "a port ('inst.port' or 'port')"))
     return false;
   e.loc = loc;
-  auto [inst, port] = n.rsplit('.');
+  // Instance names are never qualified, so `a.b.c` is port `b.c` of
+  // instance `a` (or the module's own port `a.b.c`, which the verifier
+  // recognises when there is no instance `a`).
+  auto [inst, port] = n.split('.');
   if (port.empty()) {
     e.instance = "";
     e.port = n;

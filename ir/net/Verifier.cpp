@@ -830,8 +830,16 @@ void ModuleVerifier::checkInstancesAndConnections() {
             "'" + i.moduleName + "' is a system and cannot be instantiated");
   }
   // Resolve an endpoint to (module, port index).
-  auto resolve = [&](const Endpoint &e, const Module *&owner) -> int {
+  auto resolve = [&](Endpoint &e, const Module *&owner) -> int {
     owner = &m;
+    if (!e.instance.empty() &&
+        m.lookup(e.instance).kind != SymKind::Instance) {
+      std::string whole = (e.instance + "." + e.port).str();
+      if (m.findPort(whole) >= 0) {
+        e.port = d.save(whole);
+        e.instance = "";
+      }
+    }
     if (!e.instance.empty()) {
       Symbol s = m.lookup(e.instance);
       if (s.kind != SymKind::Instance) {
@@ -856,7 +864,7 @@ void ModuleVerifier::checkInstancesAndConnections() {
                               : (e.instance + "." + e.port).str();
   };
   llvm::StringMap<SMLoc> driven;
-  for (const Connection &c : m.connections) {
+  for (Connection &c : m.connections) {
     const Module *fm, *tm;
     int fp = resolve(c.from, fm);
     int tp = resolve(c.to, tm);

@@ -1,0 +1,32 @@
+# lit configuration of the netlift test suite.
+import os
+import lit.formats
+
+config.name = "netlift"
+config.test_format = lit.formats.ShTest(execute_external=False)
+config.suffixes = [".net", ".test", ".pipeline"]
+config.excludes = ["Inputs", "unit", "CMakeLists.txt", "lit.cfg.py",
+                   "lit.site.cfg.py.in"]
+config.test_source_root = os.path.dirname(__file__)
+config.test_exec_root = os.path.join(config.netlift_obj_root, "test")
+
+# The tools the RUN lines use: netlift from the build, FileCheck, not and
+# split-file from LLVM 14.
+config.substitutions.append(
+    ("%netlift", os.path.join(config.netlift_tools_dir, "netlift")))
+config.substitutions.append(("%examples",
+                             os.path.join(config.netlift_src_root, "examples")))
+config.substitutions.append(("%srcroot", config.netlift_src_root))
+config.environment["PATH"] = os.pathsep.join(
+    [config.llvm_tools_dir, config.netlift_tools_dir,
+     config.environment.get("PATH", "")])
+
+# `lit --param roundtrip=1`: every NetIR input any test reads must be a
+# fixed point of print -> parse -> print (checked inside netlift).
+if lit_config.params.get("roundtrip", "0") not in ("0", ""):
+    config.environment["NETLIFT_VERIFY_ROUNDTRIP"] = "1"
+
+if config.sanitize:
+    config.environment["ASAN_OPTIONS"] = "detect_leaks=1"
+    config.environment["UBSAN_OPTIONS"] = "print_stacktrace=1:halt_on_error=1"
+    config.available_features.add("sanitizer")
