@@ -1,5 +1,6 @@
 # lit configuration of the netlift test suite.
 import os
+import sys
 import lit.formats
 
 config.name = "netlift"
@@ -17,6 +18,7 @@ config.substitutions.append(
 config.substitutions.append(("%examples",
                              os.path.join(config.netlift_src_root, "examples")))
 config.substitutions.append(("%srcroot", config.netlift_src_root))
+config.substitutions.append(("%python", sys.executable))
 config.environment["PATH"] = os.pathsep.join(
     [config.llvm_tools_dir, config.netlift_tools_dir,
      config.environment.get("PATH", "")])

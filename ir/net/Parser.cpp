@@ -919,8 +919,8 @@ bool Parser::resolveModuleFixups() {
         return "a transition";
       case SymKind::Port: {
         const Port &p = m->ports[s.index];
-        return ("a " + spelling(p.kind) +
-                (p.isInput() ? " input" : " output"))
+        return ((p.kind == PortKind::Event ? "an " : "a ") +
+                spelling(p.kind) + (p.isInput() ? " input" : " output"))
             .str();
       }
       case SymKind::Var:

@@ -4,12 +4,38 @@
 #include "llvm/Support/WithColor.h"
 #include "llvm/Support/raw_ostream.h"
 
+#include <algorithm>
+
 using namespace netlift;
 
 void DiagEngine::print(llvm::SMLoc loc, llvm::SourceMgr::DiagKind kind,
                        const llvm::Twine &msg) {
   if (loc.isValid()) {
-    sm.PrintMessage(llvm::errs(), loc, kind, msg);
+    unsigned buf = sm.FindBufferContainingLoc(loc);
+    llvm::StringRef text = sm.getMemoryBuffer(buf)->getBuffer();
+    const char *p = loc.getPointer();
+    const char *lineStart = p, *lineEnd = p;
+    while (lineStart > text.begin() && lineStart[-1] != '\n')
+      --lineStart;
+    while (lineEnd < text.end() && *lineEnd != '\n')
+      ++lineEnd;
+    constexpr size_t kMaxLine = 512;
+    if (size_t(lineEnd - lineStart) <= kMaxLine) {
+      sm.PrintMessage(llvm::errs(), loc, kind, msg);
+      return;
+    }
+    // A huge line (a generated or binary file) is shown as an excerpt
+    // around the column rather than echoed whole.
+    auto [line, col] = sm.getLineAndColumn(loc, buf);
+    llvm::StringRef k = kind == llvm::SourceMgr::DK_Error     ? "error"
+                        : kind == llvm::SourceMgr::DK_Warning ? "warning"
+                                                              : "note";
+    llvm::errs() << sm.getMemoryBuffer(buf)->getBufferIdentifier() << ":"
+                 << line << ":" << col << ": " << k << ": " << msg << "\n";
+    const char *from = std::max(lineStart, p - 40);
+    const char *to = std::min(lineEnd, p + 40);
+    llvm::errs() << "..." << llvm::StringRef(from, to - from) << "...\n";
+    llvm::errs().indent(3 + (p - from)) << "^\n";
     return;
   }
   // Entities built by a frontend or a pass may have no location.
