@@ -114,8 +114,8 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
   for (const Place &p : y.places)
     b.addPlace(prefix + p.name.str(), p.tokens, p.capacity, p.loc);
   for (const Transition &t : y.transitions) {
-    std::vector<PreArc> pre(t.pre.begin(), t.pre.end());
-    std::vector<PostArc> post(t.post.begin(), t.post.end());
+    std::vector<PreArc> pre(t.pre().begin(), t.pre().end());
+    std::vector<PostArc> post(t.post().begin(), t.post().end());
     for (PreArc &a : pre)
       a.place += placeBase;
     for (PostArc &a : post)

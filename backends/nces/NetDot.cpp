@@ -97,7 +97,7 @@ static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
   // Flow arcs: solid; weight and time interval as the label.
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
     const Transition &t = m.transitions[i];
-    for (const PreArc &a : t.pre) {
+    for (const PreArc &a : t.pre()) {
       std::string label;
       if (a.weight != 1)
         label += std::to_string(a.weight);
@@ -111,7 +111,7 @@ static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
         os << " [label=" << quote(label) << "]";
       os << ";\n";
     }
-    for (const PostArc &a : t.post) {
+    for (const PostArc &a : t.post()) {
       os << "  " << id("t", i) << " -> " << id("p", a.place);
       if (a.weight != 1)
         os << " [label=" << quote(std::to_string(a.weight)) << "]";

@@ -41,8 +41,7 @@ uint32_t Builder::addTransition(StringRef name, ArrayRef<PreArc> pre,
   Transition t;
   t.name = design.save(name);
   t.loc = loc;
-  t.pre = design.copy(pre);
-  t.post = design.copy(post);
+  t.setArcs(design.copy(pre), design.copy(post));
   uint32_t i = mod->transitions.size();
   mod->transitions.push_back(t);
   mod->declare(t.name, {SymKind::Transition, i});

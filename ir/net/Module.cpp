@@ -3,6 +3,9 @@
 
 #include "llvm/ADT/DenseSet.h"
 
+#include <cstring>
+#include "llvm/Support/xxhash.h"
+
 using namespace netlift::net;
 using llvm::StringRef;
 
@@ -16,6 +19,66 @@ StringRef netlift::net::spelling(PortKind k) {
     return "data";
   }
   return "?";
+}
+
+static uint32_t hashName(StringRef n) {
+  return uint32_t(llvm::xxHash64(n));
+}
+
+Symbol SymbolTable::lookup(StringRef name, const Module &m) const {
+  if (buckets.empty())
+    return {};
+  uint32_t h = hashName(name);
+  size_t mask = buckets.size() - 1;
+  for (size_t i = h & mask;; i = (i + 1) & mask) {
+    const Bucket &b = buckets[i];
+    if (b.packed == kEmpty)
+      return {};
+    if (b.hash != h)
+      continue;
+    Symbol s{SymKind(b.packed >> 28), b.packed & 0x0FFFFFFF};
+    if (m.symbolName(s) == name)
+      return s;
+  }
+}
+
+void SymbolTable::grow(const Module &m) {
+  auto old = std::move(buckets);
+  buckets.assign(old.empty() ? 64 : old.size() * 2, Bucket{0, kEmpty});
+  size_t mask = buckets.size() - 1;
+  for (const Bucket &b : old) {
+    if (b.packed == kEmpty)
+      continue;
+    size_t i = b.hash & mask;
+    while (buckets[i].packed != kEmpty)
+      i = (i + 1) & mask;
+    buckets[i] = b;
+  }
+}
+
+void SymbolTable::reserve(size_t n, const Module &m) {
+  while (n * 10 > buckets.size() * 7)
+    grow(m);
+}
+
+bool SymbolTable::insert(StringRef name, Symbol s, const Module &m) {
+  if ((count + 1) * 10 > buckets.size() * 7)
+    grow(m);
+  uint32_t h = hashName(name);
+  size_t mask = buckets.size() - 1;
+  size_t i = h & mask;
+  for (;; i = (i + 1) & mask) {
+    Bucket &b = buckets[i];
+    if (b.packed == kEmpty)
+      break;
+    if (b.hash == h &&
+        m.symbolName({SymKind(b.packed >> 28), b.packed & 0x0FFFFFFF}) == name)
+      return false;
+  }
+  assert(s.index < (1u << 28) && "too many entities in one module");
+  buckets[i] = {h, uint32_t(s.kind) << 28 | s.index};
+  ++count;
+  return true;
 }
 
 void Module::rebuildSymbols() {
@@ -52,6 +115,14 @@ StringRef Module::symbolName(Symbol s) const {
 int Module::findPort(StringRef n) const {
   Symbol s = lookup(n);
   return s.kind == SymKind::Port ? int(s.index) : -1;
+}
+
+char *Design::saveString(StringRef s) {
+  char *p = arena.Allocate<char>(s.size() + 1);
+  if (!s.empty())
+    memcpy(p, s.data(), s.size());
+  p[s.size()] = 0;
+  return p;
 }
 
 Design::Design() = default;
@@ -125,7 +196,3 @@ Module *Design::findTop(StringRef name, std::string &why) const {
   return top;
 }
 
-TransitionExtras *Design::createExtras() {
-  extrasPool.push_back(std::make_unique<TransitionExtras>());
-  return extrasPool.back().get();
-}

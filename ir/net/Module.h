@@ -15,6 +15,7 @@
 
 #include "ir/net/Expr.h"
 #include "ir/net/Types.h"
+#include "ir/support/HugePageAllocator.h"
 
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/DenseMap.h"
@@ -108,22 +109,34 @@ struct TransitionExtras {
   Expr *guard = nullptr;              // data guard
   Block action;                       // action block
   bool hasAction = false;             // `{}` written (possibly empty)
-  std::vector<llvm::SMLoc> eventLocs; // where each event source was named
-  std::vector<llvm::SMLoc> emitLocs;
+  // Where each event source / emitted port was named (parsed input only).
+  llvm::ArrayRef<llvm::SMLoc> eventLocs;
+  llvm::ArrayRef<llvm::SMLoc> emitLocs;
 };
 
+/// A transition. Kept to 64 bytes: large nets have millions of them, so the
+/// arcs are counted arrays in the Design's arena and everything a plain
+/// place/transition net does not use lives in `extras`.
 struct Transition {
   llvm::StringRef name;
   llvm::SMLoc loc;
-  llvm::ArrayRef<PreArc> pre;
-  llvm::ArrayRef<PostArc> post;
+
+  llvm::ArrayRef<PreArc> pre() const { return {preArcs, numPre}; }
+  llvm::ArrayRef<PostArc> post() const { return {postArcs, numPost}; }
+  /// Arcs are set as a whole (the Builder copies them into the arena).
+  void setArcs(llvm::ArrayRef<PreArc> p, llvm::ArrayRef<PostArc> q) {
+    preArcs = const_cast<PreArc *>(p.data());
+    numPre = uint32_t(p.size());
+    postArcs = const_cast<PostArc *>(q.data());
+    numPost = uint32_t(q.size());
+  }
+  /// In-place access for passes and the parser's name resolution.
+  llvm::MutableArrayRef<PreArc> mutablePre() { return {preArcs, numPre}; }
+  llvm::MutableArrayRef<PostArc> mutablePost() { return {postArcs, numPost}; }
+
   TransitionExtras *extras = nullptr;
   EventMode mode = EventMode::Or;
   bool urgent = false;
-  /// Locations of each pre/post arc's place name, for diagnostics (parsed
-  /// input only; empty otherwise).
-  const llvm::SMLoc *preLocs = nullptr;
-  const llvm::SMLoc *postLocs = nullptr;
 
   llvm::ArrayRef<Expr *> conds() const {
     return extras ? extras->conds : llvm::ArrayRef<Expr *>();
@@ -139,6 +152,11 @@ struct Transition {
   bool hasAction() const { return extras && extras->hasAction; }
   /// Forced transitions have incoming event arcs.
   bool isForced() const { return !events().empty(); }
+
+private:
+  PreArc *preArcs = nullptr;
+  PostArc *postArcs = nullptr;
+  uint32_t numPre = 0, numPost = 0;
 };
 
 struct Var {
@@ -165,6 +183,35 @@ struct Flow {
 };
 
 class Module;
+
+/// Name -> Symbol for one module. Open addressing with linear probing over
+/// 8-byte buckets that keep each name's hash, so growing never re-reads the
+/// names and a probe rarely leaves its cache line; a hit is confirmed by
+/// comparing the entity's own name. Millions of names stay cheap.
+class SymbolTable {
+public:
+  Symbol lookup(llvm::StringRef name, const Module &m) const;
+  /// False (and no change) if the name is taken.
+  bool insert(llvm::StringRef name, Symbol s, const Module &m);
+  void clear() {
+    buckets.clear();
+    count = 0;
+  }
+  /// Makes room for `n` names without growing again.
+  void reserve(size_t n, const Module &m);
+  size_t size() const { return count; }
+  size_t bytes() const { return buckets.capacity() * sizeof(Bucket); }
+
+private:
+  struct Bucket {
+    uint32_t hash;
+    uint32_t packed; // kind << 28 | index; kEmpty when free
+  };
+  static constexpr uint32_t kEmpty = UINT32_MAX;
+  void grow(const Module &m);
+  std::vector<Bucket, HugePageAllocator<Bucket>> buckets;
+  size_t count = 0;
+};
 
 struct Instance {
   llvm::StringRef name;
@@ -196,23 +243,31 @@ public:
   llvm::SMLoc loc;
   bool isSystem;
 
-  std::vector<Port> ports;
-  std::vector<Place> places;
-  std::vector<Transition> transitions;
-  std::vector<Var> vars;
+  // Entity tables can hold millions of entries; see HugePageAllocator.
+  template <typename T> using Table = std::vector<T, HugePageAllocator<T>>;
+  Table<Port> ports;
+  Table<Place> places;
+  Table<Transition> transitions;
+  Table<Var> vars;
   std::vector<Flow> flows;
   std::vector<Instance> instances;
   std::vector<Connection> connections;
 
   /// One namespace for ports, places, transitions, variables and instances.
   /// Returns SymKind::None if absent.
-  Symbol lookup(llvm::StringRef n) const {
-    auto it = symbols.find(n);
-    return it == symbols.end() ? Symbol() : it->second;
-  }
+  Symbol lookup(llvm::StringRef n) const { return symbols.lookup(n, *this); }
   /// Registers a name; false if it is taken.
   bool declare(llvm::StringRef n, Symbol s) {
-    return symbols.try_emplace(n, s).second;
+    return symbols.insert(n, s, *this);
+  }
+  size_t symbolTableBytes() const { return symbols.bytes(); }
+  /// Size hint for large modules (the parser's estimate from the text).
+  void reserve(size_t numPlaces, size_t numTransitions, size_t numVars) {
+    places.reserve(numPlaces);
+    transitions.reserve(numTransitions);
+    vars.reserve(numVars);
+    symbols.reserve(numPlaces + numTransitions + numVars + ports.size(),
+                    *this);
   }
   /// Rebuilds the symbol table from the entity vectors (after a pass
   /// removed or renamed entities).
@@ -221,7 +276,7 @@ public:
   int findPort(llvm::StringRef n) const;
 
 private:
-  llvm::DenseMap<llvm::StringRef, Symbol> symbols;
+  SymbolTable symbols;
 };
 
 /// Time unit of one tick (`timescale 10ms;`).
@@ -259,7 +314,9 @@ public:
   Module *findTop(llvm::StringRef name, std::string &why) const;
 
   // Arena allocation.
-  llvm::StringRef save(llvm::StringRef s) { return saver.save(s); }
+  llvm::StringRef save(llvm::StringRef s) {
+    return llvm::StringRef(saveString(s), s.size());
+  }
   template <typename T, typename... Args> T *create(Args &&...args) {
     return new (arena.Allocate<T>()) T(std::forward<Args>(args)...);
   }
@@ -270,16 +327,14 @@ public:
     std::uninitialized_copy(a.begin(), a.end(), p);
     return llvm::ArrayRef<T>(p, a.size());
   }
-  TransitionExtras *createExtras();
+  TransitionExtras *createExtras() { return create<TransitionExtras>(); }
   size_t arenaBytes() const { return arena.getTotalMemory(); }
 
 private:
-  llvm::BumpPtrAllocator arena;
-  llvm::StringSaver saver{arena};
+  // 2 MiB slabs on huge pages: a large model allocates hundreds of MB here.
+  llvm::BumpPtrAllocatorImpl<HugePageSlabAllocator, size_t(2) << 20> arena;
+  char *saveString(llvm::StringRef s);
   llvm::StringMap<Module *> moduleIndex;
-  // Extras hold vectors (source locations), so they are owned here and
-  // destroyed properly rather than living in the arena.
-  std::vector<std::unique_ptr<TransitionExtras>> extrasPool;
 };
 
 } // namespace netlift::net

@@ -8,6 +8,7 @@
 #include "llvm/ADT/StringSwitch.h"
 
 #include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdlib>
 
@@ -32,7 +33,8 @@ constexpr unsigned kMaxDepth = 200;
 class Parser {
 public:
   Parser(StringRef buf, DiagEngine &diag, Design &design)
-      : lex(buf), diag(diag), design(design), b(design) {
+      : lex(buf), diag(diag), design(design), b(design),
+        bufferStart(buf.begin()), bufferEnd(buf.end()) {
     tok = lex.next();
   }
 
@@ -126,6 +128,7 @@ private:
   bool parseEndpoint(Endpoint &e);
   bool parseDefinition();
   bool resolveModuleFixups();
+  bool parseTransDeclBody();
 
   // Expressions and statements ---------------------------------------------
   Expr *parseExpr();
@@ -159,6 +162,10 @@ private:
   Builder b;
   bool failed = false;
   unsigned depth = 0;
+  const char *bufferStart, *bufferEnd;
+  bool reservedForModule = false;
+  static constexpr size_t kLargeModule = 4096;
+  void reserveForLargeModule();
 
   // Names used before their declaration, resolved at the end of a module.
   enum class FixKind : uint8_t { PrePlace, PostPlace, Event, Emit, FlowPlace };
@@ -170,6 +177,10 @@ private:
     SMLoc loc;
   };
   std::vector<Fixup> fixups;
+  llvm::SmallVector<Fixup, 8> pendingInTrans;
+  /// Points the arc/flow slot of `f` at `s` (the symbol its name denotes),
+  /// or reports why it cannot.
+  bool applyFixup(const Fixup &f, Symbol s);
   // Output definitions written as `name = expr;`.
   struct Definition {
     StringRef name;
@@ -450,6 +461,7 @@ bool Parser::parseModule(bool isSystem) {
     return false;
   fixups.clear();
   definitions.clear();
+  reservedForModule = false;
   while (!tok.is(Tok::RBrace)) {
     if (tok.is(Tok::Eof))
       return errorHere("expected '}' to end module '" + name + "'");
@@ -460,7 +472,46 @@ bool Parser::parseModule(bool isSystem) {
   return resolveModuleFixups();
 }
 
+/// Large modules would otherwise grow their vectors and symbol table many
+/// times (each growth touching fresh memory). Once a module is clearly
+/// large, estimate what the rest of the text declares and reserve once.
+void Parser::reserveForLargeModule() {
+  reservedForModule = true;
+  // Start at the newline before the current declaration so it is counted.
+  const char *p = tok.text.data();
+  while (p > bufferStart && *p != '\n')
+    --p;
+  const char *end = bufferEnd;
+  size_t places = 0, transitions = 0, vars = 0;
+  for (; p < end; ++p) {
+    if (*p != '\n')
+      continue;
+    const char *q = p + 1;
+    while (q < end && (*q == ' ' || *q == '\t'))
+      ++q;
+    size_t rest = size_t(end - q);
+    if (rest > 6 && !memcmp(q, "trans ", 6))
+      ++transitions;
+    else if (rest > 6 && !memcmp(q, "place ", 6)) {
+      ++places;
+      for (const char *c = q; c < end && *c != ';' && *c != '\n'; ++c)
+        places += *c == ',';
+    }
+    else if (rest > 4 && !memcmp(q, "var ", 4))
+      ++vars;
+    else if (rest > 2 && *q == '}' && (q[1] == '\n' || q[1] == '\r'))
+      break; // the end of this module (canonical layout)
+  }
+  Module *m = b.getModule();
+  m->reserve(m->places.size() + places, m->transitions.size() + transitions,
+             m->vars.size() + vars);
+}
+
 bool Parser::parseModuleItem() {
+  Module *cur = b.getModule();
+  if (!reservedForModule &&
+      cur->places.size() + cur->transitions.size() >= kLargeModule)
+    reserveForLargeModule();
   if (!tok.is(Tok::Ident))
     return errorHere("expected a declaration, found " + describe());
   StringRef kw = tok.text;
@@ -627,6 +678,11 @@ bool Parser::parseArcList(bool pre, llvm::SmallVectorImpl<PreArc> &preArcs,
       if (!expect(Tok::RBrack, "']'"))
         return false;
     }
+    for (StringRef prev : names)
+      if (prev == name)
+        return error(loc, "place '" + name + "' appears twice in the " +
+                              (pre ? "pre" : "post") +
+                              "-set; give the arc a weight instead");
     if (pre)
       preArcs.push_back({0, weight, iv});
     else
@@ -638,6 +694,24 @@ bool Parser::parseArcList(bool pre, llvm::SmallVectorImpl<PreArc> &preArcs,
 }
 
 bool Parser::parseTransDecl() {
+  // Names already declared are resolved at once; forward references wait
+  // for the end of the module. Most nets declare places first, so this
+  // keeps the pending list (and peak memory) small.
+  pendingInTrans.clear();
+  if (!parseTransDeclBody())
+    return false;
+  Module *m = b.getModule();
+  for (const Fixup &f : pendingInTrans) {
+    Symbol s = m->lookup(f.name);
+    if (s.kind == SymKind::None)
+      fixups.push_back(f);
+    else if (!applyFixup(f, s))
+      return false;
+  }
+  return true;
+}
+
+bool Parser::parseTransDeclBody() {
   StringRef name;
   SMLoc loc;
   if (!parseName(name, loc, "a transition name"))
@@ -653,13 +727,10 @@ bool Parser::parseTransDecl() {
       !parseArcList(false, pre, post, postLocs, postNames))
     return false;
   uint32_t t = b.addTransition(name, pre, post, loc);
-  Transition &tr = b.getModule()->transitions[t];
-  tr.preLocs = design.copy(llvm::ArrayRef<SMLoc>(preLocs)).data();
-  tr.postLocs = design.copy(llvm::ArrayRef<SMLoc>(postLocs)).data();
   for (unsigned i = 0; i < preNames.size(); ++i)
-    fixups.push_back({FixKind::PrePlace, t, i, preNames[i], preLocs[i]});
+    pendingInTrans.push_back({FixKind::PrePlace, t, i, preNames[i], preLocs[i]});
   for (unsigned i = 0; i < postNames.size(); ++i)
-    fixups.push_back({FixKind::PostPlace, t, i, postNames[i], postLocs[i]});
+    pendingInTrans.push_back({FixKind::PostPlace, t, i, postNames[i], postLocs[i]});
 
   bool seenCond = false, seenOn = false, seenEmit = false, seenGuard = false;
   for (;;) {
@@ -682,17 +753,17 @@ bool Parser::parseTransDecl() {
       seenOn = true;
       consume();
       llvm::SmallVector<EventSource, 4> srcs;
+      llvm::SmallVector<SMLoc, 4> locs;
       EventMode mode = EventMode::Or;
       bool sawOr = false, sawAnd = false;
-      TransitionExtras &x = b.extras(t);
       for (;;) {
         StringRef ev;
         SMLoc evLoc;
         if (!parseName(ev, evLoc, "an event source"))
           return false;
-        fixups.push_back({FixKind::Event, t, uint32_t(srcs.size()), ev, evLoc});
+        pendingInTrans.push_back({FixKind::Event, t, uint32_t(srcs.size()), ev, evLoc});
         srcs.push_back({0, false});
-        x.eventLocs.push_back(evLoc);
+        locs.push_back(evLoc);
         if (tok.is(Tok::Pipe))
           sawOr = true;
         else if (tok.is(Tok::Amp))
@@ -707,23 +778,25 @@ bool Parser::parseTransDecl() {
       if (sawAnd)
         mode = EventMode::And;
       b.setEvents(t, srcs, mode);
+      b.extras(t).eventLocs = design.copy(llvm::ArrayRef<SMLoc>(locs));
     } else if (tok.isIdent("emit")) {
       if (seenEmit)
         return errorHere("'emit' given twice");
       seenEmit = true;
       consume();
       llvm::SmallVector<uint32_t, 4> outs;
-      TransitionExtras &x = b.extras(t);
+      llvm::SmallVector<SMLoc, 4> locs;
       do {
         StringRef ev;
         SMLoc evLoc;
         if (!parseName(ev, evLoc, "an event output"))
           return false;
-        fixups.push_back({FixKind::Emit, t, uint32_t(outs.size()), ev, evLoc});
+        pendingInTrans.push_back({FixKind::Emit, t, uint32_t(outs.size()), ev, evLoc});
         outs.push_back(0);
-        x.emitLocs.push_back(evLoc);
+        locs.push_back(evLoc);
       } while (tok.is(Tok::Comma) && (consume(), true));
       b.setEmits(t, outs);
+      b.extras(t).emitLocs = design.copy(llvm::ArrayRef<SMLoc>(locs));
     } else if (tok.isIdent("guard")) {
       if (seenGuard)
         return errorHere("'guard' given twice");
@@ -907,87 +980,92 @@ bool Parser::parseDefinition() {
   return true;
 }
 
+bool Parser::applyFixup(const Fixup &f, Symbol s) {
+  Module *m = b.getModule();
+  auto kindName = [&]() -> std::string {
+    switch (s.kind) {
+    case SymKind::Place:
+      return "a place";
+    case SymKind::Transition:
+      return "a transition";
+    case SymKind::Port: {
+      const Port &p = m->ports[s.index];
+      return ((p.kind == PortKind::Event ? "an " : "a ") +
+              spelling(p.kind) + (p.isInput() ? " input" : " output"))
+          .str();
+    }
+    case SymKind::Var:
+      return "a variable";
+    case SymKind::Instance:
+      return "an instance";
+    default:
+      return "undefined";
+    }
+  };
+  switch (f.kind) {
+  case FixKind::PrePlace:
+  case FixKind::PostPlace:
+  case FixKind::FlowPlace: {
+    if (s.kind == SymKind::None)
+      return error(f.loc, "unknown place '" + f.name + "'");
+    if (s.kind != SymKind::Place) {
+      StringRef role = f.kind == FixKind::FlowPlace ? "a flow"
+                                                    : "a flow arc";
+      return error(f.loc, role + " needs a place, but '" + f.name +
+                              "' is " + kindName());
+    }
+    if (f.kind == FixKind::FlowPlace) {
+      m->flows[f.trans].place = s.index;
+    } else {
+      Transition &t = m->transitions[f.trans];
+      if (f.kind == FixKind::PrePlace)
+        t.mutablePre()[f.slot].place = s.index;
+      else
+        t.mutablePost()[f.slot].place = s.index;
+    }
+    break;
+  }
+  case FixKind::Event: {
+    if (s.kind == SymKind::None)
+      return error(f.loc, "unknown event source '" + f.name + "'");
+    EventSource src;
+    if (s.kind == SymKind::Transition) {
+      src = {s.index, false};
+    } else if (s.kind == SymKind::Port &&
+               m->ports[s.index].kind == PortKind::Event &&
+               m->ports[s.index].isInput()) {
+      src = {s.index, true};
+    } else {
+      return error(f.loc, "event arc source '" + f.name + "' is " +
+                              kindName() +
+                              "; an event arc comes from a transition or "
+                              "an event input");
+    }
+    Transition &t = m->transitions[f.trans];
+    const_cast<EventSource &>(t.extras->events[f.slot]) = src;
+    break;
+  }
+  case FixKind::Emit: {
+    if (s.kind == SymKind::None)
+      return error(f.loc, "unknown event output '" + f.name + "'");
+    if (!(s.kind == SymKind::Port &&
+          m->ports[s.index].kind == PortKind::Event &&
+          m->ports[s.index].isOutput()))
+      return error(f.loc, "'emit' needs an event output, but '" + f.name +
+                              "' is " + kindName());
+    Transition &t = m->transitions[f.trans];
+    const_cast<uint32_t &>(t.extras->emits[f.slot]) = s.index;
+    break;
+  }
+  }
+  return true;
+}
+
 bool Parser::resolveModuleFixups() {
   Module *m = b.getModule();
-  for (const Fixup &f : fixups) {
-    Symbol s = m->lookup(f.name);
-    auto kindName = [&]() -> std::string {
-      switch (s.kind) {
-      case SymKind::Place:
-        return "a place";
-      case SymKind::Transition:
-        return "a transition";
-      case SymKind::Port: {
-        const Port &p = m->ports[s.index];
-        return ((p.kind == PortKind::Event ? "an " : "a ") +
-                spelling(p.kind) + (p.isInput() ? " input" : " output"))
-            .str();
-      }
-      case SymKind::Var:
-        return "a variable";
-      case SymKind::Instance:
-        return "an instance";
-      default:
-        return "undefined";
-      }
-    };
-    switch (f.kind) {
-    case FixKind::PrePlace:
-    case FixKind::PostPlace:
-    case FixKind::FlowPlace: {
-      if (s.kind == SymKind::None)
-        return error(f.loc, "unknown place '" + f.name + "'");
-      if (s.kind != SymKind::Place) {
-        StringRef role = f.kind == FixKind::FlowPlace ? "a flow"
-                                                      : "a flow arc";
-        return error(f.loc, role + " needs a place, but '" + f.name +
-                                "' is " + kindName());
-      }
-      if (f.kind == FixKind::FlowPlace) {
-        m->flows[f.trans].place = s.index;
-      } else {
-        Transition &t = m->transitions[f.trans];
-        if (f.kind == FixKind::PrePlace)
-          const_cast<PreArc &>(t.pre[f.slot]).place = s.index;
-        else
-          const_cast<PostArc &>(t.post[f.slot]).place = s.index;
-      }
-      break;
-    }
-    case FixKind::Event: {
-      if (s.kind == SymKind::None)
-        return error(f.loc, "unknown event source '" + f.name + "'");
-      EventSource src;
-      if (s.kind == SymKind::Transition) {
-        src = {s.index, false};
-      } else if (s.kind == SymKind::Port &&
-                 m->ports[s.index].kind == PortKind::Event &&
-                 m->ports[s.index].isInput()) {
-        src = {s.index, true};
-      } else {
-        return error(f.loc, "event arc source '" + f.name + "' is " +
-                                kindName() +
-                                "; an event arc comes from a transition or "
-                                "an event input");
-      }
-      Transition &t = m->transitions[f.trans];
-      const_cast<EventSource &>(t.extras->events[f.slot]) = src;
-      break;
-    }
-    case FixKind::Emit: {
-      if (s.kind == SymKind::None)
-        return error(f.loc, "unknown event output '" + f.name + "'");
-      if (!(s.kind == SymKind::Port &&
-            m->ports[s.index].kind == PortKind::Event &&
-            m->ports[s.index].isOutput()))
-        return error(f.loc, "'emit' needs an event output, but '" + f.name +
-                                "' is " + kindName());
-      Transition &t = m->transitions[f.trans];
-      const_cast<uint32_t &>(t.extras->emits[f.slot]) = s.index;
-      break;
-    }
-    }
-  }
+  for (const Fixup &f : fixups)
+    if (!applyFixup(f, m->lookup(f.name)))
+      return false;
   for (const Definition &d : definitions) {
     int p = m->findPort(d.name);
     if (p < 0 || !m->ports[p].isOutput() ||

@@ -203,10 +203,10 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
 
 void ModulePrinter::printTransition(const Transition &t) {
   os << "  trans " << t.name << " : ";
-  if (t.pre.empty())
+  if (t.pre().empty())
     os << "()";
   llvm::interleave(
-      t.pre, os,
+      t.pre(), os,
       [&](const PreArc &a) {
         if (a.weight != 1)
           os << a.weight << '*';
@@ -222,10 +222,10 @@ void ModulePrinter::printTransition(const Transition &t) {
       },
       ", ");
   os << " -> ";
-  if (t.post.empty())
+  if (t.post().empty())
     os << "()";
   llvm::interleave(
-      t.post, os,
+      t.post(), os,
       [&](const PostArc &a) {
         if (a.weight != 1)
           os << a.weight << '*';

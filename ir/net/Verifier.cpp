@@ -185,41 +185,38 @@ void ModuleVerifier::checkPlaces() {
 
 void ModuleVerifier::checkTransition(uint32_t ti) {
   Transition &t = m.transitions[ti];
-  auto arcLoc = [&](const SMLoc *locs, size_t i) {
-    return locs ? locs[i] : t.loc;
-  };
+  // Arcs built through the Builder carry no locations of their own; the
+  // parser already refused these mistakes at the arc itself.
   llvm::SmallDenseSet<uint32_t, 8> seen;
-  for (size_t i = 0; i < t.pre.size(); ++i) {
-    const PreArc &a = t.pre[i];
+  for (const PreArc &a : t.pre()) {
     if (a.place >= m.places.size()) {
       error(t.loc, "transition '" + t.name + "' has a pre-arc to no place");
       return;
     }
     if (a.weight == 0)
-      error(arcLoc(t.preLocs, i), "arc weight must be at least 1");
+      error(t.loc, "arc weight must be at least 1 (pre-arc from '" +
+                       m.places[a.place].name + "' of '" + t.name + "')");
     if (a.time.lo > a.time.hi)
-      error(arcLoc(t.preLocs, i), "empty time interval on the arc from '" +
-                                      m.places[a.place].name + "'");
+      error(t.loc, "empty time interval on the arc from '" +
+                       m.places[a.place].name + "' to '" + t.name + "'");
     if (!seen.insert(a.place).second)
-      error(arcLoc(t.preLocs, i),
-            "place '" + m.places[a.place].name +
-                "' appears twice in the pre-set of '" + t.name +
-                "'; give the arc a weight instead");
+      error(t.loc, "place '" + m.places[a.place].name +
+                       "' appears twice in the pre-set of '" + t.name +
+                       "'; give the arc a weight instead");
   }
   seen.clear();
-  for (size_t i = 0; i < t.post.size(); ++i) {
-    const PostArc &a = t.post[i];
+  for (const PostArc &a : t.post()) {
     if (a.place >= m.places.size()) {
       error(t.loc, "transition '" + t.name + "' has a post-arc to no place");
       return;
     }
     if (a.weight == 0)
-      error(arcLoc(t.postLocs, i), "arc weight must be at least 1");
+      error(t.loc, "arc weight must be at least 1 (post-arc to '" +
+                       m.places[a.place].name + "' of '" + t.name + "')");
     if (!seen.insert(a.place).second)
-      error(arcLoc(t.postLocs, i),
-            "place '" + m.places[a.place].name +
-                "' appears twice in the post-set of '" + t.name +
-                "'; give the arc a weight instead");
+      error(t.loc, "place '" + m.places[a.place].name +
+                       "' appears twice in the post-set of '" + t.name +
+                       "'; give the arc a weight instead");
   }
   for (Expr *c : t.conds())
     expectBool(c, Ctx::Signal, "a condition arc");
