@@ -42,8 +42,9 @@ static cl::list<std::string> translateInputs(cl::Positional,
                                              cl::desc("<input files>"),
                                              cl::OneOrMore,
                                              cl::sub(translateCmd));
+// Optional so that `opt --list-passes` needs no input; checked in runOpt.
 static cl::opt<std::string> optInput(cl::Positional, cl::desc("<input>"),
-                                     cl::Required, cl::sub(optCmd));
+                                     cl::sub(optCmd));
 static cl::opt<std::string> emitInput(cl::Positional, cl::desc("<input>"),
                                       cl::Required, cl::sub(emitCmd));
 
@@ -150,6 +151,11 @@ static int runOpt() {
   }
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
+  if (optInput.empty()) {
+    llvm::errs() << "netlift: error: opt needs an input file ('-' for "
+                    "standard input)\n";
+    return 1;
+  }
   if (pipelineText.getNumOccurrences() == 0) {
     llvm::errs() << "netlift: error: opt needs a pipeline (-p 'pass,...'); "
                     "netlift opt --list-passes lists the passes\n";
