@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Robustness sweep: feed netlift mutated NetIR files and require that each
+run ends with exit code 0 or 1, never a crash, a sanitizer report or a hang.
+
+usage: mutate-netir.py NETLIFT SEED COUNT FILE...
+
+Mutations: delete, duplicate or replace a random span; insert random bytes
+(including NUL and non-ASCII); truncate. Deterministic for a given seed.
+Prints one summary line; exits 1 on the first failure, printing the input.
+"""
+import random
+import subprocess
+import sys
+import tempfile
+import os
+
+
+def mutate(rng, data):
+    if not data:
+        return bytes(rng.randrange(256) for _ in range(rng.randrange(1, 16)))
+    kind = rng.randrange(5)
+    i = rng.randrange(len(data))
+    j = min(len(data), i + rng.randrange(1, 40))
+    if kind == 0:
+        return data[:i] + data[j:]
+    if kind == 1:
+        return data[:j] + data[i:j] + data[j:]
+    if kind == 2:
+        return data[:i] + bytes(rng.choice(b"{}()[];:,.-><=*&|#'0123456789 \n\x00\xff")
+                                for _ in range(j - i)) + data[j:]
+    if kind == 3:
+        return data[:i] + bytes(rng.randrange(256) for _ in range(rng.randrange(1, 8))) + data[i:]
+    return data[:i]
+
+
+def main():
+    netlift, seed, count = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+    corpus = [open(f, "rb").read() for f in sys.argv[4:]]
+    rng = random.Random(seed)
+    codes = {0: 0, 1: 0}
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "m.net")
+        for n in range(count):
+            data = rng.choice(corpus)
+            for _ in range(rng.randrange(1, 4)):
+                data = mutate(rng, data)
+            with open(path, "wb") as f:
+                f.write(data)
+            for args in (["translate", path], ["opt", path, "-p", "flatten"]):
+                try:
+                    r = subprocess.run([netlift] + args, capture_output=True, timeout=20)
+                except subprocess.TimeoutExpired:
+                    print(f"mutation {n}: hang on {args}\n{data!r}")
+                    return 1
+                bad = r.returncode not in (0, 1) or b"Sanitizer" in r.stderr \
+                    or b"runtime error" in r.stderr or b"Assertion" in r.stderr
+                if bad:
+                    print(f"mutation {n}: exit {r.returncode} on {args}\n{data!r}\n"
+                          f"{r.stderr.decode(errors='replace')[-2000:]}")
+                    return 1
+                codes[r.returncode] += 1
+    print(f"mutations: {count}, runs exiting 0: {codes[0]}, exiting 1: {codes[1]}, crashes: 0")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
