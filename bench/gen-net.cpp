@@ -74,8 +74,8 @@ int main(int argc, char **argv) {
         "  trans e%zu : d%zu -> a%zu on r%zu {\n"
         "    if n%zu > 7 { n%zu := 0; } else { n%zu := n%zu * 2 %% 16; }\n"
         "  }\n",
-        i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i,
-        i, i);
+        i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i, i,
+        i);
     body += buf;
   }
   put(vars);

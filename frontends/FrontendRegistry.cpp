@@ -38,8 +38,7 @@ bool netlift::loadNetIR(unsigned bufferID, DiagEngine &diag,
   if (!net::parseNetIR(bufferID, diag, design))
     return false;
   if (design.modules.empty()) {
-    const llvm::MemoryBuffer *buf =
-        diag.sourceMgr().getMemoryBuffer(bufferID);
+    const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
     diag.error(llvm::SMLoc::getFromPointer(buf->getBufferStart()),
                "no module or system in this file");
     return false;
@@ -62,10 +61,9 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
       llvm::MemoryBuffer::getMemBufferCopy(first, (path + ".printed").str()),
       llvm::SMLoc());
   net::Design again;
-  if (!net::parseNetIR(id, inner, again) ||
-      !net::verifyDesign(again, inner)) {
-    llvm::errs() << "netlift: error: round trip: the printed form of '"
-                 << path << "' does not parse back (see above)\n";
+  if (!net::parseNetIR(id, inner, again) || !net::verifyDesign(again, inner)) {
+    llvm::errs() << "netlift: error: round trip: the printed form of '" << path
+                 << "' does not parse back (see above)\n";
     return false;
   }
   std::string second;

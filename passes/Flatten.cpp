@@ -100,8 +100,8 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
   for (const Port &p : y.ports) {
     if (!isTop && p.isInput())
       continue;
-    uint32_t fp = b.addPort(prefix + p.name.str(), p.kind, p.dir, p.type,
-                            p.loc);
+    uint32_t fp =
+        b.addPort(prefix + p.name.str(), p.kind, p.dir, p.type, p.loc);
     Port &np = flat->ports[fp];
     np.definition = cloneExpr(b, y, p.definition, rename);
     np.definitionLoc = p.definitionLoc;
@@ -231,10 +231,9 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
           {target, prefix + c.from.instance.str() + "." + c.from.port.str()});
       continue;
     }
-    std::string src = c.from.instance.empty()
-                          ? rename(c.from.port)
-                          : prefix + c.from.instance.str() + "." +
-                                c.from.port.str();
+    std::string src = c.from.instance.empty() ? rename(c.from.port)
+                                              : prefix + c.from.instance.str() +
+                                                    "." + c.from.port.str();
     flat->ports[fp].definition = b.ref(src, c.loc);
     flat->ports[fp].definitionLoc = c.loc;
   }
@@ -280,8 +279,7 @@ bool Flattener::resolveEvents() {
       std::vector<EventSource> expanded;
       if (s.kind == SymKind::Transition) {
         expanded.push_back({s.index, false});
-      } else if (s.kind == SymKind::Port &&
-                 flat->ports[s.index].isInput()) {
+      } else if (s.kind == SymKind::Port && flat->ports[s.index].isInput()) {
         expanded.push_back({s.index, true});
       } else if (s.kind == SymKind::Port) {
         for (uint32_t e : emitters.lookup(name))
@@ -300,8 +298,7 @@ bool Flattener::resolveEvents() {
     if (dead) {
       diag.warning(tr.loc, "transition '" + tr.name +
                                "' can never fire: its event comes from '" +
-                               deadBecause +
-                               "', which no transition emits");
+                               deadBecause + "', which no transition emits");
       // The `false` guard keeps it disabled; arcs that resolve to nothing
       // are dropped.
       b.setGuard(t, b.boolLit(false, tr.loc));

@@ -15,14 +15,14 @@ Pass::~Pass() = default;
 
 // Pass factories, one per registry line, defined in the pass's own file.
 namespace netlift {
-#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                           \
+#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                            \
   std::unique_ptr<Pass> create##CLASS(const PassOptions &);
 #include "passes/PassRegistry.def"
 #undef NETLIFT_PASS
 } // namespace netlift
 
 static const PassInfo registry[] = {
-#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                           \
+#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                            \
   {#NAME, SUMMARY, OPTIONS, create##CLASS},
 #include "passes/PassRegistry.def"
 #undef NETLIFT_PASS
@@ -60,8 +60,8 @@ void netlift::printPassList(llvm::raw_ostream &os, bool markdown) {
       if (!opts.empty()) {
         os << "Options:\n\n";
         for (StringRef o : opts)
-          os << "- `" << o.trim().split(':').first << "`:"
-             << o.trim().split(':').second << "\n";
+          os << "- `" << o.trim().split(':').first
+             << "`:" << o.trim().split(':').second << "\n";
         os << "\n";
       }
     } else {
@@ -155,8 +155,8 @@ bool PipelineParser::parse(
         if (key.empty())
           return error(kat, "expected an option name");
         if (std::find(keys.begin(), keys.end(), key.str()) == keys.end())
-          return error(kat, "unknown option '" + key + "' for pass '" + name +
-                                "'");
+          return error(kat,
+                       "unknown option '" + key + "' for pass '" + name + "'");
         skipSpace();
         if (pos >= text.size() || text[pos] != '=')
           return error(pos, "expected '=' after option '" + key + "'");
@@ -172,8 +172,8 @@ bool PipelineParser::parse(
           return error(kat, "option '" + key + "' given twice");
         opts[key.str()] = value.str();
         if (pos >= text.size())
-          return error(pos, "expected '}' to close the options of '" + name +
-                                "'");
+          return error(pos,
+                       "expected '}' to close the options of '" + name + "'");
         if (text[pos++] == '}')
           break;
       }

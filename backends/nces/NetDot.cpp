@@ -54,9 +54,8 @@ static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
     return quote(pre + kind.str() + std::to_string(i));
   };
   os << "  subgraph " << quote("cluster_" + m.name.str()) << " {\n";
-  os << "    label=" << quote((m.isSystem ? "system " : "module ") +
-                              m.name.str())
-     << ";\n";
+  os << "    label="
+     << quote((m.isSystem ? "system " : "module ") + m.name.str()) << ";\n";
   for (uint32_t i = 0; i < m.ports.size(); ++i) {
     const Port &p = m.ports[i];
     StringRef shape = p.kind == PortKind::Event  ? "cds"
@@ -84,8 +83,9 @@ static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
       label += "\\n[" + exprToString(g) + "]";
     if (t.hasAction())
       label += "\\n{...}";
-    os << "    " << id("t", i) << " [shape=box, height=0.2, label="
-       << quote(label) << (t.urgent ? ", penwidth=3" : "") << "];\n";
+    os << "    " << id("t", i)
+       << " [shape=box, height=0.2, label=" << quote(label)
+       << (t.urgent ? ", penwidth=3" : "") << "];\n";
   }
   for (uint32_t i = 0; i < m.instances.size(); ++i)
     os << "    " << id("inst", i) << " [shape=component, label="

@@ -57,8 +57,7 @@ uint32_t Builder::addVar(StringRef name, const Type *type, Expr *init,
   return i;
 }
 
-uint32_t Builder::addInstance(StringRef name, StringRef moduleName,
-                              SMLoc loc) {
+uint32_t Builder::addInstance(StringRef name, StringRef moduleName, SMLoc loc) {
   Instance inst;
   inst.name = design.save(name);
   inst.loc = loc;
@@ -78,8 +77,7 @@ void Builder::addConnection(Endpoint from, Endpoint to, SMLoc loc) {
   mod->connections.push_back({loc, from, to});
 }
 
-void Builder::addFlow(uint32_t place, ArrayRef<Flow::Equation> eqs,
-                      SMLoc loc) {
+void Builder::addFlow(uint32_t place, ArrayRef<Flow::Equation> eqs, SMLoc loc) {
   Flow f;
   f.loc = loc;
   f.place = place;
@@ -167,8 +165,8 @@ Stmt *Builder::caseStmt(Expr *sel, ArrayRef<CaseArm> arms, bool hasElse,
   return design.create<CaseStmt>(loc, sel, design.copy(arms), hasElse,
                                  design.copy(elseBody));
 }
-Stmt *Builder::forStmt(StringRef var, Expr *lo, Expr *hi,
-                       ArrayRef<Stmt *> body, SMLoc loc) {
+Stmt *Builder::forStmt(StringRef var, Expr *lo, Expr *hi, ArrayRef<Stmt *> body,
+                       SMLoc loc) {
   return design.create<ForStmt>(loc, design.save(var), lo, hi,
                                 design.copy(body));
 }

@@ -105,8 +105,8 @@ Block netlift::net::cloneBlock(Builder &b, const Module &src, Block block,
     }
     case StmtKind::For: {
       auto *f = cast<ForStmt>(s);
-      out.push_back(b.forStmt(f->var, ce(f->lo), ce(f->hi), cb(f->body),
-                              s->loc));
+      out.push_back(
+          b.forStmt(f->var, ce(f->lo), ce(f->hi), cb(f->body), s->loc));
       break;
     }
     }

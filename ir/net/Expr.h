@@ -105,7 +105,9 @@ class IntLit : public Expr {
 public:
   IntLit(llvm::SMLoc l, int64_t v) : Expr(ExprKind::IntLit, l), value(v) {}
   int64_t value;
-  static bool classof(const Expr *e) { return e->getKind() == ExprKind::IntLit; }
+  static bool classof(const Expr *e) {
+    return e->getKind() == ExprKind::IntLit;
+  }
 };
 
 class BoolLit : public Expr {
@@ -225,7 +227,9 @@ public:
       : Stmt(StmtKind::Assign, l), target(t), value(v) {}
   Expr *target;
   Expr *value;
-  static bool classof(const Stmt *s) { return s->getKind() == StmtKind::Assign; }
+  static bool classof(const Stmt *s) {
+    return s->getKind() == StmtKind::Assign;
+  }
 };
 
 struct IfArm {

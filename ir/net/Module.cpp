@@ -3,8 +3,8 @@
 
 #include "llvm/ADT/DenseSet.h"
 
-#include <cstring>
 #include "llvm/Support/xxhash.h"
+#include <cstring>
 
 using namespace netlift::net;
 using llvm::StringRef;
@@ -21,9 +21,7 @@ StringRef netlift::net::spelling(PortKind k) {
   return "?";
 }
 
-static uint32_t hashName(StringRef n) {
-  return uint32_t(llvm::xxHash64(n));
-}
+static uint32_t hashName(StringRef n) { return uint32_t(llvm::xxHash64(n)); }
 
 Symbol SymbolTable::lookup(StringRef name, const Module &m) const {
   if (buckets.empty())
@@ -195,4 +193,3 @@ Module *Design::findTop(StringRef name, std::string &why) const {
                           : "every module is instantiated by another";
   return top;
 }
-

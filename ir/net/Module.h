@@ -266,8 +266,7 @@ public:
     places.reserve(numPlaces);
     transitions.reserve(numTransitions);
     vars.reserve(numVars);
-    symbols.reserve(numPlaces + numTransitions + numVars + ports.size(),
-                    *this);
+    symbols.reserve(numPlaces + numTransitions + numVars + ports.size(), *this);
   }
   /// Rebuilds the symbol table from the entity vectors (after a pass
   /// removed or renamed entities).

@@ -8,9 +8,9 @@
 #include "llvm/ADT/StringSwitch.h"
 
 #include <cerrno>
-#include <cstring>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 using namespace netlift;
 using namespace netlift::net;
@@ -55,8 +55,8 @@ private:
         return error(tok.loc(), "unterminated /* comment");
       unsigned char c = tok.text.empty() ? 0 : tok.text[0];
       if (c >= 0x20 && c < 0x7f)
-        return error(tok.loc(), llvm::Twine("unexpected character '") +
-                                    tok.text + "'");
+        return error(tok.loc(),
+                     llvm::Twine("unexpected character '") + tok.text + "'");
       char hex[8];
       snprintf(hex, sizeof hex, "0x%02X", c);
       return error(tok.loc(), llvm::Twine("unexpected byte ") + hex +
@@ -98,8 +98,8 @@ private:
     if (!parseName(name, loc, what))
       return false;
     if (name.contains('.'))
-      return error(loc, what + " '" + name +
-                            "' must not be qualified (no '.')");
+      return error(loc,
+                   what + " '" + name + "' must not be qualified (no '.')");
     return true;
   }
   bool parseInt(int64_t &v, StringRef what);
@@ -149,8 +149,8 @@ private:
     bool ok;
     explicit DepthGuard(Parser &p) : p(p), ok(++p.depth <= kMaxDepth) {
       if (!ok)
-        p.errorHere("nesting too deep (more than " +
-                    llvm::Twine(kMaxDepth) + " levels)");
+        p.errorHere("nesting too deep (more than " + llvm::Twine(kMaxDepth) +
+                    " levels)");
     }
     ~DepthGuard() { --p.depth; }
   };
@@ -373,8 +373,8 @@ bool Parser::parseType(const Type *&type, bool allowReal) {
         !parseSignedInt(hi, "an upper bound"))
       return false;
     if (lo > hi)
-      return error(loc, "empty range " + llvm::Twine(lo) + ".." +
-                            llvm::Twine(hi));
+      return error(loc,
+                   "empty range " + llvm::Twine(lo) + ".." + llvm::Twine(hi));
     type = design.types.getRange(lo, hi);
     return true;
   }
@@ -496,8 +496,7 @@ void Parser::reserveForLargeModule() {
       ++places;
       for (const char *c = q; c < end && *c != ';' && *c != '\n'; ++c)
         places += *c == ',';
-    }
-    else if (rest > 4 && !memcmp(q, "var ", 4))
+    } else if (rest > 4 && !memcmp(q, "var ", 4))
       ++vars;
     else if (rest > 2 && *q == '}' && (q[1] == '\n' || q[1] == '\r'))
       break; // the end of this module (canonical layout)
@@ -728,9 +727,11 @@ bool Parser::parseTransDeclBody() {
     return false;
   uint32_t t = b.addTransition(name, pre, post, loc);
   for (unsigned i = 0; i < preNames.size(); ++i)
-    pendingInTrans.push_back({FixKind::PrePlace, t, i, preNames[i], preLocs[i]});
+    pendingInTrans.push_back(
+        {FixKind::PrePlace, t, i, preNames[i], preLocs[i]});
   for (unsigned i = 0; i < postNames.size(); ++i)
-    pendingInTrans.push_back({FixKind::PostPlace, t, i, postNames[i], postLocs[i]});
+    pendingInTrans.push_back(
+        {FixKind::PostPlace, t, i, postNames[i], postLocs[i]});
 
   bool seenCond = false, seenOn = false, seenEmit = false, seenGuard = false;
   for (;;) {
@@ -761,7 +762,8 @@ bool Parser::parseTransDeclBody() {
         SMLoc evLoc;
         if (!parseName(ev, evLoc, "an event source"))
           return false;
-        pendingInTrans.push_back({FixKind::Event, t, uint32_t(srcs.size()), ev, evLoc});
+        pendingInTrans.push_back(
+            {FixKind::Event, t, uint32_t(srcs.size()), ev, evLoc});
         srcs.push_back({0, false});
         locs.push_back(evLoc);
         if (tok.is(Tok::Pipe))
@@ -791,7 +793,8 @@ bool Parser::parseTransDeclBody() {
         SMLoc evLoc;
         if (!parseName(ev, evLoc, "an event output"))
           return false;
-        pendingInTrans.push_back({FixKind::Emit, t, uint32_t(outs.size()), ev, evLoc});
+        pendingInTrans.push_back(
+            {FixKind::Emit, t, uint32_t(outs.size()), ev, evLoc});
         outs.push_back(0);
         locs.push_back(evLoc);
       } while (tok.is(Tok::Comma) && (consume(), true));
@@ -990,8 +993,8 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
       return "a transition";
     case SymKind::Port: {
       const Port &p = m->ports[s.index];
-      return ((p.kind == PortKind::Event ? "an " : "a ") +
-              spelling(p.kind) + (p.isInput() ? " input" : " output"))
+      return ((p.kind == PortKind::Event ? "an " : "a ") + spelling(p.kind) +
+              (p.isInput() ? " input" : " output"))
           .str();
     }
     case SymKind::Var:
@@ -1009,10 +1012,9 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
     if (s.kind == SymKind::None)
       return error(f.loc, "unknown place '" + f.name + "'");
     if (s.kind != SymKind::Place) {
-      StringRef role = f.kind == FixKind::FlowPlace ? "a flow"
-                                                    : "a flow arc";
-      return error(f.loc, role + " needs a place, but '" + f.name +
-                              "' is " + kindName());
+      StringRef role = f.kind == FixKind::FlowPlace ? "a flow" : "a flow arc";
+      return error(f.loc, role + " needs a place, but '" + f.name + "' is " +
+                              kindName());
     }
     if (f.kind == FixKind::FlowPlace) {
       m->flows[f.trans].place = s.index;
@@ -1036,8 +1038,7 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
                m->ports[s.index].isInput()) {
       src = {s.index, true};
     } else {
-      return error(f.loc, "event arc source '" + f.name + "' is " +
-                              kindName() +
+      return error(f.loc, "event arc source '" + f.name + "' is " + kindName() +
                               "; an event arc comes from a transition or "
                               "an event input");
     }
@@ -1068,8 +1069,7 @@ bool Parser::resolveModuleFixups() {
       return false;
   for (const Definition &d : definitions) {
     int p = m->findPort(d.name);
-    if (p < 0 || !m->ports[p].isOutput() ||
-        m->ports[p].kind == PortKind::Event)
+    if (p < 0 || !m->ports[p].isOutput() || m->ports[p].kind == PortKind::Event)
       return error(d.loc, "'" + d.name +
                               "' is not a cond or data output of module '" +
                               m->name + "'; only outputs are defined by '='");
@@ -1180,9 +1180,7 @@ bool Parser::peekBinaryOp(BinaryOp &op) const {
   }
 }
 
-static bool isComparison(BinaryOp op) {
-  return precedence(op) == 5;
-}
+static bool isComparison(BinaryOp op) { return precedence(op) == 5; }
 
 Expr *Parser::parseBinary(int minPrec) {
   Expr *lhs;

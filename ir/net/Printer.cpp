@@ -289,8 +289,8 @@ void ModulePrinter::run() {
     if (v.type->isClock()) {
       os << "  clock " << v.name << " : 0.." << v.type->hi;
     } else if (v.type->isReal()) {
-      os << "  real " << v.name << " : [" << formatReal(v.type->realLo)
-         << ", " << formatReal(v.type->realHi) << "]";
+      os << "  real " << v.name << " : [" << formatReal(v.type->realLo) << ", "
+         << formatReal(v.type->realHi) << "]";
     } else {
       os << "  var " << v.name << " : ";
       v.type->print(os);

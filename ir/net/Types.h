@@ -25,7 +25,16 @@
 
 namespace netlift::net {
 
-enum class TypeKind : uint8_t { Bool, Range, Enum, Int, Clock, Array, Record, Real };
+enum class TypeKind : uint8_t {
+  Bool,
+  Range,
+  Enum,
+  Int,
+  Clock,
+  Array,
+  Record,
+  Real
+};
 enum class Overflow : uint8_t { Error, Wrap };
 
 class Type;

@@ -115,8 +115,8 @@ bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
   if (!t)
     return false;
   if (!isAssignable(type, t)) {
-    error(init->loc, "initial value of " + what + " has type '" +
-                         typeName(t) + "', expected '" + typeName(type) + "'");
+    error(init->loc, "initial value of " + what + " has type '" + typeName(t) +
+                         "', expected '" + typeName(type) + "'");
     return false;
   }
   int64_t v;
@@ -228,8 +228,8 @@ void ModuleVerifier::checkTransition(uint32_t ti) {
       if (s.index >= m.ports.size() ||
           m.ports[s.index].kind != PortKind::Event ||
           !m.ports[s.index].isInput())
-        error(loc, "event arc into '" + t.name +
-                       "' must come from an event input");
+        error(loc,
+              "event arc into '" + t.name + "' must come from an event input");
     } else if (s.index >= m.transitions.size()) {
       error(loc, "event arc into '" + t.name + "' comes from no transition");
     } else if (s.index == ti) {
@@ -239,8 +239,9 @@ void ModuleVerifier::checkTransition(uint32_t ti) {
   for (uint32_t p : t.emits())
     if (p >= m.ports.size() || m.ports[p].kind != PortKind::Event ||
         !m.ports[p].isOutput())
-      error(t.loc, "transition '" + t.name + "' emits to a port that is not "
-                                              "an event output");
+      error(t.loc, "transition '" + t.name +
+                       "' emits to a port that is not "
+                       "an event output");
   if (Expr *g = t.guard())
     expectBool(g, Ctx::Guard, "a guard");
   checkBlock(t.action());
@@ -257,8 +258,9 @@ void ModuleVerifier::checkFlows() {
       auto &eq = const_cast<Flow::Equation &>(ceq);
       Symbol s = m.lookup(eq.var);
       if (s.kind != SymKind::Var || !m.vars[s.index].type->isReal()) {
-        error(eq.loc, "'" + eq.var + "' is not a real variable; flows (x' = "
-                                     "rate) are for real variables");
+        error(eq.loc, "'" + eq.var +
+                          "' is not a real variable; flows (x' = "
+                          "rate) are for real variables");
         continue;
       }
       eq.varIndex = s.index;
@@ -307,8 +309,8 @@ const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
   for (size_t i = loopVars.size(); i-- > 0;)
     if (loopVars[i] == name) {
       if (ctx == Ctx::Signal) {
-        error(r->loc, "loop variable '" + name +
-                          "' cannot be used in a condition arc");
+        error(r->loc,
+              "loop variable '" + name + "' cannot be used in a condition arc");
         return nullptr;
       }
       r->sym = {SymKind::LoopVar, uint32_t(i)};
@@ -368,13 +370,13 @@ const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
   case SymKind::Port: {
     const Port &p = m.ports[s.index];
     if (p.kind == PortKind::Event) {
-      error(r->loc, "event port '" + name +
-                        "' has no value; use it in 'on' or 'emit'");
+      error(r->loc,
+            "event port '" + name + "' has no value; use it in 'on' or 'emit'");
       return nullptr;
     }
     if (ctx == Ctx::Signal && p.kind == PortKind::Data) {
-      error(r->loc, "condition arcs carry Boolean signals; data port '" +
-                        name + "' belongs in a guard");
+      error(r->loc, "condition arcs carry Boolean signals; data port '" + name +
+                        "' belongs in a guard");
       return nullptr;
     }
     t = p.type;
@@ -432,8 +434,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     if (!bt || !it)
       return nullptr;
     if (bt->kind != TypeKind::Array) {
-      error(e->loc, "'" + exprToString(x->base) + "' of type '" +
-                        typeName(bt) + "' is not an array");
+      error(e->loc, "'" + exprToString(x->base) + "' of type '" + typeName(bt) +
+                        "' is not an array");
       return nullptr;
     }
     if (!it->isInteger()) {
@@ -455,8 +457,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       return nullptr;
     int fi = bt->kind == TypeKind::Record ? bt->fieldIndex(f->field) : -1;
     if (fi < 0) {
-      error(e->loc, "'" + f->field + "' is not a field of '" + typeName(bt) +
-                        "'");
+      error(e->loc,
+            "'" + f->field + "' is not a field of '" + typeName(bt) + "'");
       return nullptr;
     }
     f->fieldIndex = uint32_t(fi);
@@ -470,8 +472,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     switch (u->op) {
     case UnaryOp::Not:
       if (!t->isBool()) {
-        error(e->loc, "'not' needs a Boolean operand, not '" + typeName(t) +
-                          "'");
+        error(e->loc,
+              "'not' needs a Boolean operand, not '" + typeName(t) + "'");
         return nullptr;
       }
       return e->type = t;
@@ -498,7 +500,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       return nullptr;
     StringRef op = spelling(bin->op);
     auto mismatch = [&](StringRef need) -> const Type * {
-      error(e->loc, "'" + op + "' needs " + need + ", but the operands have "
+      error(e->loc, "'" + op + "' needs " + need +
+                        ", but the operands have "
                         "types '" +
                         typeName(a) + "' and '" + typeName(b) + "'");
       return nullptr;
@@ -572,8 +575,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       if (!t)
         return nullptr;
       if (!isNumeric(t)) {
-        error(a->loc, spelling(c->fn) + "() needs numbers, not '" +
-                          typeName(t) + "'");
+        error(a->loc,
+              spelling(c->fn) + "() needs numbers, not '" + typeName(t) + "'");
         return nullptr;
       }
       real |= t->isReal();
@@ -829,8 +832,7 @@ void ModuleVerifier::checkInstancesAndConnections() {
   // Resolve an endpoint to (module, port index).
   auto resolve = [&](Endpoint &e, const Module *&owner) -> int {
     owner = &m;
-    if (!e.instance.empty() &&
-        m.lookup(e.instance).kind != SymKind::Instance) {
+    if (!e.instance.empty() && m.lookup(e.instance).kind != SymKind::Instance) {
       std::string whole = (e.instance + "." + e.port).str();
       if (m.findPort(whole) >= 0) {
         e.port = d.save(whole);
@@ -840,8 +842,8 @@ void ModuleVerifier::checkInstancesAndConnections() {
     if (!e.instance.empty()) {
       Symbol s = m.lookup(e.instance);
       if (s.kind != SymKind::Instance) {
-        error(e.loc, "'" + e.instance + "' is not an instance in '" + m.name +
-                         "'");
+        error(e.loc,
+              "'" + e.instance + "' is not an instance in '" + m.name + "'");
         return -1;
       }
       owner = m.instances[s.index].module;
@@ -850,8 +852,7 @@ void ModuleVerifier::checkInstancesAndConnections() {
     }
     int p = owner->findPort(e.port);
     if (p < 0) {
-      error(e.loc, "module '" + owner->name + "' has no port '" + e.port +
-                       "'");
+      error(e.loc, "module '" + owner->name + "' has no port '" + e.port + "'");
       return -1;
     }
     return p;
@@ -941,9 +942,9 @@ void checkRecursion(Design &d, DiagEngine &diag) {
         continue;
       uint8_t ci = color.lookup(i.module);
       if (ci == 1) {
-        diag.error(i.loc, "recursive instantiation: module '" +
-                              i.module->name + "' contains itself through '" +
-                              m->name + "." + i.name + "'");
+        diag.error(i.loc, "recursive instantiation: module '" + i.module->name +
+                              "' contains itself through '" + m->name + "." +
+                              i.name + "'");
         return false;
       }
       if (ci == 0 && !visit(i.module))

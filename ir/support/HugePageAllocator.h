@@ -1,4 +1,5 @@
-//===- HugePageAllocator.h - big tables on transparent huge pages -*- C++ -*-===//
+//===- HugePageAllocator.h - big tables on transparent huge pages -*- C++
+//-*-===//
 //
 // A std::allocator replacement for the few tables that grow to hundreds of
 // megabytes on large models (entity vectors, symbol tables, state stores).

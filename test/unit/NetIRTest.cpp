@@ -49,11 +49,11 @@ TEST(NetIR, BuilderModuleVerifiesAndPrints) {
   uint32_t busy = b.addPlace("busy_p");
   uint32_t n = b.addVar("n", d.types.getInt(8, false, Overflow::Wrap));
   (void)n;
-  uint32_t t = b.addTransition("start", {PreArc{idle, 1, {2, 4}}},
-                               {PostArc{busy, 1}});
+  uint32_t t =
+      b.addTransition("start", {PreArc{idle, 1, {2, 4}}}, {PostArc{busy, 1}});
   b.setEvents(t, {EventSource{0, true}});
-  b.setAction(t, {b.assign(b.ref("n"), b.binary(BinaryOp::Add, b.ref("n"),
-                                                 b.intLit(1)))});
+  b.setAction(t, {b.assign(b.ref("n"),
+                           b.binary(BinaryOp::Add, b.ref("n"), b.intLit(1)))});
   b.getModule()->ports[out].definition = b.ref("busy_p");
   llvm::SourceMgr sm;
   DiagEngine diag(sm);

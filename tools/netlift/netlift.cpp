@@ -30,8 +30,9 @@ namespace cl = llvm::cl;
 
 static cl::OptionCategory category("netlift options");
 
-static cl::SubCommand translateCmd(
-    "translate", "Read models in any supported format, verify them and "
+static cl::SubCommand
+    translateCmd("translate",
+                 "Read models in any supported format, verify them and "
                  "print them as canonical NetIR text");
 static cl::SubCommand optCmd("opt",
                              "Run a pipeline of NetIR passes over a model");
@@ -84,12 +85,13 @@ static cl::opt<bool> showStats("stats",
                                cl::sub(optCmd), cl::cat(category));
 
 enum class EmitFormat { Net, Dot };
-static cl::opt<EmitFormat> emitFormat(
-    "to", cl::desc("Output format"), cl::Required,
-    cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
-               clEnumValN(EmitFormat::Dot, "dot", "Graphviz drawing of the "
-                                                  "net")),
-    cl::sub(emitCmd), cl::cat(category));
+static cl::opt<EmitFormat>
+    emitFormat("to", cl::desc("Output format"), cl::Required,
+               cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
+                          clEnumValN(EmitFormat::Dot, "dot",
+                                     "Graphviz drawing of the "
+                                     "net")),
+               cl::sub(emitCmd), cl::cat(category));
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
 /// is renamed into place only when everything was written.
@@ -135,9 +137,9 @@ static int runTranslate() {
   net::Design design;
   if (!loadInputs(translateInputs, inputFormat, diag, design))
     return 1;
-  return writeOutput(outputFile, [&](llvm::raw_ostream &os) {
-           net::printDesign(design, os);
-         })
+  return writeOutput(
+             outputFile,
+             [&](llvm::raw_ostream &os) { net::printDesign(design, os); })
              ? 0
              : 1;
 }
@@ -181,9 +183,9 @@ static int runOpt() {
     llvm::errs() << "netlift: error: the pipeline produced invalid IR\n";
     return 1;
   }
-  return writeOutput(outputFile, [&](llvm::raw_ostream &os) {
-           net::printDesign(design, os);
-         })
+  return writeOutput(
+             outputFile,
+             [&](llvm::raw_ostream &os) { net::printDesign(design, os); })
              ? 0
              : 1;
 }
