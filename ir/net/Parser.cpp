@@ -122,6 +122,7 @@ private:
                     llvm::SmallVectorImpl<StringRef> &names);
   bool parseVarDecl(bool isClock);
   bool parseRealDecl();
+  bool parseInitAndSemi(Expr *&init);
   bool parseFlowDecl();
   bool parseInstDecl();
   bool parseConnectDecl();
@@ -859,16 +860,21 @@ bool Parser::parseVarDecl(bool isClock) {
     return false;
   }
   Expr *init = nullptr;
+  if (!parseInitAndSemi(init))
+    return false;
+  for (auto &[n, l] : names)
+    b.addVar(n, type, init, l);
+  return true;
+}
+
+/// `[= expr] ;` ending a variable declaration.
+bool Parser::parseInitAndSemi(Expr *&init) {
   if (tok.is(Tok::Equal)) {
     consume();
     if (!(init = parseExpr()))
       return false;
   }
-  if (!expect(Tok::Semi, "';'"))
-    return false;
-  for (auto &[n, l] : names)
-    b.addVar(n, type, init, l);
-  return true;
+  return expect(Tok::Semi, "';'");
 }
 
 bool Parser::parseRealDecl() {
@@ -884,12 +890,7 @@ bool Parser::parseRealDecl() {
   if (lo > hi)
     return error(loc, "empty real interval");
   Expr *init = nullptr;
-  if (tok.is(Tok::Equal)) {
-    consume();
-    if (!(init = parseExpr()))
-      return false;
-  }
-  if (!expect(Tok::Semi, "';'"))
+  if (!parseInitAndSemi(init))
     return false;
   b.addVar(name, design.types.getReal(lo, hi), init, loc);
   return true;

@@ -131,17 +131,22 @@ static bool writeOutput(llvm::StringRef path,
   return true;
 }
 
+/// Writes the design as NetIR text to -o; the exit code of the subcommand.
+static int writeDesign(const net::Design &design) {
+  return writeOutput(
+             outputFile,
+             [&](llvm::raw_ostream &os) { net::printDesign(design, os); })
+             ? 0
+             : 1;
+}
+
 static int runTranslate() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
   net::Design design;
   if (!loadInputs(translateInputs, inputFormat, diag, design))
     return 1;
-  return writeOutput(
-             outputFile,
-             [&](llvm::raw_ostream &os) { net::printDesign(design, os); })
-             ? 0
-             : 1;
+  return writeDesign(design);
 }
 
 static int runOpt() {
@@ -183,11 +188,7 @@ static int runOpt() {
     llvm::errs() << "netlift: error: the pipeline produced invalid IR\n";
     return 1;
   }
-  return writeOutput(
-             outputFile,
-             [&](llvm::raw_ostream &os) { net::printDesign(design, os); })
-             ? 0
-             : 1;
+  return writeDesign(design);
 }
 
 static int runEmit() {
