@@ -39,6 +39,7 @@ bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
 
 /// Frontend implementations (one per line of FrontendRegistry.def).
 bool loadNetIR(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadPnml(unsigned bufferID, DiagEngine &diag, net::Design &design);
 
 } // namespace netlift
 

@@ -5,7 +5,7 @@ import lit.formats
 
 config.name = "netlift"
 config.test_format = lit.formats.ShTest(execute_external=False)
-config.suffixes = [".net", ".test", ".pipeline"]
+config.suffixes = [".net", ".test"]
 config.excludes = ["Inputs", "unit", "CMakeLists.txt", "lit.cfg.py",
                    "lit.site.cfg.py.in"]
 config.test_source_root = os.path.dirname(__file__)
