@@ -32,3 +32,12 @@ if config.sanitize:
     config.environment["ASAN_OPTIONS"] = "detect_leaks=1"
     config.environment["UBSAN_OPTIONS"] = "print_stacktrace=1:halt_on_error=1"
     config.available_features.add("sanitizer")
+
+# Third-party corpus beside the checkout (../shared/corpus): tests that need
+# it are UNSUPPORTED, with their REQUIRES line as the message, without it.
+corpus = os.path.normpath(os.path.join(config.netlift_src_root, "..", "shared",
+                                       "corpus"))
+config.substitutions.append(("%corpus", corpus))
+if os.path.exists(os.path.join(corpus, "pnml", "mcc2021",
+                               "oracle-statespace.tsv")):
+    config.available_features.add("mcc-corpus")

@@ -39,6 +39,14 @@ public:
   }
 
   bool parseFile();
+  Expr *parseWholeExpression() {
+    Expr *e = parseExpr();
+    if (e && !tok.is(Tok::Eof)) {
+      errorHere("unexpected " + describe() + " after the expression");
+      return nullptr;
+    }
+    return e;
+  }
 
 private:
   // Token handling -------------------------------------------------------
@@ -1483,4 +1491,11 @@ bool netlift::net::parseNetIR(unsigned bufferID, DiagEngine &diag,
   const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
   Parser p(buf->getBuffer(), diag, design);
   return p.parseFile();
+}
+
+Expr *netlift::net::parseExpression(unsigned bufferID, DiagEngine &diag,
+                                    Design &design) {
+  const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
+  Parser p(buf->getBuffer(), diag, design);
+  return p.parseWholeExpression();
 }

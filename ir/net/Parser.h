@@ -20,6 +20,10 @@ namespace netlift::net {
 /// `design`. Returns false (after reporting) on a syntax error.
 bool parseNetIR(unsigned bufferID, DiagEngine &diag, Design &design);
 
+/// Parses buffer `bufferID` as one expression (e.g. a predicate given on
+/// the command line). Null after reporting an error.
+Expr *parseExpression(unsigned bufferID, DiagEngine &diag, Design &design);
+
 /// Is `name` usable as a NetIR identifier as it stands (not a reserved word
 /// of the expression language)?
 bool isReservedWord(llvm::StringRef name);

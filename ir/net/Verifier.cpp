@@ -39,6 +39,9 @@ public:
   ModuleVerifier(Design &d, Module &m, DiagEngine &diag)
       : d(d), m(m), diag(diag), types(d.types) {}
   void run();
+  bool checkPredicate(Expr *e) {
+    return expectBool(e, Ctx::Guard, "a predicate");
+  }
 
 private:
   void error(SMLoc loc, const Twine &msg) { diag.error(loc, msg); }
@@ -959,6 +962,11 @@ void checkRecursion(Design &d, DiagEngine &diag) {
 }
 
 } // namespace
+
+bool netlift::net::verifyPredicate(Design &d, Module &m, Expr *e,
+                                   DiagEngine &diag) {
+  return ModuleVerifier(d, m, diag).checkPredicate(e);
+}
 
 bool netlift::net::verifyDesign(Design &d, DiagEngine &diag) {
   unsigned before = diag.numErrors();

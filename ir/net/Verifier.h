@@ -22,6 +22,10 @@ namespace netlift::net {
 /// reported.
 bool verifyDesign(Design &d, DiagEngine &diag);
 
+/// Resolves and type-checks a Boolean expression in the context of module
+/// `m` (a predicate such as `reach --find`). False after reporting.
+bool verifyPredicate(Design &d, Module &m, Expr *e, DiagEngine &diag);
+
 /// Does the module still have hybrid (real) variables or flows? Stages
 /// after `discretise` refuse such modules.
 bool hasHybridParts(const Module &m);

@@ -7,6 +7,10 @@
 //
 //===----------------------------------------------------------------------===//
 #include "backends/nces/NetDot.h"
+#include "backends/statespace/Explorer.h"
+#include "backends/statespace/Writers.h"
+#include "ir/net/Parser.h"
+#include "ir/semantics/Semantics.h"
 #include "frontends/FrontendRegistry.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
@@ -15,10 +19,12 @@
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/InitLLVM.h"
+#include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
 #include "llvm/Support/raw_ostream.h"
 
+#include <algorithm>
 #include <functional>
 
 using namespace netlift;
@@ -36,6 +42,9 @@ static cl::SubCommand
                  "print them as canonical NetIR text");
 static cl::SubCommand optCmd("opt",
                              "Run a pipeline of NetIR passes over a model");
+static cl::SubCommand reachCmd(
+    "reach", "Explore the reachable states of a model (its top module, "
+             "flattened)");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -48,16 +57,20 @@ static cl::opt<std::string> optInput(cl::Positional, cl::desc("<input>"),
                                      cl::sub(optCmd));
 static cl::opt<std::string> emitInput(cl::Positional, cl::desc("<input>"),
                                       cl::Required, cl::sub(emitCmd));
+static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
+                                       cl::Required, cl::sub(reachCmd));
 
 static cl::opt<std::string> outputFile("o",
                                        cl::desc("Output file ('-' = stdout)"),
                                        cl::value_desc("file"), cl::init("-"),
                                        cl::sub(translateCmd), cl::sub(optCmd),
-                                       cl::sub(emitCmd), cl::cat(category));
+                                       cl::sub(emitCmd), cl::sub(reachCmd),
+                                       cl::cat(category));
 static cl::opt<std::string>
     inputFormat("from", cl::desc("Input format (default: by file extension)"),
                 cl::value_desc("format"), cl::sub(translateCmd),
-                cl::sub(optCmd), cl::sub(emitCmd), cl::cat(category));
+                cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
+                cl::cat(category));
 
 static cl::opt<std::string> pipelineText("p",
                                          cl::desc("Pass pipeline, e.g. "
@@ -92,6 +105,63 @@ static cl::opt<EmitFormat>
                                      "Graphviz drawing of the "
                                      "net")),
                cl::sub(emitCmd), cl::cat(category));
+
+enum class GraphFormat { None, Aut, Dot, Json };
+static cl::opt<GraphFormat> reachFormat(
+    "format", cl::desc("Write the state space"),
+    cl::init(GraphFormat::None),
+    cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
+               clEnumValN(GraphFormat::Dot, "dot", "Graphviz (small graphs)"),
+               clEnumValN(GraphFormat::Json, "json",
+                          "every state with its values, every edge")),
+    cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string> reachSummary(
+    "summary", cl::desc("Print a summary: 'json' or 'text' (default)"),
+    cl::init("text"), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string> reachFind(
+    "find", cl::desc("Find a shortest path to a state satisfying EXPR"),
+    cl::value_desc("EXPR"), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<bool> reachDeadlockTrace(
+    "deadlock-trace", cl::desc("Print a shortest path to a deadlock"),
+    cl::sub(reachCmd), cl::cat(category));
+static cl::opt<sem::StepPolicy> reachPolicy(
+    "semantics", cl::desc("Step policy"),
+    cl::init(sem::StepPolicy::Interleaving),
+    cl::values(clEnumValN(sem::StepPolicy::Interleaving, "interleaving",
+                          "one spontaneous transition per step"),
+               clEnumValN(sem::StepPolicy::Maximal, "maximal",
+                          "a maximal set of spontaneous transitions")),
+    cl::sub(reachCmd), cl::cat(category));
+static cl::opt<sem::Timing> reachTiming(
+    "timing", cl::desc("Timing"), cl::init(sem::Timing::Weak),
+    cl::values(clEnumValN(sem::Timing::Weak, "weak",
+                          "a passed upper bound disables"),
+               clEnumValN(sem::Timing::Strong, "strong",
+                          "time may not pass an enabled upper bound")),
+    cl::sub(reachCmd), cl::cat(category));
+static cl::opt<uint64_t> reachMaxStates("max-states",
+                                        cl::desc("Stop after N states"),
+                                        cl::init(0), cl::sub(reachCmd),
+                                        cl::cat(category));
+static cl::opt<std::string>
+    reachMaxMemory("max-memory",
+                   cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
+                   cl::sub(reachCmd), cl::cat(category));
+static cl::opt<double> reachTimeLimit("time-limit",
+                                      cl::desc("Stop after SECONDS"),
+                                      cl::init(0), cl::sub(reachCmd),
+                                      cl::cat(category));
+static cl::opt<bool> reachDfs("dfs", cl::desc("Depth-first order"),
+                              cl::sub(reachCmd), cl::cat(category));
+static cl::opt<bool> reachQuiet("q", cl::desc("No progress output"),
+                                cl::sub(reachCmd), cl::cat(category));
+static cl::opt<unsigned> reachPlaceBits(
+    "place-bits",
+    cl::desc("Bits for the marking of unbounded places (default 8)"),
+    cl::init(8), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string> reachTop("top",
+                                     cl::desc("The module to explore"),
+                                     cl::sub(reachCmd), cl::cat(category));
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
 /// is renamed into place only when everything was written.
@@ -213,6 +283,164 @@ static int runEmit() {
              : 1;
 }
 
+static bool parseSize(llvm::StringRef text, uint64_t &out) {
+  uint64_t mult = 1;
+  if (text.endswith_insensitive("k"))
+    mult = 1ull << 10;
+  else if (text.endswith_insensitive("m"))
+    mult = 1ull << 20;
+  else if (text.endswith_insensitive("g"))
+    mult = 1ull << 30;
+  if (mult != 1)
+    text = text.drop_back();
+  if (text.getAsInteger(10, out))
+    return false;
+  out *= mult;
+  return true;
+}
+
+/// Exit codes of `reach` (docs/reach.md): 0 complete, 1 error, 2 a limit
+/// stopped the search, 3 the property checked is violated.
+static int runReach() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  net::Design design;
+  std::vector<std::string> inputs{reachInput};
+  if (!loadInputs(inputs, inputFormat, diag, design))
+    return 1;
+  uint64_t maxMemory = 0;
+  if (!reachMaxMemory.empty() && !parseSize(reachMaxMemory, maxMemory)) {
+    llvm::errs() << "netlift: error: --max-memory: '" << reachMaxMemory
+                 << "' is not a size (e.g. 512M, 4G)\n";
+    return 1;
+  }
+  if (reachPlaceBits < 1 || reachPlaceBits > 32) {
+    llvm::errs() << "netlift: error: --place-bits must be 1..32\n";
+    return 1;
+  }
+  std::string why;
+  net::Module *top = design.findTop(reachTop, why);
+  if (!top) {
+    llvm::errs() << "netlift: error: reach: " << why << "\n";
+    return 1;
+  }
+  if (!top->instances.empty()) {
+    // Exploration works on one flat module.
+    PassManager pm;
+    std::string pipeline = "flatten{top=" + top->name.str() + "}";
+    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag) ||
+        !net::verifyDesign(design, diag))
+      return 1;
+    top = design.modules[0].get();
+  }
+  if (net::hasHybridParts(*top)) {
+    llvm::errs() << "netlift: error: reach: module '" << top->name
+                 << "' has real variables or flows; run the discretise "
+                    "pass first\n";
+    return 1;
+  }
+  sem::Options so;
+  so.policy = reachPolicy;
+  so.timing = reachTiming;
+  so.unboundedBits = reachPlaceBits;
+  sem::StateLayout layout(*top, so.unboundedBits);
+  sem::Semantics semantics(*top, layout, so);
+
+  net::Expr *findExpr = nullptr;
+  if (!reachFind.empty()) {
+    unsigned id = sm.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(reachFind, "<find>"),
+        llvm::SMLoc());
+    findExpr = net::parseExpression(id, diag, design);
+    if (!findExpr || !net::verifyPredicate(design, *top, findExpr, diag))
+      return 1;
+  }
+  statespace::ExploreOptions eo;
+  eo.depthFirst = reachDfs;
+  eo.maxStates = reachMaxStates;
+  eo.maxMemory = maxMemory;
+  eo.timeLimit = reachTimeLimit;
+  eo.recordEdges = reachFormat != GraphFormat::None;
+  eo.progress = !reachQuiet;
+  sem::RuntimeError findErr;
+  auto stop = [&](const uint64_t *s) {
+    return semantics.evalPredicate(findExpr, s, findErr);
+  };
+  if (findExpr)
+    eo.stopAt = stop;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  bool started = explorer.run(r);
+  if (r.error) {
+    if (r.error->loc.isValid())
+      diag.error(r.error->loc, "runtime error: " + r.error->message);
+    else
+      llvm::errs() << "netlift: error: " << r.error->message << "\n";
+    if (started) {
+      llvm::errs() << "trace to the state where it happens (the next step "
+                      "fails):\n";
+      statespace::writeTrace(explorer, semantics, r.errorState, llvm::errs());
+    }
+    return 1;
+  }
+  if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
+        switch (reachFormat) {
+        case GraphFormat::None:
+          break;
+        case GraphFormat::Aut:
+          statespace::writeAut(explorer, os);
+          break;
+        case GraphFormat::Dot:
+          statespace::writeDot(explorer, semantics, os);
+          break;
+        case GraphFormat::Json:
+          statespace::writeJson(explorer, semantics, r, os);
+          break;
+        }
+      }))
+    return 1;
+  llvm::raw_ostream &out = llvm::outs();
+  if (reachSummary == "json") {
+    statespace::writeSummaryJson(explorer, r, out);
+  } else if (reachFormat == GraphFormat::None && !findExpr &&
+             !reachDeadlockTrace) {
+    out << "states: " << explorer.store().size() << "\n"
+        << "transitions: " << r.edges << "\n"
+        << "deadlocks: " << r.deadlocks.size() << "\n"
+        << "dead states: " << r.deadStates << "\n"
+        << "complete: " << (r.complete ? "yes" : "no") << "\n";
+  }
+  int code = r.limitReached.empty() ? 0 : 2;
+  if (!r.limitReached.empty())
+    llvm::errs() << "netlift: the " << r.limitReached
+                 << " limit stopped the search; the result is incomplete\n";
+  if (findExpr) {
+    if (r.found) {
+      out << "found a state satisfying '" << reachFind << "' after "
+          << explorer.pathTo(*r.found).size() - 1 << " steps:\n";
+      statespace::writeTrace(explorer, semantics, *r.found, out);
+      return 0;
+    }
+    if (code == 0) {
+      out << "no reachable state satisfies '" << reachFind << "'\n";
+      return 3;
+    }
+  }
+  if (reachDeadlockTrace) {
+    if (!r.deadlocks.empty()) {
+      // Breadth-first numbering: the smallest index is a closest deadlock.
+      uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+      out << "deadlock after " << explorer.pathTo(d).size() - 1
+          << " steps:\n";
+      statespace::writeTrace(explorer, semantics, d, out);
+      return 3;
+    }
+    if (code == 0)
+      out << "no deadlock\n";
+  }
+  return code;
+}
+
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
   cl::SetVersionPrinter([](llvm::raw_ostream &os) {
@@ -225,7 +453,9 @@ int main(int argc, char **argv) {
           "  netlift translate IN... [-o OUT] [--from FMT]\n"
           "  netlift opt IN -p PIPELINE [-o OUT] [--verify-each] "
           "[--print-after-all] [--stats]\n"
-          "  netlift emit IN --to net|dot [-o OUT]\n\n"
+          "  netlift emit IN --to net|dot [-o OUT]\n"
+          "  netlift reach IN [--format aut|dot|json] [-o OUT] [--summary "
+          "json] [--find EXPR]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
     return 1;
@@ -235,7 +465,9 @@ int main(int argc, char **argv) {
     return runOpt();
   if (emitCmd)
     return runEmit();
+  if (reachCmd)
+    return runReach();
   llvm::errs() << "netlift: error: no subcommand given (translate, opt, "
-                  "emit); see netlift --help\n";
+                  "emit, reach); see netlift --help\n";
   return 1;
 }

@@ -1,0 +1,87 @@
+//===- Explorer.h - state-space exploration ---------------------*- C++ -*-===//
+//
+// Explores the reachable states of a flat module under the semantics of
+// ir/semantics: the successor generator (sem::Semantics), the state store
+// (StateStore) and the order of expansion (breadth-first by default, so
+// that paths to a found state are shortest; depth-first on request) are
+// separate pieces. Limits on states, memory and time stop the search
+// cleanly with a partial result marked incomplete. Edges are kept only when
+// an output needs them; parents are always kept, for traces.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_BACKENDS_STATESPACE_EXPLORER_H
+#define NETLIFT_BACKENDS_STATESPACE_EXPLORER_H
+
+#include "backends/statespace/StateStore.h"
+#include "ir/semantics/Semantics.h"
+
+#include "llvm/ADT/STLFunctionalExtras.h"
+#include "llvm/ADT/StringMap.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace netlift::statespace {
+
+struct ExploreOptions {
+  bool depthFirst = false;
+  uint64_t maxStates = 0;  // 0: no limit
+  uint64_t maxMemory = 0;  // bytes; 0: no limit
+  double timeLimit = 0;    // seconds; 0: no limit
+  bool recordEdges = false;
+  bool progress = false;   // print progress on stderr
+  /// Stop at the first state satisfying this (checked as states are
+  /// found); set `found` in the result.
+  llvm::function_ref<bool(const uint64_t *)> stopAt = nullptr;
+};
+
+struct Edge {
+  uint32_t from, to, label;
+};
+
+struct ExploreResult {
+  bool complete = false;
+  std::string limitReached; // "states", "memory" or "time" when incomplete
+  uint64_t edges = 0;
+  std::vector<uint32_t> deadlocks;
+  uint64_t deadStates = 0;
+  uint64_t maxTokensInPlace = 0;
+  uint64_t maxTokensPerMarking = 0;
+  double seconds = 0;
+  size_t peakBytes = 0;
+  std::optional<sem::RuntimeError> error;
+  uint32_t errorState = 0; // the state whose successors raised `error`
+  std::optional<uint32_t> found;
+};
+
+class Explorer {
+public:
+  Explorer(sem::Semantics &semantics, ExploreOptions opts);
+  /// Runs to completion or to a limit. False only if the initial state
+  /// itself is invalid (error set).
+  bool run(ExploreResult &result);
+
+  const StateStore &store() const { return states; }
+  const std::vector<Edge> &edges() const { return edgeList; }
+  const std::string &label(uint32_t id) const { return labels[id]; }
+  /// The path from the initial state to `s`: (label, state) pairs, the
+  /// first being ("", 0).
+  std::vector<std::pair<uint32_t, uint32_t>> pathTo(uint32_t s) const;
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+private:
+  uint32_t internLabel(llvm::ArrayRef<uint32_t> step);
+
+  sem::Semantics &sem;
+  ExploreOptions opts;
+  StateStore states;
+  std::vector<Edge> edgeList;
+  std::vector<uint32_t> parent, parentLabel;
+  llvm::StringMap<uint32_t> labelIds;
+  std::vector<std::string> labels;
+};
+
+} // namespace netlift::statespace
+
+#endif

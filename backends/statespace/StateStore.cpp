@@ -1,0 +1,66 @@
+//===- StateStore.cpp - the set of visited states -------------------------===//
+#include "backends/statespace/StateStore.h"
+
+#include <cstring>
+
+using namespace netlift::statespace;
+
+uint32_t StateStore::hashState(const uint64_t *s, uint32_t n) {
+  // A multiply-xorshift mix per word: fast, and good enough for open
+  // addressing with the full 32-bit hash kept in the bucket.
+  uint64_t h = 0x9E3779B97F4A7C15ull ^ n;
+  for (uint32_t i = 0; i < n; ++i) {
+    h ^= s[i] + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 31;
+  }
+  return uint32_t(h ^ (h >> 32));
+}
+
+void StateStore::grow() {
+  size_t n = table.empty() ? 1024 : table.size() * 2;
+  std::vector<Bucket, HugePageAllocator<Bucket>> fresh(n, Bucket{0, kEmpty});
+  size_t mask = n - 1;
+  for (const Bucket &b : table) {
+    if (b.index == kEmpty)
+      continue;
+    size_t i = b.hash & mask;
+    while (fresh[i].index != kEmpty)
+      i = (i + 1) & mask;
+    fresh[i] = b;
+  }
+  table = std::move(fresh);
+}
+
+uint32_t StateStore::find(const uint64_t *s) const {
+  if (table.empty())
+    return kEmpty;
+  uint32_t h = hashState(s, words);
+  size_t mask = table.size() - 1;
+  for (size_t i = h & mask;; i = (i + 1) & mask) {
+    const Bucket &b = table[i];
+    if (b.index == kEmpty)
+      return kEmpty;
+    if (b.hash == h && !memcmp(state(b.index), s, words * sizeof(uint64_t)))
+      return b.index;
+  }
+}
+
+std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s) {
+  if ((size_t(count) + 1) * 4 > table.size() * 3)
+    grow();
+  uint32_t h = hashState(s, words);
+  size_t mask = table.size() - 1;
+  size_t i = h & mask;
+  for (;; i = (i + 1) & mask) {
+    Bucket &b = table[i];
+    if (b.index == kEmpty)
+      break;
+    if (b.hash == h && !memcmp(state(b.index), s, words * sizeof(uint64_t)))
+      return {b.index, false};
+  }
+  uint32_t idx = count++;
+  table[i] = {h, idx};
+  arena.insert(arena.end(), s, s + words);
+  return {idx, true};
+}

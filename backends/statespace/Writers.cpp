@@ -1,0 +1,198 @@
+//===- Writers.cpp - state spaces as files --------------------------------===//
+#include "backends/statespace/Writers.h"
+
+#include "ir/net/Builder.h"
+
+#include "llvm/Support/JSON.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+using namespace netlift;
+using namespace netlift::statespace;
+using namespace netlift::net;
+
+void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
+  os << "des (0, " << x.edges().size() << ", " << x.store().size() << ")\n";
+  for (const Edge &e : x.edges())
+    os << '(' << e.from << ",\"" << x.label(e.label) << "\"," << e.to
+       << ")\n";
+}
+
+namespace {
+/// Values of one state by attribute: places, variables (leaves), outputs.
+struct Attribute {
+  std::string name;
+  enum Kind { Place, Clock, Data, Output } kind;
+  uint32_t slot = 0;       // Place, Clock, Data, stored Output
+  const Expr *def = nullptr; // defined Output
+};
+
+std::vector<Attribute> attributes(const sem::Semantics &sem) {
+  const sem::StateLayout &L = sem.layout();
+  const Module &m = sem.module();
+  std::vector<Attribute> out;
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    out.push_back({m.places[p].name.str(), Attribute::Place,
+                   L.markingSlot(p), nullptr});
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    if (L.clockSlot(p) >= 0)
+      out.push_back({L.slots()[L.clockSlot(p)].name, Attribute::Clock,
+                     uint32_t(L.clockSlot(p)), nullptr});
+  for (uint32_t v = 0; v < m.vars.size(); ++v) {
+    int32_t first = L.varSlot(v);
+    if (first < 0)
+      continue;
+    for (uint32_t i = 0; i < sem::StateLayout::slotsOf(m.vars[v].type); ++i)
+      out.push_back({L.slots()[first + i].name, Attribute::Data,
+                     uint32_t(first + i), nullptr});
+  }
+  for (uint32_t p = 0; p < m.ports.size(); ++p) {
+    const Port &port = m.ports[p];
+    if (!port.isOutput() || port.kind == PortKind::Event)
+      continue;
+    if (port.definition) {
+      out.push_back({port.name.str(), Attribute::Output, 0, port.definition});
+      continue;
+    }
+    int32_t first = L.portSlot(p);
+    for (uint32_t i = 0; i < sem::StateLayout::slotsOf(port.type); ++i)
+      out.push_back({L.slots()[first + i].name, Attribute::Output,
+                     uint32_t(first + i), nullptr});
+  }
+  return out;
+}
+
+int64_t valueOf(sem::Semantics &sem, const Attribute &a,
+                const uint64_t *state) {
+  if (a.def) {
+    sem::RuntimeError err;
+    return sem.evalInState(a.def, state, err);
+  }
+  return sem.layout().get(state, a.slot);
+}
+} // namespace
+
+void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
+                                   llvm::raw_ostream &os) {
+  std::vector<Attribute> attrs = attributes(sem);
+  os << "digraph statespace {\n  node [shape=box, fontname=Helvetica];\n"
+        "  edge [fontname=Helvetica, fontsize=10];\n";
+  for (uint32_t s = 0; s < x.store().size(); ++s) {
+    std::string label = "s" + std::to_string(s);
+    for (const Attribute &a : attrs) {
+      int64_t v = valueOf(sem, a, x.store().state(s));
+      if (a.kind == Attribute::Place && v == 0)
+        continue; // markings list the marked places only
+      label += "\\n" + a.name + "=" + std::to_string(v);
+    }
+    os << "  s" << s << " [label=\"" << label << "\""
+       << (s == 0 ? ", penwidth=2" : "") << "];\n";
+  }
+  for (const Edge &e : x.edges())
+    os << "  s" << e.from << " -> s" << e.to << " [label=\"" << x.label(e.label)
+       << "\"];\n";
+  os << "}\n";
+}
+
+void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
+                                    const ExploreResult &r,
+                                    llvm::raw_ostream &os) {
+  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<char> isDeadlock(x.store().size(), 0);
+  for (uint32_t d : r.deadlocks)
+    isDeadlock[d] = 1;
+  llvm::json::OStream j(os, 1);
+  j.object([&] {
+    j.attribute("model", sem.module().name);
+    j.attribute("complete", r.complete);
+    j.attributeArray("attributes", [&] {
+      for (const Attribute &a : attrs)
+        j.object([&] {
+          j.attribute("name", a.name);
+          static const char *kinds[] = {"place", "clock", "variable",
+                                        "output"};
+          j.attribute("kind", kinds[a.kind]);
+        });
+    });
+    j.attributeArray("states", [&] {
+      for (uint32_t s = 0; s < x.store().size(); ++s)
+        j.object([&] {
+          j.attribute("id", int64_t(s));
+          if (isDeadlock[s])
+            j.attribute("deadlock", true);
+          j.attributeArray("values", [&] {
+            for (const Attribute &a : attrs)
+              j.value(valueOf(sem, a, x.store().state(s)));
+          });
+        });
+    });
+    j.attributeArray("edges", [&] {
+      for (const Edge &e : x.edges())
+        j.object([&] {
+          j.attribute("from", int64_t(e.from));
+          j.attribute("label", x.label(e.label));
+          j.attribute("to", int64_t(e.to));
+        });
+    });
+  });
+  os << "\n";
+}
+
+void netlift::statespace::writeSummaryJson(const Explorer &x,
+                                           const ExploreResult &r,
+                                           llvm::raw_ostream &os) {
+  // Written by hand to keep the numbers short and the key order fixed.
+  double secs = std::max(r.seconds, 1e-9);
+  size_t states = x.store().size();
+  os << fmt::format(
+      "{{\"states\":{},\"transitions\":{},\"deadlocks\":{},"
+      "\"dead_states\":{},\"max_tokens_in_place\":{},"
+      "\"max_tokens_per_marking\":{},\"seconds\":{:.6f},"
+      "\"states_per_second\":{:.0f},\"peak_bytes\":{},"
+      "\"bytes_per_state\":{:.2f},\"state_vector_bytes\":{},"
+      "\"complete\":{}",
+      states, r.edges, r.deadlocks.size(), r.deadStates, r.maxTokensInPlace,
+      r.maxTokensPerMarking, r.seconds, states / secs, r.peakBytes,
+      states ? double(x.store().bytes()) / states : 0.0,
+      x.store().wordsPerState() * 8, r.complete ? "true" : "false");
+  if (!r.limitReached.empty())
+    os << ",\"limit\":\"" << r.limitReached << "\"";
+  os << "}\n";
+}
+
+void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
+                                     uint32_t target, llvm::raw_ostream &os) {
+  std::vector<Attribute> attrs = attributes(sem);
+  auto path = x.pathTo(target);
+  std::vector<int64_t> prev;
+  size_t width = 4;
+  for (auto &[label, s] : path)
+    if (label != Explorer::kNone)
+      width = std::max(width, x.label(label).size());
+  os << fmt::format("{:>4}  {:<{}}  {}\n", "step", "label", width,
+                    "values (initial) / changes");
+  for (size_t i = 0; i < path.size(); ++i) {
+    auto [label, s] = path[i];
+    std::vector<int64_t> cur;
+    for (const Attribute &a : attrs)
+      cur.push_back(valueOf(sem, a, x.store().state(s)));
+    std::string changes;
+    for (size_t k = 0; k < attrs.size(); ++k) {
+      if (i == 0) {
+        if (attrs[k].kind == Attribute::Place && cur[k] == 0)
+          continue;
+        changes += (changes.empty() ? "" : ", ") + attrs[k].name + "=" +
+                   std::to_string(cur[k]);
+      } else if (cur[k] != prev[k]) {
+        changes += (changes.empty() ? "" : ", ") + attrs[k].name + ": " +
+                   std::to_string(prev[k]) + " -> " + std::to_string(cur[k]);
+      }
+    }
+    os << fmt::format("{:>4}  {:<{}}  {}\n", i,
+                      i == 0 ? std::string("(initial)") : x.label(label),
+                      width, changes);
+    prev = std::move(cur);
+  }
+}

@@ -1,0 +1,33 @@
+//===- Writers.h - state spaces as files ------------------------*- C++ -*-===//
+//
+// Writes an explored state space: Aldebaran `.aut` (CADP, mCRL2, TINA),
+// Graphviz DOT, JSON (every state with its attributes and every edge; the
+// input of structural reasoning, docs/formats.md), the one-object summary
+// of `reach --summary json`, and readable traces (a table of steps and the
+// values each step changed). All deterministic: states in discovery order,
+// edges in generation order.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_BACKENDS_STATESPACE_WRITERS_H
+#define NETLIFT_BACKENDS_STATESPACE_WRITERS_H
+
+#include "backends/statespace/Explorer.h"
+
+#include "llvm/Support/raw_ostream.h"
+
+namespace netlift::statespace {
+
+void writeAut(const Explorer &x, llvm::raw_ostream &os);
+void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
+void writeJson(const Explorer &x, sem::Semantics &sem,
+               const ExploreResult &r, llvm::raw_ostream &os);
+void writeSummaryJson(const Explorer &x, const ExploreResult &r,
+                      llvm::raw_ostream &os);
+/// The path to `target` as a table: the initial values, then for each step
+/// its label and the values it changed.
+void writeTrace(const Explorer &x, sem::Semantics &sem, uint32_t target,
+                llvm::raw_ostream &os);
+
+} // namespace netlift::statespace
+
+#endif

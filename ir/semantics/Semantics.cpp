@@ -1,0 +1,798 @@
+//===- Semantics.cpp - the step semantics of NetIR ------------------------===//
+//
+// A direct implementation of docs/semantics.md over unpacked valuations:
+// clarity first, with the structure (precomputed arc lists, one valuation
+// buffer reused across states, no allocation per enabled check) that the
+// fast paths of later work keep.
+//
+//===----------------------------------------------------------------------===//
+#include "ir/semantics/Semantics.h"
+
+#include "ir/net/Printer.h"
+
+#include "llvm/ADT/DenseSet.h"
+#include "llvm/ADT/Hashing.h"
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <set>
+
+using namespace netlift;
+using namespace netlift::sem;
+using namespace netlift::net;
+using llvm::cast;
+
+namespace {
+/// Thrown inside the interpreter; turned into a RuntimeError at the API.
+struct EvalError {
+  std::string message;
+  llvm::SMLoc loc;
+};
+} // namespace
+
+struct Semantics::Impl {
+  Impl(const Module &m, const StateLayout &L, const Options &o)
+      : m(m), L(L), opts(o) {}
+  const Module &m;
+  const StateLayout &L;
+  const Options &opts;
+
+  // Static information.
+  std::vector<uint32_t> spontaneous, forcedList;
+  std::vector<uint32_t> inputSlots;  // cond/data input leaves
+  std::vector<uint32_t> eventInputs; // event input port indices
+  std::vector<uint32_t> clockVarSlots;
+  std::vector<int32_t> eventInputIndex; // port -> position in eventInputs
+
+  // Per-state working data.
+  std::vector<int64_t> vals; // all slots: packed state, then inputs
+  std::vector<char> present; // per event input position
+  std::vector<char> en;      // per transition
+  std::vector<int64_t> loopVals;
+
+  void unpack(const uint64_t *state) {
+    for (uint32_t s = 0; s < L.numPacked(); ++s)
+      vals[s] = L.get(state, s);
+  }
+  void pack(const std::vector<int64_t> &v, uint64_t *out) const {
+    std::fill(out, out + L.numWords(), 0);
+    for (uint32_t s = 0; s < L.numPacked(); ++s)
+      L.set(out, s, v[s]);
+  }
+
+  // --- Expressions ------------------------------------------------------
+  [[noreturn]] void fail(const Expr *e, const std::string &msg) const {
+    throw EvalError{msg, e ? e->loc : llvm::SMLoc()};
+  }
+  static uint32_t fieldOffset(const Type *t, uint32_t field) {
+    uint32_t off = 0;
+    for (uint32_t i = 0; i < field; ++i)
+      off += StateLayout::slotsOf(t->fields[i].type);
+    return off;
+  }
+  /// First slot of the storage an expression designates; -1 when it
+  /// designates none (a defined output, a literal...).
+  int64_t slotOf(const Expr *e, const std::vector<int64_t> &v) {
+    switch (e->getKind()) {
+    case ExprKind::Ref: {
+      auto *r = cast<Ref>(e);
+      int64_t base = -1;
+      const Type *t = nullptr;
+      if (r->sym.kind == SymKind::Var) {
+        base = L.varSlot(r->sym.index);
+        t = m.vars[r->sym.index].type;
+      } else if (r->sym.kind == SymKind::Port &&
+                 !m.ports[r->sym.index].definition &&
+                 m.ports[r->sym.index].kind != PortKind::Event) {
+        base = L.portSlot(r->sym.index);
+        t = m.ports[r->sym.index].type;
+      }
+      if (base < 0)
+        return -1;
+      for (uint32_t f : r->fields) {
+        base += fieldOffset(t, f);
+        t = t->fields[f].type;
+      }
+      return base;
+    }
+    case ExprKind::Index: {
+      auto *x = cast<IndexExpr>(e);
+      int64_t base = slotOf(x->base, v);
+      if (base < 0)
+        fail(e, "cannot index '" + exprToString(x->base) + "'");
+      const Type *at = x->base->type;
+      int64_t i = eval(x->index, v);
+      if (i < at->indexLo || i > at->indexHi)
+        fail(x->index, "index " + std::to_string(i) + " is outside " +
+                           std::to_string(at->indexLo) + ".." +
+                           std::to_string(at->indexHi) + " of '" +
+                           exprToString(x->base) + "'");
+      return base + (i - at->indexLo) * StateLayout::slotsOf(at->elem);
+    }
+    case ExprKind::Field: {
+      auto *f = cast<FieldExpr>(e);
+      int64_t base = slotOf(f->base, v);
+      if (base < 0)
+        fail(e, "cannot select a field of '" + exprToString(f->base) + "'");
+      return base + fieldOffset(f->base->type, f->fieldIndex);
+    }
+    default:
+      return -1;
+    }
+  }
+
+  int64_t eval(const Expr *e, const std::vector<int64_t> &v) {
+    switch (e->getKind()) {
+    case ExprKind::IntLit:
+      return cast<IntLit>(e)->value;
+    case ExprKind::BoolLit:
+      return cast<BoolLit>(e)->value;
+    case ExprKind::RealLit:
+      fail(e, "real arithmetic is not part of the discrete semantics");
+    case ExprKind::Ref: {
+      auto *r = cast<Ref>(e);
+      switch (r->sym.kind) {
+      case SymKind::Place:
+        return v[L.markingSlot(r->sym.index)] > 0;
+      case SymKind::EnumLit:
+        return r->sym.index;
+      case SymKind::LoopVar:
+        return loopVals[r->sym.index];
+      case SymKind::Port: {
+        const Port &p = m.ports[r->sym.index];
+        if (p.definition && r->fields.empty())
+          return eval(p.definition, v);
+        break;
+      }
+      default:
+        break;
+      }
+      int64_t s = slotOf(e, v);
+      if (s < 0)
+        fail(e, "'" + r->name.str() + "' has no value here");
+      return v[s];
+    }
+    case ExprKind::Index:
+    case ExprKind::Field: {
+      int64_t s = slotOf(e, v);
+      if (s < 0)
+        fail(e, "'" + exprToString(e) + "' has no value here");
+      return v[s];
+    }
+    case ExprKind::Unary: {
+      auto *u = cast<UnaryExpr>(e);
+      int64_t a = eval(u->operand, v);
+      switch (u->op) {
+      case UnaryOp::Not:
+        return !a;
+      case UnaryOp::Neg:
+        if (a == INT64_MIN)
+          fail(e, "arithmetic overflow");
+        return -a;
+      case UnaryOp::BitNot:
+        return ~a;
+      }
+      return 0;
+    }
+    case ExprKind::Binary:
+      return evalBinary(cast<BinaryExpr>(e), v);
+    case ExprKind::Cond: {
+      auto *c = cast<CondExpr>(e);
+      return eval(c->cond, v) ? eval(c->thenExpr, v) : eval(c->elseExpr, v);
+    }
+    case ExprKind::Call: {
+      auto *c = cast<CallExpr>(e);
+      int64_t a = eval(c->args[0], v);
+      switch (c->fn) {
+      case Builtin::Abs:
+        if (a == INT64_MIN)
+          fail(e, "arithmetic overflow");
+        return a < 0 ? -a : a;
+      case Builtin::Min:
+        return std::min(a, eval(c->args[1], v));
+      case Builtin::Max:
+        return std::max(a, eval(c->args[1], v));
+      }
+      return 0;
+    }
+    }
+    return 0;
+  }
+
+  bool aggregateEqual(const Expr *a, const Expr *b,
+                      const std::vector<int64_t> &v) {
+    int64_t sa = slotOf(a, v), sb = slotOf(b, v);
+    if (sa < 0 || sb < 0)
+      fail(a, "comparing these aggregate values is not supported");
+    uint32_t n = StateLayout::slotsOf(a->type);
+    for (uint32_t i = 0; i < n; ++i)
+      if (v[sa + i] != v[sb + i])
+        return false;
+    return true;
+  }
+
+  int64_t evalBinary(const BinaryExpr *b, const std::vector<int64_t> &v) {
+    switch (b->op) {
+    case BinaryOp::And:
+      return eval(b->lhs, v) && eval(b->rhs, v);
+    case BinaryOp::Or:
+      return eval(b->lhs, v) || eval(b->rhs, v);
+    case BinaryOp::Eq:
+    case BinaryOp::Ne:
+      if (b->lhs->type && !b->lhs->type->isScalar()) {
+        bool eq = aggregateEqual(b->lhs, b->rhs, v);
+        return b->op == BinaryOp::Eq ? eq : !eq;
+      }
+      break;
+    default:
+      break;
+    }
+    int64_t x = eval(b->lhs, v), y = eval(b->rhs, v), r = 0;
+    switch (b->op) {
+    case BinaryOp::Xor:
+      return (x != 0) != (y != 0);
+    case BinaryOp::Eq:
+      return x == y;
+    case BinaryOp::Ne:
+      return x != y;
+    case BinaryOp::Lt:
+      return x < y;
+    case BinaryOp::Le:
+      return x <= y;
+    case BinaryOp::Gt:
+      return x > y;
+    case BinaryOp::Ge:
+      return x >= y;
+    case BinaryOp::BitOr:
+      return x | y;
+    case BinaryOp::BitXor:
+      return x ^ y;
+    case BinaryOp::BitAnd:
+      return x & y;
+    case BinaryOp::Shl:
+    case BinaryOp::Shr:
+      if (y < 0 || y > 63)
+        fail(b, "shift by " + std::to_string(y) + " is outside 0..63");
+      return b->op == BinaryOp::Shl ? int64_t(uint64_t(x) << y) : x >> y;
+    case BinaryOp::Add:
+      if (__builtin_add_overflow(x, y, &r))
+        fail(b, "arithmetic overflow");
+      return r;
+    case BinaryOp::Sub:
+      if (__builtin_sub_overflow(x, y, &r))
+        fail(b, "arithmetic overflow");
+      return r;
+    case BinaryOp::Mul:
+      if (__builtin_mul_overflow(x, y, &r))
+        fail(b, "arithmetic overflow");
+      return r;
+    case BinaryOp::Div:
+    case BinaryOp::Mod:
+      if (y == 0)
+        fail(b, "division by zero in '" + exprToString(b) + "'");
+      if (x == INT64_MIN && y == -1)
+        fail(b, "arithmetic overflow");
+      return b->op == BinaryOp::Div ? x / y : x % y;
+    default:
+      return 0;
+    }
+  }
+
+  // --- Actions ------------------------------------------------------------
+  void store(const Expr *target, uint32_t slot, int64_t value,
+             std::vector<int64_t> &v, std::vector<uint32_t> &written) {
+    const Slot &s = L.slots()[slot];
+    if (value < s.lo || value > s.hi) {
+      if (!s.wrap)
+        fail(target, "value " + std::to_string(value) + " is outside " +
+                         std::to_string(s.lo) + ".." + std::to_string(s.hi) +
+                         " of '" + s.name + "'");
+      uint64_t span = uint64_t(s.hi) - uint64_t(s.lo) + 1;
+      uint64_t off = uint64_t(value) - uint64_t(s.lo);
+      value = span == 0 ? value : int64_t(uint64_t(s.lo) + off % span);
+    }
+    v[slot] = value;
+    written.push_back(slot);
+  }
+
+  void exec(Block block, std::vector<int64_t> &v,
+            std::vector<uint32_t> &written) {
+    for (const Stmt *st : block) {
+      switch (st->getKind()) {
+      case StmtKind::Assign: {
+        auto *a = cast<AssignStmt>(st);
+        int64_t slot = slotOf(a->target, v);
+        if (slot < 0)
+          fail(a->target, "'" + exprToString(a->target) + "' has no storage");
+        if (!a->target->type->isScalar()) {
+          int64_t src = slotOf(a->value, v);
+          if (src < 0)
+            fail(a->value, "assigning this aggregate value is not supported");
+          uint32_t n = StateLayout::slotsOf(a->target->type);
+          std::vector<int64_t> tmp(v.begin() + src, v.begin() + src + n);
+          for (uint32_t i = 0; i < n; ++i)
+            store(a->target, uint32_t(slot + i), tmp[i], v, written);
+        } else {
+          store(a->target, uint32_t(slot), eval(a->value, v), v, written);
+        }
+        break;
+      }
+      case StmtKind::If: {
+        auto *i = cast<IfStmt>(st);
+        bool done = false;
+        for (const IfArm &arm : i->arms)
+          if (eval(arm.cond, v)) {
+            exec(arm.body, v, written);
+            done = true;
+            break;
+          }
+        if (!done)
+          exec(i->elseBody, v, written);
+        break;
+      }
+      case StmtKind::Case: {
+        auto *c = cast<CaseStmt>(st);
+        int64_t sel = eval(c->selector, v);
+        bool done = false;
+        for (const CaseArm &arm : c->arms) {
+          for (const CaseLabel &l : arm.labels) {
+            int64_t lo = eval(l.lo, v);
+            int64_t hi = l.hi ? eval(l.hi, v) : lo;
+            if (sel >= lo && sel <= hi) {
+              done = true;
+              break;
+            }
+          }
+          if (done) {
+            exec(arm.body, v, written);
+            break;
+          }
+        }
+        if (!done)
+          exec(c->elseBody, v, written);
+        break;
+      }
+      case StmtKind::For: {
+        auto *f = cast<ForStmt>(st);
+        int64_t lo = eval(f->lo, v), hi = eval(f->hi, v);
+        loopVals.push_back(0);
+        for (int64_t i = lo; i <= hi; ++i) {
+          loopVals.back() = i;
+          exec(f->body, v, written);
+        }
+        loopVals.pop_back();
+        break;
+      }
+      }
+    }
+  }
+
+  // --- Enabling -----------------------------------------------------------
+  bool enabled(uint32_t ti) {
+    const Transition &t = m.transitions[ti];
+    for (const PreArc &a : t.pre()) {
+      int64_t tokens = vals[L.markingSlot(a.place)];
+      if (tokens < a.weight)
+        return false;
+      if (!a.time.isTrivial()) {
+        int64_t c = vals[L.clockSlot(a.place)];
+        if (c < a.time.lo || (a.time.hi != kInf && c > a.time.hi))
+          return false;
+      }
+    }
+    for (const PostArc &a : t.post()) {
+      uint32_t cap = m.places[a.place].capacity;
+      if (cap == kInf)
+        continue; // an overflow of the encoding is reported when firing
+      int64_t after = vals[L.markingSlot(a.place)] + a.weight;
+      for (const PreArc &p : t.pre())
+        if (p.place == a.place)
+          after -= p.weight;
+      if (after > cap)
+        return false;
+    }
+    for (const Expr *c : t.conds())
+      if (!eval(c, vals))
+        return false;
+    if (const Expr *g = t.guard())
+      if (!eval(g, vals))
+        return false;
+    return true;
+  }
+
+  /// Are all transitions of `set` enabled together (token demand and
+  /// capacities summed)?
+  bool jointlyEnabled(const std::vector<uint32_t> &set) {
+    llvm::SmallDenseMap<uint32_t, int64_t, 16> delta, demand;
+    for (uint32_t ti : set) {
+      const Transition &t = m.transitions[ti];
+      for (const PreArc &a : t.pre()) {
+        demand[a.place] += a.weight;
+        delta[a.place] -= a.weight;
+      }
+      for (const PostArc &a : t.post())
+        delta[a.place] += a.weight;
+    }
+    for (auto &[p, d] : demand)
+      if (vals[L.markingSlot(p)] < d)
+        return false;
+    for (auto &[p, d] : delta) {
+      uint32_t cap = m.places[p].capacity;
+      if (cap != kInf && vals[L.markingSlot(p)] + d > cap)
+        return false;
+    }
+    return true;
+  }
+
+  bool eventEnabled(uint32_t ti, const std::vector<char> &inStep) {
+    const Transition &t = m.transitions[ti];
+    bool any = false, all = true;
+    for (const EventSource &s : t.events()) {
+      bool fires = s.fromPort ? present[eventInputIndex[s.index]] != 0
+                              : inStep[s.index] != 0;
+      any |= fires;
+      all &= fires;
+    }
+    return t.mode == EventMode::And ? all : any;
+  }
+
+  /// Adds every closure of `step` under forced transitions to `out`.
+  void closure(std::vector<uint32_t> step,
+               std::vector<std::vector<uint32_t>> &out) {
+    std::vector<char> inStep(m.transitions.size(), 0);
+    for (uint32_t t : step)
+      inStep[t] = 1;
+    std::vector<uint32_t> cand;
+    for (uint32_t f : forcedList) {
+      if (inStep[f] || !en[f] || !eventEnabled(f, inStep))
+        continue;
+      std::vector<uint32_t> with = step;
+      with.push_back(f);
+      if (jointlyEnabled(with))
+        cand.push_back(f);
+    }
+    if (cand.empty()) {
+      out.push_back(std::move(step));
+      return;
+    }
+    // Every maximal subset of the candidates that fits with the step.
+    std::vector<std::vector<uint32_t>> maximal;
+    std::vector<uint32_t> chosen;
+    std::function<void(size_t)> choose = [&](size_t i) {
+      if (i == cand.size()) {
+        for (auto &mx : maximal)
+          if (std::includes(mx.begin(), mx.end(), chosen.begin(),
+                            chosen.end()))
+            return;
+        // Remove earlier choices this one contains.
+        maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
+                                     [&](const std::vector<uint32_t> &mx) {
+                                       return std::includes(
+                                           chosen.begin(), chosen.end(),
+                                           mx.begin(), mx.end());
+                                     }),
+                      maximal.end());
+        maximal.push_back(chosen);
+        return;
+      }
+      std::vector<uint32_t> with = step;
+      with.insert(with.end(), chosen.begin(), chosen.end());
+      with.push_back(cand[i]);
+      if (jointlyEnabled(with)) {
+        chosen.push_back(cand[i]);
+        choose(i + 1);
+        chosen.pop_back();
+      }
+      choose(i + 1);
+    };
+    choose(0);
+    for (auto &mx : maximal) {
+      std::vector<uint32_t> next = step;
+      next.insert(next.end(), mx.begin(), mx.end());
+      closure(std::move(next), out);
+    }
+  }
+
+  // --- Firing -------------------------------------------------------------
+  void fire(const std::vector<uint32_t> &step, uint64_t *out) {
+    std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
+    std::vector<char> touched(m.places.size(), 0);
+    for (uint32_t ti : step) {
+      const Transition &t = m.transitions[ti];
+      for (const PreArc &a : t.pre()) {
+        nv[L.markingSlot(a.place)] -= a.weight;
+        touched[a.place] = 1;
+      }
+      for (const PostArc &a : t.post()) {
+        nv[L.markingSlot(a.place)] += a.weight;
+        touched[a.place] = 1;
+      }
+    }
+    for (uint32_t p = 0; p < m.places.size(); ++p) {
+      if (!touched[p])
+        continue;
+      uint32_t s = L.markingSlot(p);
+      if (nv[s] > L.slotMax(s))
+        throw EvalError{"place '" + m.places[p].name.str() + "' would hold " +
+                            std::to_string(nv[s]) +
+                            " tokens, more than the " +
+                            std::to_string(L.slotMax(s)) +
+                            " its encoding allows (unbounded place; raise "
+                            "--place-bits)",
+                        m.places[p].loc};
+      if (L.clockSlot(p) >= 0)
+        nv[L.clockSlot(p)] = 0;
+    }
+    // Actions read the pre-state; their writes land together.
+    llvm::SmallDenseMap<uint32_t, std::pair<int64_t, uint32_t>, 8> writes;
+    for (uint32_t ti : step) {
+      const Transition &t = m.transitions[ti];
+      if (!t.hasAction())
+        continue;
+      std::vector<int64_t> local = vals;
+      std::vector<uint32_t> written;
+      exec(t.action(), local, written);
+      std::sort(written.begin(), written.end());
+      written.erase(std::unique(written.begin(), written.end()),
+                    written.end());
+      for (uint32_t s : written) {
+        auto [it, fresh] = writes.try_emplace(s, local[s], ti);
+        if (!fresh)
+          throw EvalError{"transitions '" +
+                              m.transitions[it->second.second].name.str() +
+                              "' and '" + t.name.str() +
+                              "' both write '" + L.slots()[s].name +
+                              "' in one step",
+                          t.loc};
+      }
+    }
+    for (auto &[s, vw] : writes)
+      nv[s] = vw.first;
+    pack(nv, out);
+  }
+
+  bool tick(uint64_t *out) {
+    std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
+    for (uint32_t p = 0; p < m.places.size(); ++p) {
+      int32_t c = L.clockSlot(p);
+      if (c < 0)
+        continue;
+      if (nv[L.markingSlot(p)] > 0)
+        nv[c] = std::min<int64_t>(nv[c] + 1, L.clockCap(p));
+      else
+        nv[c] = 0;
+    }
+    for (uint32_t s : clockVarSlots)
+      nv[s] = std::min<int64_t>(nv[s] + 1, L.slotMax(s));
+    bool changed = false;
+    for (uint32_t s = 0; s < L.numPacked() && !changed; ++s)
+      changed = nv[s] != vals[s];
+    if (changed)
+      pack(nv, out);
+    return changed;
+  }
+};
+
+Semantics::Semantics(const Module &mod, const StateLayout &layout,
+                     Options o)
+    : m(mod), L(layout), opts(o), impl(std::make_shared<Impl>(m, L, opts)) {
+  Impl &I = *impl;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    (m.transitions[t].isForced() ? I.forcedList : I.spontaneous).push_back(t);
+  I.eventInputIndex.assign(m.ports.size(), -1);
+  for (uint32_t p = 0; p < m.ports.size(); ++p) {
+    const Port &port = m.ports[p];
+    if (!port.isInput())
+      continue;
+    if (port.kind == PortKind::Event) {
+      I.eventInputIndex[p] = I.eventInputs.size();
+      I.eventInputs.push_back(p);
+    } else {
+      uint32_t first = L.portSlot(p);
+      for (uint32_t i = 0; i < StateLayout::slotsOf(port.type); ++i)
+        I.inputSlots.push_back(first + i);
+    }
+  }
+  for (uint32_t v = 0; v < m.vars.size(); ++v)
+    if (m.vars[v].type->isClock()) {
+      I.clockVarSlots.push_back(L.varSlot(v));
+      timed = true;
+    }
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    timed |= L.clockSlot(p) >= 0;
+  I.vals.assign(L.numSlots(), 0);
+  I.present.assign(I.eventInputs.size(), 0);
+  I.en.assign(m.transitions.size(), 0);
+}
+
+bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
+  Impl &I = *impl;
+  std::vector<int64_t> v(L.numSlots(), 0);
+  for (uint32_t s = 0; s < L.numSlots(); ++s)
+    v[s] = L.slots()[s].lo; // false / low bound / 0
+  try {
+    for (uint32_t p = 0; p < m.places.size(); ++p) {
+      uint32_t s = L.markingSlot(p);
+      if (m.places[p].tokens > L.slotMax(s))
+        throw EvalError{"initial marking of '" + m.places[p].name.str() +
+                            "' does not fit the encoding of an unbounded "
+                            "place; raise --place-bits",
+                        m.places[p].loc};
+      v[s] = m.places[p].tokens;
+    }
+    std::vector<uint32_t> written;
+    auto init = [&](int32_t first, const Type *t, const Expr *e) {
+      if (!e || first < 0)
+        return;
+      if (!t->isScalar()) {
+        int64_t src = I.slotOf(e, v);
+        if (src < 0)
+          I.fail(e, "aggregate initial values are not supported");
+        return;
+      }
+      I.store(e, uint32_t(first), I.eval(e, v), v, written);
+    };
+    for (uint32_t x = 0; x < m.vars.size(); ++x)
+      init(L.varSlot(x), m.vars[x].type, m.vars[x].init);
+    for (uint32_t p = 0; p < m.ports.size(); ++p)
+      if (m.ports[p].isStored())
+        init(L.portSlot(p), m.ports[p].type, m.ports[p].init);
+  } catch (const EvalError &e) {
+    err = {e.message, e.loc};
+    return false;
+  }
+  I.pack(v, out);
+  return true;
+}
+
+bool Semantics::successors(const uint64_t *state, Callback cb,
+                           RuntimeError &err) {
+  Impl &I = *impl;
+  I.unpack(state);
+  uint64_t combos = uint64_t(1) << std::min<size_t>(I.eventInputs.size(), 63);
+  for (uint32_t s : I.inputSlots) {
+    uint64_t span = uint64_t(L.slots()[s].hi - L.slots()[s].lo) + 1;
+    if (span == 0 || combos > opts.maxInputValuations / span) {
+      err = {"the free inputs have more than " +
+                 std::to_string(opts.maxInputValuations) +
+                 " valuations per step; connect them or narrow their types",
+             {}};
+      return false;
+    }
+    combos *= span;
+  }
+  bool manyValuations = combos > 1;
+  bool dedupe = manyValuations || !I.forcedList.empty() ||
+                opts.policy == StepPolicy::Maximal;
+  std::set<std::pair<std::vector<uint32_t>, std::vector<uint64_t>>> seen;
+  std::vector<uint64_t> succ(L.numWords());
+  auto emit = [&](const std::vector<uint32_t> &step) {
+    if (dedupe && !seen.insert({step, succ}).second)
+      return;
+    cb(step, succ.data());
+  };
+  for (uint32_t s : I.inputSlots)
+    I.vals[s] = L.slots()[s].lo;
+  std::fill(I.present.begin(), I.present.end(), 0);
+  bool tickAllowed = false;
+  try {
+    for (uint64_t n = 0; n < combos; ++n) {
+      if (n > 0) {
+        // Next valuation: an odometer over event inputs, then data inputs.
+        bool carry = true;
+        for (size_t e = 0; e < I.present.size() && carry; ++e) {
+          I.present[e] ^= 1;
+          carry = I.present[e] == 0;
+        }
+        for (size_t k = 0; k < I.inputSlots.size() && carry; ++k) {
+          uint32_t s = I.inputSlots[k];
+          if (I.vals[s] < L.slots()[s].hi) {
+            ++I.vals[s];
+            carry = false;
+          } else {
+            I.vals[s] = L.slots()[s].lo;
+          }
+        }
+      }
+      bool anyUrgent = false, strongBlocks = false;
+      for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+        I.en[t] = I.enabled(t);
+        if (!I.en[t])
+          continue;
+        const Transition &tr = m.transitions[t];
+        anyUrgent |= tr.urgent;
+        if (opts.timing == Timing::Strong)
+          for (const PreArc &a : tr.pre())
+            if (!a.time.isTrivial() && a.time.hi != kInf &&
+                I.vals[L.clockSlot(a.place)] >= int64_t(a.time.hi))
+              strongBlocks = true;
+      }
+      if (!anyUrgent && !strongBlocks)
+        tickAllowed = true;
+
+      // Seeds: spontaneous transitions by policy; present input events
+      // may also start a step on their own.
+      std::vector<std::vector<uint32_t>> seeds;
+      std::vector<uint32_t> spont;
+      for (uint32_t t : I.spontaneous)
+        if (I.en[t])
+          spont.push_back(t);
+      if (opts.policy == StepPolicy::Interleaving) {
+        for (uint32_t t : spont)
+          seeds.push_back({t});
+      } else if (!spont.empty()) {
+        std::vector<uint32_t> cur;
+        std::vector<std::vector<uint32_t>> maximal;
+        std::function<void(size_t)> pick = [&](size_t i) {
+          if (i == spont.size()) {
+            for (auto &mx : maximal)
+              if (std::includes(mx.begin(), mx.end(), cur.begin(), cur.end()))
+                return;
+            maximal.erase(
+                std::remove_if(maximal.begin(), maximal.end(),
+                               [&](const std::vector<uint32_t> &mx) {
+                                 return std::includes(cur.begin(), cur.end(),
+                                                      mx.begin(), mx.end());
+                               }),
+                maximal.end());
+            maximal.push_back(cur);
+            return;
+          }
+          cur.push_back(spont[i]);
+          if (I.jointlyEnabled(cur))
+            pick(i + 1);
+          cur.pop_back();
+          pick(i + 1);
+        };
+        pick(0);
+        seeds = std::move(maximal);
+      }
+      if (std::find(I.present.begin(), I.present.end(), 1) != I.present.end())
+        seeds.push_back({});
+      for (auto &seed : seeds) {
+        std::vector<std::vector<uint32_t>> steps;
+        I.closure(seed, steps);
+        for (auto &step : steps) {
+          if (step.empty())
+            continue;
+          std::sort(step.begin(), step.end());
+          if (anyUrgent) {
+            bool hasUrgent = false;
+            for (uint32_t t : step)
+              hasUrgent |= m.transitions[t].urgent;
+            if (!hasUrgent)
+              continue;
+          }
+          I.fire(step, succ.data());
+          emit(step);
+        }
+      }
+    }
+    if (tickAllowed && I.tick(succ.data()))
+      emit({});
+  } catch (const EvalError &e) {
+    err = {e.message, e.loc};
+    return false;
+  }
+  return true;
+}
+
+bool Semantics::evalPredicate(const Expr *e, const uint64_t *state,
+                              RuntimeError &err) {
+  return evalInState(e, state, err) != 0;
+}
+
+int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
+                               RuntimeError &err) {
+  Impl &I = *impl;
+  I.unpack(state);
+  for (uint32_t s : I.inputSlots)
+    I.vals[s] = L.slots()[s].lo;
+  try {
+    return I.eval(e, I.vals);
+  } catch (const EvalError &x) {
+    err = {x.message, x.loc};
+    return 0;
+  }
+}

@@ -1,0 +1,91 @@
+//===- Semantics.h - the step semantics of NetIR ----------------*- C++ -*-===//
+//
+// The meaning of a flat NetIR module, exactly as docs/semantics.md states it
+// (design §3.3), as a successor function over packed states: token,
+// condition, time and guard enabling; spontaneous and forced transitions
+// with `|`/`&` event modes; steps closed under forced transitions, every
+// maximal choice among conflicting forced transitions its own successor;
+// the `interleaving` and `maximal` policies; urgency; ticks under weak and
+// strong timing with saturating place clocks and clock variables; actions
+// that read the pre-state and write together, with write conflicts, range
+// errors, division by zero and token overflow reported as runtime errors;
+// free inputs enumerated at every step. Every analysis uses this one
+// implementation.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_IR_SEMANTICS_SEMANTICS_H
+#define NETLIFT_IR_SEMANTICS_SEMANTICS_H
+
+#include "ir/semantics/StateLayout.h"
+
+#include "llvm/ADT/STLFunctionalExtras.h"
+#include "llvm/Support/SMLoc.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace netlift::sem {
+
+enum class StepPolicy : uint8_t { Interleaving, Maximal };
+enum class Timing : uint8_t { Weak, Strong };
+
+struct Options {
+  StepPolicy policy = StepPolicy::Interleaving;
+  Timing timing = Timing::Weak;
+  /// Bits for the marking of unbounded places (an overflow is an error).
+  unsigned unboundedBits = 8;
+  /// Most input valuations enumerated per state before refusing.
+  uint64_t maxInputValuations = 1u << 16;
+};
+
+/// A runtime error of the model (write conflict, out-of-range write,
+/// division by zero, token overflow), with where it happened.
+struct RuntimeError {
+  std::string message;
+  llvm::SMLoc loc;
+};
+
+class Semantics {
+public:
+  Semantics(const net::Module &m, const StateLayout &layout, Options opts);
+
+  const StateLayout &layout() const { return L; }
+  const net::Module &module() const { return m; }
+  const Options &options() const { return opts; }
+  /// Does the model have place clocks or clock variables?
+  bool isTimed() const { return timed; }
+
+  /// Writes the initial state. False (and `err`) if an initial value does
+  /// not fit.
+  bool initialState(uint64_t *out, RuntimeError &err) const;
+
+  /// One successor: the transitions of the step (in transition order;
+  /// empty for a tick) and the packed successor state.
+  using Callback = llvm::function_ref<void(llvm::ArrayRef<uint32_t> step,
+                                           const uint64_t *succ)>;
+  /// Calls `cb` once per distinct (step, successor) pair of `state`. A tick
+  /// that changes nothing is not a successor. Returns false and sets `err`
+  /// on a runtime error.
+  bool successors(const uint64_t *state, Callback cb, RuntimeError &err);
+
+  /// Evaluates a verified Boolean expression of the module in a state
+  /// (inputs read as their lowest value).
+  bool evalPredicate(const net::Expr *e, const uint64_t *state,
+                     RuntimeError &err);
+  /// Value of slot-free signals (defined outputs) in a state.
+  int64_t evalInState(const net::Expr *e, const uint64_t *state,
+                      RuntimeError &err);
+
+private:
+  struct Impl;
+  const net::Module &m;
+  const StateLayout &L;
+  Options opts;
+  bool timed = false;
+  std::shared_ptr<Impl> impl;
+};
+
+} // namespace netlift::sem
+
+#endif

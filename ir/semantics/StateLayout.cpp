@@ -1,0 +1,102 @@
+//===- StateLayout.cpp - where each part of a state lives -----------------===//
+#include "ir/semantics/StateLayout.h"
+
+#include <algorithm>
+
+using namespace netlift;
+using namespace netlift::sem;
+using namespace netlift::net;
+
+unsigned netlift::sem::bitsFor(uint64_t n) {
+  unsigned b = 0;
+  while (b < 64 && (n >> b) != 0)
+    ++b;
+  return b;
+}
+
+uint32_t StateLayout::addSlot(std::string name, int64_t lo, int64_t hi,
+                              bool wrap) {
+  Slot s;
+  s.lo = lo;
+  s.hi = hi;
+  s.wrap = wrap;
+  s.width = uint8_t(bitsFor(uint64_t(hi) - uint64_t(lo)));
+  s.name = std::move(name);
+  slotVec.push_back(std::move(s));
+  return slotVec.size() - 1;
+}
+
+void StateLayout::addLeaves(const std::string &name, const Type *t) {
+  switch (t->kind) {
+  case TypeKind::Array:
+    for (int64_t i = t->indexLo; i <= t->indexHi; ++i)
+      addLeaves(name + "[" + std::to_string(i) + "]", t->elem);
+    return;
+  case TypeKind::Record:
+    for (const Field &f : t->fields)
+      addLeaves(name + "." + f.name.str(), f.type);
+    return;
+  default:
+    addSlot(name, t->lo, t->hi,
+            t->kind == TypeKind::Int && t->overflow == Overflow::Wrap);
+  }
+}
+
+StateLayout::StateLayout(const Module &mod, unsigned unboundedBits) : m(mod) {
+  placeSlot.resize(m.places.size());
+  placeClock.assign(m.places.size(), -1);
+  placeClockCap.assign(m.places.size(), 0);
+  varFirst.assign(m.vars.size(), -1);
+  portFirst.assign(m.ports.size(), -1);
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    const Place &pl = m.places[p];
+    int64_t hi = pl.capacity == kInf
+                     ? int64_t((uint64_t(1) << unboundedBits) - 1)
+                     : int64_t(pl.capacity);
+    placeSlot[p] = addSlot(pl.name.str(), 0, hi);
+  }
+  // A place clock is needed only where a timed arc leaves the place; it
+  // saturates one past the largest finite bound (beyond, values agree).
+  for (const Transition &t : m.transitions)
+    for (const PreArc &a : t.pre())
+      if (!a.time.isTrivial()) {
+        uint32_t bound = a.time.hi == kInf ? a.time.lo : a.time.hi;
+        placeClockCap[a.place] = std::max(placeClockCap[a.place], bound + 1);
+      }
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    if (placeClockCap[p])
+      placeClock[p] =
+          addSlot("clock(" + m.places[p].name.str() + ")", 0,
+                  placeClockCap[p]);
+  for (uint32_t v = 0; v < m.vars.size(); ++v) {
+    if (m.vars[v].type->isReal())
+      continue; // hybrid models are refused before exploration
+    varFirst[v] = slotVec.size();
+    addLeaves(m.vars[v].name.str(), m.vars[v].type);
+  }
+  for (uint32_t p = 0; p < m.ports.size(); ++p)
+    if (m.ports[p].isStored()) {
+      portFirst[p] = slotVec.size();
+      addLeaves(m.ports[p].name.str(), m.ports[p].type);
+    }
+  packedSlots = slotVec.size();
+  uint32_t off = 0;
+  for (Slot &s : slotVec) {
+    s.bitOffset = off;
+    off += s.width;
+  }
+  bits = off;
+  words = std::max<uint32_t>(1, (off + 63) / 64);
+  // Free inputs: unpacked only.
+  for (uint32_t p = 0; p < m.ports.size(); ++p) {
+    const Port &port = m.ports[p];
+    if (!port.isInput() || port.kind == PortKind::Event)
+      continue;
+    portFirst[p] = slotVec.size();
+    addLeaves(port.name.str(), port.type);
+  }
+}
+
+bool StateLayout::isUnbounded(uint32_t place) const {
+  return m.places[place].capacity == kInf;
+}
