@@ -6,7 +6,7 @@ import lit.formats
 config.name = "netlift"
 config.test_format = lit.formats.ShTest(execute_external=False)
 config.suffixes = [".net", ".test"]
-config.excludes = ["Inputs", "unit", "CMakeLists.txt", "lit.cfg.py",
+config.excludes = ["Inputs", "unit", "utils", "CMakeLists.txt", "lit.cfg.py",
                    "lit.site.cfg.py.in"]
 config.test_source_root = os.path.dirname(__file__)
 config.test_exec_root = os.path.join(config.netlift_obj_root, "test")
@@ -18,6 +18,9 @@ config.substitutions.append(
 config.substitutions.append(("%examples",
                              os.path.join(config.netlift_src_root, "examples")))
 config.substitutions.append(("%srcroot", config.netlift_src_root))
+config.substitutions.append(("%show-exit", sys.executable + " " +
+                             os.path.join(os.path.dirname(__file__), "utils",
+                                          "show-exit.py")))
 config.substitutions.append(("%python", sys.executable))
 config.environment["PATH"] = os.pathsep.join(
     [config.llvm_tools_dir, config.netlift_tools_dir,
