@@ -15,6 +15,22 @@ Explorer::Explorer(sem::Semantics &s, ExploreOptions o)
     : sem(s), opts(o), states(s.layout().numWords()) {}
 
 uint32_t Explorer::internLabel(llvm::ArrayRef<uint32_t> step) {
+  // Most steps are one transition or a tick: look those up directly.
+  if (step.size() <= 1) {
+    uint32_t key = step.empty() ? 0 : step[0] + 1;
+    if (key >= singleLabel.size())
+      singleLabel.resize(sem.module().transitions.size() + 1, kNone);
+    if (singleLabel[key] != kNone)
+      return singleLabel[key];
+    std::string l = step.empty()
+                        ? std::string("tick")
+                        : "{" + sem.module().transitions[step[0]].name.str() +
+                              "}";
+    auto [it, fresh] = labelIds.try_emplace(l, labels.size());
+    if (fresh)
+      labels.push_back(l);
+    return singleLabel[key] = it->second;
+  }
   std::string l;
   if (step.empty()) {
     l = "tick";

@@ -79,6 +79,7 @@ private:
   std::vector<Edge> edgeList;
   std::vector<uint32_t> parent, parentLabel;
   llvm::StringMap<uint32_t> labelIds;
+  std::vector<uint32_t> singleLabel; // tick (0) and one-transition steps
   std::vector<std::string> labels;
 };
 

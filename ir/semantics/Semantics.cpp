@@ -440,6 +440,10 @@ struct Semantics::Impl {
   /// Adds every closure of `step` under forced transitions to `out`.
   void closure(std::vector<uint32_t> step,
                std::vector<std::vector<uint32_t>> &out) {
+    if (forcedList.empty()) {
+      out.push_back(std::move(step));
+      return;
+    }
     std::vector<char> inStep(m.transitions.size(), 0);
     for (uint32_t t : step)
       inStep[t] = 1;
@@ -495,43 +499,68 @@ struct Semantics::Impl {
   }
 
   // --- Firing -------------------------------------------------------------
+  /// The packed pre-state of the current successors() call.
+  const uint64_t *cur = nullptr;
+  std::vector<uint32_t> touchedList;
+  std::vector<char> touched;
+
+  /// Fires a step: starts from the packed pre-state and changes only what
+  /// the step touches, so the cost is that of its arcs and actions.
   void fire(const std::vector<uint32_t> &step, uint64_t *out) {
-    std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
-    std::vector<char> touched(m.places.size(), 0);
+    std::copy(cur, cur + L.numWords(), out);
+    touched.resize(m.places.size(), 0);
+    touchedList.clear();
+    auto touch = [&](uint32_t p) {
+      if (!touched[p]) {
+        touched[p] = 1;
+        touchedList.push_back(p);
+      }
+    };
     for (uint32_t ti : step) {
       const Transition &t = m.transitions[ti];
-      for (const PreArc &a : t.pre()) {
-        nv[L.markingSlot(a.place)] -= a.weight;
-        touched[a.place] = 1;
-      }
-      for (const PostArc &a : t.post()) {
-        nv[L.markingSlot(a.place)] += a.weight;
-        touched[a.place] = 1;
-      }
+      for (const PreArc &a : t.pre())
+        touch(a.place);
+      for (const PostArc &a : t.post())
+        touch(a.place);
     }
-    for (uint32_t p = 0; p < m.places.size(); ++p) {
-      if (!touched[p])
-        continue;
-      uint32_t s = L.markingSlot(p);
-      if (nv[s] > L.slotMax(s))
+    for (uint32_t p : touchedList) {
+      touched[p] = 0;
+      uint32_t slot = L.markingSlot(p);
+      int64_t tokens = vals[slot];
+      for (uint32_t ti : step) {
+        const Transition &t = m.transitions[ti];
+        for (const PreArc &a : t.pre())
+          if (a.place == p)
+            tokens -= a.weight;
+        for (const PostArc &a : t.post())
+          if (a.place == p)
+            tokens += a.weight;
+      }
+      if (tokens > L.slotMax(slot))
         throw EvalError{"place '" + m.places[p].name.str() + "' would hold " +
-                            std::to_string(nv[s]) +
+                            std::to_string(tokens) +
                             " tokens, more than the " +
-                            std::to_string(L.slotMax(s)) +
+                            std::to_string(L.slotMax(slot)) +
                             " its encoding allows (unbounded place; raise "
                             "--place-bits)",
                         m.places[p].loc};
+      L.set(out, slot, tokens);
       if (L.clockSlot(p) >= 0)
-        nv[L.clockSlot(p)] = 0;
+        L.set(out, L.clockSlot(p), 0);
     }
+    bool anyAction = false;
+    for (uint32_t ti : step)
+      anyAction |= m.transitions[ti].hasAction();
+    if (!anyAction)
+      return;
     // Actions read the pre-state; their writes land together.
     llvm::SmallDenseMap<uint32_t, std::pair<int64_t, uint32_t>, 8> writes;
     for (uint32_t ti : step) {
       const Transition &t = m.transitions[ti];
       if (!t.hasAction())
         continue;
-      std::vector<int64_t> local = vals;
-      std::vector<uint32_t> written;
+      local = vals;
+      written.clear();
       exec(t.action(), local, written);
       std::sort(written.begin(), written.end());
       written.erase(std::unique(written.begin(), written.end()),
@@ -548,9 +577,11 @@ struct Semantics::Impl {
       }
     }
     for (auto &[s, vw] : writes)
-      nv[s] = vw.first;
-    pack(nv, out);
+      L.set(out, s, vw.first);
   }
+  std::vector<int64_t> local;
+  std::vector<uint32_t> written;
+  std::vector<uint32_t> spontScratch, stepScratch;
 
   bool tick(uint64_t *out) {
     std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
@@ -650,6 +681,7 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
                            RuntimeError &err) {
   Impl &I = *impl;
   I.unpack(state);
+  I.cur = state;
   uint64_t combos = uint64_t(1) << std::min<size_t>(I.eventInputs.size(), 63);
   for (uint32_t s : I.inputSlots) {
     uint64_t span = uint64_t(L.slots()[s].hi - L.slots()[s].lo) + 1;
@@ -713,11 +745,25 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
 
       // Seeds: spontaneous transitions by policy; present input events
       // may also start a step on their own.
-      std::vector<std::vector<uint32_t>> seeds;
-      std::vector<uint32_t> spont;
+      std::vector<uint32_t> &spont = I.spontScratch;
+      spont.clear();
       for (uint32_t t : I.spontaneous)
         if (I.en[t])
           spont.push_back(t);
+      // The common case (interleaving, no forced transitions): every
+      // enabled transition is a step of its own; no closure to compute.
+      if (opts.policy == StepPolicy::Interleaving && I.forcedList.empty()) {
+        std::vector<uint32_t> &step = I.stepScratch;
+        for (uint32_t t : spont) {
+          if (anyUrgent && !m.transitions[t].urgent)
+            continue;
+          step.assign(1, t);
+          I.fire(step, succ.data());
+          emit(step);
+        }
+        continue;
+      }
+      std::vector<std::vector<uint32_t>> seeds;
       if (opts.policy == StepPolicy::Interleaving) {
         for (uint32_t t : spont)
           seeds.push_back({t});
