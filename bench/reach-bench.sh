@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# State-space exploration throughput on scalable models and the MCC corpus.
+# Usage: bench/reach-bench.sh [BUILD_DIR]
+# Prints, per model: states, edges, states/s, bytes/state, peak RSS.
+set -euo pipefail
+build=${1:-build}
+here=$(cd "$(dirname "$0")" && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+run() {
+  local name=$1 file=$2
+  local out
+  out=$(/usr/bin/time -f "%M" "$build/bin/netlift" reach "$file" --summary json -q 2>"$tmp/rss")
+  python3 - "$name" "$out" "$(tail -1 "$tmp/rss")" <<'PY'
+import json, sys
+name, s, rss = sys.argv[1], json.loads(sys.argv[2]), int(sys.argv[3])
+print(f"{name:34} {s['states']:>10} states {s['transitions']:>11} edges "
+      f"{s['states_per_second']:>10.0f} states/s {s['bytes_per_state']:>7.2f} B/state "
+      f"(vector {s['state_vector_bytes']} B) peak RSS {rss/1024:.0f} MB")
+PY
+}
+for spec in "philosophers 10" "philosophers 16" "ring 9" "prodcons 20" "closedloop 4" "closedloop 6"; do
+  python3 "$here/gen-models.py" $spec > "$tmp/m.net"
+  run "$spec" "$tmp/m.net"
+done
+corpus="$here/../../shared/corpus/pnml/mcc2021"
+if [ -d "$corpus" ]; then
+  for m in AirplaneLD-PT-0010 Referendum-PT-0010 RefineWMG-PT-002002 HexagonalGrid-PT-110 Peterson-PT-2; do
+    run "$m" "$corpus/PT/$m/model.pnml"
+  done
+else
+  echo "(MCC corpus not found beside the checkout: skipped)"
+fi
