@@ -140,6 +140,42 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
   os << "\n";
 }
 
+static std::string csvField(const std::string &f) {
+  if (f.find_first_of(",\"\n") == std::string::npos)
+    return f;
+  std::string q = "\"";
+  for (char c : f)
+    q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void netlift::statespace::writeCsvStates(const Explorer &x,
+                                         sem::Semantics &sem,
+                                         const ExploreResult &r,
+                                         llvm::raw_ostream &os) {
+  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<char> isDeadlock(x.store().size(), 0);
+  for (uint32_t d : r.deadlocks)
+    isDeadlock[d] = 1;
+  os << "id,deadlock";
+  for (const Attribute &a : attrs)
+    os << ',' << csvField(a.name);
+  os << '\n';
+  for (uint32_t s = 0; s < x.store().size(); ++s) {
+    os << s << ',' << int(isDeadlock[s]);
+    for (const Attribute &a : attrs)
+      os << ',' << valueOf(sem, a, x.store().state(s));
+    os << '\n';
+  }
+}
+
+void netlift::statespace::writeCsvEdges(const Explorer &x,
+                                        llvm::raw_ostream &os) {
+  os << "from,label,to\n";
+  for (const Edge &e : x.edges())
+    os << e.from << ',' << csvField(x.label(e.label)) << ',' << e.to << '\n';
+}
+
 void netlift::statespace::writeSummaryJson(const Explorer &x,
                                            const ExploreResult &r,
                                            llvm::raw_ostream &os) {

@@ -21,6 +21,11 @@ void writeAut(const Explorer &x, llvm::raw_ostream &os);
 void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
 void writeJson(const Explorer &x, sem::Semantics &sem,
                const ExploreResult &r, llvm::raw_ostream &os);
+/// CSV: a header `id,deadlock,<attribute>...` and one row per state.
+void writeCsvStates(const Explorer &x, sem::Semantics &sem,
+                    const ExploreResult &r, llvm::raw_ostream &os);
+/// CSV: `from,label,to`, one row per edge.
+void writeCsvEdges(const Explorer &x, llvm::raw_ostream &os);
 void writeSummaryJson(const Explorer &x, const ExploreResult &r,
                       llvm::raw_ostream &os);
 /// The path to `target` as a table: the initial values, then for each step

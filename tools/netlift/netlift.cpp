@@ -106,15 +106,20 @@ static cl::opt<EmitFormat>
                                      "net")),
                cl::sub(emitCmd), cl::cat(category));
 
-enum class GraphFormat { None, Aut, Dot, Json };
+enum class GraphFormat { None, Aut, Dot, Json, Csv };
 static cl::opt<GraphFormat> reachFormat(
     "format", cl::desc("Write the state space"),
     cl::init(GraphFormat::None),
     cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
                clEnumValN(GraphFormat::Dot, "dot", "Graphviz (small graphs)"),
                clEnumValN(GraphFormat::Json, "json",
-                          "every state with its values, every edge")),
+                          "every state with its values, every edge"),
+               clEnumValN(GraphFormat::Csv, "csv",
+                          "every state with its values (edges: --edges)")),
     cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string>
+    reachEdges("edges", cl::desc("Also write the edges as CSV to FILE"),
+               cl::value_desc("FILE"), cl::sub(reachCmd), cl::cat(category));
 static cl::opt<std::string> reachSummary(
     "summary", cl::desc("Print a summary: 'json' or 'text' (default)"),
     cl::init("text"), cl::sub(reachCmd), cl::cat(category));
@@ -360,7 +365,7 @@ static int runReach() {
   eo.maxStates = reachMaxStates;
   eo.maxMemory = maxMemory;
   eo.timeLimit = reachTimeLimit;
-  eo.recordEdges = reachFormat != GraphFormat::None;
+  eo.recordEdges = reachFormat != GraphFormat::None || !reachEdges.empty();
   eo.progress = !reachQuiet;
   sem::RuntimeError findErr;
   auto stop = [&](const uint64_t *s) {
@@ -396,7 +401,15 @@ static int runReach() {
         case GraphFormat::Json:
           statespace::writeJson(explorer, semantics, r, os);
           break;
+        case GraphFormat::Csv:
+          statespace::writeCsvStates(explorer, semantics, r, os);
+          break;
         }
+      }))
+    return 1;
+  if (!reachEdges.empty() &&
+      !writeOutput(reachEdges, [&](llvm::raw_ostream &os) {
+        statespace::writeCsvEdges(explorer, os);
       }))
     return 1;
   llvm::raw_ostream &out = llvm::outs();
