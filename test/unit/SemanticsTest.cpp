@@ -1,0 +1,104 @@
+//===- SemanticsTest.cpp - state encoding and step semantics --------------===//
+#include "ir/net/Parser.h"
+#include "ir/net/Verifier.h"
+#include "ir/semantics/Semantics.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+
+#include <gtest/gtest.h>
+
+using namespace netlift;
+using namespace netlift::net;
+using namespace netlift::sem;
+
+namespace {
+
+Module *parse(const char *text, Design &d, llvm::SourceMgr &sm) {
+  DiagEngine diag(sm);
+  unsigned id = sm.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(text, "t.net"), llvm::SMLoc());
+  if (!parseNetIR(id, diag, d) || !verifyDesign(d, diag))
+    return nullptr;
+  return d.modules.back().get();
+}
+
+TEST(StateLayout, SlotsStraddleWordsAndKeepTheirValues) {
+  // 9 variables of 13 bits: several cross a 64-bit word boundary.
+  llvm::SourceMgr sm;
+  Design d;
+  Module *m = parse("system S { var a, b, c, d, e, f, g, h, i : -4000..4000; "
+                    "place p(3) cap 5; }",
+                    d, sm);
+  ASSERT_NE(m, nullptr);
+  StateLayout L(*m, 8);
+  EXPECT_EQ(L.slots()[L.markingSlot(0)].width, 3);
+  EXPECT_EQ(L.packedBits(), 3u + 9 * 13);
+  EXPECT_EQ(L.numWords(), 2u);
+  std::vector<uint64_t> st(L.numWords(), 0);
+  for (uint32_t v = 0; v < 9; ++v)
+    L.set(st.data(), L.varSlot(v), int64_t(v) * 977 - 4000);
+  L.set(st.data(), L.markingSlot(0), 5);
+  for (uint32_t v = 0; v < 9; ++v)
+    EXPECT_EQ(L.get(st.data(), L.varSlot(v)), int64_t(v) * 977 - 4000) << v;
+  EXPECT_EQ(L.get(st.data(), L.markingSlot(0)), 5);
+}
+
+TEST(StateLayout, OnlyPlacesWithTimedArcsHaveClocks) {
+  llvm::SourceMgr sm;
+  Design d;
+  Module *m = parse("system S { place p(1), q, r; "
+                    "trans t : p[2,7] -> q; trans u : q[3,inf] -> r; "
+                    "trans w : r -> p; }",
+                    d, sm);
+  ASSERT_NE(m, nullptr);
+  StateLayout L(*m, 8);
+  EXPECT_GE(L.clockSlot(0), 0);
+  EXPECT_EQ(L.clockCap(0), 8u); // one past the upper bound 7
+  EXPECT_GE(L.clockSlot(1), 0);
+  EXPECT_EQ(L.clockCap(1), 4u); // one past the lower bound 3 (upper inf)
+  EXPECT_EQ(L.clockSlot(2), -1);
+}
+
+TEST(Semantics, ConflictingForcedTransitionsGiveOneSuccessorEach) {
+  llvm::SourceMgr sm;
+  Design d;
+  Module *m = parse("system S { place a(1), p(1), q, r; trans t : a -> (); "
+                    "trans u1 : p -> q on t; trans u2 : p -> r on t; }",
+                    d, sm);
+  ASSERT_NE(m, nullptr);
+  StateLayout L(*m, 8);
+  Semantics sem(*m, L, Options());
+  std::vector<uint64_t> init(L.numWords());
+  RuntimeError err;
+  ASSERT_TRUE(sem.initialState(init.data(), err));
+  std::vector<std::vector<uint32_t>> steps;
+  ASSERT_TRUE(sem.successors(
+      init.data(),
+      [&](llvm::ArrayRef<uint32_t> step, const uint64_t *) {
+        steps.emplace_back(step.begin(), step.end());
+      },
+      err));
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0], (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(steps[1], (std::vector<uint32_t>{0, 2}));
+}
+
+TEST(Semantics, WriteConflictIsARuntimeError) {
+  llvm::SourceMgr sm;
+  Design d;
+  Module *m = parse("system S { var v : 0..3; place a(1), b(1); "
+                    "trans t : a -> () { v := 1; } "
+                    "trans u : b -> () on t { v := 2; } }",
+                    d, sm);
+  ASSERT_NE(m, nullptr);
+  StateLayout L(*m, 8);
+  Semantics sem(*m, L, Options());
+  std::vector<uint64_t> init(L.numWords());
+  RuntimeError err;
+  ASSERT_TRUE(sem.initialState(init.data(), err));
+  EXPECT_FALSE(sem.successors(
+      init.data(), [](llvm::ArrayRef<uint32_t>, const uint64_t *) {}, err));
+  EXPECT_EQ(err.message, "transitions 't' and 'u' both write 'v' in one step");
+}
+
+} // namespace
