@@ -133,6 +133,10 @@ bool PnmlReader::collect(const pugi::xml_node &page) {
     } else if (tag == "referencePlace" || tag == "referenceTransition") {
       return error(n, "<" + tag + "> is not supported (reference nodes "
                                   "across pages); flatten the net first");
+    } else if (tag == "declaration") {
+      return error(n, "<declaration> (sorts and variables of a coloured "
+                      "net) is not part of a P/T net; netlift reads P/T "
+                      "nets only");
     } else if (tag == "name" || tag == "graphics" || tag == "toolspecific") {
       // Presentation and tool metadata: no meaning for the net.
     } else {

@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Runs `netlift translate` over every file of ../shared/corpus that a
+frontend exists for and prints, per format, how many files were translated,
+refused (grouped by reason, names and numbers elided) and crashed (any exit
+other than 0/1, or a hang). Exits 1 if anything crashed.
+
+usage: corpus-sweep.py NETLIFT [CORPUS_DIR]
+"""
+import collections
+import os
+import re
+import subprocess
+import sys
+
+# Format folder -> file extensions its frontend reads.
+FORMATS = {"pnml": (".pnml",)}
+
+
+def reason(stderr):
+    for line in stderr.splitlines():
+        if ": error: " in line:
+            msg = line.split(": error: ", 1)[1]
+            msg = re.sub(r"'[^']*'", "'…'", msg)
+            return re.sub(r"\d+", "N", msg)
+    return stderr.strip().splitlines()[0] if stderr.strip() else "(no message)"
+
+
+def main():
+    netlift = sys.argv[1]
+    here = os.path.dirname(os.path.abspath(__file__))
+    corpus = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
+        here, "..", "..", "shared", "corpus")
+    if not os.path.isdir(corpus):
+        print(f"corpus not found at {corpus}: nothing swept")
+        return 0
+    crashed_any = False
+    for fmt, exts in FORMATS.items():
+        files = sorted(os.path.join(d, f)
+                       for d, _, fs in os.walk(os.path.join(corpus, fmt))
+                       for f in fs if f.endswith(exts))
+        ok, refused, crashed = 0, collections.Counter(), []
+        for f in files:
+            try:
+                r = subprocess.run([netlift, "translate", f, "-o", os.devnull],
+                                   capture_output=True, text=True, timeout=120)
+            except subprocess.TimeoutExpired:
+                crashed.append((f, "hang"))
+                continue
+            if r.returncode == 0:
+                ok += 1
+            elif r.returncode == 1:
+                refused[reason(r.stderr)] += 1
+            else:
+                crashed.append((f, f"exit {r.returncode}"))
+        print(f"{fmt}: {len(files)} files, {ok} translated, "
+              f"{sum(refused.values())} refused, {len(crashed)} crashed")
+        for why, n in refused.most_common():
+            print(f"  {n:5}  {why}")
+        for f, how in crashed:
+            print(f"  CRASH {how}: {f}")
+        crashed_any |= bool(crashed)
+    return 1 if crashed_any else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
