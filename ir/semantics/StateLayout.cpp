@@ -1,6 +1,8 @@
 //===- StateLayout.cpp - where each part of a state lives -----------------===//
 #include "ir/semantics/StateLayout.h"
 
+#include "ir/semantics/StructuralBounds.h"
+
 #include <algorithm>
 
 using namespace netlift;
@@ -48,12 +50,18 @@ StateLayout::StateLayout(const Module &mod, unsigned unboundedBits) : m(mod) {
   placeClockCap.assign(m.places.size(), 0);
   varFirst.assign(m.vars.size(), -1);
   portFirst.assign(m.ports.size(), -1);
+  // A place needs bits for its capacity or its structural bound,
+  // whichever is smaller; only places with neither get `unboundedBits`.
+  std::vector<uint64_t> bound = structuralBounds(m);
   for (uint32_t p = 0; p < m.places.size(); ++p) {
     const Place &pl = m.places[p];
-    int64_t hi = pl.capacity == kInf
-                     ? int64_t((uint64_t(1) << unboundedBits) - 1)
-                     : int64_t(pl.capacity);
-    placeSlot[p] = addSlot(pl.name.str(), 0, hi);
+    uint64_t hi = pl.capacity == kInf ? (uint64_t(1) << unboundedBits) - 1
+                                      : uint64_t(pl.capacity);
+    if (bound[p] != kNoBound && bound[p] < hi) {
+      hi = bound[p];
+      structurallyBounded.push_back(p);
+    }
+    placeSlot[p] = addSlot(pl.name.str(), 0, int64_t(hi));
   }
   // A place clock is needed only where a timed arc leaves the place; it
   // saturates one past the largest finite bound (beyond, values agree).

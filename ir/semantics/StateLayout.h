@@ -59,6 +59,8 @@ public:
   int32_t portSlot(uint32_t port) const { return portFirst[port]; }
   /// Unbounded places (their width is a choice, not a bound).
   bool isUnbounded(uint32_t place) const;
+  /// Places whose width comes from a P-invariant bound.
+  size_t numStructurallyBounded() const { return structurallyBounded.size(); }
 
   int64_t get(const uint64_t *state, uint32_t slot) const {
     const Slot &s = slotVec[slot];
@@ -97,7 +99,7 @@ private:
 
   const net::Module &m;
   std::vector<Slot> slotVec;
-  std::vector<uint32_t> placeSlot, placeClockCap;
+  std::vector<uint32_t> placeSlot, placeClockCap, structurallyBounded;
   std::vector<int32_t> placeClock, varFirst, portFirst;
   uint32_t packedSlots = 0, words = 0, bits = 0;
 };
