@@ -582,6 +582,7 @@ struct Semantics::Impl {
   std::vector<int64_t> local;
   std::vector<uint32_t> written;
   std::vector<uint32_t> spontScratch, stepScratch;
+  std::vector<int64_t> predicateVals;
 
   bool tick(uint64_t *out) {
     std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
@@ -831,12 +832,17 @@ bool Semantics::evalPredicate(const Expr *e, const uint64_t *state,
 
 int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
                                RuntimeError &err) {
+  // A buffer of its own: predicates are evaluated while successors() is
+  // still enumerating from its working valuation.
   Impl &I = *impl;
-  I.unpack(state);
+  std::vector<int64_t> &v = I.predicateVals;
+  v.assign(L.numSlots(), 0);
+  for (uint32_t s = 0; s < L.numPacked(); ++s)
+    v[s] = L.get(state, s);
   for (uint32_t s : I.inputSlots)
-    I.vals[s] = L.slots()[s].lo;
+    v[s] = L.slots()[s].lo;
   try {
-    return I.eval(e, I.vals);
+    return I.eval(e, v);
   } catch (const EvalError &x) {
     err = {x.message, x.loc};
     return 0;
