@@ -1,5 +1,6 @@
 # The two commands of the README:
-#   make demo   - set up, build, and translate + draw a bundled example
+#   make demo   - set up, build, then translate, flatten, draw and explore a
+#                 bundled example
 #   make test   - set up, build, and run the whole test suite (lit + GoogleTest)
 # Also: make build, make sanitize-test (ASan+UBSan build running the suite),
 #       make bench, make format.
@@ -31,6 +32,10 @@ demo: build
 	$(BUILD)/bin/netlift emit $(BUILD)/closed.flat.net --to dot -o $(BUILD)/closed.flat.dot
 	dot -Tsvg $(BUILD)/closed.flat.dot -o $(BUILD)/closed.flat.svg
 	@echo "== drawing written to $(BUILD)/closed.flat.svg"
+	@echo "== netlift reach: the closed loop's state space"
+	$(BUILD)/bin/netlift reach examples/cylinder/closed.net --summary json -q
+	@echo "== a shortest run to the cylinder at its end, controller in step 2"
+	$(BUILD)/bin/netlift reach examples/cylinder/closed.net -q --find 'p.end and c.step == 2'
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

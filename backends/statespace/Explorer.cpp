@@ -22,10 +22,9 @@ uint32_t Explorer::internLabel(llvm::ArrayRef<uint32_t> step) {
       singleLabel.resize(sem.module().transitions.size() + 1, kNone);
     if (singleLabel[key] != kNone)
       return singleLabel[key];
-    std::string l = step.empty()
-                        ? std::string("tick")
-                        : "{" + sem.module().transitions[step[0]].name.str() +
-                              "}";
+    std::string l =
+        step.empty() ? std::string("tick")
+                     : "{" + sem.module().transitions[step[0]].name.str() + "}";
     auto [it, fresh] = labelIds.try_emplace(l, labels.size());
     if (fresh)
       labels.push_back(l);
@@ -49,8 +48,7 @@ uint32_t Explorer::internLabel(llvm::ArrayRef<uint32_t> step) {
   return it->second;
 }
 
-std::vector<std::pair<uint32_t, uint32_t>>
-Explorer::pathTo(uint32_t s) const {
+std::vector<std::pair<uint32_t, uint32_t>> Explorer::pathTo(uint32_t s) const {
   std::vector<std::pair<uint32_t, uint32_t>> path;
   while (s != kNone) {
     path.push_back({parentLabel[s], s});
@@ -101,8 +99,7 @@ bool Explorer::run(ExploreResult &r) {
     }
     // Limits are checked between expansions, so a stop is clean.
     if ((expanded & 1023) == 0) {
-      double secs =
-          std::chrono::duration<double>(Clock::now() - start).count();
+      double secs = std::chrono::duration<double>(Clock::now() - start).count();
       size_t mem = states.bytes() + edgeList.capacity() * sizeof(Edge) +
                    parent.capacity() * 8;
       r.peakBytes = std::max(r.peakBytes, mem);
@@ -121,8 +118,7 @@ bool Explorer::run(ExploreResult &r) {
         llvm::errs() << "\rstates " << states.size() << "  "
                      << uint64_t(states.size() / std::max(secs, 1e-9))
                      << " states/s  queue "
-                     << (opts.depthFirst ? stack.size()
-                                         : states.size() - next)
+                     << (opts.depthFirst ? stack.size() : states.size() - next)
                      << "  memory " << (mem >> 20) << " MB  " << uint64_t(secs)
                      << " s   ";
       }
@@ -237,8 +233,8 @@ bool Explorer::run(ExploreResult &r) {
       r.deadStates += d == 1;
   }
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  r.peakBytes = std::max(r.peakBytes,
-                         states.bytes() + edgeList.capacity() * sizeof(Edge) +
-                             parent.capacity() * 8);
+  r.peakBytes = std::max(r.peakBytes, states.bytes() +
+                                          edgeList.capacity() * sizeof(Edge) +
+                                          parent.capacity() * 8);
   return true;
 }

@@ -26,11 +26,11 @@ namespace netlift::statespace {
 
 struct ExploreOptions {
   bool depthFirst = false;
-  uint64_t maxStates = 0;  // 0: no limit
-  uint64_t maxMemory = 0;  // bytes; 0: no limit
-  double timeLimit = 0;    // seconds; 0: no limit
+  uint64_t maxStates = 0; // 0: no limit
+  uint64_t maxMemory = 0; // bytes; 0: no limit
+  double timeLimit = 0;   // seconds; 0: no limit
   bool recordEdges = false;
-  bool progress = false;   // print progress on stderr
+  bool progress = false; // print progress on stderr
   /// Stop at the first state satisfying this (checked as states are
   /// found); set `found` in the result.
   llvm::function_ref<bool(const uint64_t *)> stopAt = nullptr;

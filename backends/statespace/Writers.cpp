@@ -16,8 +16,7 @@ using namespace netlift::net;
 void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
   os << "des (0, " << x.edges().size() << ", " << x.store().size() << ")\n";
   for (const Edge &e : x.edges())
-    os << '(' << e.from << ",\"" << x.label(e.label) << "\"," << e.to
-       << ")\n";
+    os << '(' << e.from << ",\"" << x.label(e.label) << "\"," << e.to << ")\n";
 }
 
 namespace {
@@ -25,7 +24,7 @@ namespace {
 struct Attribute {
   std::string name;
   enum Kind { Place, Clock, Data, Output } kind;
-  uint32_t slot = 0;       // Place, Clock, Data, stored Output
+  uint32_t slot = 0;         // Place, Clock, Data, stored Output
   const Expr *def = nullptr; // defined Output
 };
 
@@ -34,8 +33,8 @@ std::vector<Attribute> attributes(const sem::Semantics &sem) {
   const Module &m = sem.module();
   std::vector<Attribute> out;
   for (uint32_t p = 0; p < m.places.size(); ++p)
-    out.push_back({m.places[p].name.str(), Attribute::Place,
-                   L.markingSlot(p), nullptr});
+    out.push_back(
+        {m.places[p].name.str(), Attribute::Place, L.markingSlot(p), nullptr});
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (L.clockSlot(p) >= 0)
       out.push_back({L.slots()[L.clockSlot(p)].name, Attribute::Clock,
@@ -111,8 +110,7 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
       for (const Attribute &a : attrs)
         j.object([&] {
           j.attribute("name", a.name);
-          static const char *kinds[] = {"place", "clock", "variable",
-                                        "output"};
+          static const char *kinds[] = {"place", "clock", "variable", "output"};
           j.attribute("kind", kinds[a.kind]);
         });
     });
@@ -149,8 +147,7 @@ static std::string csvField(const std::string &f) {
   return q + "\"";
 }
 
-void netlift::statespace::writeCsvStates(const Explorer &x,
-                                         sem::Semantics &sem,
+void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
                                          const ExploreResult &r,
                                          llvm::raw_ostream &os) {
   std::vector<Attribute> attrs = attributes(sem);
@@ -227,8 +224,8 @@ void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
       }
     }
     os << fmt::format("{:>4}  {:<{}}  {}\n", i,
-                      i == 0 ? std::string("(initial)") : x.label(label),
-                      width, changes);
+                      i == 0 ? std::string("(initial)") : x.label(label), width,
+                      changes);
     prev = std::move(cur);
   }
 }

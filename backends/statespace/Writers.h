@@ -19,8 +19,8 @@ namespace netlift::statespace {
 
 void writeAut(const Explorer &x, llvm::raw_ostream &os);
 void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
-void writeJson(const Explorer &x, sem::Semantics &sem,
-               const ExploreResult &r, llvm::raw_ostream &os);
+void writeJson(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
+               llvm::raw_ostream &os);
 /// CSV: a header `id,deadlock,<attribute>...` and one row per state.
 void writeCsvStates(const Explorer &x, sem::Semantics &sem,
                     const ExploreResult &r, llvm::raw_ostream &os);

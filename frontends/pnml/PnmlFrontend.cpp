@@ -102,8 +102,8 @@ bool PnmlReader::readInt(const pugi::xml_node &holder, const char *what,
                  llvm::Twine("expected a natural number in <") + what +
                      ">, found '" + s + "'");
   if (out >= kInf)
-    return error(holder.child(what), llvm::Twine("<") + what + "> value " +
-                                         s + " is too large");
+    return error(holder.child(what),
+                 llvm::Twine("<") + what + "> value " + s + " is too large");
   return true;
 }
 
@@ -131,8 +131,9 @@ bool PnmlReader::collect(const pugi::xml_node &page) {
     } else if (tag == "arc") {
       arcs.push_back(n);
     } else if (tag == "referencePlace" || tag == "referenceTransition") {
-      return error(n, "<" + tag + "> is not supported (reference nodes "
-                                  "across pages); flatten the net first");
+      return error(n, "<" + tag +
+                          "> is not supported (reference nodes "
+                          "across pages); flatten the net first");
     } else if (tag == "declaration") {
       return error(n, "<declaration> (sorts and variables of a coloured "
                       "net) is not part of a P/T net; netlift reads P/T "
@@ -140,8 +141,8 @@ bool PnmlReader::collect(const pugi::xml_node &page) {
     } else if (tag == "name" || tag == "graphics" || tag == "toolspecific") {
       // Presentation and tool metadata: no meaning for the net.
     } else {
-      return error(n, "unsupported PNML element <" + tag +
-                          "> in a P/T net page");
+      return error(n,
+                   "unsupported PNML element <" + tag + "> in a P/T net page");
     }
   }
   return true;
@@ -149,8 +150,8 @@ bool PnmlReader::collect(const pugi::xml_node &page) {
 
 bool PnmlReader::run() {
   pugi::xml_document doc;
-  pugi::xml_parse_result r = doc.load_buffer(buffer.data(), buffer.size(),
-                                             pugi::parse_default);
+  pugi::xml_parse_result r =
+      doc.load_buffer(buffer.data(), buffer.size(), pugi::parse_default);
   if (!r) {
     size_t off = std::min<size_t>(r.offset, buffer.size());
     diag.error(llvm::SMLoc::getFromPointer(buffer.data() + off),
@@ -195,8 +196,7 @@ bool PnmlReader::run() {
     if (d == byId.end())
       return error(a, "arc target '" + dst + "' is not a place or transition");
     if (s->second.isPlace == d->second.isPlace)
-      return error(a, "arc from '" + src + "' to '" + dst +
-                          "' joins two " +
+      return error(a, "arc from '" + src + "' to '" + dst + "' joins two " +
                           (s->second.isPlace ? "places" : "transitions"));
     uint64_t w;
     if (!readInt(a, "inscription", w, 1))

@@ -466,8 +466,7 @@ struct Semantics::Impl {
     std::function<void(size_t)> choose = [&](size_t i) {
       if (i == cand.size()) {
         for (auto &mx : maximal)
-          if (std::includes(mx.begin(), mx.end(), chosen.begin(),
-                            chosen.end()))
+          if (std::includes(mx.begin(), mx.end(), chosen.begin(), chosen.end()))
             return;
         // Remove earlier choices this one contains.
         maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
@@ -538,8 +537,7 @@ struct Semantics::Impl {
       }
       if (tokens > L.slotMax(slot))
         throw EvalError{"place '" + m.places[p].name.str() + "' would hold " +
-                            std::to_string(tokens) +
-                            " tokens, more than the " +
+                            std::to_string(tokens) + " tokens, more than the " +
                             std::to_string(L.slotMax(slot)) +
                             " its encoding allows (unbounded place; raise "
                             "--place-bits)",
@@ -563,16 +561,14 @@ struct Semantics::Impl {
       written.clear();
       exec(t.action(), local, written);
       std::sort(written.begin(), written.end());
-      written.erase(std::unique(written.begin(), written.end()),
-                    written.end());
+      written.erase(std::unique(written.begin(), written.end()), written.end());
       for (uint32_t s : written) {
         auto [it, fresh] = writes.try_emplace(s, local[s], ti);
         if (!fresh)
           throw EvalError{"transitions '" +
                               m.transitions[it->second.second].name.str() +
-                              "' and '" + t.name.str() +
-                              "' both write '" + L.slots()[s].name +
-                              "' in one step",
+                              "' and '" + t.name.str() + "' both write '" +
+                              L.slots()[s].name + "' in one step",
                           t.loc};
       }
     }
@@ -606,8 +602,7 @@ struct Semantics::Impl {
   }
 };
 
-Semantics::Semantics(const Module &mod, const StateLayout &layout,
-                     Options o)
+Semantics::Semantics(const Module &mod, const StateLayout &layout, Options o)
     : m(mod), L(layout), opts(o), impl(std::make_shared<Impl>(m, L, opts)) {
   Impl &I = *impl;
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
@@ -776,13 +771,13 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
             for (auto &mx : maximal)
               if (std::includes(mx.begin(), mx.end(), cur.begin(), cur.end()))
                 return;
-            maximal.erase(
-                std::remove_if(maximal.begin(), maximal.end(),
-                               [&](const std::vector<uint32_t> &mx) {
-                                 return std::includes(cur.begin(), cur.end(),
-                                                      mx.begin(), mx.end());
-                               }),
-                maximal.end());
+            maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
+                                         [&](const std::vector<uint32_t> &mx) {
+                                           return std::includes(
+                                               cur.begin(), cur.end(),
+                                               mx.begin(), mx.end());
+                                         }),
+                          maximal.end());
             maximal.push_back(cur);
             return;
           }

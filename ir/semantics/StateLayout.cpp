@@ -74,8 +74,7 @@ StateLayout::StateLayout(const Module &mod, unsigned unboundedBits) : m(mod) {
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (placeClockCap[p])
       placeClock[p] =
-          addSlot("clock(" + m.places[p].name.str() + ")", 0,
-                  placeClockCap[p]);
+          addSlot("clock(" + m.places[p].name.str() + ")", 0, placeClockCap[p]);
   for (uint32_t v = 0; v < m.vars.size(); ++v) {
     if (m.vars[v].type->isReal())
       continue; // hybrid models are refused before exploration

@@ -93,8 +93,7 @@ public:
   }
 
 private:
-  uint32_t addSlot(std::string name, int64_t lo, int64_t hi,
-                   bool wrap = false);
+  uint32_t addSlot(std::string name, int64_t lo, int64_t hi, bool wrap = false);
   void addLeaves(const std::string &name, const net::Type *t);
 
   const net::Module &m;

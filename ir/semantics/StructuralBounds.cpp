@@ -85,9 +85,10 @@ std::vector<uint64_t> netlift::sem::structuralBounds(const Module &m,
       }
     // Drop duplicates to keep the tableau small.
     std::sort(zero.begin(), zero.end());
-    zero.erase(std::unique(zero.begin(), zero.end(),
-                           [](const Row &a, const Row &b) { return a.y == b.y; }),
-               zero.end());
+    zero.erase(
+        std::unique(zero.begin(), zero.end(),
+                    [](const Row &a, const Row &b) { return a.y == b.y; }),
+        zero.end());
     rows = std::move(zero);
   }
   for (const Row &r : rows) {

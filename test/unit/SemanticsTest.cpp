@@ -1,7 +1,7 @@
 //===- SemanticsTest.cpp - state encoding and step semantics --------------===//
+#include "ir/semantics/Semantics.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
-#include "ir/semantics/Semantics.h"
 #include "ir/semantics/StructuralBounds.h"
 
 #include "llvm/Support/MemoryBuffer.h"
@@ -51,14 +51,14 @@ TEST(StructuralBounds, SemiflowsBoundPlaces) {
   // place by 1; the pump place p is covered by no semiflow.
   llvm::SourceMgr sm;
   Design d;
-  Module *m = parse(
-      "system S { place ia(1) cap inf, ca cap inf, ib(1) cap inf, "
-      "cb cap inf, lock(1) cap inf, src(1) cap inf, p cap inf; "
-      "trans ea : ia, lock -> ca; trans la : ca -> ia, lock; "
-      "trans eb : ib, lock -> cb; trans lb : cb -> ib, lock; "
-      "trans pump : src -> src, p; "
-      "trans twice : 2*p -> p; }",
-      d, sm);
+  Module *m =
+      parse("system S { place ia(1) cap inf, ca cap inf, ib(1) cap inf, "
+            "cb cap inf, lock(1) cap inf, src(1) cap inf, p cap inf; "
+            "trans ea : ia, lock -> ca; trans la : ca -> ia, lock; "
+            "trans eb : ib, lock -> cb; trans lb : cb -> ib, lock; "
+            "trans pump : src -> src, p; "
+            "trans twice : 2*p -> p; }",
+            d, sm);
   ASSERT_NE(m, nullptr);
   std::vector<uint64_t> b = structuralBounds(*m);
   EXPECT_EQ(b, (std::vector<uint64_t>{1, 1, 1, 1, 1, 1, kNoBound}));

@@ -9,11 +9,11 @@
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
-#include "ir/net/Parser.h"
-#include "ir/semantics/Semantics.h"
 #include "frontends/FrontendRegistry.h"
+#include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
+#include "ir/semantics/Semantics.h"
 #include "passes/Pass.h"
 
 #include "llvm/Support/CommandLine.h"
@@ -42,8 +42,9 @@ static cl::SubCommand
                  "print them as canonical NetIR text");
 static cl::SubCommand optCmd("opt",
                              "Run a pipeline of NetIR passes over a model");
-static cl::SubCommand reachCmd(
-    "reach", "Explore the reachable states of a model (its top module, "
+static cl::SubCommand
+    reachCmd("reach",
+             "Explore the reachable states of a model (its top module, "
              "flattened)");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
@@ -108,8 +109,7 @@ static cl::opt<EmitFormat>
 
 enum class GraphFormat { None, Aut, Dot, Json, Csv };
 static cl::opt<GraphFormat> reachFormat(
-    "format", cl::desc("Write the state space"),
-    cl::init(GraphFormat::None),
+    "format", cl::desc("Write the state space"), cl::init(GraphFormat::None),
     cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
                clEnumValN(GraphFormat::Dot, "dot", "Graphviz (small graphs)"),
                clEnumValN(GraphFormat::Json, "json",
@@ -120,15 +120,18 @@ static cl::opt<GraphFormat> reachFormat(
 static cl::opt<std::string>
     reachEdges("edges", cl::desc("Also write the edges as CSV to FILE"),
                cl::value_desc("FILE"), cl::sub(reachCmd), cl::cat(category));
-static cl::opt<std::string> reachSummary(
-    "summary", cl::desc("Print a summary: 'json' or 'text' (default)"),
-    cl::init("text"), cl::sub(reachCmd), cl::cat(category));
-static cl::opt<std::string> reachFind(
-    "find", cl::desc("Find a shortest path to a state satisfying EXPR"),
-    cl::value_desc("EXPR"), cl::sub(reachCmd), cl::cat(category));
-static cl::opt<bool> reachDeadlockTrace(
-    "deadlock-trace", cl::desc("Print a shortest path to a deadlock"),
-    cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string>
+    reachSummary("summary",
+                 cl::desc("Print a summary: 'json' or 'text' (default)"),
+                 cl::init("text"), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<std::string>
+    reachFind("find",
+              cl::desc("Find a shortest path to a state satisfying EXPR"),
+              cl::value_desc("EXPR"), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<bool>
+    reachDeadlockTrace("deadlock-trace",
+                       cl::desc("Print a shortest path to a deadlock"),
+                       cl::sub(reachCmd), cl::cat(category));
 static cl::opt<sem::StepPolicy> reachPolicy(
     "semantics", cl::desc("Step policy"),
     cl::init(sem::StepPolicy::Interleaving),
@@ -164,8 +167,7 @@ static cl::opt<unsigned> reachPlaceBits(
     "place-bits",
     cl::desc("Bits for the marking of unbounded places (default 8)"),
     cl::init(8), cl::sub(reachCmd), cl::cat(category));
-static cl::opt<std::string> reachTop("top",
-                                     cl::desc("The module to explore"),
+static cl::opt<std::string> reachTop("top", cl::desc("The module to explore"),
                                      cl::sub(reachCmd), cl::cat(category));
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
@@ -443,8 +445,7 @@ static int runReach() {
     if (!r.deadlocks.empty()) {
       // Breadth-first numbering: the smallest index is a closest deadlock.
       uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
-      out << "deadlock after " << explorer.pathTo(d).size() - 1
-          << " steps:\n";
+      out << "deadlock after " << explorer.pathTo(d).size() - 1 << " steps:\n";
       statespace::writeTrace(explorer, semantics, d, out);
       return 3;
     }
