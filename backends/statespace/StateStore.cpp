@@ -1,6 +1,7 @@
 //===- StateStore.cpp - the set of visited states -------------------------===//
 #include "backends/statespace/StateStore.h"
 
+#include <algorithm>
 #include <cstring>
 
 using namespace netlift::statespace;
@@ -61,6 +62,8 @@ std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s) {
   }
   uint32_t idx = count++;
   table[i] = {h, idx};
-  arena.insert(arena.end(), s, s + words);
+  if ((idx & kBlockMask) == 0)
+    blocks.emplace_back((size_t(1) << kBlockShift) * words);
+  std::copy(s, s + words, &blocks.back()[size_t(idx & kBlockMask) * words]);
   return {idx, true};
 }

@@ -1,10 +1,11 @@
 //===- StateStore.h - the set of visited states -----------------*- C++ -*-===//
 //
-// Stores packed states contiguously in one flat arena (no per-state heap
-// allocation) and finds them through an open-addressing table of
-// (hash, index) pairs, so a state costs its packed words plus 8 bytes of
-// table (at most 16 at the table's lowest load). States are numbered in
-// insertion order; that number is the state's identity in every output.
+// Stores packed states in a flat arena of fixed-size blocks (no per-state
+// heap allocation, no copying when it grows, no doubling slack) and finds
+// them through an open-addressing table of (hash, index) pairs, so a state
+// costs its packed words plus 8 bytes of table (16 at the table's lowest
+// load). States are numbered in insertion order; that number is the
+// state's identity in every output.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_BACKENDS_STATESPACE_STATESTORE_H
@@ -26,13 +27,14 @@ public:
   std::pair<uint32_t, bool> insert(const uint64_t *state);
   /// The index of `state`, or UINT32_MAX when it is not stored.
   uint32_t find(const uint64_t *state) const;
-  const uint64_t *state(uint32_t i) const { return &arena[size_t(i) * words]; }
+  const uint64_t *state(uint32_t i) const {
+    return &blocks[i >> kBlockShift][size_t(i & kBlockMask) * words];
+  }
   uint32_t size() const { return count; }
   uint32_t wordsPerState() const { return words; }
   /// Bytes held (arena and table, by capacity).
   size_t bytes() const {
-    return arena.capacity() * sizeof(uint64_t) +
-           table.capacity() * sizeof(Bucket);
+    return blocks.size() * blockBytes() + table.capacity() * sizeof(Bucket);
   }
 
 private:
@@ -44,9 +46,18 @@ private:
   static uint32_t hashState(const uint64_t *s, uint32_t n);
   void grow();
 
+  // 2^16 states per block: large enough for huge pages, small enough that
+  // a small model does not reserve much.
+  static constexpr uint32_t kBlockShift = 16;
+  static constexpr uint32_t kBlockMask = (1u << kBlockShift) - 1;
+  size_t blockBytes() const {
+    return (size_t(1) << kBlockShift) * words * sizeof(uint64_t);
+  }
+  using Block = std::vector<uint64_t, HugePageAllocator<uint64_t>>;
+
   uint32_t words;
   uint32_t count = 0;
-  std::vector<uint64_t, HugePageAllocator<uint64_t>> arena;
+  std::vector<Block> blocks;
   std::vector<Bucket, HugePageAllocator<Bucket>> table;
 };
 
