@@ -63,7 +63,7 @@ std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s) {
   uint32_t idx = count++;
   table[i] = {h, idx};
   if ((idx & kBlockMask) == 0)
-    blocks.emplace_back((size_t(1) << kBlockShift) * words);
+    blocks.emplace_back(blockBytes());
   std::copy(s, s + words, &blocks.back()[size_t(idx & kBlockMask) * words]);
   return {idx, true};
 }

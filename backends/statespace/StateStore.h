@@ -22,6 +22,8 @@ namespace netlift::statespace {
 class StateStore {
 public:
   explicit StateStore(uint32_t wordsPerState) : words(wordsPerState) {}
+  StateStore(const StateStore &) = delete;
+  StateStore &operator=(const StateStore &) = delete;
 
   /// The index of `state`, and whether it was new.
   std::pair<uint32_t, bool> insert(const uint64_t *state);
@@ -32,7 +34,12 @@ public:
   }
   uint32_t size() const { return count; }
   uint32_t wordsPerState() const { return words; }
-  /// Bytes held (arena and table, by capacity).
+  /// Bytes the stored states occupy: their words plus the index table.
+  size_t storedBytes() const {
+    return size_t(count) * words * sizeof(uint64_t) +
+           table.capacity() * sizeof(Bucket);
+  }
+  /// Bytes held (arena blocks and table, by capacity).
   size_t bytes() const {
     return blocks.size() * blockBytes() + table.capacity() * sizeof(Bucket);
   }
@@ -53,7 +60,24 @@ private:
   size_t blockBytes() const {
     return (size_t(1) << kBlockShift) * words * sizeof(uint64_t);
   }
-  using Block = std::vector<uint64_t, HugePageAllocator<uint64_t>>;
+  /// Uninitialised storage for one block (pages are touched only as
+  /// states are written).
+  struct Block {
+    uint64_t *data;
+    size_t bytes;
+    explicit Block(size_t n)
+        : data(static_cast<uint64_t *>(detail::hugeAllocate(n))), bytes(n) {}
+    Block(Block &&o) noexcept : data(o.data), bytes(o.bytes) {
+      o.data = nullptr;
+    }
+    Block(const Block &) = delete;
+    ~Block() {
+      if (data)
+        detail::hugeDeallocate(data, bytes);
+    }
+    uint64_t &operator[](size_t i) { return data[i]; }
+    const uint64_t &operator[](size_t i) const { return data[i]; }
+  };
 
   uint32_t words;
   uint32_t count = 0;

@@ -188,7 +188,7 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
       "\"complete\":{}",
       states, r.edges, r.deadlocks.size(), r.deadStates, r.maxTokensInPlace,
       r.maxTokensPerMarking, r.seconds, states / secs, r.peakBytes,
-      states ? double(x.store().bytes()) / states : 0.0,
+      states ? double(x.store().storedBytes()) / states : 0.0,
       x.store().wordsPerState() * 8, r.complete ? "true" : "false");
   if (!r.limitReached.empty())
     os << ",\"limit\":\"" << r.limitReached << "\"";
