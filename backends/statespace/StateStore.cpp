@@ -2,7 +2,6 @@
 #include "backends/statespace/StateStore.h"
 
 #include <algorithm>
-#include <cstring>
 
 using namespace netlift::statespace;
 
@@ -33,6 +32,16 @@ void StateStore::grow() {
   table = std::move(fresh);
 }
 
+/// Word-wise equality; states are a few words, where a call to memcmp
+/// costs more than the comparison.
+static inline bool sameState(const uint64_t *a, const uint64_t *b,
+                             uint32_t n) {
+  for (uint32_t i = 0; i < n; ++i)
+    if (a[i] != b[i])
+      return false;
+  return true;
+}
+
 uint32_t StateStore::find(const uint64_t *s) const {
   if (table.empty())
     return kEmpty;
@@ -42,7 +51,7 @@ uint32_t StateStore::find(const uint64_t *s) const {
     const Bucket &b = table[i];
     if (b.index == kEmpty)
       return kEmpty;
-    if (b.hash == h && !memcmp(state(b.index), s, words * sizeof(uint64_t)))
+    if (b.hash == h && sameState(state(b.index), s, words))
       return b.index;
   }
 }
@@ -57,7 +66,7 @@ std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s) {
     Bucket &b = table[i];
     if (b.index == kEmpty)
       break;
-    if (b.hash == h && !memcmp(state(b.index), s, words * sizeof(uint64_t)))
+    if (b.hash == h && sameState(state(b.index), s, words))
       return {b.index, false};
   }
   uint32_t idx = count++;
