@@ -6,6 +6,7 @@ import lit.formats
 config.name = "netlift"
 config.test_format = lit.formats.ShTest(execute_external=False)
 config.suffixes = [".net", ".test"]
+# Helper scripts next to a test (x.test.py) are not tests.
 config.excludes = ["Inputs", "unit", "utils", "CMakeLists.txt", "lit.cfg.py",
                    "lit.site.cfg.py.in"]
 config.test_source_root = os.path.dirname(__file__)

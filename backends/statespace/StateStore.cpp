@@ -34,8 +34,7 @@ void StateStore::grow() {
 
 /// Word-wise equality; states are a few words, where a call to memcmp
 /// costs more than the comparison.
-static inline bool sameState(const uint64_t *a, const uint64_t *b,
-                             uint32_t n) {
+static inline bool sameState(const uint64_t *a, const uint64_t *b, uint32_t n) {
   for (uint32_t i = 0; i < n; ++i)
     if (a[i] != b[i])
       return false;

@@ -6,10 +6,12 @@
 // renamed into place, so an error never leaves a half-written file behind.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/mealy/MealyWriters.h"
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
 #include "frontends/FrontendRegistry.h"
+#include "frontends/kiss2/Kiss2Reader.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
@@ -46,6 +48,10 @@ static cl::SubCommand
     reachCmd("reach",
              "Explore the reachable states of a model (its top module, "
              "flattened)");
+static cl::SubCommand
+    mealyCmd("mealy",
+             "Read a Mealy machine (KISS2), check that it is deterministic, "
+             "and write it as KISS2 or DOT");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -58,6 +64,18 @@ static cl::opt<std::string> optInput(cl::Positional, cl::desc("<input>"),
                                      cl::sub(optCmd));
 static cl::opt<std::string> emitInput(cl::Positional, cl::desc("<input>"),
                                       cl::Required, cl::sub(emitCmd));
+static cl::opt<std::string> mealyInput(cl::Positional, cl::desc("<input>"),
+                                       cl::Required, cl::sub(mealyCmd));
+enum class MealyFormat { Kiss2, Dot };
+static cl::opt<MealyFormat> mealyTo(
+    "to", cl::desc("Output format"), cl::init(MealyFormat::Kiss2),
+    cl::values(clEnumValN(MealyFormat::Kiss2, "kiss2", "KISS2"),
+               clEnumValN(MealyFormat::Dot, "dot", "Graphviz (AALpy style)")),
+    cl::sub(mealyCmd), cl::cat(category));
+static cl::opt<bool> mealyInfo("info",
+                               cl::desc("Print signals, states and how "
+                                        "complete the machine is"),
+                               cl::sub(mealyCmd), cl::cat(category));
 static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
                                        cl::Required, cl::sub(reachCmd));
 
@@ -66,12 +84,12 @@ static cl::opt<std::string> outputFile("o",
                                        cl::value_desc("file"), cl::init("-"),
                                        cl::sub(translateCmd), cl::sub(optCmd),
                                        cl::sub(emitCmd), cl::sub(reachCmd),
-                                       cl::cat(category));
+                                       cl::sub(mealyCmd), cl::cat(category));
 static cl::opt<std::string>
     inputFormat("from", cl::desc("Input format (default: by file extension)"),
                 cl::value_desc("format"), cl::sub(translateCmd),
                 cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
-                cl::cat(category));
+                cl::sub(mealyCmd), cl::cat(category));
 
 static cl::opt<std::string> pipelineText("p",
                                          cl::desc("Pass pipeline, e.g. "
@@ -290,6 +308,61 @@ static int runEmit() {
              : 1;
 }
 
+static int runMealy() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  llvm::StringRef ext = llvm::sys::path::extension(mealyInput);
+  bool isKiss = inputFormat == "kiss2" ||
+                (inputFormat.empty() &&
+                 (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
+  if (!isKiss) {
+    llvm::errs() << "netlift: error: mealy reads KISS2 machines (.kiss2, or "
+                    "--from kiss2); extraction from PLC models is not "
+                    "implemented yet\n";
+    return 1;
+  }
+  auto bufOr = mealyInput == "-" ? llvm::MemoryBuffer::getSTDIN()
+                                 : llvm::MemoryBuffer::getFile(mealyInput);
+  if (!bufOr) {
+    llvm::errs() << "netlift: error: cannot read '" << mealyInput
+                 << "': " << bufOr.getError().message() << "\n";
+    return 1;
+  }
+  unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
+  automata::MealyMachine m;
+  if (!readKiss2(id, diag, m) || !m.checkDeterminism(diag))
+    return 1;
+  if (mealyInfo) {
+    std::vector<int64_t> missing = m.unspecifiedVectors();
+    int64_t incomplete = 0;
+    for (int64_t n : missing)
+      incomplete += n > 0;
+    llvm::errs() << "inputs: " << m.inputs.size()
+                 << ", outputs: " << m.outputs.size()
+                 << ", states: " << m.states.size()
+                 << ", transitions: " << m.transitions.size()
+                 << ", initial: " << m.states[m.initial] << "\n";
+    if (!missing.empty() && missing[0] < 0)
+      llvm::errs() << "completeness: not checked (more than 24 inputs)\n";
+    else if (incomplete == 0)
+      llvm::errs() << "completeness: complete\n";
+    else
+      for (size_t s = 0; s < missing.size(); ++s)
+        if (missing[s] > 0)
+          llvm::errs() << "state " << m.states[s] << ": " << missing[s]
+                       << " input vectors unspecified\n";
+  }
+  return writeOutput(outputFile,
+                     [&](llvm::raw_ostream &os) {
+                       if (mealyTo == MealyFormat::Kiss2)
+                         writeKiss2(m, os);
+                       else
+                         writeMealyDot(m, os);
+                     })
+             ? 0
+             : 1;
+}
+
 static bool parseSize(llvm::StringRef text, uint64_t &out) {
   uint64_t mult = 1;
   if (text.endswith_insensitive("k"))
@@ -469,7 +542,8 @@ int main(int argc, char **argv) {
           "[--print-after-all] [--stats]\n"
           "  netlift emit IN --to net|dot [-o OUT]\n"
           "  netlift reach IN [--format aut|dot|json] [-o OUT] [--summary "
-          "json] [--find EXPR]\n\n"
+          "json] [--find EXPR]\n"
+          "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
     return 1;
@@ -481,7 +555,9 @@ int main(int argc, char **argv) {
     return runEmit();
   if (reachCmd)
     return runReach();
+  if (mealyCmd)
+    return runMealy();
   llvm::errs() << "netlift: error: no subcommand given (translate, opt, "
-                  "emit, reach); see netlift --help\n";
+                  "emit, reach, mealy); see netlift --help\n";
   return 1;
 }
