@@ -12,6 +12,7 @@
 #include "backends/statespace/Writers.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/kiss2/Kiss2Reader.h"
+#include "ir/automata/Minimize.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
@@ -72,6 +73,15 @@ static cl::opt<MealyFormat> mealyTo(
     cl::values(clEnumValN(MealyFormat::Kiss2, "kiss2", "KISS2"),
                clEnumValN(MealyFormat::Dot, "dot", "Graphviz (AALpy style)")),
     cl::sub(mealyCmd), cl::cat(category));
+static cl::opt<bool> mealyMinimize("minimize",
+                                   cl::desc("Write the minimal equivalent "
+                                            "machine"),
+                                   cl::sub(mealyCmd), cl::cat(category));
+static cl::opt<std::string>
+    mealyEquiv("equiv",
+               cl::desc("Compare with machine B: exit 0 if equivalent, 3 and a "
+                        "shortest distinguishing input sequence if not"),
+               cl::value_desc("B"), cl::sub(mealyCmd), cl::cat(category));
 static cl::opt<bool> mealyInfo("info",
                                cl::desc("Print signals, states and how "
                                         "complete the machine is"),
@@ -311,27 +321,59 @@ static int runEmit() {
 static int runMealy() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
-  llvm::StringRef ext = llvm::sys::path::extension(mealyInput);
-  bool isKiss = inputFormat == "kiss2" ||
-                (inputFormat.empty() &&
-                 (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
-  if (!isKiss) {
-    llvm::errs() << "netlift: error: mealy reads KISS2 machines (.kiss2, or "
-                    "--from kiss2); extraction from PLC models is not "
-                    "implemented yet\n";
-    return 1;
-  }
-  auto bufOr = mealyInput == "-" ? llvm::MemoryBuffer::getSTDIN()
-                                 : llvm::MemoryBuffer::getFile(mealyInput);
-  if (!bufOr) {
-    llvm::errs() << "netlift: error: cannot read '" << mealyInput
-                 << "': " << bufOr.getError().message() << "\n";
-    return 1;
-  }
-  unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
+  auto read = [&](const std::string &path, automata::MealyMachine &m) {
+    llvm::StringRef ext = llvm::sys::path::extension(path);
+    bool isKiss = inputFormat == "kiss2" ||
+                  (inputFormat.empty() &&
+                   (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
+    if (!isKiss) {
+      llvm::errs() << "netlift: error: mealy reads KISS2 machines (.kiss2, "
+                      "or --from kiss2); extraction from PLC models is not "
+                      "implemented yet\n";
+      return false;
+    }
+    auto bufOr = path == "-" ? llvm::MemoryBuffer::getSTDIN()
+                             : llvm::MemoryBuffer::getFile(path);
+    if (!bufOr) {
+      llvm::errs() << "netlift: error: cannot read '" << path
+                   << "': " << bufOr.getError().message() << "\n";
+      return false;
+    }
+    unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
+    return readKiss2(id, diag, m) && m.checkDeterminism(diag);
+  };
   automata::MealyMachine m;
-  if (!readKiss2(id, diag, m) || !m.checkDeterminism(diag))
+  if (!read(mealyInput, m))
     return 1;
+  std::string why;
+  if (!mealyEquiv.empty()) {
+    automata::MealyMachine other;
+    if (!read(mealyEquiv, other))
+      return 1;
+    automata::EquivalenceResult r;
+    if (!automata::checkEquivalence(m, other, r, why)) {
+      llvm::errs() << "netlift: error: " << why << "\n";
+      return 1;
+    }
+    if (r.equivalent) {
+      llvm::outs() << "equivalent\n";
+      return 0;
+    }
+    llvm::outs() << "not equivalent: after the inputs";
+    for (const std::string &v : r.witness)
+      llvm::outs() << ' ' << v;
+    llvm::outs() << " the outputs are " << r.outputA << " and " << r.outputB
+                 << "\n";
+    return 3;
+  }
+  if (mealyMinimize) {
+    automata::MealyMachine minimal;
+    if (!automata::minimize(m, minimal, why)) {
+      llvm::errs() << "netlift: error: " << why << "\n";
+      return 1;
+    }
+    m = std::move(minimal);
+  }
   if (mealyInfo) {
     std::vector<int64_t> missing = m.unspecifiedVectors();
     int64_t incomplete = 0;

@@ -10,9 +10,19 @@ with tempfile.TemporaryDirectory() as tmp:
                             capture_output=True, text=True)
         r2 = subprocess.run([netlift, "mealy", a, "-o", b],
                             capture_output=True, text=True) if r1.returncode == 0 else r1
-        if r1.returncode or r2.returncode or open(a).read() != open(b).read():
-            print("FAIL", f, r1.stderr[:200], r2.stderr[:200])
+        ok = not (r1.returncode or r2.returncode) and open(a).read() == open(b).read()
+        # The minimised machine must be equivalent to the original.
+        mn = os.path.join(tmp, "min.kiss2")
+        r3 = subprocess.run([netlift, "mealy", os.path.join(root, f), "--minimize", "-o", mn],
+                            capture_output=True, text=True)
+        r4 = subprocess.run([netlift, "mealy", os.path.join(root, f), "--equiv", mn],
+                            capture_output=True, text=True) if r3.returncode == 0 else r3
+        ok = ok and r3.returncode == 0 and r4.returncode == 0 and r4.stdout == "equivalent\n"
+        if not ok:
+            print("FAIL", f, r1.stderr[:200], r2.stderr[:200], r3.stderr[:200], r4.stdout[:200])
             failed += 1
         else:
+            states = [l.split()[1] for l in open(mn) if l.startswith(".s ")][0]
+            print(f"ok {f}: minimal {states} states")
             passed += 1
 print(f"{passed} passed, {failed} failed")
