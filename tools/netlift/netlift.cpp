@@ -6,12 +6,14 @@
 // renamed into place, so an error never leaves a half-written file behind.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/enforce/Enforce.h"
 #include "backends/mealy/MealyWriters.h"
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/kiss2/Kiss2Reader.h"
+#include "ir/automata/EditAutomaton.h"
 #include "ir/automata/Minimize.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
@@ -53,6 +55,13 @@ static cl::SubCommand
     mealyCmd("mealy",
              "Read a Mealy machine (KISS2), check that it is deterministic, "
              "and write it as KISS2 or DOT");
+static cl::SubCommand eaCmd("edit-automaton",
+                            "Build the edit automaton of a Mealy specification "
+                            "(desynchronised reading of simultaneous input "
+                            "changes)");
+static cl::SubCommand
+    enforceCmd("enforce", "Enforce an observed I/O trace (CSV) against a Mealy "
+                          "specification and give a verdict");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -86,6 +95,19 @@ static cl::opt<bool> mealyInfo("info",
                                cl::desc("Print signals, states and how "
                                         "complete the machine is"),
                                cl::sub(mealyCmd), cl::cat(category));
+static cl::opt<std::string> eaInput(cl::Positional, cl::desc("<spec>"),
+                                    cl::Required, cl::sub(eaCmd));
+enum class EaFormat { Table, Dot };
+static cl::opt<EaFormat> eaTo(
+    "to", cl::desc("Output format"), cl::init(EaFormat::Table),
+    cl::values(clEnumValN(EaFormat::Table, "table", "one transition a line"),
+               clEnumValN(EaFormat::Dot, "dot",
+                          "Graphviz (suppressions dashed, intermediate "
+                          "states shaded)")),
+    cl::sub(eaCmd), cl::cat(category));
+static cl::list<std::string> enforceInputs(cl::Positional,
+                                           cl::desc("<spec> <trace.csv>"),
+                                           cl::OneOrMore, cl::sub(enforceCmd));
 static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
                                        cl::Required, cl::sub(reachCmd));
 
@@ -94,12 +116,14 @@ static cl::opt<std::string> outputFile("o",
                                        cl::value_desc("file"), cl::init("-"),
                                        cl::sub(translateCmd), cl::sub(optCmd),
                                        cl::sub(emitCmd), cl::sub(reachCmd),
-                                       cl::sub(mealyCmd), cl::cat(category));
+                                       cl::sub(mealyCmd), cl::sub(eaCmd),
+                                       cl::sub(enforceCmd), cl::cat(category));
 static cl::opt<std::string>
     inputFormat("from", cl::desc("Input format (default: by file extension)"),
                 cl::value_desc("format"), cl::sub(translateCmd),
                 cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
-                cl::sub(mealyCmd), cl::cat(category));
+                cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
+                cl::cat(category));
 
 static cl::opt<std::string> pipelineText("p",
                                          cl::desc("Pass pipeline, e.g. "
@@ -318,10 +342,12 @@ static int runEmit() {
              : 1;
 }
 
-static int runMealy() {
-  llvm::SourceMgr sm;
-  DiagEngine diag(sm);
-  auto read = [&](const std::string &path, automata::MealyMachine &m) {
+/// Reads a deterministic KISS2 machine (the specification formats of
+/// mealy, edit-automaton and enforce).
+static bool readMealy(const std::string &path, DiagEngine &diag,
+                      automata::MealyMachine &m) {
+  llvm::SourceMgr &sm = diag.sourceMgr();
+  {
     llvm::StringRef ext = llvm::sys::path::extension(path);
     bool isKiss = inputFormat == "kiss2" ||
                   (inputFormat.empty() &&
@@ -341,6 +367,14 @@ static int runMealy() {
     }
     unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
     return readKiss2(id, diag, m) && m.checkDeterminism(diag);
+  }
+}
+
+static int runMealy() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  auto read = [&](const std::string &path, automata::MealyMachine &m) {
+    return readMealy(path, diag, m);
   };
   automata::MealyMachine m;
   if (!read(mealyInput, m))
@@ -403,6 +437,93 @@ static int runMealy() {
                      })
              ? 0
              : 1;
+}
+
+static int runEditAutomaton() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  automata::MealyMachine m;
+  if (!readMealy(eaInput, diag, m))
+    return 1;
+  automata::EditAutomaton ea;
+  std::string why;
+  if (!automata::buildEditAutomaton(m, ea, why)) {
+    llvm::errs() << "netlift: error: " << why << "\n";
+    return 1;
+  }
+  return writeOutput(outputFile,
+                     [&](llvm::raw_ostream &os) {
+                       if (eaTo == EaFormat::Dot)
+                         writeEditAutomatonDot(ea, os);
+                       else
+                         writeEditAutomatonTable(ea, os);
+                     })
+             ? 0
+             : 1;
+}
+
+/// Exit 0 conform, 3 not conform, 1 error.
+static int runEnforce() {
+  if (enforceInputs.size() != 2) {
+    llvm::errs() << "netlift: error: enforce needs a specification and a "
+                    "trace: netlift enforce SPEC.kiss2 TRACE.csv\n";
+    return 1;
+  }
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  automata::MealyMachine m;
+  if (!readMealy(enforceInputs[0], diag, m))
+    return 1;
+  automata::EditAutomaton ea;
+  std::string why;
+  if (!automata::buildEditAutomaton(m, ea, why)) {
+    llvm::errs() << "netlift: error: " << why << "\n";
+    return 1;
+  }
+  auto bufOr = llvm::MemoryBuffer::getFile(enforceInputs[1]);
+  if (!bufOr) {
+    llvm::errs() << "netlift: error: cannot read '" << enforceInputs[1]
+                 << "': " << bufOr.getError().message() << "\n";
+    return 1;
+  }
+  unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
+  EnforceResult r;
+  std::string enforced;
+  std::vector<std::string> lines;
+  bool ok = enforceTrace(
+      ea, id, diag, [&](const std::string &v) { lines.push_back(v); }, r);
+  if (!ok)
+    return 1;
+  llvm::raw_ostream &out = llvm::outs();
+  for (const std::string &v : lines)
+    out << v << "\n";
+  if (outputFile != "-" && !writeOutput(outputFile, [&](llvm::raw_ostream &os) {
+        for (size_t i = 0; i < ea.signals.size(); ++i)
+          os << (i ? "," : "") << ea.signals[i];
+        os << "\n";
+        for (const std::string &v : lines) {
+          for (size_t i = 0; i < v.size(); ++i)
+            os << (i ? "," : "") << v[i];
+          os << "\n";
+        }
+      }))
+    return 1;
+  if (r.conform) {
+    out << "verdict: conform (" << r.vectors << " vectors read, "
+        << lines.size() << " emitted)\n";
+    return 0;
+  }
+  if (r.stopped) {
+    out << "verdict: not conform: stopped at vector " << r.stopIndex << " ("
+        << r.stopVector << "); expected one of:";
+    for (const std::string &e : r.expected)
+      out << ' ' << e;
+    out << "\n";
+  } else {
+    out << "verdict: not conform: the trace ends inside a desynchronised "
+           "reading (an intermediate state)\n";
+  }
+  return 3;
 }
 
 static bool parseSize(llvm::StringRef text, uint64_t &out) {
@@ -585,7 +706,9 @@ int main(int argc, char **argv) {
           "  netlift emit IN --to net|dot [-o OUT]\n"
           "  netlift reach IN [--format aut|dot|json] [-o OUT] [--summary "
           "json] [--find EXPR]\n"
-          "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n\n"
+          "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n"
+          "  netlift edit-automaton SPEC.kiss2 [--to table|dot] [-o OUT]\n"
+          "  netlift enforce SPEC.kiss2 TRACE.csv [-o ENFORCED.csv]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
     return 1;
@@ -599,7 +722,12 @@ int main(int argc, char **argv) {
     return runReach();
   if (mealyCmd)
     return runMealy();
+  if (eaCmd)
+    return runEditAutomaton();
+  if (enforceCmd)
+    return runEnforce();
   llvm::errs() << "netlift: error: no subcommand given (translate, opt, "
-                  "emit, reach, mealy); see netlift --help\n";
+                  "emit, reach, mealy, edit-automaton, enforce); see netlift "
+                  "--help\n";
   return 1;
 }

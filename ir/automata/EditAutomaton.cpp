@@ -1,0 +1,198 @@
+//===- EditAutomaton.cpp - edit automata over I/O vectors -----------------===//
+//
+// Step 1: one validation transition per (expanded) Mealy transition, the
+// event being the input vector followed by the output vector.
+//
+// Step 2: a transition s --in/out--> s' whose input vector differs in two
+// or more inputs from a vector `prev` with which s can be entered may be
+// read by the PLC in several scans. Every reading order is a chain
+// prev = r0 < r1 < ... < rk = in of input vectors, each ri flipping a
+// non-empty part of the bits still to change. While the plant already
+// shows `in`, the machine reacts to the partial readings: from s, r1 gives
+// q1 and outputs o1, observed as the vector in.o1; r2 from q1 gives q2, o2,
+// observed in.o2; ... The chain is admissible when the final reading of
+// `in` (from q_{k-1}) reaches s' with outputs `out`. For admissible chains
+// the observed intermediate vectors become suppression transitions into
+// intermediate states (one per machine state and observed vector under
+// this specified transition), and the final vector a validation into s'.
+// A chain whose first observed vector the specification itself validates
+// from s is already explained and adds nothing.
+//
+//===----------------------------------------------------------------------===//
+#include "ir/automata/EditAutomaton.h"
+
+#include <algorithm>
+#include <functional>
+#include <set>
+#include <tuple>
+
+using namespace netlift;
+using namespace netlift::automata;
+
+const EditTransition *EditAutomaton::step(uint32_t state,
+                                          const std::string &event) const {
+  auto it = index.find({state, event});
+  return it == index.end() ? nullptr : &transitions[it->second];
+}
+
+std::vector<std::string> EditAutomaton::expected(uint32_t state) const {
+  std::vector<std::string> out;
+  for (const EditTransition &t : transitions)
+    if (t.from == state)
+      out.push_back(t.event);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+bool EditAutomaton::add(const EditTransition &t) {
+  auto [it, fresh] = index.try_emplace({t.from, t.event}, transitions.size());
+  if (!fresh) {
+    const EditTransition &o = transitions[it->second];
+    return o.kind == t.kind && o.to == t.to;
+  }
+  transitions.push_back(t);
+  return true;
+}
+
+namespace {
+std::string bits(uint32_t v, size_t n) {
+  std::string s(n, '0');
+  for (size_t i = 0; i < n; ++i)
+    if ((v >> (n - 1 - i)) & 1)
+      s[i] = '1';
+  return s;
+}
+
+/// Concrete vectors of a cube ('-' expanded).
+std::vector<std::string> expand(const std::string &cube) {
+  std::vector<std::string> out{""};
+  for (char c : cube) {
+    std::vector<std::string> next;
+    for (const std::string &p : out) {
+      if (c != '1')
+        next.push_back(p + '0');
+      if (c != '0')
+        next.push_back(p + '1');
+    }
+    out = std::move(next);
+  }
+  return out;
+}
+
+struct Concrete {
+  uint32_t from, to;
+  uint32_t in;
+  std::string out; // concrete outputs
+};
+} // namespace
+
+bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
+                                           EditAutomaton &ea,
+                                           std::string &why) {
+  size_t n = m.inputs.size();
+  if (n > 16) {
+    why = "edit automata enumerate input vectors: at most 16 inputs";
+    return false;
+  }
+  ea = EditAutomaton();
+  ea.signals = m.inputs;
+  ea.signals.insert(ea.signals.end(), m.outputs.begin(), m.outputs.end());
+  ea.numInputs = n;
+  for (const std::string &s : m.states)
+    ea.states.push_back({s, true});
+  ea.initial = m.initial;
+
+  // The machine on concrete vectors: delta/lambda per (state, input).
+  std::vector<Concrete> rows;
+  std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> react;
+  for (const MealyTransition &t : m.transitions)
+    for (const std::string &in : expand(t.input))
+      for (const std::string &out : expand(t.output)) {
+        uint32_t v = uint32_t(std::stoul(in.empty() ? "0" : in, nullptr, 2));
+        react[{t.from, v}].push_back(rows.size());
+        rows.push_back({t.from, t.to, v, out});
+      }
+  // Step 1.
+  for (const Concrete &r : rows)
+    if (!ea.add({r.from, bits(r.in, n) + r.out, EditKind::Validate, r.to})) {
+      why = "the specification gives two reactions to " + bits(r.in, n) +
+            r.out + " in state '" + m.states[r.from] + "'";
+      return false;
+    }
+  // Vectors with which each state can be entered.
+  std::vector<std::set<uint32_t>> arrivals(m.states.size());
+  for (const Concrete &r : rows)
+    arrivals[r.to].insert(r.in);
+
+  // Step 2.
+  std::map<std::tuple<size_t, uint32_t, std::string>, uint32_t> inter;
+  for (size_t ri = 0; ri < rows.size(); ++ri) {
+    const Concrete &tr = rows[ri];
+    for (uint32_t prev : arrivals[tr.from]) {
+      uint32_t diff = prev ^ tr.in;
+      if (__builtin_popcount(diff) < 2)
+        continue;
+      std::string target = bits(tr.in, n) + tr.out;
+      // Depth-first over reading chains; `path` holds the observed
+      // intermediate steps (machine state, observed vector).
+      std::vector<std::pair<uint32_t, std::string>> path;
+      std::function<void(uint32_t, uint32_t)> explore = [&](uint32_t q,
+                                                            uint32_t read) {
+        uint32_t rest = (read ^ tr.in) & diff;
+        // Read everything left: admissible if it reaches the target.
+        if (!path.empty()) {
+          auto it = react.find({q, tr.in});
+          if (it != react.end())
+            for (size_t k : it->second)
+              if (rows[k].to == tr.to && rows[k].out == tr.out) {
+                // A first observed vector the specification already
+                // validates from this state is explained by it: the
+                // chain adds nothing (and would break determinism).
+                const EditTransition *known =
+                    ea.step(tr.from, path.front().second);
+                if (known && known->kind == EditKind::Validate)
+                  break;
+                // Materialise the chain.
+                uint32_t from = tr.from;
+                for (auto &[mq, vec] : path) {
+                  auto key = std::make_tuple(ri, mq, vec);
+                  auto [slot, fresh] = inter.try_emplace(key, ea.states.size());
+                  if (fresh)
+                    ea.states.push_back({m.states[tr.from] + ">" +
+                                             m.states[tr.to] + "#" +
+                                             std::to_string(ea.states.size()),
+                                         false});
+                  if (!ea.add({from, vec, EditKind::Suppress, slot->second})) {
+                    why = "desynchronisation of " + target + " from state '" +
+                          m.states[tr.from] +
+                          "' makes the automaton nondeterministic on " + vec;
+                    return;
+                  }
+                  from = slot->second;
+                }
+                if (!ea.add({from, target, EditKind::Validate, tr.to}))
+                  why = "nondeterministic validation of " + target;
+                break;
+              }
+        }
+        // Read a non-empty part of the remaining changes, not all.
+        for (uint32_t sub = (rest - 1) & rest; sub; sub = (sub - 1) & rest) {
+          uint32_t r2 = read ^ sub;
+          auto it = react.find({q, r2});
+          if (it == react.end())
+            continue;
+          for (size_t k : it->second) {
+            path.push_back({rows[k].to, bits(tr.in, n) + rows[k].out});
+            explore(rows[k].to, r2);
+            path.pop_back();
+          }
+        }
+      };
+      explore(tr.from, prev);
+      if (!why.empty())
+        return false;
+    }
+  }
+  return true;
+}
