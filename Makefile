@@ -51,6 +51,7 @@ sanitize-test: setup $(ASAN_BUILD)/CMakeCache.txt
 bench: build
 	bash bench/run.sh $(BUILD)
 	bash bench/reach-bench.sh $(BUILD)
+	bash bench/enforce-bench.sh $(BUILD)
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

@@ -23,13 +23,30 @@ bool netlift::enforceTrace(const EditAutomaton &ea, unsigned bufferID,
   bool header = true;
   uint32_t state = ea.initial;
   std::string vec(ea.signals.size(), '0');
+  // A dense (state, event) -> transition table when it is small enough:
+  // the per-vector cost is then an index computation.
+  size_t k = ea.signals.size();
+  std::vector<int32_t> table;
+  if (k <= 20 && (ea.states.size() << k) <= (size_t(1) << 24)) {
+    table.assign(ea.states.size() << k, -1);
+    for (size_t i = 0; i < ea.transitions.size(); ++i) {
+      const EditTransition &t = ea.transitions[i];
+      uint32_t code = 0;
+      for (char c : t.event)
+        code = (code << 1) | uint32_t(c == '1');
+      table[(size_t(t.from) << k) | code] = int32_t(i);
+    }
+  }
+  llvm::SmallVector<StringRef, 16> cells;
   while (!rest.empty()) {
     auto [raw, next] = rest.split('\n');
     rest = next;
-    StringRef line = raw.rtrim("\r");
-    if (line.trim().empty())
+    StringRef line = raw;
+    if (!line.empty() && line.back() == '\r')
+      line = line.drop_back();
+    if (line.empty() || line.trim().empty())
       continue;
-    llvm::SmallVector<StringRef, 16> cells;
+    cells.clear();
     line.split(cells, ',');
     if (header) {
       header = false;
@@ -64,20 +81,31 @@ bool netlift::enforceTrace(const EditAutomaton &ea, unsigned bufferID,
                                 llvm::Twine(numColumns));
       return false;
     }
+    uint32_t code = 0;
     for (size_t i = 0; i < column.size(); ++i) {
-      StringRef v = cells[column[i]].trim();
-      if (v != "0" && v != "1") {
+      StringRef v = cells[column[i]];
+      // The common case, a bare digit, without trimming.
+      if (v.size() != 1)
+        v = v.trim();
+      if (v.size() != 1 || (v[0] != '0' && v[0] != '1')) {
         diag.error(loc(cells[column[i]]), "expected 0 or 1 for '" +
                                               ea.signals[i] + "', found '" + v +
                                               "'");
         return false;
       }
       vec[i] = v[0];
+      code = (code << 1) | uint32_t(v[0] == '1');
     }
     ++r.vectors;
     if (r.stopped)
       continue; // read on to check the rest of the file is well formed
-    const EditTransition *t = ea.step(state, vec);
+    const EditTransition *t;
+    if (!table.empty()) {
+      int32_t ti = table[(size_t(state) << k) | code];
+      t = ti < 0 ? nullptr : &ea.transitions[ti];
+    } else {
+      t = ea.step(state, vec);
+    }
     if (!t) {
       r.stopped = true;
       r.stopIndex = r.vectors;

@@ -488,29 +488,43 @@ static int runEnforce() {
   }
   unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
   EnforceResult r;
-  std::string enforced;
-  std::vector<std::string> lines;
-  bool ok = enforceTrace(
-      ea, id, diag, [&](const std::string &v) { lines.push_back(v); }, r);
-  if (!ok)
-    return 1;
+  uint64_t emitted = 0;
   llvm::raw_ostream &out = llvm::outs();
-  for (const std::string &v : lines)
-    out << v << "\n";
-  if (outputFile != "-" && !writeOutput(outputFile, [&](llvm::raw_ostream &os) {
-        for (size_t i = 0; i < ea.signals.size(); ++i)
-          os << (i ? "," : "") << ea.signals[i];
-        os << "\n";
-        for (const std::string &v : lines) {
-          for (size_t i = 0; i < v.size(); ++i)
-            os << (i ? "," : "") << v[i];
-          os << "\n";
-        }
-      }))
+  // Stream: each enforced vector is written as it is emitted, to stdout and
+  // to -o (a temporary renamed into place at the end).
+  auto run = [&](llvm::raw_ostream *csv) {
+    if (csv) {
+      for (size_t i = 0; i < ea.signals.size(); ++i)
+        *csv << (i ? "," : "") << ea.signals[i];
+      *csv << "\n";
+    }
+    return enforceTrace(
+        ea, id, diag,
+        [&](const std::string &v) {
+          ++emitted;
+          out << v << "\n";
+          if (csv) {
+            for (size_t i = 0; i < v.size(); ++i)
+              *csv << (i ? "," : "") << v[i];
+            *csv << "\n";
+          }
+        },
+        r);
+  };
+  bool ok = true;
+  if (outputFile == "-")
+    ok = run(nullptr);
+  else if (!writeOutput(outputFile,
+                        [&](llvm::raw_ostream &os) { ok = run(&os); }))
     return 1;
+  if (!ok) {
+    if (outputFile != "-")
+      llvm::sys::fs::remove(outputFile);
+    return 1;
+  }
   if (r.conform) {
-    out << "verdict: conform (" << r.vectors << " vectors read, "
-        << lines.size() << " emitted)\n";
+    out << "verdict: conform (" << r.vectors << " vectors read, " << emitted
+        << " emitted)\n";
     return 0;
   }
   if (r.stopped) {
