@@ -104,18 +104,9 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
     if (!fe)
       return false;
     allNet &= fe->id == "net";
-    auto bufOr = path == "-" ? llvm::MemoryBuffer::getSTDIN()
-                             : llvm::MemoryBuffer::getFile(path);
-    if (!bufOr) {
-      llvm::errs() << "netlift: error: cannot read '" << path
-                   << "': " << bufOr.getError().message() << "\n";
+    unsigned id = addInputFile(diag.sourceMgr(), path);
+    if (!id)
       return false;
-    }
-    std::unique_ptr<llvm::MemoryBuffer> buf = std::move(*bufOr);
-    if (path == "-")
-      buf = llvm::MemoryBuffer::getMemBufferCopy(buf->getBuffer(), "<stdin>");
-    unsigned id =
-        diag.sourceMgr().AddNewSourceBuffer(std::move(buf), llvm::SMLoc());
     if (!fe->load(id, diag, design))
       return false;
   }

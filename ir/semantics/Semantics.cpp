@@ -29,6 +29,39 @@ struct EvalError {
   std::string message;
   llvm::SMLoc loc;
 };
+
+/// Every maximal subset of `cand` (kept in `cand` order) that `fits`
+/// accepts. `fits` must be monotone: a subset of a fitting set fits.
+std::vector<std::vector<uint32_t>>
+maximalSubsets(const std::vector<uint32_t> &cand,
+               const std::function<bool(const std::vector<uint32_t> &)> &fits) {
+  std::vector<std::vector<uint32_t>> maximal;
+  std::vector<uint32_t> chosen;
+  std::function<void(size_t)> choose = [&](size_t i) {
+    if (i == cand.size()) {
+      for (auto &mx : maximal)
+        if (std::includes(mx.begin(), mx.end(), chosen.begin(), chosen.end()))
+          return;
+      // Drop earlier choices this one contains.
+      maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
+                                   [&](const std::vector<uint32_t> &mx) {
+                                     return std::includes(chosen.begin(),
+                                                          chosen.end(),
+                                                          mx.begin(), mx.end());
+                                   }),
+                    maximal.end());
+      maximal.push_back(chosen);
+      return;
+    }
+    chosen.push_back(cand[i]);
+    if (fits(chosen))
+      choose(i + 1);
+    chosen.pop_back();
+    choose(i + 1);
+  };
+  choose(0);
+  return maximal;
+}
 } // namespace
 
 struct Semantics::Impl {
@@ -461,35 +494,12 @@ struct Semantics::Impl {
       return;
     }
     // Every maximal subset of the candidates that fits with the step.
-    std::vector<std::vector<uint32_t>> maximal;
-    std::vector<uint32_t> chosen;
-    std::function<void(size_t)> choose = [&](size_t i) {
-      if (i == cand.size()) {
-        for (auto &mx : maximal)
-          if (std::includes(mx.begin(), mx.end(), chosen.begin(), chosen.end()))
-            return;
-        // Remove earlier choices this one contains.
-        maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
-                                     [&](const std::vector<uint32_t> &mx) {
-                                       return std::includes(
-                                           chosen.begin(), chosen.end(),
-                                           mx.begin(), mx.end());
-                                     }),
-                      maximal.end());
-        maximal.push_back(chosen);
-        return;
-      }
-      std::vector<uint32_t> with = step;
-      with.insert(with.end(), chosen.begin(), chosen.end());
-      with.push_back(cand[i]);
-      if (jointlyEnabled(with)) {
-        chosen.push_back(cand[i]);
-        choose(i + 1);
-        chosen.pop_back();
-      }
-      choose(i + 1);
-    };
-    choose(0);
+    std::vector<std::vector<uint32_t>> maximal =
+        maximalSubsets(cand, [&](const std::vector<uint32_t> &chosen) {
+          std::vector<uint32_t> with = step;
+          with.insert(with.end(), chosen.begin(), chosen.end());
+          return jointlyEnabled(with);
+        });
     for (auto &mx : maximal) {
       std::vector<uint32_t> next = step;
       next.insert(next.end(), mx.begin(), mx.end());
@@ -764,30 +774,10 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
         for (uint32_t t : spont)
           seeds.push_back({t});
       } else if (!spont.empty()) {
-        std::vector<uint32_t> cur;
-        std::vector<std::vector<uint32_t>> maximal;
-        std::function<void(size_t)> pick = [&](size_t i) {
-          if (i == spont.size()) {
-            for (auto &mx : maximal)
-              if (std::includes(mx.begin(), mx.end(), cur.begin(), cur.end()))
-                return;
-            maximal.erase(std::remove_if(maximal.begin(), maximal.end(),
-                                         [&](const std::vector<uint32_t> &mx) {
-                                           return std::includes(
-                                               cur.begin(), cur.end(),
-                                               mx.begin(), mx.end());
-                                         }),
-                          maximal.end());
-            maximal.push_back(cur);
-            return;
-          }
-          cur.push_back(spont[i]);
-          if (I.jointlyEnabled(cur))
-            pick(i + 1);
-          cur.pop_back();
-          pick(i + 1);
-        };
-        pick(0);
+        std::vector<std::vector<uint32_t>> maximal =
+            maximalSubsets(spont, [&](const std::vector<uint32_t> &cur) {
+              return I.jointlyEnabled(cur);
+            });
         seeds = std::move(maximal);
       }
       if (std::find(I.present.begin(), I.present.end(), 1) != I.present.end())

@@ -1,6 +1,7 @@
 //===- Diagnostics.cpp - file:line:col diagnostics ------------------------===//
 #include "ir/support/Diagnostics.h"
 
+#include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/WithColor.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -64,4 +65,18 @@ void DiagEngine::warning(llvm::SMLoc loc, const llvm::Twine &msg) {
 void DiagEngine::note(llvm::SMLoc loc, const llvm::Twine &msg) {
   if (!suppressing)
     print(loc, llvm::SourceMgr::DK_Note, msg);
+}
+
+unsigned netlift::addInputFile(llvm::SourceMgr &sm, llvm::StringRef path) {
+  auto bufOr = path == "-" ? llvm::MemoryBuffer::getSTDIN()
+                           : llvm::MemoryBuffer::getFile(path);
+  if (!bufOr) {
+    llvm::errs() << "netlift: error: cannot read '" << path
+                 << "': " << bufOr.getError().message() << "\n";
+    return 0;
+  }
+  std::unique_ptr<llvm::MemoryBuffer> buf = std::move(*bufOr);
+  if (path == "-")
+    buf = llvm::MemoryBuffer::getMemBufferCopy(buf->getBuffer(), "<stdin>");
+  return sm.AddNewSourceBuffer(std::move(buf), llvm::SMLoc());
 }

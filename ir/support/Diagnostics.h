@@ -16,6 +16,11 @@
 
 namespace netlift {
 
+/// Reads `path` ("-": standard input, named "<stdin>") into the SourceMgr
+/// so diagnostics can point into it. Returns the buffer id, or 0 after
+/// printing `netlift: error: cannot read ...`.
+unsigned addInputFile(llvm::SourceMgr &sm, llvm::StringRef path);
+
 class DiagEngine {
 public:
   explicit DiagEngine(llvm::SourceMgr &sm) : sm(sm) {}

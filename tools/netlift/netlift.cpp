@@ -358,14 +358,9 @@ static bool readMealy(const std::string &path, DiagEngine &diag,
                       "implemented yet\n";
       return false;
     }
-    auto bufOr = path == "-" ? llvm::MemoryBuffer::getSTDIN()
-                             : llvm::MemoryBuffer::getFile(path);
-    if (!bufOr) {
-      llvm::errs() << "netlift: error: cannot read '" << path
-                   << "': " << bufOr.getError().message() << "\n";
+    unsigned id = addInputFile(sm, path);
+    if (!id)
       return false;
-    }
-    unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
     return readKiss2(id, diag, m) && m.checkDeterminism(diag);
   }
 }
@@ -480,13 +475,9 @@ static int runEnforce() {
     llvm::errs() << "netlift: error: " << why << "\n";
     return 1;
   }
-  auto bufOr = llvm::MemoryBuffer::getFile(enforceInputs[1]);
-  if (!bufOr) {
-    llvm::errs() << "netlift: error: cannot read '" << enforceInputs[1]
-                 << "': " << bufOr.getError().message() << "\n";
+  unsigned id = addInputFile(sm, enforceInputs[1]);
+  if (!id)
     return 1;
-  }
-  unsigned id = sm.AddNewSourceBuffer(std::move(*bufOr), llvm::SMLoc());
   EnforceResult r;
   uint64_t emitted = 0;
   llvm::raw_ostream &out = llvm::outs();
