@@ -63,6 +63,13 @@ std::vector<Attribute> attributes(const sem::Semantics &sem) {
   return out;
 }
 
+std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
+  std::vector<char> flags(x.store().size(), 0);
+  for (uint32_t d : r.deadlocks)
+    flags[d] = 1;
+  return flags;
+}
+
 int64_t valueOf(sem::Semantics &sem, const Attribute &a,
                 const uint64_t *state) {
   if (a.def) {
@@ -99,9 +106,7 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
                                     const ExploreResult &r,
                                     llvm::raw_ostream &os) {
   std::vector<Attribute> attrs = attributes(sem);
-  std::vector<char> isDeadlock(x.store().size(), 0);
-  for (uint32_t d : r.deadlocks)
-    isDeadlock[d] = 1;
+  std::vector<char> isDeadlock = deadlockFlags(x, r);
   llvm::json::OStream j(os, 1);
   j.object([&] {
     j.attribute("model", sem.module().name);
@@ -151,9 +156,7 @@ void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
                                          const ExploreResult &r,
                                          llvm::raw_ostream &os) {
   std::vector<Attribute> attrs = attributes(sem);
-  std::vector<char> isDeadlock(x.store().size(), 0);
-  for (uint32_t d : r.deadlocks)
-    isDeadlock[d] = 1;
+  std::vector<char> isDeadlock = deadlockFlags(x, r);
   os << "id,deadlock";
   for (const Attribute &a : attrs)
     os << ',' << csvField(a.name);

@@ -56,13 +56,6 @@ bool EditAutomaton::add(const EditTransition &t) {
 }
 
 namespace {
-std::string bits(uint32_t v, size_t n) {
-  std::string s(n, '0');
-  for (size_t i = 0; i < n; ++i)
-    if ((v >> (n - 1 - i)) & 1)
-      s[i] = '1';
-  return s;
-}
 
 /// Concrete vectors of a cube ('-' expanded).
 std::vector<std::string> expand(const std::string &cube) {
@@ -115,8 +108,9 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
       }
   // Step 1.
   for (const Concrete &r : rows)
-    if (!ea.add({r.from, bits(r.in, n) + r.out, EditKind::Validate, r.to})) {
-      why = "the specification gives two reactions to " + bits(r.in, n) +
+    if (!ea.add(
+            {r.from, vectorBits(r.in, n) + r.out, EditKind::Validate, r.to})) {
+      why = "the specification gives two reactions to " + vectorBits(r.in, n) +
             r.out + " in state '" + m.states[r.from] + "'";
       return false;
     }
@@ -133,7 +127,7 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
       uint32_t diff = prev ^ tr.in;
       if (__builtin_popcount(diff) < 2)
         continue;
-      std::string target = bits(tr.in, n) + tr.out;
+      std::string target = vectorBits(tr.in, n) + tr.out;
       // Depth-first over reading chains; `path` holds the observed
       // intermediate steps (machine state, observed vector).
       std::vector<std::pair<uint32_t, std::string>> path;
@@ -183,7 +177,7 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
           if (it == react.end())
             continue;
           for (size_t k : it->second) {
-            path.push_back({rows[k].to, bits(tr.in, n) + rows[k].out});
+            path.push_back({rows[k].to, vectorBits(tr.in, n) + rows[k].out});
             explore(rows[k].to, r2);
             path.pop_back();
           }

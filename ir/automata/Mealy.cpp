@@ -6,6 +6,14 @@
 using namespace netlift;
 using namespace netlift::automata;
 
+std::string netlift::automata::vectorBits(uint32_t v, size_t n) {
+  std::string s(n, '0');
+  for (size_t i = 0; i < n; ++i)
+    if ((v >> (n - 1 - i)) & 1)
+      s[i] = '1';
+  return s;
+}
+
 uint32_t MealyMachine::stateIndex(const std::string &s) {
   auto it = std::find(states.begin(), states.end(), s);
   if (it != states.end())

@@ -29,6 +29,9 @@ struct MealyTransition {
   llvm::SMLoc loc;
 };
 
+/// The input vector `v` (most significant bit first) as n 0/1 characters.
+std::string vectorBits(uint32_t v, size_t n);
+
 class MealyMachine {
 public:
   std::string name;

@@ -28,14 +28,6 @@ struct Completed {
   }
 };
 
-std::string vectorString(uint32_t v, size_t n) {
-  std::string s(n, '0');
-  for (size_t i = 0; i < n; ++i)
-    if ((v >> (n - 1 - i)) & 1)
-      s[i] = '1';
-  return s;
-}
-
 bool matches(const std::string &cube, uint32_t v) {
   size_t n = cube.size();
   for (size_t i = 0; i < n; ++i) {
@@ -141,7 +133,7 @@ bool netlift::automata::minimize(const MealyMachine &m, MealyMachine &out,
       if (c.out[k] == 0)
         continue; // unspecified: stays unspecified in the quotient
       MealyTransition t;
-      t.input = vectorString(v, m.inputs.size());
+      t.input = vectorBits(v, m.inputs.size());
       t.from = uint32_t(newIndex[b]);
       t.to = visit(c.next[k]);
       t.output = c.outputs[c.out[k]];
@@ -201,10 +193,10 @@ bool netlift::automata::checkEquivalence(const MealyMachine &a,
         r.equivalent = false;
         r.outputA = ox;
         r.outputB = oy;
-        std::vector<std::string> seq{vectorString(v, a.inputs.size())};
+        std::vector<std::string> seq{vectorBits(v, a.inputs.size())};
         for (int64_t p = int64_t(i); parent[order[p]].first >= 0;
              p = parent[order[p]].first)
-          seq.push_back(vectorString(parent[order[p]].second, a.inputs.size()));
+          seq.push_back(vectorBits(parent[order[p]].second, a.inputs.size()));
         std::reverse(seq.begin(), seq.end());
         r.witness = std::move(seq);
         return true;
