@@ -77,31 +77,76 @@ bool netlift::automata::minimize(const MealyMachine &m, MealyMachine &out,
   Completed c;
   complete(m, c);
   uint32_t N = c.numStates, K = c.numLetters;
-  // Moore-style refinement: split blocks by the signature (outputs, blocks
-  // of successors) until stable.
-  std::vector<uint32_t> block(N, 0);
+  // Hopcroft's partition refinement, O(k n log n) for k input vectors:
+  // start from the classes of equal output rows, then split every class
+  // by its predecessors in a splitter class, always queueing the smaller
+  // half.
+  std::vector<uint32_t> block(N);
+  std::vector<std::vector<uint32_t>> members;
   {
     std::map<std::vector<uint32_t>, uint32_t> ids;
     for (uint32_t s = 0; s < N; ++s) {
       std::vector<uint32_t> sig(c.out.begin() + size_t(s) * K,
                                 c.out.begin() + size_t(s + 1) * K);
-      block[s] = ids.try_emplace(sig, ids.size()).first->second;
+      auto [it, fresh] = ids.try_emplace(sig, members.size());
+      if (fresh)
+        members.emplace_back();
+      block[s] = it->second;
+      members[it->second].push_back(s);
     }
   }
-  for (;;) {
-    std::map<std::vector<uint32_t>, uint32_t> ids;
-    std::vector<uint32_t> fresh(N);
-    for (uint32_t s = 0; s < N; ++s) {
-      std::vector<uint32_t> sig{block[s]};
-      for (uint32_t v = 0; v < K; ++v)
-        sig.push_back(block[c.next[size_t(s) * K + v]]);
-      fresh[s] = ids.try_emplace(sig, ids.size()).first->second;
+  // pred[v][t]: states that go to t on input vector v.
+  std::vector<std::vector<std::vector<uint32_t>>> pred(
+      K, std::vector<std::vector<uint32_t>>(N));
+  for (uint32_t s = 0; s < N; ++s)
+    for (uint32_t v = 0; v < K; ++v)
+      pred[v][c.next[size_t(s) * K + v]].push_back(s);
+  std::vector<std::vector<char>> queued;
+  std::deque<std::pair<uint32_t, uint32_t>> work;
+  for (uint32_t b = 0; b < members.size(); ++b) {
+    queued.emplace_back(K, 1);
+    for (uint32_t v = 0; v < K; ++v)
+      work.push_back({b, v});
+  }
+  std::vector<uint32_t> marked(N, 0), count;
+  uint32_t stamp = 0;
+  while (!work.empty()) {
+    auto [splitter, v] = work.front();
+    work.pop_front();
+    queued[splitter][v] = 0;
+    ++stamp;
+    std::vector<uint32_t> hit, touched;
+    for (uint32_t t : members[splitter])
+      for (uint32_t p : pred[v][t])
+        if (marked[p] != stamp) {
+          marked[p] = stamp;
+          hit.push_back(p);
+        }
+    count.assign(members.size(), 0);
+    for (uint32_t p : hit)
+      if (count[block[p]]++ == 0)
+        touched.push_back(block[p]);
+    for (uint32_t y : touched) {
+      if (count[y] == members[y].size())
+        continue; // the whole class goes into the splitter: no split
+      uint32_t z = members.size();
+      members.emplace_back();
+      queued.emplace_back(K, 0);
+      std::vector<uint32_t> keep;
+      for (uint32_t s : members[y])
+        (marked[s] == stamp ? members[z] : keep).push_back(s);
+      members[y] = std::move(keep);
+      for (uint32_t s : members[z])
+        block[s] = z;
+      for (uint32_t w = 0; w < K; ++w) {
+        uint32_t add =
+            queued[y][w] || members[z].size() <= members[y].size() ? z : y;
+        if (!queued[add][w]) {
+          queued[add][w] = 1;
+          work.push_back({add, w});
+        }
+      }
     }
-    bool stable =
-        ids.size() == std::set<uint32_t>(block.begin(), block.end()).size();
-    block = std::move(fresh);
-    if (stable)
-      break;
   }
   // Build the quotient, reachable part from the initial state, in BFS
   // order. The sink is never a target of a specified row, so it only
