@@ -11,6 +11,7 @@
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
+#include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/kiss2/Kiss2Reader.h"
 #include "ir/automata/EditAutomaton.h"
@@ -62,6 +63,11 @@ static cl::SubCommand eaCmd("edit-automaton",
 static cl::SubCommand
     enforceCmd("enforce", "Enforce an observed I/O trace (CSV) against a Mealy "
                           "specification and give a verdict");
+static cl::SubCommand
+    srCmd("sr",
+          "Structural reasoning over a model's state space: regions of "
+          "selected attributes, attribute graph, densities, necklaces, key "
+          "attributes");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -108,22 +114,41 @@ static cl::opt<EaFormat> eaTo(
 static cl::list<std::string> enforceInputs(cl::Positional,
                                            cl::desc("<spec> <trace.csv>"),
                                            cl::OneOrMore, cl::sub(enforceCmd));
+static cl::opt<std::string> srInput(cl::Positional, cl::desc("<model>"),
+                                    cl::Required, cl::sub(srCmd));
+static cl::list<std::string>
+    srAttrs("attr",
+            cl::desc("An attribute: a place or Boolean signal NAME, or "
+                     "NAME=PREDICATE (repeatable)"),
+            cl::value_desc("NAME[=PREDICATE]"), cl::sub(srCmd),
+            cl::cat(category));
+static cl::opt<bool> srAllRegions("all-regions",
+                                  cl::desc("Also list regions that never "
+                                           "occur"),
+                                  cl::sub(srCmd), cl::cat(category));
+static cl::opt<std::string> srReport("report",
+                                     cl::desc("Report format: text or json"),
+                                     cl::init("text"), cl::sub(srCmd),
+                                     cl::cat(category));
+static cl::opt<std::string> srAg("ag",
+                                 cl::desc("Write the attribute graph as DOT"),
+                                 cl::value_desc("FILE.dot"), cl::sub(srCmd),
+                                 cl::cat(category));
 static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
                                        cl::Required, cl::sub(reachCmd));
 
-static cl::opt<std::string> outputFile("o",
-                                       cl::desc("Output file ('-' = stdout)"),
-                                       cl::value_desc("file"), cl::init("-"),
-                                       cl::sub(translateCmd), cl::sub(optCmd),
-                                       cl::sub(emitCmd), cl::sub(reachCmd),
-                                       cl::sub(mealyCmd), cl::sub(eaCmd),
-                                       cl::sub(enforceCmd), cl::cat(category));
+static cl::opt<std::string>
+    outputFile("o", cl::desc("Output file ('-' = stdout)"),
+               cl::value_desc("file"), cl::init("-"), cl::sub(translateCmd),
+               cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
+               cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
+               cl::sub(srCmd), cl::cat(category));
 static cl::opt<std::string>
     inputFormat("from", cl::desc("Input format (default: by file extension)"),
                 cl::value_desc("format"), cl::sub(translateCmd),
                 cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
                 cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
-                cl::cat(category));
+                cl::sub(srCmd), cl::cat(category));
 
 static cl::opt<std::string> pipelineText("p",
                                          cl::desc("Pass pipeline, e.g. "
@@ -547,6 +572,113 @@ static bool parseSize(llvm::StringRef text, uint64_t &out) {
   return true;
 }
 
+/// The flat, discrete module an exploration starts from: the design's top
+/// (or `topName`), flattened when it has instances. Null after reporting.
+static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
+                                  llvm::StringRef topName,
+                                  llvm::StringRef command) {
+  std::string why;
+  net::Module *top = design.findTop(topName, why);
+  if (!top) {
+    llvm::errs() << "netlift: error: " << command << ": " << why << "\n";
+    return nullptr;
+  }
+  if (!top->instances.empty()) {
+    PassManager pm;
+    std::string pipeline = "flatten{top=" + top->name.str() + "}";
+    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag) ||
+        !net::verifyDesign(design, diag))
+      return nullptr;
+    top = design.modules[0].get();
+  }
+  if (net::hasHybridParts(*top)) {
+    llvm::errs() << "netlift: error: " << command << ": module '" << top->name
+                 << "' has real variables or flows; run the discretise "
+                    "pass first\n";
+    return nullptr;
+  }
+  return top;
+}
+
+/// `netlift sr`: explores the model and classifies every state by the
+/// selected attributes (docs/sr.md).
+static int runSr() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  net::Design design;
+  std::vector<std::string> inputs{srInput};
+  if (!loadInputs(inputs, inputFormat, diag, design))
+    return 1;
+  net::Module *top = explorableTop(design, diag, "", "sr");
+  if (!top)
+    return 1;
+  if (srAttrs.empty() || srAttrs.size() > 20) {
+    llvm::errs() << "netlift: error: sr needs 1 to 20 attributes (--attr)\n";
+    return 1;
+  }
+  if (srReport != "text" && srReport != "json") {
+    llvm::errs() << "netlift: error: --report is text or json\n";
+    return 1;
+  }
+  std::vector<std::string> names;
+  std::vector<net::Expr *> preds;
+  for (const std::string &a : srAttrs) {
+    auto [name, pred] = llvm::StringRef(a).split('=');
+    name = name.trim();
+    llvm::StringRef text = pred.empty() ? name : pred.trim();
+    unsigned id = sm.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(text, "<attr " + name.str() + ">"),
+        llvm::SMLoc());
+    net::Expr *e = net::parseExpression(id, diag, design);
+    if (!e || !net::verifyPredicate(design, *top, e, diag))
+      return 1;
+    names.push_back(name.str());
+    preds.push_back(e);
+  }
+  sem::Options so;
+  sem::StateLayout layout(*top, so.unboundedBits);
+  sem::Semantics semantics(*top, layout, so);
+  statespace::ExploreOptions eo;
+  eo.recordEdges = true;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  explorer.run(r);
+  if (r.error) {
+    llvm::errs() << "netlift: error: runtime error: " << r.error->message
+                 << "\n";
+    return 1;
+  }
+  // Region of every state, then the counts (memory: one word per state
+  // here; the counts themselves are per region).
+  std::vector<structural::Region> region(explorer.store().size());
+  for (uint32_t s = 0; s < region.size(); ++s)
+    for (size_t i = 0; i < preds.size(); ++i) {
+      sem::RuntimeError err;
+      if (semantics.evalPredicate(preds[i], explorer.store().state(s), err))
+        region[s] |= structural::Region(1) << i;
+    }
+  std::vector<char> dead(region.size(), 0);
+  for (uint32_t d : r.deadlocks)
+    dead[d] = 1;
+  structural::Analysis an(names);
+  for (uint32_t s = 0; s < region.size(); ++s)
+    an.addState(region[s], dead[s]);
+  for (const statespace::Edge &e : explorer.edges())
+    an.addEdge(region[e.from], region[e.to]);
+  if (!srAg.empty() && !writeOutput(srAg, [&](llvm::raw_ostream &os) {
+        an.writeDot(os, srAllRegions);
+      }))
+    return 1;
+  if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
+        if (srReport == "json")
+          an.writeJson(os, srAllRegions);
+        else
+          an.writeText(os, srAllRegions);
+      }))
+    return 1;
+  return r.complete ? 0 : 2;
+}
+
 /// Exit codes of `reach` (docs/reach.md): 0 complete, 1 error, 2 a limit
 /// stopped the search, 3 the property checked is violated.
 static int runReach() {
@@ -566,27 +698,9 @@ static int runReach() {
     llvm::errs() << "netlift: error: --place-bits must be 1..32\n";
     return 1;
   }
-  std::string why;
-  net::Module *top = design.findTop(reachTop, why);
-  if (!top) {
-    llvm::errs() << "netlift: error: reach: " << why << "\n";
+  net::Module *top = explorableTop(design, diag, reachTop, "reach");
+  if (!top)
     return 1;
-  }
-  if (!top->instances.empty()) {
-    // Exploration works on one flat module.
-    PassManager pm;
-    std::string pipeline = "flatten{top=" + top->name.str() + "}";
-    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag) ||
-        !net::verifyDesign(design, diag))
-      return 1;
-    top = design.modules[0].get();
-  }
-  if (net::hasHybridParts(*top)) {
-    llvm::errs() << "netlift: error: reach: module '" << top->name
-                 << "' has real variables or flows; run the discretise "
-                    "pass first\n";
-    return 1;
-  }
   sem::Options so;
   so.policy = reachPolicy;
   so.timing = reachTiming;
@@ -713,7 +827,9 @@ int main(int argc, char **argv) {
           "json] [--find EXPR]\n"
           "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n"
           "  netlift edit-automaton SPEC.kiss2 [--to table|dot] [-o OUT]\n"
-          "  netlift enforce SPEC.kiss2 TRACE.csv [-o ENFORCED.csv]\n\n"
+          "  netlift enforce SPEC.kiss2 TRACE.csv [-o ENFORCED.csv]\n"
+          "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] "
+          "[--ag FILE.dot]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
     return 1;
@@ -731,8 +847,11 @@ int main(int argc, char **argv) {
     return runEditAutomaton();
   if (enforceCmd)
     return runEnforce();
-  llvm::errs() << "netlift: error: no subcommand given (translate, opt, "
-                  "emit, reach, mealy, edit-automaton, enforce); see netlift "
-                  "--help\n";
+  if (srCmd)
+    return runSr();
+  llvm::errs()
+      << "netlift: error: no subcommand given (translate, opt, "
+         "emit, reach, sr, mealy, edit-automaton, enforce); see netlift "
+         "--help\n";
   return 1;
 }

@@ -1,0 +1,77 @@
+//===- StructuralReasoning.h - regions of a state space ---------*- C++ -*-===//
+//
+// The structural reasoning of Lobov and Lastra over a state space: k
+// selected attributes (Boolean predicates over a state) split the states
+// into regions (the subset of attributes that holds). From the regions come
+// the attribute graph (regions with their state counts, state-space edges
+// between and inside regions, deadlocks per region), the density of each
+// attribute, the necklace distribution (how many states have exactly j of
+// the k attributes) and the key-attribute search (the smallest sets of
+// attributes that cover every state exactly once). Memory is proportional
+// to the number of regions and region pairs, not to the number of states.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_BACKENDS_STRUCTURAL_STRUCTURALREASONING_H
+#define NETLIFT_BACKENDS_STRUCTURAL_STRUCTURALREASONING_H
+
+#include "llvm/Support/raw_ostream.h"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace netlift::structural {
+
+using Region = uint32_t; // bit i: attribute i holds
+
+class Analysis {
+public:
+  explicit Analysis(std::vector<std::string> attributeNames);
+
+  /// Feeds one state (its region, whether it is a deadlock) and the edges
+  /// (source region, target region), in any order.
+  void addState(Region r, bool deadlock);
+  void addEdge(Region from, Region to);
+
+  const std::vector<std::string> &attributes() const { return names; }
+  uint64_t numStates() const { return states; }
+  uint64_t numEdges() const { return edges; }
+  const std::map<Region, uint64_t> &regionCounts() const { return counts; }
+  const std::map<Region, uint64_t> &deadlockCounts() const { return deadlocks; }
+  const std::map<std::pair<Region, Region>, uint64_t> &edgeCounts() const {
+    return edgeMap;
+  }
+  /// States in which attribute i holds.
+  uint64_t attributeCount(size_t i) const;
+  /// necklace[j]: states with exactly j attributes.
+  std::vector<uint64_t> necklaces() const;
+
+  struct KeyAttributes {
+    bool exact = false;
+    /// Every minimum exact cover (attribute index sets), or the best
+    /// partial cover (one set) when there is none.
+    std::vector<std::vector<size_t>> sets;
+    uint64_t coveredOnce = 0; // states with exactly one key attribute
+  };
+  KeyAttributes keyAttributes() const;
+
+  std::string regionName(Region r) const;
+  /// Checks the invariants: node counts sum to the states, edge counts to
+  /// the edges. Aborts if violated (they are facts, not inputs).
+  void checkInvariants() const;
+
+  void writeText(llvm::raw_ostream &os, bool allRegions) const;
+  void writeJson(llvm::raw_ostream &os, bool allRegions) const;
+  void writeDot(llvm::raw_ostream &os, bool allRegions) const;
+
+private:
+  std::vector<std::string> names;
+  uint64_t states = 0, edges = 0;
+  std::map<Region, uint64_t> counts, deadlocks;
+  std::map<std::pair<Region, Region>, uint64_t> edgeMap;
+};
+
+} // namespace netlift::structural
+
+#endif
