@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::sem;
@@ -80,21 +82,35 @@ TEST(StateLayout, OnlyPlacesWithTimedArcsHaveClocks) {
   EXPECT_EQ(L.clockSlot(2), -1);
 }
 
-TEST(Semantics, ConflictingForcedTransitionsGiveOneSuccessorEach) {
+/// A model ready to step: parsed, laid out, in its initial state.
+struct Stepper {
   llvm::SourceMgr sm;
   Design d;
-  Module *m = parse("system S { place a(1), p(1), q, r; trans t : a -> (); "
-                    "trans u1 : p -> q on t; trans u2 : p -> r on t; }",
-                    d, sm);
-  ASSERT_NE(m, nullptr);
-  StateLayout L(*m, 8);
-  Semantics sem(*m, L, Options());
-  std::vector<uint64_t> init(L.numWords());
+  Module *m = nullptr;
+  std::unique_ptr<StateLayout> L;
+  std::unique_ptr<Semantics> sem;
+  std::vector<uint64_t> init;
   RuntimeError err;
-  ASSERT_TRUE(sem.initialState(init.data(), err));
+  explicit Stepper(const char *text) {
+    m = parse(text, d, sm);
+    if (!m)
+      return;
+    L = std::make_unique<StateLayout>(*m, 8);
+    sem = std::make_unique<Semantics>(*m, *L, Options());
+    init.resize(L->numWords());
+    if (!sem->initialState(init.data(), err))
+      m = nullptr;
+  }
+};
+
+TEST(Semantics, ConflictingForcedTransitionsGiveOneSuccessorEach) {
+  Stepper st("system S { place a(1), p(1), q, r; trans t : a -> (); "
+             "trans u1 : p -> q on t; trans u2 : p -> r on t; }");
+  ASSERT_NE(st.m, nullptr);
+  RuntimeError &err = st.err;
   std::vector<std::vector<uint32_t>> steps;
-  ASSERT_TRUE(sem.successors(
-      init.data(),
+  ASSERT_TRUE(st.sem->successors(
+      st.init.data(),
       [&](llvm::ArrayRef<uint32_t> step, const uint64_t *) {
         steps.emplace_back(step.begin(), step.end());
       },
@@ -105,20 +121,13 @@ TEST(Semantics, ConflictingForcedTransitionsGiveOneSuccessorEach) {
 }
 
 TEST(Semantics, WriteConflictIsARuntimeError) {
-  llvm::SourceMgr sm;
-  Design d;
-  Module *m = parse("system S { var v : 0..3; place a(1), b(1); "
-                    "trans t : a -> () { v := 1; } "
-                    "trans u : b -> () on t { v := 2; } }",
-                    d, sm);
-  ASSERT_NE(m, nullptr);
-  StateLayout L(*m, 8);
-  Semantics sem(*m, L, Options());
-  std::vector<uint64_t> init(L.numWords());
-  RuntimeError err;
-  ASSERT_TRUE(sem.initialState(init.data(), err));
-  EXPECT_FALSE(sem.successors(
-      init.data(), [](llvm::ArrayRef<uint32_t>, const uint64_t *) {}, err));
+  Stepper st("system S { var v : 0..3; place a(1), b(1); "
+             "trans t : a -> () { v := 1; } "
+             "trans u : b -> () on t { v := 2; } }");
+  ASSERT_NE(st.m, nullptr);
+  RuntimeError &err = st.err;
+  EXPECT_FALSE(st.sem->successors(
+      st.init.data(), [](llvm::ArrayRef<uint32_t>, const uint64_t *) {}, err));
   EXPECT_EQ(err.message, "transitions 't' and 'u' both write 'v' in one step");
 }
 

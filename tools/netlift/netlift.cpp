@@ -459,18 +459,26 @@ static int runMealy() {
              : 1;
 }
 
-static int runEditAutomaton() {
-  llvm::SourceMgr sm;
-  DiagEngine diag(sm);
+/// Reads a Mealy specification and builds its edit automaton.
+static bool specAutomaton(const std::string &path, DiagEngine &diag,
+                          automata::EditAutomaton &ea) {
   automata::MealyMachine m;
-  if (!readMealy(eaInput, diag, m))
-    return 1;
-  automata::EditAutomaton ea;
+  if (!readMealy(path, diag, m))
+    return false;
   std::string why;
   if (!automata::buildEditAutomaton(m, ea, why)) {
     llvm::errs() << "netlift: error: " << why << "\n";
-    return 1;
+    return false;
   }
+  return true;
+}
+
+static int runEditAutomaton() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  automata::EditAutomaton ea;
+  if (!specAutomaton(eaInput, diag, ea))
+    return 1;
   return writeOutput(outputFile,
                      [&](llvm::raw_ostream &os) {
                        if (eaTo == EaFormat::Dot)
@@ -491,15 +499,9 @@ static int runEnforce() {
   }
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
-  automata::MealyMachine m;
-  if (!readMealy(enforceInputs[0], diag, m))
-    return 1;
   automata::EditAutomaton ea;
-  std::string why;
-  if (!automata::buildEditAutomaton(m, ea, why)) {
-    llvm::errs() << "netlift: error: " << why << "\n";
+  if (!specAutomaton(enforceInputs[0], diag, ea))
     return 1;
-  }
   unsigned id = addInputFile(sm, enforceInputs[1]);
   if (!id)
     return 1;
