@@ -121,6 +121,10 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
 
   // Step 2.
   std::map<std::tuple<size_t, uint32_t, std::string>, uint32_t> inter;
+  // A bound on the search, so that a specification with many simultaneous
+  // input changes is refused rather than left to run for hours.
+  constexpr uint64_t kMaxVisits = 5000000;
+  uint64_t visits = 0;
   for (size_t ri = 0; ri < rows.size(); ++ri) {
     const Concrete &tr = rows[ri];
     for (uint32_t prev : arrivals[tr.from]) {
@@ -131,8 +135,18 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
       // Depth-first over reading chains; `path` holds the observed
       // intermediate steps (machine state, observed vector).
       std::vector<std::pair<uint32_t, std::string>> path;
-      std::function<void(uint32_t, uint32_t)> explore = [&](uint32_t q,
+      // (machine state, inputs read) pairs known to admit no chain: every
+      // chain through them is skipped, so each pair is searched once.
+      std::set<std::pair<uint32_t, uint32_t>> hopeless;
+      std::function<bool(uint32_t, uint32_t)> explore = [&](uint32_t q,
                                                             uint32_t read) {
+        if (++visits > kMaxVisits) {
+          why = "the desynchronised readings of the specification are too "
+                "many to enumerate (more than " +
+                std::to_string(kMaxVisits) + " reading steps)";
+          return false;
+        }
+        bool admissible = false;
         uint32_t rest = (read ^ tr.in) & diff;
         // Read everything left: admissible if it reaches the target.
         if (!path.empty()) {
@@ -140,6 +154,7 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
           if (it != react.end())
             for (size_t k : it->second)
               if (rows[k].to == tr.to && rows[k].out == tr.out) {
+                admissible = true;
                 // A first observed vector the specification already
                 // validates from this state is explained by it: the
                 // chain adds nothing (and would break determinism).
@@ -161,7 +176,7 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
                     why = "desynchronisation of " + target + " from state '" +
                           m.states[tr.from] +
                           "' makes the automaton nondeterministic on " + vec;
-                    return;
+                    return false;
                   }
                   from = slot->second;
                 }
@@ -171,17 +186,27 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
               }
         }
         // Read a non-empty part of the remaining changes, not all.
-        for (uint32_t sub = (rest - 1) & rest; sub; sub = (sub - 1) & rest) {
+        for (uint32_t sub = (rest - 1) & rest; sub && why.empty();
+             sub = (sub - 1) & rest) {
           uint32_t r2 = read ^ sub;
           auto it = react.find({q, r2});
           if (it == react.end())
             continue;
           for (size_t k : it->second) {
+            if (hopeless.count({rows[k].to, r2}))
+              continue;
             path.push_back({rows[k].to, vectorBits(tr.in, n) + rows[k].out});
-            explore(rows[k].to, r2);
+            bool below = explore(rows[k].to, r2);
             path.pop_back();
+            if (!why.empty())
+              return false;
+            if (below)
+              admissible = true;
+            else
+              hopeless.insert({rows[k].to, r2});
           }
         }
+        return admissible;
       };
       explore(tr.from, prev);
       if (!why.empty())

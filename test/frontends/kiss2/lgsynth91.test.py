@@ -18,6 +18,10 @@ with tempfile.TemporaryDirectory() as tmp:
         r4 = subprocess.run([netlift, "mealy", os.path.join(root, f), "--equiv", mn],
                             capture_output=True, text=True) if r3.returncode == 0 else r3
         ok = ok and r3.returncode == 0 and r4.returncode == 0 and r4.stdout == "equivalent\n"
+        # Its edit automaton builds (deterministic, within the search bound).
+        r5 = subprocess.run([netlift, "edit-automaton", os.path.join(root, f), "-o", os.devnull],
+                            capture_output=True, text=True, timeout=120)
+        ok = ok and r5.returncode == 0
         if not ok:
             print("FAIL", f, r1.stderr[:200], r2.stderr[:200], r3.stderr[:200], r4.stdout[:200])
             failed += 1
