@@ -120,7 +120,11 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
     arrivals[r.to].insert(r.in);
 
   // Step 2.
-  std::map<std::tuple<size_t, uint32_t, std::string>, uint32_t> inter;
+  // Intermediate states are keyed by the specified transition's source and
+  // input vector (rows that differ only in unspecified output bits share
+  // them), the machine state reached and the observed vector.
+  std::map<std::tuple<uint32_t, uint32_t, uint32_t, std::string>, uint32_t>
+      inter;
   // A bound on the search, so that a specification with many simultaneous
   // input changes is refused rather than left to run for hours.
   constexpr uint64_t kMaxVisits = 5000000;
@@ -165,7 +169,7 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
                 // Materialise the chain.
                 uint32_t from = tr.from;
                 for (auto &[mq, vec] : path) {
-                  auto key = std::make_tuple(ri, mq, vec);
+                  auto key = std::make_tuple(tr.from, tr.in, mq, vec);
                   auto [slot, fresh] = inter.try_emplace(key, ea.states.size());
                   if (fresh)
                     ea.states.push_back({m.states[tr.from] + ">" +

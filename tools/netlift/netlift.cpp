@@ -256,6 +256,22 @@ static bool writeOutput(llvm::StringRef path,
     llvm::outs().flush();
     return true;
   }
+  // A device or pipe (/dev/null, a FIFO) is written in place: renaming a
+  // temporary over it would replace the device with a regular file.
+  llvm::sys::fs::file_status st;
+  if (!llvm::sys::fs::status(path, st) &&
+      st.type() != llvm::sys::fs::file_type::regular_file &&
+      st.type() != llvm::sys::fs::file_type::file_not_found) {
+    std::error_code ec;
+    llvm::raw_fd_ostream os(path, ec);
+    if (ec) {
+      llvm::errs() << "netlift: error: cannot write '" << path
+                   << "': " << ec.message() << "\n";
+      return false;
+    }
+    body(os);
+    return true;
+  }
   llvm::SmallString<128> tmp;
   int fd;
   std::string model = (path + ".tmp-%%%%%%").str();

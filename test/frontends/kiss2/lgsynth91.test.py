@@ -18,10 +18,13 @@ with tempfile.TemporaryDirectory() as tmp:
         r4 = subprocess.run([netlift, "mealy", os.path.join(root, f), "--equiv", mn],
                             capture_output=True, text=True) if r3.returncode == 0 else r3
         ok = ok and r3.returncode == 0 and r4.returncode == 0 and r4.stdout == "equivalent\n"
-        # Its edit automaton builds (deterministic, within the search bound).
+        # Its edit automaton builds, or is refused with a message (some
+        # machines give ambiguous desynchronised observations; see
+        # docs/enforce.md); never a crash.
         r5 = subprocess.run([netlift, "edit-automaton", os.path.join(root, f), "-o", os.devnull],
-                            capture_output=True, text=True, timeout=120)
-        ok = ok and r5.returncode == 0
+                            capture_output=True, text=True, timeout=300)
+        ok = ok and (r5.returncode == 0 or
+                     (r5.returncode == 1 and "netlift: error: " in r5.stderr))
         if not ok:
             print("FAIL", f, r1.stderr[:200], r2.stderr[:200], r3.stderr[:200], r4.stdout[:200])
             failed += 1
