@@ -203,26 +203,28 @@ bool PnmlReader::run() {
       return false;
     if (w == 0)
       return error(a, "arc weight 0");
-    if (s->second.isPlace) {
-      auto &v = pre[d->second.index];
-      auto it = std::find_if(v.begin(), v.end(), [&](const PreArc &x) {
-        return x.place == s->second.index;
-      });
-      if (it != v.end())
-        it->weight += uint32_t(w);
-      else
-        v.push_back({s->second.index, uint32_t(w), {}});
-    } else {
-      auto &v = post[s->second.index];
-      auto it = std::find_if(v.begin(), v.end(), [&](const PostArc &x) {
-        return x.place == d->second.index;
-      });
-      if (it != v.end())
-        it->weight += uint32_t(w);
-      else
-        v.push_back({d->second.index, uint32_t(w)});
-    }
+    // Several arcs between one place and one transition add up.
+    auto merge = [&](auto &arcs, uint32_t place, auto fresh) {
+      for (auto &x : arcs)
+        if (x.place == place) {
+          if (uint64_t(x.weight) + w >= kInf)
+            return error(a, "the arcs between '" + src + "' and '" + dst +
+                                "' add up to a weight too large");
+          x.weight += uint32_t(w);
+          return true;
+        }
+      arcs.push_back(fresh);
+      return true;
+    };
+    bool ok = s->second.isPlace
+                  ? merge(pre[d->second.index], s->second.index,
+                          PreArc{s->second.index, uint32_t(w), {}})
+                  : merge(post[s->second.index], d->second.index,
+                          PostArc{d->second.index, uint32_t(w)});
+    if (!ok)
+      return false;
   }
+
   for (uint32_t t = 0; t < m->transitions.size(); ++t)
     m->transitions[t].setArcs(design.copy(llvm::ArrayRef<PreArc>(pre[t])),
                               design.copy(llvm::ArrayRef<PostArc>(post[t])));

@@ -589,6 +589,7 @@ struct Semantics::Impl {
   std::vector<uint32_t> written;
   std::vector<uint32_t> spontScratch, stepScratch;
   std::vector<int64_t> predicateVals;
+  std::vector<uint64_t> succScratch;
 
   bool tick(uint64_t *out) {
     std::vector<int64_t> nv(vals.begin(), vals.begin() + L.numPacked());
@@ -704,7 +705,9 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   bool dedupe = manyValuations || !I.forcedList.empty() ||
                 opts.policy == StepPolicy::Maximal;
   std::set<std::pair<std::vector<uint32_t>, std::vector<uint64_t>>> seen;
-  std::vector<uint64_t> succ(L.numWords());
+  // The successor buffer is reused across states (no allocation per state).
+  std::vector<uint64_t> &succ = I.succScratch;
+  succ.resize(L.numWords());
   auto emit = [&](const std::vector<uint32_t> &step) {
     if (dedupe && !seen.insert({step, succ}).second)
       return;
