@@ -9,18 +9,28 @@ find_file(NETLIFT_ANTLR_JAR antlr4.jar PATHS /usr/share/java REQUIRED)
 set(NETLIFT_ANTLR_CLASSPATH
     "/usr/share/java/stringtemplate4.jar:/usr/share/java/antlr4.jar:/usr/share/java/antlr4-runtime.jar:/usr/share/java/antlr3-runtime.jar:/usr/share/java/treelayout.jar")
 
-# netlift_antlr_grammar(<target> <grammar.g4> [VISITOR] [LISTENER])
+# netlift_antlr_grammar(<target> <grammar.g4> [VISITOR] [LISTENER]
+#                       [PARSER_ONLY] [NAMESPACE ns])
 # Creates a static library <target> holding the generated lexer/parser,
 # linked against the ANTLR runtime; its include directory is the generated
-# folder.
+# folder. PARSER_ONLY is for a `parser grammar` whose tokens come from a
+# hand-written lexer: the generated recognizer is then named after the
+# grammar itself (ST.g4 gives class ST).
 function(netlift_antlr_grammar target grammar)
-  cmake_parse_arguments(ARG "VISITOR;LISTENER" "" "" ${ARGN})
+  cmake_parse_arguments(ARG "VISITOR;LISTENER;PARSER_ONLY" "NAMESPACE" "" ${ARGN})
   get_filename_component(g4 ${grammar} ABSOLUTE)
   get_filename_component(name ${grammar} NAME_WE)
   set(outdir ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen)
-  set(outputs ${outdir}/${name}Lexer.cpp ${outdir}/${name}Parser.cpp
-              ${outdir}/${name}Lexer.h ${outdir}/${name}Parser.h)
+  if(ARG_PARSER_ONLY)
+    set(outputs ${outdir}/${name}.cpp ${outdir}/${name}.h)
+  else()
+    set(outputs ${outdir}/${name}Lexer.cpp ${outdir}/${name}Parser.cpp
+                ${outdir}/${name}Lexer.h ${outdir}/${name}Parser.h)
+  endif()
   set(flags -no-listener -no-visitor)
+  if(ARG_NAMESPACE)
+    list(APPEND flags -package ${ARG_NAMESPACE})
+  endif()
   if(ARG_VISITOR)
     list(APPEND outputs ${outdir}/${name}Visitor.cpp
          ${outdir}/${name}BaseVisitor.cpp)

@@ -110,6 +110,8 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
     if (!fe->load(id, diag, design))
       return false;
   }
+  if (!finishPlcInputs(diag, design))
+    return false;
   if (!net::verifyDesign(design, diag))
     return false;
   if (allNet) {

@@ -15,10 +15,21 @@
 
 #include "llvm/ADT/StringRef.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace netlift {
+
+/// Options of the PLC frontends, set by the driver from its command line
+/// (translate --top/--timescale/--scan-period/--ranges).
+struct FrontendOptions {
+  std::string top;
+  std::optional<int64_t> timescaleNs;
+  std::optional<int64_t> scanPeriodNs;
+  std::string rangesFile;
+};
+FrontendOptions &frontendOptions();
 
 struct FrontendInfo {
   llvm::StringRef id;
@@ -40,6 +51,14 @@ bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
 /// Frontend implementations (one per line of FrontendRegistry.def).
 bool loadNetIR(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadPnml(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadStructuredText(unsigned bufferID, DiagEngine &diag,
+                        net::Design &design);
+bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
+
+/// PLC sources are collected across all input files (a program and the
+/// function blocks it uses may live in different files) and translated
+/// together once every file is read. Returns false after reporting.
+bool finishPlcInputs(DiagEngine &diag, net::Design &design);
 
 } // namespace netlift
 

@@ -648,7 +648,7 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
   Impl &I = *impl;
   std::vector<int64_t> v(L.numSlots(), 0);
   for (uint32_t s = 0; s < L.numSlots(); ++s)
-    v[s] = L.slots()[s].lo; // false / low bound / 0
+    v[s] = L.slots()[s].initial; // false / 0 for PLC integers / low bound
   try {
     for (uint32_t p = 0; p < m.places.size(); ++p) {
       uint32_t s = L.markingSlot(p);

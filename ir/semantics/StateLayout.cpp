@@ -17,11 +17,12 @@ unsigned netlift::sem::bitsFor(uint64_t n) {
 }
 
 uint32_t StateLayout::addSlot(std::string name, int64_t lo, int64_t hi,
-                              bool wrap) {
+                              bool wrap, bool zeroInitial) {
   Slot s;
   s.lo = lo;
   s.hi = hi;
   s.wrap = wrap;
+  s.initial = zeroInitial && lo <= 0 && 0 <= hi ? 0 : lo;
   s.width = uint8_t(bitsFor(uint64_t(hi) - uint64_t(lo)));
   s.name = std::move(name);
   slotVec.push_back(std::move(s));
@@ -40,7 +41,8 @@ void StateLayout::addLeaves(const std::string &name, const Type *t) {
     return;
   default:
     addSlot(name, t->lo, t->hi,
-            t->kind == TypeKind::Int && t->overflow == Overflow::Wrap);
+            t->kind == TypeKind::Int && t->overflow == Overflow::Wrap,
+            t->kind == TypeKind::Int);
   }
 }
 

@@ -29,6 +29,9 @@ struct Slot {
   /// Writes outside [lo, hi] wrap around (PLC integers declared `wrap`);
   /// otherwise they are runtime errors.
   bool wrap = false;
+  /// The value a variable starts with when it has no `init`: 0 for PLC
+  /// integers (as in IEC 61131-3), the low bound otherwise.
+  int64_t initial = 0;
   std::string name; // for states written out: `p`, `v[2].x`, `clock(p)`
 };
 
@@ -93,7 +96,8 @@ public:
   }
 
 private:
-  uint32_t addSlot(std::string name, int64_t lo, int64_t hi, bool wrap = false);
+  uint32_t addSlot(std::string name, int64_t lo, int64_t hi, bool wrap = false,
+                   bool zeroInitial = false);
   void addLeaves(const std::string &name, const net::Type *t);
 
   const net::Module &m;

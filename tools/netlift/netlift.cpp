@@ -14,6 +14,7 @@
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/kiss2/Kiss2Reader.h"
+#include "frontends/st/StFrontend.h"
 #include "ir/automata/EditAutomaton.h"
 #include "ir/automata/Minimize.h"
 #include "ir/net/Parser.h"
@@ -150,6 +151,58 @@ static cl::opt<std::string>
                 cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
                 cl::sub(srCmd), cl::cat(category));
 
+// Options of the PLC frontends (ST, TwinCAT), for every command that reads
+// a model.
+static cl::opt<std::string>
+    plcTop("top",
+           cl::desc("The module to explore; for PLC input also the program, "
+                    "program instance or function block to translate"),
+           cl::value_desc("NAME"), cl::sub(translateCmd), cl::sub(optCmd),
+           cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+           cl::cat(category));
+static cl::opt<std::string> plcTimescale(
+    "timescale",
+    cl::desc("PLC input: the length of one tick, e.g. 10ms (default: the "
+             "greatest common divisor of the program's TIME values)"),
+    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+static cl::opt<std::string> plcScanPeriod(
+    "scan-period",
+    cl::desc("PLC input: the scan period (default: the task INTERVAL, else "
+             "one tick)"),
+    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+static cl::opt<std::string> plcRanges(
+    "ranges",
+    cl::desc("PLC input: value ranges of integer inputs, one 'NAME LO..HI' "
+             "a line"),
+    cl::value_desc("FILE"), cl::sub(translateCmd), cl::sub(optCmd),
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+
+/// Hands the PLC options to the frontends; false after an error message.
+static bool setFrontendOptions() {
+  FrontendOptions &fo = frontendOptions();
+  fo.top = plcTop;
+  fo.rangesFile = plcRanges;
+  auto duration = [](const std::string &flag, const std::string &text,
+                     std::optional<int64_t> &out) {
+    if (text.empty())
+      return true;
+    int64_t ns;
+    std::string error;
+    if (!st::parseDuration("T#" + text, ns, error) || ns <= 0) {
+      llvm::errs() << "netlift: error: --" << flag << "=" << text
+                   << ": expected a positive duration such as 10ms"
+                   << (error.empty() ? "" : " (" + error + ")") << "\n";
+      return false;
+    }
+    out = ns;
+    return true;
+  };
+  return duration("timescale", plcTimescale, fo.timescaleNs) &&
+         duration("scan-period", plcScanPeriod, fo.scanPeriodNs);
+}
+
 static cl::opt<std::string> pipelineText("p",
                                          cl::desc("Pass pipeline, e.g. "
                                                   "'flatten,foo{k=v}'"),
@@ -244,8 +297,6 @@ static cl::opt<unsigned> reachPlaceBits(
     "place-bits",
     cl::desc("Bits for the marking of unbounded places (default 8)"),
     cl::init(8), cl::sub(reachCmd), cl::cat(category));
-static cl::opt<std::string> reachTop("top", cl::desc("The module to explore"),
-                                     cl::sub(reachCmd), cl::cat(category));
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
 /// is renamed into place only when everything was written.
@@ -716,7 +767,7 @@ static int runReach() {
     llvm::errs() << "netlift: error: --place-bits must be 1..32\n";
     return 1;
   }
-  net::Module *top = explorableTop(design, diag, reachTop, "reach");
+  net::Module *top = explorableTop(design, diag, plcTop, "reach");
   if (!top)
     return 1;
   sem::Options so;
@@ -837,7 +888,8 @@ int main(int argc, char **argv) {
   if (!cl::ParseCommandLineOptions(
           argc, argv,
           "netlift: lift industrial control software into formal models\n\n"
-          "  netlift translate IN... [-o OUT] [--from FMT]\n"
+          "  netlift translate IN... [-o OUT] [--from FMT] [--top NAME] "
+          "[--timescale 10ms] [--ranges FILE]\n"
           "  netlift opt IN -p PIPELINE [-o OUT] [--verify-each] "
           "[--print-after-all] [--stats]\n"
           "  netlift emit IN --to net|dot [-o OUT]\n"
@@ -850,6 +902,8 @@ int main(int argc, char **argv) {
           "[--ag FILE.dot]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
+    return 1;
+  if (!setFrontendOptions())
     return 1;
   if (translateCmd)
     return runTranslate();

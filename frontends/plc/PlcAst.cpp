@@ -1,0 +1,116 @@
+//===- PlcAst.cpp - the PLC program model ---------------------------------===//
+#include "frontends/plc/PlcAst.h"
+
+using namespace netlift::plc;
+using llvm::StringRef;
+
+bool netlift::plc::sameName(StringRef a, StringRef b) {
+  return a.equals_insensitive(b);
+}
+
+StringRef netlift::plc::spelling(Op op) {
+  switch (op) {
+  case Op::Neg:
+    return "-";
+  case Op::Plus:
+    return "+";
+  case Op::Not:
+    return "NOT";
+  case Op::Or:
+    return "OR";
+  case Op::OrElse:
+    return "OR_ELSE";
+  case Op::Xor:
+    return "XOR";
+  case Op::And:
+    return "AND";
+  case Op::AndThen:
+    return "AND_THEN";
+  case Op::Eq:
+    return "=";
+  case Op::Ne:
+    return "<>";
+  case Op::Lt:
+    return "<";
+  case Op::Le:
+    return "<=";
+  case Op::Gt:
+    return ">";
+  case Op::Ge:
+    return ">=";
+  case Op::Add:
+    return "+";
+  case Op::Sub:
+    return "-";
+  case Op::Mul:
+    return "*";
+  case Op::Div:
+    return "/";
+  case Op::Mod:
+    return "MOD";
+  case Op::Pow:
+    return "**";
+  }
+  return "?";
+}
+
+StringRef netlift::plc::spelling(VarSection s) {
+  switch (s) {
+  case VarSection::Var:
+    return "VAR";
+  case VarSection::Input:
+    return "VAR_INPUT";
+  case VarSection::Output:
+    return "VAR_OUTPUT";
+  case VarSection::InOut:
+    return "VAR_IN_OUT";
+  case VarSection::External:
+    return "VAR_EXTERNAL";
+  case VarSection::Global:
+    return "VAR_GLOBAL";
+  case VarSection::Temp:
+    return "VAR_TEMP";
+  case VarSection::Access:
+    return "VAR_ACCESS";
+  case VarSection::Config:
+    return "VAR_CONFIG";
+  case VarSection::Stat:
+    return "VAR_STAT";
+  case VarSection::Inst:
+    return "VAR_INST";
+  }
+  return "VAR";
+}
+
+StringRef netlift::plc::spelling(PouKind k) {
+  switch (k) {
+  case PouKind::Program:
+    return "program";
+  case PouKind::FunctionBlock:
+    return "function block";
+  case PouKind::Function:
+    return "function";
+  }
+  return "POU";
+}
+
+VarDecl *Pou::find(StringRef n) const {
+  for (VarDecl *v : vars)
+    if (sameName(v->name, n))
+      return v;
+  return nullptr;
+}
+
+Pou *Unit::findPou(StringRef n) const {
+  for (Pou *p : pous)
+    if (sameName(p->name, n))
+      return p;
+  return nullptr;
+}
+
+TypeDecl *Unit::findType(StringRef n) const {
+  for (TypeDecl *t : types)
+    if (sameName(t->name, n))
+      return t;
+  return nullptr;
+}

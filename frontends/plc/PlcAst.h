@@ -1,0 +1,327 @@
+//===- PlcAst.h - the PLC program model shared by ST, IL and LD -*- C++ -*-===//
+//
+// What a PLC program says, independent of the language it was written in:
+// POUs (programs, function blocks, functions), their variables, user types,
+// configurations with tasks, and bodies as statements and expressions. The
+// ST frontend builds it from the parse tree, the IL frontend lowers its
+// accumulator code into the same statements, and the LD frontend (PLCopen)
+// will build rungs into it. Sema (Sema.h) resolves names and types in place;
+// LowerToNet.h turns a checked program into a NetIR controller module.
+//
+// Nodes are owned by the Unit that created them; locations are SMLocs into
+// buffers of the DiagEngine's SourceMgr, so every later error points into
+// the source the user wrote.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_PLC_PLCAST_H
+#define NETLIFT_FRONTENDS_PLC_PLCAST_H
+
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/SMLoc.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace netlift::plc {
+
+struct PType;
+struct VarDecl;
+struct Pou;
+
+/// A pragma `{...}` attached to the declaration that follows it; `text` is
+/// what stands between the braces.
+struct Attribute {
+  std::string text;
+  llvm::SMLoc loc;
+};
+
+//===----------------------------------------------------------------------===//
+// Expressions
+//===----------------------------------------------------------------------===//
+
+enum class ExprKind : uint8_t {
+  IntLit,    // 42, 16#FF, INT#5 (typeName holds INT)
+  RealLit,   // 1.5
+  BoolLit,   // TRUE
+  TimeLit,   // T#1s: value in nanoseconds
+  DateLit,   // TOD#, D#, DT# (refused)
+  StringLit, // 'abc'
+  EnumLit,   // Color#red (typeName, name)
+  Name,      // a variable, enumerator, constant or direct address
+  Field,     // base.name
+  BitAccess, // base.3
+  Index,     // base[i, j]
+  Deref,     // base^ (refused)
+  Unary,
+  Binary,
+  Call, // name(args): function call (or FB call as a statement)
+};
+
+enum class Op : uint8_t {
+  Neg, Plus, Not, // unary
+  Or, OrElse, Xor, And, AndThen, Eq, Ne, Lt, Le, Gt, Ge, Add, Sub, Mul, Div,
+  Mod, Pow
+};
+
+llvm::StringRef spelling(Op op);
+
+struct Expr;
+
+/// One argument of a call: `x`, `IN := x`, `Q => y`, `NOT Q => y`.
+struct CallArg {
+  std::string name; // empty: positional
+  bool isOutput = false;
+  bool negated = false;
+  Expr *value = nullptr; // the input expression or the output target
+  llvm::SMLoc loc;
+};
+
+struct Expr {
+  ExprKind kind;
+  llvm::SMLoc loc;
+  std::string name;     // Name, Field, Call, EnumLit (enumerator)
+  std::string typeName; // typed literals: INT#5, Color#red
+  int64_t intValue = 0; // IntLit, BoolLit, TimeLit (ns), BitAccess (bit)
+  double realValue = 0;
+  Op op = Op::Neg;
+  std::vector<Expr *> operands; // Unary: 1, Binary: 2, Field/BitAccess/
+                                // Deref: base, Index: base then indices
+  std::vector<CallArg> args;    // Call
+
+  // Filled in by Sema.
+  const PType *type = nullptr;
+  VarDecl *var = nullptr;  // Name: the variable it denotes
+  Pou *callee = nullptr;   // Call: a user or library function
+  int64_t enumValue = -1;  // EnumLit or Name denoting an enumerator
+
+  Expr(ExprKind k, llvm::SMLoc l) : kind(k), loc(l) {}
+  Expr *base() const { return operands.empty() ? nullptr : operands[0]; }
+};
+
+//===----------------------------------------------------------------------===//
+// Types as written
+//===----------------------------------------------------------------------===//
+
+enum class TypeSyntaxKind : uint8_t {
+  Named,    // INT, TON, MyStruct
+  Subrange, // INT(0..10)
+  Array,    // ARRAY[1..3, 0..1] OF T
+  Enum,     // (a, b := 2, c)
+  Struct,   // STRUCT ... END_STRUCT
+  String,   // STRING[20]
+  Refused,  // POINTER TO, REFERENCE TO, UNION: `refused` names it
+};
+
+struct Initializer;
+
+struct EnumValueSyntax {
+  std::string name;
+  Expr *value = nullptr;
+  llvm::SMLoc loc;
+};
+
+struct TypeSyntax {
+  TypeSyntaxKind kind;
+  llvm::SMLoc loc;
+  std::string name;                            // Named; Subrange: base
+  std::string refused;                         // Refused: the construct
+  Expr *lo = nullptr, *hi = nullptr;           // Subrange
+  std::vector<std::pair<Expr *, Expr *>> dims; // Array
+  TypeSyntax *elem = nullptr;                  // Array
+  std::vector<EnumValueSyntax> enumerators;    // Enum
+  std::vector<VarDecl *> fields;               // Struct
+  Initializer *init = nullptr;                 // `:= init` after the type
+  TypeSyntax(TypeSyntaxKind k, llvm::SMLoc l) : kind(k), loc(l) {}
+};
+
+/// An initial value: an expression, `[1, 2, 3(0)]` or `(x := 1, y := 2)`.
+struct Initializer {
+  enum Kind : uint8_t { Value, Array, Struct } kind;
+  llvm::SMLoc loc;
+  Expr *value = nullptr;
+  std::vector<std::pair<int64_t, Initializer *>> elems; // (repeat, init)
+  std::vector<std::pair<std::string, Initializer *>> fields;
+  Initializer(Kind k, llvm::SMLoc l) : kind(k), loc(l) {}
+};
+
+//===----------------------------------------------------------------------===//
+// Variables
+//===----------------------------------------------------------------------===//
+
+enum class VarSection : uint8_t {
+  Var,
+  Input,
+  Output,
+  InOut,
+  External,
+  Global,
+  Temp,
+  // Sections netlift refuses (named in the error):
+  Access,
+  Config,
+  Stat,
+  Inst,
+};
+
+llvm::StringRef spelling(VarSection s);
+
+struct VarDecl {
+  std::string name;
+  llvm::SMLoc loc;
+  VarSection section = VarSection::Var;
+  bool constant = false;
+  bool retain = false;
+  std::string location; // "%IX0.0" for `AT %IX0.0`, empty otherwise
+  TypeSyntax *typeSyntax = nullptr;
+  std::vector<Attribute> attrs;
+
+  // Filled in by Sema.
+  const PType *type = nullptr;
+  Pou *owner = nullptr;
+
+  /// `AT %I...` / `%Q...` / `%M...`: 'I', 'Q', 'M' or 0.
+  char area() const { return location.size() > 1 ? location[1] : 0; }
+};
+
+//===----------------------------------------------------------------------===//
+// Statements
+//===----------------------------------------------------------------------===//
+
+enum class StmtKind : uint8_t {
+  Assign,
+  Call, // an FB instance call or a function call used as a statement
+  If,
+  Case,
+  For,
+  While,
+  Repeat,
+  Exit,
+  Continue,
+  Return,
+};
+
+struct Stmt;
+using StmtList = std::vector<Stmt *>;
+
+struct CaseLabel {
+  Expr *lo;
+  Expr *hi; // null: a single value
+};
+
+struct CaseArmSyntax {
+  std::vector<CaseLabel> labels;
+  StmtList body;
+};
+
+struct Stmt {
+  StmtKind kind;
+  llvm::SMLoc loc;
+  Expr *target = nullptr; // Assign; For: the loop variable (a Name)
+  Expr *value = nullptr;  // Assign; Call (a Call expression); Case selector;
+                          // While/Repeat condition
+  std::vector<std::pair<Expr *, StmtList>> arms; // If (cond, body)
+  std::vector<CaseArmSyntax> caseArms;           // Case
+  bool hasElse = false;
+  StmtList elseBody;                   // If, Case
+  Expr *from = nullptr, *to = nullptr; // For
+  Expr *by = nullptr;
+  StmtList body; // For, While, Repeat
+  Stmt(StmtKind k, llvm::SMLoc l) : kind(k), loc(l) {}
+};
+
+//===----------------------------------------------------------------------===//
+// Program organisation units and configurations
+//===----------------------------------------------------------------------===//
+
+enum class PouKind : uint8_t { Program, FunctionBlock, Function };
+
+llvm::StringRef spelling(PouKind k);
+
+struct Pou {
+  PouKind kind;
+  std::string name;
+  llvm::SMLoc loc;
+  TypeSyntax *resultSyntax = nullptr; // functions
+  std::vector<VarDecl *> vars;
+  StmtList body;
+  std::vector<Attribute> attrs;
+  /// Part of netlift's standard library (TON, CTU, ...), not the user's.
+  bool isLibrary = false;
+
+  // Filled in by Sema.
+  const PType *resultType = nullptr;
+  VarDecl *resultVar = nullptr; // functions: the variable named like it
+  VarDecl *find(llvm::StringRef name) const;
+};
+
+struct TypeDecl {
+  std::string name;
+  llvm::SMLoc loc;
+  TypeSyntax *type = nullptr;
+  const PType *resolved = nullptr; // Sema
+};
+
+struct Task {
+  std::string name;
+  llvm::SMLoc loc;
+  Expr *interval = nullptr; // INTERVAL := T#20ms
+  Expr *single = nullptr;   // SINGLE := trigger (refused)
+  Expr *priority = nullptr;
+};
+
+struct ProgramInstance {
+  std::string name;
+  llvm::SMLoc loc;
+  std::string task;
+  std::string typeName;
+  llvm::SMLoc typeLoc;
+  std::vector<CallArg> args;
+};
+
+struct Configuration {
+  std::string name;
+  llvm::SMLoc loc;
+  std::vector<VarDecl *> globals;
+  std::vector<Task> tasks;
+  std::vector<ProgramInstance> programs;
+};
+
+/// Everything read from the inputs of one translation: the owner of all
+/// nodes.
+class Unit {
+public:
+  std::vector<Pou *> pous;
+  std::vector<TypeDecl *> types;
+  std::vector<Configuration *> configs;
+  std::vector<VarDecl *> globals; // top-level VAR_GLOBAL (TwinCAT GVLs)
+
+  template <typename T, typename... Args> T *make(Args &&...args) {
+    auto node = std::make_unique<Holder<T>>(std::forward<Args>(args)...);
+    T *raw = &node->value;
+    owned.push_back(std::move(node));
+    return raw;
+  }
+
+  Pou *findPou(llvm::StringRef name) const;
+  TypeDecl *findType(llvm::StringRef name) const;
+
+private:
+  struct HolderBase {
+    virtual ~HolderBase() = default;
+  };
+  template <typename T> struct Holder : HolderBase {
+    template <typename... Args>
+    explicit Holder(Args &&...args) : value(std::forward<Args>(args)...) {}
+    T value;
+  };
+  std::vector<std::unique_ptr<HolderBase>> owned;
+};
+
+/// IEC identifiers are case-insensitive.
+bool sameName(llvm::StringRef a, llvm::StringRef b);
+
+} // namespace netlift::plc
+
+#endif

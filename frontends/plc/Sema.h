@@ -1,0 +1,96 @@
+//===- Sema.h - names and types of a PLC program ----------------*- C++ -*-===//
+//
+// The type checker of the PLC model: resolves every type, variable and call
+// of a Unit in place (PlcAst.h's "filled in by Sema" fields) and reports
+// what IEC 61131-3 forbids with precise errors — unknown names, wrong or
+// missing arguments, type mismatches, assignments to inputs and constants,
+// EXIT outside a loop. It knows the standard functions and the standard
+// function blocks (ST source in frontends/st/StdLib.cpp, added to the unit
+// before checking). Whether something can be *modelled* is not its business: the
+// lowering (LowerToNet.h) refuses REAL arithmetic, strings and unbounded
+// loops.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_PLC_SEMA_H
+#define NETLIFT_FRONTENDS_PLC_SEMA_H
+
+#include "frontends/plc/PlcAst.h"
+#include "ir/support/Diagnostics.h"
+
+namespace netlift::plc {
+
+enum class PTypeKind : uint8_t {
+  Bool,
+  Int,    // SINT..ULINT, BYTE..LWORD (isBits), subranges (isSubrange)
+  AnyInt, // an integer literal or constant expression not yet typed
+  Time,
+  Real,
+  String,
+  Date, // DATE, TOD, DT
+  Enum,
+  Array,
+  Struct,
+  FunctionBlock,
+  Void,
+};
+
+struct PType {
+  PTypeKind kind;
+  std::string name; // IEC spelling or the user type's name
+  // Int
+  unsigned width = 0;
+  bool isSigned = true;
+  bool isBits = false;
+  bool isSubrange = false;
+  int64_t lo = 0, hi = 0; // Int: the values; Enum: 0..n-1
+  const PType *base = nullptr; // Subrange: the elementary type
+  // Enum
+  std::vector<std::string> enumerators;
+  // Array: elem and one (lo, hi) per dimension
+  const PType *elem = nullptr;
+  std::vector<std::pair<int64_t, int64_t>> dims;
+  // Struct
+  std::vector<VarDecl *> fields;
+  // FunctionBlock
+  Pou *fb = nullptr;
+
+  bool isInteger() const {
+    return kind == PTypeKind::Int || kind == PTypeKind::AnyInt;
+  }
+  bool isAnyBit() const {
+    return kind == PTypeKind::Bool || (kind == PTypeKind::Int && isBits);
+  }
+  std::string str() const;
+};
+
+/// The standard functions of IEC 61131-3 netlift knows by name.
+enum class StdFn : uint8_t {
+  None,
+  Abs, Min, Max, Limit, Sel, Mux, Move,
+  Add, Sub, Mul, Div, Mod,
+  And, Or, Xor, Not,
+  Shl, Shr, Rol, Ror,
+  Gt, Ge, Eq, Le, Lt, Ne,
+  Convert, // X_TO_Y and TO_Y between BOOL, integer and bit-string types
+  RealMath, // SQRT, SIN, EXPT, TRUNC, ... (typed, refused when lowered)
+  StringOp, // LEN, CONCAT, ... (typed, refused when lowered)
+  Refused,  // recognised but not supported at all (BCD, date/time)
+};
+
+struct StdFnInfo {
+  StdFn fn = StdFn::None;
+  const PType *to = nullptr;   // Convert: target type
+  const PType *from = nullptr; // Convert: declared source (null: any)
+};
+
+StdFnInfo lookupStdFunction(llvm::StringRef name);
+
+/// Checks the whole unit. Returns false after reporting errors.
+bool checkUnit(Unit &unit, DiagEngine &diag);
+
+/// The PLC type of an elementary type name (BOOL, INT, TIME...), or null.
+const PType *elementaryType(llvm::StringRef name);
+
+} // namespace netlift::plc
+
+#endif

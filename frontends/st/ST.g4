@@ -1,0 +1,269 @@
+// IEC 61131-3 (3rd edition) Structured Text: the parser grammar.
+//
+// Tokens come from the hand-written lexer in StLexer.cpp (keywords are
+// case-insensitive, comments nest, typed and duration literals are single
+// tokens, pragmas go to a hidden channel), so this file declares token types
+// only. Constructs netlift refuses (object orientation, pointers, SFC,
+// actions) are still parsed here, loosely, so that the refusal can name the
+// construct at its own location instead of reporting a syntax error.
+parser grammar ST;
+
+tokens {
+  // Structure
+  PROGRAM, END_PROGRAM, FUNCTION_BLOCK, END_FUNCTION_BLOCK, FUNCTION,
+  END_FUNCTION, TYPE, END_TYPE, STRUCT, END_STRUCT, UNION, END_UNION,
+  CONFIGURATION, END_CONFIGURATION, RESOURCE, END_RESOURCE, ON, TASK,
+  WITH, VAR, VAR_INPUT, VAR_OUTPUT, VAR_IN_OUT, VAR_EXTERNAL, VAR_GLOBAL,
+  VAR_TEMP, VAR_ACCESS, VAR_CONFIG, VAR_STAT, VAR_INST, END_VAR, CONSTANT,
+  RETAIN, NON_RETAIN, PERSISTENT, AT, ARRAY, OF, STRING_KW, WSTRING_KW,
+  POINTER, REFERENCE, TO, REF_TO,
+  // Object orientation and other refused structure
+  METHOD, END_METHOD, PROPERTY, END_PROPERTY, INTERFACE, END_INTERFACE,
+  EXTENDS, IMPLEMENTS, ACTION, END_ACTION, NAMESPACE, END_NAMESPACE,
+  INITIAL_STEP, STEP, END_STEP, TRANSITION, END_TRANSITION, FROM,
+  ABSTRACT, FINAL, PUBLIC, PRIVATE, PROTECTED, INTERNAL, OVERRIDE,
+  // Statements
+  IF, THEN, ELSIF, ELSE, END_IF, CASE, END_CASE, FOR, BY, DO, END_FOR,
+  WHILE, END_WHILE, REPEAT, UNTIL, END_REPEAT, EXIT, CONTINUE, RETURN,
+  JMP,
+  // Operators
+  OR, XOR, AND, NOT, MOD, AND_THEN, OR_ELSE, TRUE, FALSE,
+  ASSIGN, OUTPUT_ASSIGN, REF_ASSIGN, SET_ASSIGN, RESET_ASSIGN, EQ, NE, LT,
+  LE, GT, GE, PLUS, MINUS, STAR, SLASH, POWER, AMP, CARET, LPAREN, RPAREN,
+  LBRACKET, RBRACKET, COMMA, SEMI, COLON, DOT, DOTDOT, HASH,
+  // Literals and names
+  IDENT, INTEGER, REAL_LIT, DURATION, TOD_LIT, DATE_LIT, DT_LIT, STRING_LIT,
+  WSTRING_LIT, DIRECT
+}
+
+// ---------------------------------------------------------------- units
+
+compilationUnit : libraryElement* EOF ;
+
+libraryElement
+  : programDecl
+  | functionBlockDecl
+  | functionDecl
+  | typeDecl
+  | configurationDecl
+  | globalVarBlock
+  | refusedElement
+  ;
+
+// Elements netlift refuses by name; their body is skipped token by token.
+refusedElement
+  : kw=INTERFACE (~END_INTERFACE)* END_INTERFACE
+  | kw=NAMESPACE (~END_NAMESPACE)* END_NAMESPACE
+  | kw=ACTION (~END_ACTION)* END_ACTION
+  | kw=METHOD (~END_METHOD)* END_METHOD
+  | kw=PROPERTY (~END_PROPERTY)* END_PROPERTY
+  ;
+
+programDecl
+  : PROGRAM name=IDENT pouVarBlock* body=statementList END_PROGRAM
+  ;
+
+functionBlockDecl
+  : FUNCTION_BLOCK accessModifier* name=IDENT
+    (EXTENDS ext=qualifiedName)? (IMPLEMENTS qualifiedName (COMMA qualifiedName)*)?
+    pouVarBlock* fbMember* body=statementList fbMember* END_FUNCTION_BLOCK
+  ;
+
+accessModifier : ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL ;
+
+// Methods, properties, actions and SFC steps inside a function block.
+fbMember
+  : kw=METHOD (~END_METHOD)* END_METHOD
+  | kw=PROPERTY (~END_PROPERTY)* END_PROPERTY
+  | kw=ACTION (~END_ACTION)* END_ACTION
+  | kw=(INITIAL_STEP | STEP) (~END_STEP)* END_STEP
+  | kw=TRANSITION (~END_TRANSITION)* END_TRANSITION
+  ;
+
+functionDecl
+  : FUNCTION accessModifier* name=IDENT (COLON result=typeSpec)?
+    pouVarBlock* body=statementList END_FUNCTION
+  ;
+
+qualifiedName : IDENT (DOT IDENT)* ;
+
+// ---------------------------------------------------------------- types
+
+typeDecl : TYPE typeDefinition+ END_TYPE ;
+
+typeDefinition
+  : name=IDENT COLON typeSpec SEMI?
+  ;
+
+typeSpec
+  : elem=typeSpec0 (ASSIGN init=initializer)?
+  ;
+
+typeSpec0
+  : ARRAY LBRACKET subrange (COMMA subrange)* RBRACKET OF elem=typeSpec0   # arrayType
+  | STRUCT (structField)* END_STRUCT                                      # structType
+  | UNION (~END_UNION)* END_UNION                                         # unionType
+  | (POINTER TO | REFERENCE TO | REF_TO) typeSpec0                        # pointerType
+  | base=IDENT? LPAREN enumValue (COMMA enumValue)* RPAREN                # enumType
+  | base=IDENT LPAREN subrange RPAREN                                     # subrangeType
+  | (STRING_KW | WSTRING_KW) ((LBRACKET | LPAREN) length=expression (RBRACKET | RPAREN))? # stringType
+  | qualifiedName                                                         # namedType
+  ;
+
+enumValue : name=IDENT (ASSIGN value=expression)? ;
+
+subrange : lo=expression DOTDOT hi=expression ;
+
+structField
+  : IDENT (COMMA IDENT)* (AT DIRECT)? COLON typeSpec SEMI
+  ;
+
+// An initial value: an expression, an array initialiser `[1, 2, 3(0)]` or
+// a structure initialiser `(x := 1, y := 2)`.
+initializer
+  : LBRACKET arrayInitElem (COMMA arrayInitElem)* RBRACKET      # arrayInit
+  | LPAREN fieldInit (COMMA fieldInit)* RPAREN                  # structInit
+  | expression                                                  # exprInit
+  ;
+
+arrayInitElem
+  : count=INTEGER LPAREN initializer? RPAREN
+  | initializer
+  ;
+
+fieldInit : IDENT ASSIGN initializer ;
+
+// ---------------------------------------------------------------- variables
+
+pouVarBlock : varBlock ;
+
+varBlock
+  : kind=(VAR | VAR_INPUT | VAR_OUTPUT | VAR_IN_OUT | VAR_EXTERNAL | VAR_GLOBAL
+          | VAR_TEMP | VAR_ACCESS | VAR_CONFIG | VAR_STAT | VAR_INST)
+    varQualifier* varDecl* END_VAR
+  ;
+
+globalVarBlock : varBlock ;
+
+varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
+
+varDecl
+  : IDENT (COMMA IDENT)* (AT DIRECT)? COLON typeSpec SEMI
+  | AT DIRECT COLON typeSpec SEMI
+  | accessPath COLON typeSpec SEMI
+  ;
+
+// VAR_CONFIG and VAR_ACCESS entries (refused; parsed to name them).
+accessPath : IDENT (DOT IDENT)+ (AT DIRECT)? ;
+
+// ---------------------------------------------------------------- config
+
+configurationDecl
+  : CONFIGURATION name=IDENT configItem* END_CONFIGURATION
+  ;
+
+configItem
+  : varBlock
+  | resourceDecl
+  | taskDecl
+  | programConfig
+  ;
+
+resourceDecl
+  : RESOURCE name=IDENT (ON target=IDENT)? resourceItem* END_RESOURCE
+  ;
+
+resourceItem : varBlock | taskDecl | programConfig ;
+
+taskDecl
+  : TASK name=IDENT (LPAREN taskParam (COMMA taskParam)* RPAREN)? SEMI
+  ;
+
+taskParam : IDENT ASSIGN expression ;
+
+programConfig
+  : PROGRAM accessModifier* inst=IDENT (WITH task=IDENT)? COLON type=IDENT
+    (LPAREN (callArg (COMMA callArg)*)? RPAREN)? SEMI
+  ;
+
+// ---------------------------------------------------------------- statements
+
+statementList : statement* ;
+
+statement
+  : SEMI                                                        # emptyStmt
+  | target=variable ASSIGN value=expression SEMI                # assignStmt
+  | target=variable op=(REF_ASSIGN | SET_ASSIGN | RESET_ASSIGN) value=expression SEMI # refusedAssignStmt
+  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN SEMI # callStmt
+  | IF cond=expression THEN statementList
+    (elsifPart)* (ELSE elseBody=statementList)? END_IF SEMI?    # ifStmt
+  | CASE sel=expression OF caseArm* (ELSE elseBody=statementList)? END_CASE SEMI? # caseStmt
+  | FOR var=IDENT ASSIGN from=expression TO to=expression (BY by=expression)? DO
+    statementList END_FOR SEMI?                                 # forStmt
+  | WHILE cond=expression DO statementList END_WHILE SEMI?      # whileStmt
+  | REPEAT statementList UNTIL cond=expression END_REPEAT SEMI? # repeatStmt
+  | EXIT SEMI                                                   # exitStmt
+  | CONTINUE SEMI                                               # continueStmt
+  | RETURN SEMI                                                 # returnStmt
+  | JMP IDENT SEMI                                              # jumpStmt
+  ;
+
+elsifPart : ELSIF cond=expression THEN statementList ;
+
+caseArm : caseLabel (COMMA caseLabel)* COLON statementList ;
+
+caseLabel
+  : lo=expression (DOTDOT hi=expression)?
+  ;
+
+callArg
+  : name=IDENT ASSIGN value=expression        # namedInput
+  | NOT? name=IDENT OUTPUT_ASSIGN target=variable # namedOutput
+  | value=expression                          # positionalArg
+  ;
+
+// ---------------------------------------------------------------- expressions
+
+// Precedence from IEC 61131-3 3rd edition table 71, tightest first.
+expression
+  : primary                                                     # primaryExpr
+  | op=(MINUS | PLUS | NOT) expression                          # unaryExpr
+  | expression POWER expression                                 # powerExpr
+  | expression op=(STAR | SLASH | MOD) expression               # mulExpr
+  | expression op=(PLUS | MINUS) expression                     # addExpr
+  | expression op=(LT | GT | LE | GE) expression                # relExpr
+  | expression op=(EQ | NE) expression                          # eqExpr
+  | expression op=(AND | AMP | AND_THEN) expression             # andExpr
+  | expression XOR expression                                   # xorExpr
+  | expression op=(OR | OR_ELSE) expression                     # orExpr
+  ;
+
+primary
+  : literal                                                     # literalPrimary
+  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN   # callPrimary
+  | variable                                                    # variablePrimary
+  | LPAREN expression RPAREN                                    # parenPrimary
+  ;
+
+// A variable access: a name, a direct address, then fields, indices,
+// bit accesses (`x.3`) and dereferences (`p^`, refused later).
+variable
+  : (IDENT | DIRECT) selector*
+  ;
+
+selector
+  : DOT IDENT                                                   # fieldSel
+  | DOT INTEGER                                                 # bitSel
+  | LBRACKET expression (COMMA expression)* RBRACKET            # indexSel
+  | CARET                                                       # derefSel
+  ;
+
+literal
+  : INTEGER                                                     # intLiteral
+  | REAL_LIT                                                    # realLiteral
+  | (TRUE | FALSE)                                              # boolLiteral
+  | DURATION                                                    # durationLiteral
+  | (TOD_LIT | DATE_LIT | DT_LIT)                               # dateLiteral
+  | (STRING_LIT | WSTRING_LIT)                                  # stringLiteral
+  | type=IDENT HASH sign=(MINUS | PLUS)? value=(INTEGER | REAL_LIT | IDENT | TRUE | FALSE | STRING_LIT) # typedLiteral
+  ;

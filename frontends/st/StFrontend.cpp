@@ -1,0 +1,1055 @@
+//===- StFrontend.cpp - Structured Text parse tree to the PLC model -------===//
+//
+// Parsing runs in two stages, the usual way to make ANTLR fast: SLL
+// prediction with a bailing error strategy first (almost every real file
+// parses in this mode), and only if it fails a second parse in full LL mode
+// whose first syntax error is reported. The parse tree is then walked once
+// into the PLC model and dropped.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/st/StFrontend.h"
+#include "frontends/st/StLexer.h"
+
+#include "ST.h"
+
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSwitch.h"
+
+#include <cmath>
+
+using namespace netlift;
+using namespace netlift::plc;
+using llvm::SMLoc;
+using llvm::StringRef;
+using P = stgen::ST;
+
+//===----------------------------------------------------------------------===//
+// Literals
+//===----------------------------------------------------------------------===//
+
+bool st::parseIntegerLiteral(StringRef text, int64_t &value) {
+  unsigned base = 10;
+  size_t hash = text.find('#');
+  StringRef digits = text;
+  if (hash != StringRef::npos) {
+    if (text.substr(0, hash).getAsInteger(10, base) ||
+        (base != 2 && base != 8 && base != 16))
+      return false;
+    digits = text.substr(hash + 1);
+  }
+  uint64_t v = 0;
+  bool any = false;
+  for (char c : digits) {
+    if (c == '_')
+      continue;
+    unsigned d;
+    if (c >= '0' && c <= '9')
+      d = c - '0';
+    else if (c >= 'a' && c <= 'f')
+      d = c - 'a' + 10;
+    else if (c >= 'A' && c <= 'F')
+      d = c - 'A' + 10;
+    else
+      return false;
+    if (d >= base)
+      return false;
+    if (v > (UINT64_MAX - d) / base)
+      return false;
+    v = v * base + d;
+    any = true;
+  }
+  if (!any)
+    return false;
+  // Bit patterns such as 16#FFFFFFFFFFFFFFFF are kept as their two's
+  // complement; decimal literals beyond int64 are out of range.
+  if (base == 10 && v > uint64_t(INT64_MAX))
+    return false;
+  value = static_cast<int64_t>(v);
+  return true;
+}
+
+bool st::parseDuration(StringRef literal, int64_t &ns, std::string &error) {
+  size_t hash = literal.find('#');
+  StringRef body = literal.substr(hash + 1);
+  bool negative = body.consume_front("-");
+  body.consume_front("+");
+  if (body.empty()) {
+    error = "empty duration";
+    return false;
+  }
+  long double total = 0;
+  // Units from largest to smallest; each may appear once, in this order.
+  static const struct {
+    const char *name;
+    long double ns;
+  } units[] = {{"d", 86400e9L}, {"h", 3600e9L}, {"ms", 1e6L}, {"m", 60e9L},
+               {"s", 1e9L},     {"us", 1e3L},   {"ns", 1L}};
+  int lastUnit = -1;
+  while (!body.empty()) {
+    size_t i = 0;
+    while (i < body.size() &&
+           (llvm::isDigit(body[i]) || body[i] == '_' || body[i] == '.'))
+      ++i;
+    if (i == 0) {
+      error = ("expected a number in duration '" + literal + "'").str();
+      return false;
+    }
+    std::string num;
+    for (char c : body.substr(0, i))
+      if (c != '_')
+        num += c;
+    body = body.drop_front(i);
+    int unit = -1;
+    for (int u = 0; u < 7; ++u) {
+      StringRef name = units[u].name;
+      if (body.size() >= name.size() &&
+          body.substr(0, name.size()).equals_insensitive(name) &&
+          // "m" must not swallow the "m" of "ms".
+          !(name == "m" && body.size() > 1 &&
+            (body[1] == 's' || body[1] == 'S'))) {
+        unit = u;
+        body = body.drop_front(name.size());
+        break;
+      }
+    }
+    if (unit < 0) {
+      error = ("unknown unit in duration '" + literal +
+               "' (use d, h, m, s, ms, us, ns)")
+                  .str();
+      return false;
+    }
+    if (unit <= lastUnit) {
+      error = ("units out of order in duration '" + literal + "'").str();
+      return false;
+    }
+    lastUnit = unit;
+    total += std::stold(num) * units[unit].ns;
+    body.consume_front("_");
+  }
+  if (total > 9.2e18L) {
+    error = ("duration '" + literal + "' is too large").str();
+    return false;
+  }
+  long double rounded = std::floor(total + 0.5L);
+  if (std::fabs(rounded - total) > 1e-6L) {
+    error = ("duration '" + literal + "' is not a whole number of ns").str();
+    return false;
+  }
+  ns = static_cast<int64_t>(rounded);
+  if (negative)
+    ns = -ns;
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Syntax errors
+//===----------------------------------------------------------------------===//
+
+namespace {
+
+/// How a token type reads in an error message.
+std::string describeTokenType(const antlr4::dfa::Vocabulary &vocab,
+                              size_t type) {
+  switch (type) {
+  case antlr4::Token::EOF:
+    return "end of file";
+  case P::IDENT:
+    return "an identifier";
+  case P::INTEGER:
+    return "an integer";
+  case P::REAL_LIT:
+    return "a real number";
+  case P::STRING_LIT:
+  case P::WSTRING_LIT:
+    return "a string";
+  case P::DURATION:
+    return "a duration";
+  case P::DIRECT:
+    return "a direct address";
+  case P::ASSIGN:
+    return "':='";
+  case P::OUTPUT_ASSIGN:
+    return "'=>'";
+  case P::EQ:
+    return "'='";
+  case P::NE:
+    return "'<>'";
+  case P::LT:
+    return "'<'";
+  case P::LE:
+    return "'<='";
+  case P::GT:
+    return "'>'";
+  case P::GE:
+    return "'>='";
+  case P::PLUS:
+    return "'+'";
+  case P::MINUS:
+    return "'-'";
+  case P::STAR:
+    return "'*'";
+  case P::SLASH:
+    return "'/'";
+  case P::POWER:
+    return "'**'";
+  case P::AMP:
+    return "'&'";
+  case P::CARET:
+    return "'^'";
+  case P::LPAREN:
+    return "'('";
+  case P::RPAREN:
+    return "')'";
+  case P::LBRACKET:
+    return "'['";
+  case P::RBRACKET:
+    return "']'";
+  case P::COMMA:
+    return "','";
+  case P::SEMI:
+    return "';'";
+  case P::COLON:
+    return "':'";
+  case P::DOT:
+    return "'.'";
+  case P::DOTDOT:
+    return "'..'";
+  case P::HASH:
+    return "'#'";
+  default:
+    break;
+  }
+  std::string name = vocab.getSymbolicName(type);
+  if (name == "STRING_KW")
+    name = "STRING";
+  else if (name == "WSTRING_KW")
+    name = "WSTRING";
+  return name.empty() ? "a token" : name;
+}
+
+/// Records the first syntax error only: one error per real mistake.
+class FirstErrorListener : public antlr4::BaseErrorListener {
+public:
+  void syntaxError(antlr4::Recognizer *recognizer,
+                   antlr4::Token *offendingSymbol, size_t, size_t,
+                   const std::string &, std::exception_ptr e) override {
+    if (seen)
+      return;
+    seen = true;
+    offset = offendingSymbol ? offendingSymbol->getStartIndex() : 0;
+    std::string found =
+        !offendingSymbol || offendingSymbol->getType() == antlr4::Token::EOF
+            ? "end of file"
+            : "'" + offendingSymbol->getText() + "'";
+    auto *parser = static_cast<antlr4::Parser *>(recognizer);
+    antlr4::misc::IntervalSet expected;
+    try {
+      if (e)
+        std::rethrow_exception(e);
+      expected = parser->getExpectedTokens();
+    } catch (antlr4::RecognitionException &re) {
+      expected = re.getExpectedTokens();
+    } catch (...) {
+    }
+    std::vector<std::string> names;
+    for (ssize_t t : expected.toList())
+      names.push_back(
+          describeTokenType(parser->getVocabulary(), static_cast<size_t>(t)));
+    if (!names.empty() && names.size() <= 4) {
+      message = "expected ";
+      for (size_t i = 0; i < names.size(); ++i) {
+        if (i)
+          message += i + 1 == names.size() ? " or " : ", ";
+        message += names[i];
+      }
+      message += ", found " + found;
+    } else {
+      message = "syntax error: unexpected " + found;
+    }
+  }
+  bool seen = false;
+  size_t offset = 0;
+  std::string message;
+};
+
+//===----------------------------------------------------------------------===//
+// Parse tree to PLC model
+//===----------------------------------------------------------------------===//
+
+/// Walks the parse tree once. The first refusal or malformed literal stops
+/// the walk (`failed`), so one mistake gives one message.
+class AstBuilder {
+public:
+  AstBuilder(StringRef text, DiagEngine &diag, Unit &unit,
+             antlr4::BufferedTokenStream &tokens)
+      : text(text), diag(diag), unit(unit), tokens(tokens) {}
+
+  bool build(P::CompilationUnitContext *cu);
+  Expr *expr(P::ExpressionContext *ctx);
+
+  bool failed = false;
+
+private:
+  SMLoc loc(antlr4::Token *t) const {
+    return SMLoc::getFromPointer(text.data() + t->getStartIndex());
+  }
+  SMLoc loc(antlr4::ParserRuleContext *c) const { return loc(c->getStart()); }
+  SMLoc loc(antlr4::tree::TerminalNode *n) const {
+    return loc(n->getSymbol());
+  }
+  std::nullptr_t refuse(SMLoc at, const llvm::Twine &what) {
+    if (!failed)
+      diag.error(at, what);
+    failed = true;
+    return nullptr;
+  }
+  std::vector<Attribute> pragmasBefore(antlr4::Token *t);
+
+  Pou *program(P::ProgramDeclContext *c);
+  Pou *functionBlock(P::FunctionBlockDeclContext *c);
+  Pou *function(P::FunctionDeclContext *c);
+  void typeDecl(P::TypeDeclContext *c);
+  void configuration(P::ConfigurationDeclContext *c);
+  void varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out);
+  TypeSyntax *typeSpec(P::TypeSpecContext *c);
+  TypeSyntax *typeSpec0(P::TypeSpec0Context *c);
+  Initializer *initializer(P::InitializerContext *c);
+  void statements(P::StatementListContext *c, StmtList &out);
+  Stmt *statement(P::StatementContext *c);
+  Expr *primary(P::PrimaryContext *c);
+  Expr *variable(P::VariableContext *c);
+  Expr *literal(P::LiteralContext *c);
+  bool callArgs(const std::vector<P::CallArgContext *> &args,
+                std::vector<CallArg> &out);
+
+  StringRef text;
+  DiagEngine &diag;
+  Unit &unit;
+  antlr4::BufferedTokenStream &tokens;
+};
+
+} // namespace
+
+std::vector<Attribute> AstBuilder::pragmasBefore(antlr4::Token *t) {
+  std::vector<Attribute> attrs;
+  for (antlr4::Token *h :
+       tokens.getHiddenTokensToLeft(t->getTokenIndex(), st::kPragmaChannel)) {
+    std::string body = h->getText();
+    body = StringRef(body).drop_front().drop_back().trim().str();
+    attrs.push_back({body, loc(h)});
+  }
+  return attrs;
+}
+
+bool AstBuilder::build(P::CompilationUnitContext *cu) {
+  for (auto *el : cu->libraryElement()) {
+    if (failed)
+      return false;
+    if (auto *p = el->programDecl())
+      program(p);
+    else if (auto *fb = el->functionBlockDecl())
+      functionBlock(fb);
+    else if (auto *f = el->functionDecl())
+      function(f);
+    else if (auto *t = el->typeDecl())
+      typeDecl(t);
+    else if (auto *c = el->configurationDecl())
+      configuration(c);
+    else if (auto *g = el->globalVarBlock())
+      varBlock(g->varBlock(), unit.globals);
+    else if (auto *r = el->refusedElement())
+      return refuse(loc(r->kw), llvm::Twine(r->kw->getText()) +
+                                    " is not supported (object-oriented and "
+                                    "vendor extensions are refused)"),
+             false;
+  }
+  return !failed;
+}
+
+Pou *AstBuilder::program(P::ProgramDeclContext *c) {
+  Pou *pou = unit.make<Pou>();
+  pou->kind = PouKind::Program;
+  pou->name = c->name->getText();
+  pou->loc = loc(c->name);
+  pou->attrs = pragmasBefore(c->getStart());
+  for (auto *vb : c->pouVarBlock())
+    varBlock(vb->varBlock(), pou->vars);
+  statements(c->body, pou->body);
+  unit.pous.push_back(pou);
+  return pou;
+}
+
+Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
+  if (c->EXTENDS())
+    return refuse(loc(c->EXTENDS()),
+                  "EXTENDS is not supported (object-oriented function blocks "
+                  "are refused)");
+  if (c->IMPLEMENTS())
+    return refuse(loc(c->IMPLEMENTS()),
+                  "IMPLEMENTS is not supported (object-oriented function "
+                  "blocks are refused)");
+  for (auto *m : c->fbMember())
+    return refuse(loc(m->kw), llvm::Twine(m->kw->getText()) +
+                                  " in a function block is not supported");
+  Pou *pou = unit.make<Pou>();
+  pou->kind = PouKind::FunctionBlock;
+  pou->name = c->name->getText();
+  pou->loc = loc(c->name);
+  pou->attrs = pragmasBefore(c->getStart());
+  for (auto *vb : c->pouVarBlock())
+    varBlock(vb->varBlock(), pou->vars);
+  statements(c->body, pou->body);
+  unit.pous.push_back(pou);
+  return pou;
+}
+
+Pou *AstBuilder::function(P::FunctionDeclContext *c) {
+  Pou *pou = unit.make<Pou>();
+  pou->kind = PouKind::Function;
+  pou->name = c->name->getText();
+  pou->loc = loc(c->name);
+  pou->attrs = pragmasBefore(c->getStart());
+  if (!c->result)
+    return refuse(loc(c->name), "function '" + pou->name +
+                                    "' has no result type (': TYPE' after "
+                                    "its name)");
+  pou->resultSyntax = typeSpec(c->result);
+  for (auto *vb : c->pouVarBlock())
+    varBlock(vb->varBlock(), pou->vars);
+  statements(c->body, pou->body);
+  unit.pous.push_back(pou);
+  return pou;
+}
+
+void AstBuilder::typeDecl(P::TypeDeclContext *c) {
+  for (auto *d : c->typeDefinition()) {
+    TypeDecl *td = unit.make<TypeDecl>();
+    td->name = d->name->getText();
+    td->loc = loc(d->name);
+    td->type = typeSpec(d->typeSpec());
+    if (failed)
+      return;
+    unit.types.push_back(td);
+  }
+}
+
+void AstBuilder::configuration(P::ConfigurationDeclContext *c) {
+  Configuration *cfg = unit.make<Configuration>();
+  cfg->name = c->name->getText();
+  cfg->loc = loc(c->name);
+  auto task = [&](P::TaskDeclContext *t) {
+    Task task;
+    task.name = t->name->getText();
+    task.loc = loc(t->name);
+    for (auto *p : t->taskParam()) {
+      std::string key = StringRef(p->IDENT()->getText()).upper();
+      Expr *v = expr(p->expression());
+      if (key == "INTERVAL")
+        task.interval = v;
+      else if (key == "SINGLE")
+        task.single = v;
+      else if (key == "PRIORITY")
+        task.priority = v;
+      else
+        refuse(loc(p), "unknown task parameter '" + p->IDENT()->getText() +
+                           "' (INTERVAL, SINGLE or PRIORITY)");
+    }
+    cfg->tasks.push_back(task);
+  };
+  auto prog = [&](P::ProgramConfigContext *p) {
+    ProgramInstance pi;
+    pi.name = p->inst->getText();
+    pi.loc = loc(p->inst);
+    if (p->task)
+      pi.task = p->task->getText();
+    pi.typeName = p->type->getText();
+    pi.typeLoc = loc(p->type);
+    callArgs(p->callArg(), pi.args);
+    cfg->programs.push_back(pi);
+  };
+  for (auto *item : c->configItem()) {
+    if (auto *vb = item->varBlock())
+      varBlock(vb, cfg->globals);
+    else if (auto *t = item->taskDecl())
+      task(t);
+    else if (auto *p = item->programConfig())
+      prog(p);
+    else if (auto *r = item->resourceDecl())
+      for (auto *ri : r->resourceItem()) {
+        if (auto *vb = ri->varBlock())
+          varBlock(vb, cfg->globals);
+        else if (auto *t = ri->taskDecl())
+          task(t);
+        else if (auto *p = ri->programConfig())
+          prog(p);
+      }
+  }
+  unit.configs.push_back(cfg);
+}
+
+void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
+  VarSection section = VarSection::Var;
+  switch (c->kind->getType()) {
+  case P::VAR_INPUT:
+    section = VarSection::Input;
+    break;
+  case P::VAR_OUTPUT:
+    section = VarSection::Output;
+    break;
+  case P::VAR_IN_OUT:
+    section = VarSection::InOut;
+    break;
+  case P::VAR_EXTERNAL:
+    section = VarSection::External;
+    break;
+  case P::VAR_GLOBAL:
+    section = VarSection::Global;
+    break;
+  case P::VAR_TEMP:
+    section = VarSection::Temp;
+    break;
+  case P::VAR_ACCESS:
+  case P::VAR_CONFIG:
+  case P::VAR_STAT:
+  case P::VAR_INST:
+    refuse(loc(c->kind), c->kind->getText() + " is not supported");
+    return;
+  default:
+    break;
+  }
+  bool constant = false, retain = false;
+  for (auto *q : c->varQualifier()) {
+    if (q->CONSTANT())
+      constant = true;
+    else if (q->RETAIN() || q->PERSISTENT())
+      retain = true;
+  }
+  for (auto *d : c->varDecl()) {
+    if (d->accessPath())
+      return (void)refuse(loc(d), "access path declarations are not "
+                                  "supported");
+    TypeSyntax *type = typeSpec(d->typeSpec());
+    if (failed)
+      return;
+    std::vector<Attribute> attrs = pragmasBefore(d->getStart());
+    std::string location = d->DIRECT() ? d->DIRECT()->getText() : "";
+    auto add = [&](std::string name, SMLoc at) {
+      VarDecl *v = unit.make<VarDecl>();
+      v->name = std::move(name);
+      v->loc = at;
+      v->section = section;
+      v->constant = constant;
+      v->retain = retain;
+      v->location = location;
+      v->typeSyntax = type;
+      v->attrs = attrs;
+      out.push_back(v);
+    };
+    if (d->IDENT().empty()) // `AT %IX0.0 : BOOL;` names itself by address
+      add(location, loc(d->DIRECT()));
+    for (auto *id : d->IDENT())
+      add(id->getText(), loc(id));
+  }
+}
+
+TypeSyntax *AstBuilder::typeSpec(P::TypeSpecContext *c) {
+  TypeSyntax *t = typeSpec0(c->elem);
+  if (t && c->init)
+    t->init = initializer(c->init);
+  return t;
+}
+
+TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
+  if (auto *n = dynamic_cast<P::NamedTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(n));
+    t->name = n->qualifiedName()->getText();
+    return t;
+  }
+  if (auto *a = dynamic_cast<P::ArrayTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
+    for (auto *s : a->subrange())
+      t->dims.push_back({expr(s->lo), expr(s->hi)});
+    t->elem = typeSpec0(a->elem);
+    return t;
+  }
+  if (auto *s = dynamic_cast<P::StructTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, loc(s));
+    for (auto *f : s->structField()) {
+      if (f->DIRECT())
+        return refuse(loc(f->DIRECT()), "located structure fields are not "
+                                        "supported");
+      TypeSyntax *ft = typeSpec(f->typeSpec());
+      for (auto *id : f->IDENT()) {
+        VarDecl *v = unit.make<VarDecl>();
+        v->name = id->getText();
+        v->loc = loc(id);
+        v->typeSyntax = ft;
+        t->fields.push_back(v);
+      }
+    }
+    return t;
+  }
+  if (auto *u = dynamic_cast<P::UnionTypeContext *>(c))
+    return refuse(loc(u), "UNION types are not supported");
+  if (auto *p = dynamic_cast<P::PointerTypeContext *>(c))
+    return refuse(loc(p), llvm::Twine(p->getStart()->getText()) +
+                              " types (pointers and references) are not "
+                              "supported");
+  if (auto *e = dynamic_cast<P::EnumTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
+    if (e->base)
+      t->name = e->base->getText();
+    for (auto *v : e->enumValue())
+      t->enumerators.push_back(
+          {v->name->getText(), v->value ? expr(v->value) : nullptr,
+           loc(v->name)});
+    return t;
+  }
+  if (auto *s = dynamic_cast<P::SubrangeTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, loc(s));
+    t->name = s->base->getText();
+    t->lo = expr(s->subrange()->lo);
+    t->hi = expr(s->subrange()->hi);
+    return t;
+  }
+  if (auto *s = dynamic_cast<P::StringTypeContext *>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::String, loc(s));
+    t->name = s->WSTRING_KW() ? "WSTRING" : "STRING";
+    return t;
+  }
+  return refuse(loc(c), "unsupported type");
+}
+
+Initializer *AstBuilder::initializer(P::InitializerContext *c) {
+  if (auto *e = dynamic_cast<P::ExprInitContext *>(c)) {
+    auto *i = unit.make<Initializer>(Initializer::Value, loc(e));
+    i->value = expr(e->expression());
+    return i;
+  }
+  if (auto *a = dynamic_cast<P::ArrayInitContext *>(c)) {
+    auto *i = unit.make<Initializer>(Initializer::Array, loc(a));
+    for (auto *el : a->arrayInitElem()) {
+      int64_t count = 1;
+      if (el->count && !st::parseIntegerLiteral(el->count->getText(), count))
+        return refuse(loc(el->count), "malformed repeat count");
+      Initializer *inner = el->initializer() ? initializer(el->initializer())
+                                             : nullptr;
+      i->elems.push_back({count, inner});
+    }
+    return i;
+  }
+  auto *s = static_cast<P::StructInitContext *>(c);
+  auto *i = unit.make<Initializer>(Initializer::Struct, loc(s));
+  for (auto *f : s->fieldInit())
+    i->fields.push_back({f->IDENT()->getText(), initializer(f->initializer())});
+  return i;
+}
+
+void AstBuilder::statements(P::StatementListContext *c, StmtList &out) {
+  for (auto *s : c->statement()) {
+    if (failed)
+      return;
+    if (Stmt *st = statement(s))
+      out.push_back(st);
+  }
+}
+
+Stmt *AstBuilder::statement(P::StatementContext *c) {
+  if (dynamic_cast<P::EmptyStmtContext *>(c))
+    return nullptr;
+  if (auto *a = dynamic_cast<P::AssignStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Assign, loc(a->ASSIGN()));
+    s->target = variable(a->target);
+    s->value = expr(a->value);
+    return s;
+  }
+  if (auto *r = dynamic_cast<P::RefusedAssignStmtContext *>(c))
+    return refuse(loc(r->op), "'" + r->op->getText() +
+                                  "' (reference assignment) is not supported");
+  if (auto *call = dynamic_cast<P::CallStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Call, loc(call));
+    Expr *callee = variable(call->callee);
+    if (!callee)
+      return nullptr;
+    if (callee->kind != ExprKind::Name)
+      return refuse(loc(call), "calling '" + call->callee->getText() +
+                                   "' is not supported (methods and calls "
+                                   "through selectors are refused)");
+    Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
+    e->name = callee->name;
+    callArgs(call->callArg(), e->args);
+    s->value = e;
+    return s;
+  }
+  if (auto *i = dynamic_cast<P::IfStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::If, loc(i));
+    s->arms.push_back({expr(i->cond), {}});
+    statements(i->statementList(0), s->arms.back().second);
+    for (auto *e : i->elsifPart()) {
+      s->arms.push_back({expr(e->cond), {}});
+      statements(e->statementList(), s->arms.back().second);
+    }
+    if (i->elseBody) {
+      s->hasElse = true;
+      statements(i->elseBody, s->elseBody);
+    }
+    return s;
+  }
+  if (auto *cs = dynamic_cast<P::CaseStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Case, loc(cs));
+    s->value = expr(cs->sel);
+    for (auto *arm : cs->caseArm()) {
+      CaseArmSyntax a;
+      for (auto *l : arm->caseLabel())
+        a.labels.push_back({expr(l->lo), l->hi ? expr(l->hi) : nullptr});
+      statements(arm->statementList(), a.body);
+      s->caseArms.push_back(std::move(a));
+    }
+    if (cs->elseBody) {
+      s->hasElse = true;
+      statements(cs->elseBody, s->elseBody);
+    }
+    return s;
+  }
+  if (auto *f = dynamic_cast<P::ForStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::For, loc(f));
+    s->target = unit.make<Expr>(ExprKind::Name, loc(f->var));
+    s->target->name = f->var->getText();
+    s->from = expr(f->from);
+    s->to = expr(f->to);
+    if (f->by)
+      s->by = expr(f->by);
+    statements(f->statementList(), s->body);
+    return s;
+  }
+  if (auto *w = dynamic_cast<P::WhileStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::While, loc(w));
+    s->value = expr(w->cond);
+    statements(w->statementList(), s->body);
+    return s;
+  }
+  if (auto *r = dynamic_cast<P::RepeatStmtContext *>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Repeat, loc(r));
+    statements(r->statementList(), s->body);
+    s->value = expr(r->cond);
+    return s;
+  }
+  if (dynamic_cast<P::ExitStmtContext *>(c))
+    return unit.make<Stmt>(StmtKind::Exit, loc(c));
+  if (dynamic_cast<P::ContinueStmtContext *>(c))
+    return unit.make<Stmt>(StmtKind::Continue, loc(c));
+  if (dynamic_cast<P::ReturnStmtContext *>(c))
+    return unit.make<Stmt>(StmtKind::Return, loc(c));
+  if (dynamic_cast<P::JumpStmtContext *>(c))
+    return refuse(loc(c), "JMP in Structured Text is not supported");
+  return refuse(loc(c), "unsupported statement");
+}
+
+bool AstBuilder::callArgs(const std::vector<P::CallArgContext *> &args,
+                          std::vector<CallArg> &out) {
+  for (auto *a : args) {
+    CallArg arg;
+    arg.loc = loc(a);
+    if (auto *n = dynamic_cast<P::NamedInputContext *>(a)) {
+      arg.name = n->name->getText();
+      arg.value = expr(n->value);
+    } else if (auto *o = dynamic_cast<P::NamedOutputContext *>(a)) {
+      arg.name = o->name->getText();
+      arg.isOutput = true;
+      arg.negated = o->NOT() != nullptr;
+      arg.value = variable(o->target);
+    } else {
+      arg.value = expr(static_cast<P::PositionalArgContext *>(a)->value);
+    }
+    out.push_back(std::move(arg));
+  }
+  return !failed;
+}
+
+static Op binaryOp(size_t tokenType) {
+  switch (tokenType) {
+  case P::OR:
+    return Op::Or;
+  case P::OR_ELSE:
+    return Op::OrElse;
+  case P::XOR:
+    return Op::Xor;
+  case P::AND:
+  case P::AMP:
+    return Op::And;
+  case P::AND_THEN:
+    return Op::AndThen;
+  case P::EQ:
+    return Op::Eq;
+  case P::NE:
+    return Op::Ne;
+  case P::LT:
+    return Op::Lt;
+  case P::LE:
+    return Op::Le;
+  case P::GT:
+    return Op::Gt;
+  case P::GE:
+    return Op::Ge;
+  case P::PLUS:
+    return Op::Add;
+  case P::MINUS:
+    return Op::Sub;
+  case P::STAR:
+    return Op::Mul;
+  case P::SLASH:
+    return Op::Div;
+  case P::MOD:
+    return Op::Mod;
+  default:
+    return Op::Pow;
+  }
+}
+
+Expr *AstBuilder::expr(P::ExpressionContext *c) {
+  if (failed || !c)
+    return nullptr;
+  if (auto *p = dynamic_cast<P::PrimaryExprContext *>(c))
+    return primary(p->primary());
+  if (auto *u = dynamic_cast<P::UnaryExprContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::Unary, loc(u->op));
+    e->op = u->op->getType() == P::MINUS  ? Op::Neg
+            : u->op->getType() == P::PLUS ? Op::Plus
+                                          : Op::Not;
+    e->operands.push_back(expr(u->expression()));
+    return failed ? nullptr : e;
+  }
+  // Every other alternative is binary: expression op expression.
+  auto *lhs = c->children.size() == 3
+                  ? dynamic_cast<P::ExpressionContext *>(c->children[0])
+                  : nullptr;
+  auto *rhs = c->children.size() == 3
+                  ? dynamic_cast<P::ExpressionContext *>(c->children[2])
+                  : nullptr;
+  auto *opNode = c->children.size() == 3
+                     ? dynamic_cast<antlr4::tree::TerminalNode *>(
+                           c->children[1])
+                     : nullptr;
+  if (!lhs || !rhs || !opNode)
+    return refuse(loc(c), "unsupported expression");
+  Expr *e = unit.make<Expr>(ExprKind::Binary, loc(opNode));
+  e->op = binaryOp(opNode->getSymbol()->getType());
+  e->operands = {expr(lhs), expr(rhs)};
+  return failed ? nullptr : e;
+}
+
+Expr *AstBuilder::primary(P::PrimaryContext *c) {
+  if (auto *l = dynamic_cast<P::LiteralPrimaryContext *>(c))
+    return literal(l->literal());
+  if (auto *p = dynamic_cast<P::ParenPrimaryContext *>(c))
+    return expr(p->expression());
+  if (auto *v = dynamic_cast<P::VariablePrimaryContext *>(c))
+    return variable(v->variable());
+  auto *call = static_cast<P::CallPrimaryContext *>(c);
+  Expr *callee = variable(call->callee);
+  if (!callee)
+    return nullptr;
+  if (callee->kind != ExprKind::Name)
+    return refuse(loc(call), "calling '" + call->callee->getText() +
+                                 "' is not supported (methods and calls "
+                                 "through selectors are refused)");
+  Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
+  e->name = callee->name;
+  callArgs(call->callArg(), e->args);
+  return failed ? nullptr : e;
+}
+
+Expr *AstBuilder::variable(P::VariableContext *c) {
+  if (failed)
+    return nullptr;
+  antlr4::Token *head = c->getStart();
+  Expr *e = unit.make<Expr>(ExprKind::Name, loc(head));
+  e->name = head->getText();
+  for (auto *sel : c->selector()) {
+    if (auto *f = dynamic_cast<P::FieldSelContext *>(sel)) {
+      Expr *fe = unit.make<Expr>(ExprKind::Field, loc(f->IDENT()));
+      fe->name = f->IDENT()->getText();
+      fe->operands.push_back(e);
+      e = fe;
+    } else if (auto *b = dynamic_cast<P::BitSelContext *>(sel)) {
+      Expr *be = unit.make<Expr>(ExprKind::BitAccess, loc(b->INTEGER()));
+      if (!st::parseIntegerLiteral(b->INTEGER()->getText(), be->intValue))
+        return refuse(loc(b->INTEGER()), "malformed bit number");
+      be->operands.push_back(e);
+      e = be;
+    } else if (auto *ix = dynamic_cast<P::IndexSelContext *>(sel)) {
+      Expr *ie = unit.make<Expr>(ExprKind::Index, loc(ix));
+      ie->operands.push_back(e);
+      for (auto *x : ix->expression())
+        ie->operands.push_back(expr(x));
+      e = ie;
+    } else {
+      return refuse(loc(sel), "dereference '^' is not supported (pointers "
+                              "and references are refused)");
+    }
+  }
+  return failed ? nullptr : e;
+}
+
+Expr *AstBuilder::literal(P::LiteralContext *c) {
+  SMLoc at = loc(c);
+  if (auto *i = dynamic_cast<P::IntLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
+    if (!st::parseIntegerLiteral(i->getText(), e->intValue))
+      return refuse(at, "integer literal '" + i->getText() + "' is out of "
+                                                             "range");
+    return e;
+  }
+  if (auto *r = dynamic_cast<P::RealLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::RealLit, at);
+    std::string t;
+    for (char ch : r->getText())
+      if (ch != '_')
+        t += ch;
+    e->realValue = std::strtod(t.c_str(), nullptr);
+    return e;
+  }
+  if (auto *b = dynamic_cast<P::BoolLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::BoolLit, at);
+    e->intValue = b->TRUE() != nullptr;
+    return e;
+  }
+  if (auto *d = dynamic_cast<P::DurationLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::TimeLit, at);
+    std::string err;
+    if (!st::parseDuration(d->getText(), e->intValue, err))
+      return refuse(at, err);
+    return e;
+  }
+  if (dynamic_cast<P::DateLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::DateLit, at);
+    e->name = c->getText();
+    return e;
+  }
+  if (auto *s = dynamic_cast<P::StringLiteralContext *>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::StringLit, at);
+    e->name = s->getText();
+    return e;
+  }
+  auto *t = static_cast<P::TypedLiteralContext *>(c);
+  std::string typeName = t->type->getText();
+  std::string value = t->value->getText();
+  bool negative = t->sign && t->sign->getType() == P::MINUS;
+  switch (t->value->getType()) {
+  case P::INTEGER: {
+    Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
+    e->typeName = typeName;
+    if (!st::parseIntegerLiteral(value, e->intValue))
+      return refuse(at, "integer literal '" + value + "' is out of range");
+    if (negative)
+      e->intValue = -e->intValue;
+    return e;
+  }
+  case P::REAL_LIT: {
+    Expr *e = unit.make<Expr>(ExprKind::RealLit, at);
+    e->typeName = typeName;
+    e->realValue = std::strtod(value.c_str(), nullptr) * (negative ? -1 : 1);
+    return e;
+  }
+  case P::TRUE:
+  case P::FALSE: {
+    Expr *e = unit.make<Expr>(ExprKind::BoolLit, at);
+    e->typeName = typeName;
+    e->intValue = t->value->getType() == P::TRUE;
+    return e;
+  }
+  case P::STRING_LIT: {
+    Expr *e = unit.make<Expr>(ExprKind::StringLit, at);
+    e->typeName = typeName;
+    e->name = value;
+    return e;
+  }
+  default: {
+    if (negative)
+      return refuse(at, "a sign before an enumerated value");
+    Expr *e = unit.make<Expr>(ExprKind::EnumLit, at);
+    e->typeName = typeName;
+    e->name = value;
+    return e;
+  }
+  }
+}
+
+//===----------------------------------------------------------------------===//
+// Entry points
+//===----------------------------------------------------------------------===//
+
+namespace {
+
+/// Runs `rule` on a parser over `text`, SLL first, full LL on failure,
+/// reporting the first syntax error. Returns null on error.
+template <typename Ctx>
+Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
+               antlr4::CommonTokenStream &tokens, P &parser,
+               Ctx *(P::*rule)()) {
+  parser.removeErrorListeners();
+  parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
+      antlr4::atn::PredictionMode::SLL);
+  parser.setErrorHandler(std::make_shared<antlr4::BailErrorStrategy>());
+  try {
+    Ctx *tree = (parser.*rule)();
+    if (lexer.hadError())
+      return nullptr;
+    return tree;
+  } catch (antlr4::ParseCancellationException &) {
+  }
+  if (lexer.hadError())
+    return nullptr;
+  tokens.seek(0);
+  parser.reset();
+  parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
+      antlr4::atn::PredictionMode::LL);
+  parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
+  FirstErrorListener listener;
+  parser.addErrorListener(&listener);
+  Ctx *tree = nullptr;
+  try {
+    tree = (parser.*rule)();
+  } catch (antlr4::RecognitionException &) {
+  } catch (antlr4::ParseCancellationException &) {
+  }
+  parser.removeErrorListeners();
+  if (lexer.hadError())
+    return nullptr;
+  if (listener.seen) {
+    diag.error(lexer.locAt(listener.offset), listener.message);
+    return nullptr;
+  }
+  return tree;
+}
+
+} // namespace
+
+bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit) {
+  StLexer lexer(text, diag);
+  antlr4::CommonTokenStream tokens(&lexer);
+  P parser(&tokens);
+  P::CompilationUnitContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::compilationUnit);
+  if (!tree)
+    return false;
+  AstBuilder builder(text, diag, unit, tokens);
+  return builder.build(tree);
+}
+
+Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
+  StLexer lexer(text, diag);
+  antlr4::CommonTokenStream tokens(&lexer);
+  P parser(&tokens);
+  P::ExpressionContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::expression);
+  if (!tree)
+    return nullptr;
+  if (tokens.LA(1) != antlr4::Token::EOF) {
+    diag.error(lexer.locAt(tokens.LT(1)->getStartIndex()),
+               "unexpected text after the expression");
+    return nullptr;
+  }
+  AstBuilder builder(text, diag, unit, tokens);
+  return builder.expr(tree);
+}

@@ -1,0 +1,37 @@
+//===- StFrontend.h - Structured Text into the PLC model --------*- C++ -*-===//
+//
+// Parses IEC 61131-3 Structured Text (ST.g4 over the hand-written StLexer)
+// and builds the PLC model (frontends/plc/PlcAst.h). The text is a slice of
+// a SourceMgr buffer — a whole .st file, or the CDATA of a TwinCAT or
+// PLCopen XML file — so every diagnostic points into the file the user
+// opened. Syntax errors are reported once, at the first mistake; constructs
+// netlift refuses are named where they stand.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_ST_STFRONTEND_H
+#define NETLIFT_FRONTENDS_ST_STFRONTEND_H
+
+#include "frontends/plc/PlcAst.h"
+#include "ir/support/Diagnostics.h"
+
+namespace netlift::st {
+
+/// Parses `text` (inside a buffer of diag's SourceMgr) and appends what it
+/// declares to `unit`. Returns false after reporting an error.
+bool parseStructuredText(llvm::StringRef text, DiagEngine &diag,
+                         plc::Unit &unit);
+
+/// Parses one ST expression (used for pragma values and --ranges files).
+plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
+                             plc::Unit &unit);
+
+/// The value of a duration literal such as `T#1h2m3.5s` in nanoseconds;
+/// false (and `error` set) when it is malformed.
+bool parseDuration(llvm::StringRef literal, int64_t &ns, std::string &error);
+
+/// The value of an integer literal (`1_000`, `16#FF`, `2#1010`).
+bool parseIntegerLiteral(llvm::StringRef text, int64_t &value);
+
+} // namespace netlift::st
+
+#endif

@@ -1,0 +1,71 @@
+//===- StLexer.h - hand-written lexer for Structured Text -------*- C++ -*-===//
+//
+// Turns an ST buffer into the tokens the generated parser (ST.g4) expects,
+// behind ANTLR's TokenSource interface. Hand-written because IEC keywords are
+// case-insensitive, comments nest, `T#1h2m`, `16#FF` and `%IX0.1` are single
+// tokens, and because the generated lexer of the ANTLR C++ runtime is too
+// slow for the throughput netlift promises. Pragmas `{...}` go to the
+// hidden channel kPragmaChannel so the builder can attach them to the
+// declaration that follows; matiec's `{{ C code }}` is refused here.
+//
+// Every token's start index is a byte offset into the buffer, so a token
+// maps back to an SMLoc for diagnostics.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_ST_STLEXER_H
+#define NETLIFT_FRONTENDS_ST_STLEXER_H
+
+#include "ir/support/Diagnostics.h"
+
+#include "antlr4-runtime.h"
+
+#include "llvm/ADT/StringRef.h"
+
+namespace netlift::st {
+
+inline constexpr size_t kPragmaChannel = 2;
+
+class StLexer : public antlr4::TokenSource {
+public:
+  /// `text` must stay alive as long as the tokens; `diag` receives lexical
+  /// errors (after the first one the lexer returns EOF).
+  StLexer(llvm::StringRef text, DiagEngine &diag);
+
+  std::unique_ptr<antlr4::Token> nextToken() override;
+  size_t getLine() const override { return line; }
+  size_t getCharPositionInLine() override { return pos - lineStart; }
+  antlr4::CharStream *getInputStream() override { return nullptr; }
+  std::string getSourceName() override { return "st"; }
+  antlr4::TokenFactory<antlr4::CommonToken> *getTokenFactory() override {
+    return antlr4::CommonTokenFactory::DEFAULT.get();
+  }
+
+  bool hadError() const { return failed; }
+  llvm::SMLoc locAt(size_t offset) const {
+    return llvm::SMLoc::getFromPointer(text.data() + offset);
+  }
+
+  /// The token type of an IEC keyword (case-insensitive), or 0.
+  static size_t keywordType(llvm::StringRef word);
+
+private:
+  std::unique_ptr<antlr4::Token> make(size_t type, size_t start,
+                                      size_t channel = 0);
+  std::unique_ptr<antlr4::Token> fail(size_t at, const llvm::Twine &msg);
+  bool skipTrivia(); // false on an unterminated comment
+  void lexBasedOrDecimal();
+  void newlinesIn(size_t from, size_t to);
+
+  llvm::StringRef text;
+  DiagEngine &diag;
+  size_t pos = 0;
+  size_t line = 1;
+  size_t lineStart = 0;
+  size_t tokenLine = 1, tokenCol = 0;
+  size_t tokenIndex = 0;
+  bool failed = false;
+};
+
+} // namespace netlift::st
+
+#endif

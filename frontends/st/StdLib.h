@@ -1,0 +1,21 @@
+//===- StdLib.h - the IEC 61131-3 standard function blocks ------*- C++ -*-===//
+//
+// TON, TOF, TP, CTU, CTD, CTUD, R_TRIG, F_TRIG, SR and RS as Structured Text
+// netlift ships (StdLib.cpp), added to every PLC unit before checking so
+// that ST, IL and LD programs use them like their own function blocks.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_ST_STDLIB_H
+#define NETLIFT_FRONTENDS_ST_STDLIB_H
+
+#include "frontends/plc/PlcAst.h"
+#include "ir/support/Diagnostics.h"
+
+namespace netlift::st {
+
+/// Adds the standard function blocks the unit does not define itself.
+bool addStandardLibrary(DiagEngine &diag, plc::Unit &unit);
+
+} // namespace netlift::st
+
+#endif
