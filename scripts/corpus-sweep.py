@@ -4,7 +4,7 @@ frontend exists for and prints, per format, how many files were translated,
 refused (grouped by reason, names and numbers elided) and crashed (any exit
 other than 0/1, or a hang). Exits 1 if anything crashed.
 
-usage: corpus-sweep.py NETLIFT [CORPUS_DIR]
+usage: corpus-sweep.py NETLIFT [CORPUS_DIR [FORMAT...]]
 """
 import collections
 import os
@@ -12,8 +12,14 @@ import re
 import subprocess
 import sys
 
-# Format folder -> file extensions its frontend reads.
-FORMATS = {"pnml": (".pnml",)}
+# Format folder -> (file extensions, --from format or None for "by
+# extension", files to skip). matiec keeps ST in .txt and .test files.
+FORMATS = {
+    "pnml": ((".pnml",), None, ()),
+    "st": ((".st", ".txt", ".test", ".EXP"), "st",
+           ("PROVENANCE.txt", "readme")),
+    "tcpou": ((".TcPOU", ".TcGVL", ".TcDUT"), None, ()),
+}
 
 
 def reason(stderr):
@@ -34,15 +40,21 @@ def main():
         print(f"corpus not found at {corpus}: nothing swept")
         return 0
     crashed_any = False
-    for fmt, exts in FORMATS.items():
+    only = sys.argv[3:]
+    for fmt, (exts, from_fmt, skip) in FORMATS.items():
+        if only and fmt not in only:
+            continue
         files = sorted(os.path.join(d, f)
                        for d, _, fs in os.walk(os.path.join(corpus, fmt))
-                       for f in fs if f.endswith(exts))
+                       for f in fs if f.endswith(exts) and f not in skip)
         ok, refused, crashed = 0, collections.Counter(), []
         for f in files:
             try:
-                r = subprocess.run([netlift, "translate", f, "-o", os.devnull],
-                                   capture_output=True, text=True, timeout=120)
+                cmd = [netlift, "translate", f, "-o", os.devnull]
+                if from_fmt:
+                    cmd += ["--from", from_fmt]
+                r = subprocess.run(cmd, capture_output=True, text=True,
+                                   timeout=120, errors="replace")
             except subprocess.TimeoutExpired:
                 crashed.append((f, "hang"))
                 continue
@@ -52,6 +64,8 @@ def main():
                 refused[reason(r.stderr)] += 1
             else:
                 crashed.append((f, f"exit {r.returncode}"))
+            if os.environ.get("SWEEP_VERBOSE") and r.returncode != 0:
+                print(f"    {f}: {reason(r.stderr)}")
         print(f"{fmt}: {len(files)} files, {ok} translated, "
               f"{sum(refused.values())} refused, {len(crashed)} crashed")
         for why, n in refused.most_common():

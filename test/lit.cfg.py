@@ -5,7 +5,7 @@ import lit.formats
 
 config.name = "netlift"
 config.test_format = lit.formats.ShTest(execute_external=False)
-config.suffixes = [".net", ".test"]
+config.suffixes = [".net", ".test", ".st"]
 # Helper scripts next to a test (x.test.py) are not tests.
 config.excludes = ["Inputs", "unit", "utils", "CMakeLists.txt", "lit.cfg.py",
                    "lit.site.cfg.py.in"]

@@ -153,6 +153,7 @@ private:
   std::map<std::string, Pou *> instanceTypes;
   std::map<std::string, const PType *> varTypes; // NetIR var -> PLC type
   std::set<VarDecl *> written;
+  std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
   std::map<VarDecl *, std::set<std::string>> globalUsers;
   Pou *currentProgram = nullptr;
@@ -299,7 +300,6 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     for (auto &e : t->enumerators)
       names.push_back(design.save(sanitize(e)));
     r = tt.createEnum(design.save(name), names);
-    tt.namedTypes().push_back({r->name, r, false, at});
     break;
   }
   case PTypeKind::Array: {
@@ -320,7 +320,6 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
       fields.push_back({design.save(sanitize(f->name)),
                         netType(f->type, f->loc, "field " + f->name)});
     r = tt.createRecord(design.save(name), fields);
-    tt.namedTypes().push_back({r->name, r, false, at});
     break;
   }
   case PTypeKind::FunctionBlock:
@@ -449,6 +448,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
                              " of input '" + v->name + "' exceeds " +
                              t->str());
       nt = design.types.getRange(r->first, r->second);
+      inputRanges[v] = *r;
     } else if (t->kind == PTypeKind::Enum ||
                (t->kind == PTypeKind::Int && t->isSubrange)) {
       nt = netType(t, v->loc, "input " + v->name);
@@ -627,6 +627,8 @@ Range Lowering::rangeOf(Expr *e) {
   case ExprKind::Name:
   case ExprKind::Field:
   case ExprKind::Index:
+    if (auto it = inputRanges.find(e->var); it != inputRanges.end())
+      return {it->second.first, it->second.second, true};
     if (e->var && e->var->type && e->var->type->kind == PTypeKind::Int)
       return {e->var->type->lo, e->var->type->hi, true};
     return full;

@@ -60,7 +60,8 @@ refusedElement
   ;
 
 programDecl
-  : PROGRAM name=IDENT pouVarBlock* body=statementList END_PROGRAM
+  : PROGRAM name=IDENT pouVarBlock* fbMember* body=statementList fbMember*
+    END_PROGRAM
   ;
 
 functionBlockDecl

@@ -304,6 +304,16 @@ private:
     return nullptr;
   }
   std::vector<Attribute> pragmasBefore(antlr4::Token *t);
+  std::nullptr_t refuseMember(P::FbMemberContext *m, StringRef where) {
+    size_t t = m->kw->getType();
+    if (t == P::INITIAL_STEP || t == P::STEP || t == P::TRANSITION)
+      return refuse(loc(m->kw), "Sequential Function Chart (" +
+                                    m->kw->getText() + ") in a " + where +
+                                    " is not supported");
+    return refuse(loc(m->kw), m->kw->getText() + " in a " + where +
+                                  " is not supported (object-oriented "
+                                  "extensions are refused)");
+  }
 
   Pou *program(P::ProgramDeclContext *c);
   Pou *functionBlock(P::FunctionBlockDeclContext *c);
@@ -367,6 +377,8 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
 }
 
 Pou *AstBuilder::program(P::ProgramDeclContext *c) {
+  for (auto *m : c->fbMember())
+    return refuseMember(m, "program");
   Pou *pou = unit.make<Pou>();
   pou->kind = PouKind::Program;
   pou->name = c->name->getText();
@@ -389,8 +401,7 @@ Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
                   "IMPLEMENTS is not supported (object-oriented function "
                   "blocks are refused)");
   for (auto *m : c->fbMember())
-    return refuse(loc(m->kw), llvm::Twine(m->kw->getText()) +
-                                  " in a function block is not supported");
+    return refuseMember(m, "function block");
   Pou *pou = unit.make<Pou>();
   pou->kind = PouKind::FunctionBlock;
   pou->name = c->name->getText();
