@@ -223,10 +223,24 @@ void Lowering::collectTimes(Pou *p, std::set<Pou *> &seen,
   collectTimesStmts(p->body, seen, ns);
 }
 
+/// A duration in the largest unit that keeps it whole: 1s, 300ms, 1500us.
+static std::string formatDuration(int64_t ns) {
+  static const struct {
+    const char *unit;
+    int64_t ns;
+  } units[] = {{"h", 3600000000000}, {"m", 60000000000}, {"s", 1000000000},
+               {"ms", 1000000},      {"us", 1000},       {"ns", 1}};
+  for (auto &u : units)
+    if (ns % u.ns == 0)
+      return std::to_string(ns / u.ns) + u.unit;
+  return std::to_string(ns) + "ns";
+}
+
 int64_t Lowering::ticks(int64_t ns, SMLoc at) {
   if (ns % tickNs != 0)
-    refuse(at, "time value of " + Twine(ns) + " ns is not a whole number of "
-                   "ticks of " + Twine(tickNs) + " ns (choose --timescale)");
+    refuse(at, "time value " + formatDuration(ns) +
+                   " is not a whole number of ticks (one tick is " +
+                   formatDuration(tickNs) + "; choose --timescale)");
   return ns / tickNs;
 }
 
