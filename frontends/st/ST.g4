@@ -86,14 +86,22 @@ functionDecl
     pouVarBlock* body=statementList END_FUNCTION
   ;
 
-qualifiedName : IDENT (DOT IDENT)* ;
+qualifiedName : ident (DOT ident)* ;
+
+// Words IEC reserves only in some places (SFC, resources, OOP) are ordinary
+// names everywhere else: real programs call variables `step` or `on`.
+ident
+  : IDENT | ON | STEP | FROM | ACTION | METHOD | PROPERTY | INTERFACE
+  | NAMESPACE | ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL
+  | OVERRIDE | POINTER | REFERENCE | TRANSITION
+  ;
 
 // ---------------------------------------------------------------- types
 
 typeDecl : TYPE typeDefinition+ END_TYPE ;
 
 typeDefinition
-  : name=IDENT COLON typeSpec SEMI?
+  : name=ident COLON typeSpec SEMI?
   ;
 
 typeSpec
@@ -111,12 +119,12 @@ typeSpec0
   | qualifiedName                                                         # namedType
   ;
 
-enumValue : name=IDENT (ASSIGN value=expression)? ;
+enumValue : name=ident (ASSIGN value=expression)? ;
 
 subrange : lo=expression DOTDOT hi=expression ;
 
 structField
-  : IDENT (COMMA IDENT)* (AT DIRECT)? COLON typeSpec SEMI
+  : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec SEMI
   ;
 
 // An initial value: an expression, an array initialiser `[1, 2, 3(0)]` or
@@ -132,7 +140,7 @@ arrayInitElem
   | initializer
   ;
 
-fieldInit : IDENT ASSIGN initializer ;
+fieldInit : ident ASSIGN initializer ;
 
 // ---------------------------------------------------------------- variables
 
@@ -149,13 +157,13 @@ globalVarBlock : varBlock ;
 varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
 
 varDecl
-  : IDENT (COMMA IDENT)* (AT DIRECT)? COLON typeSpec SEMI
+  : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec SEMI
   | AT DIRECT COLON typeSpec SEMI
   | accessPath COLON typeSpec SEMI
   ;
 
 // VAR_CONFIG and VAR_ACCESS entries (refused; parsed to name them).
-accessPath : IDENT (DOT IDENT)+ (AT DIRECT)? ;
+accessPath : ident (DOT ident)+ (AT DIRECT)? ;
 
 // ---------------------------------------------------------------- config
 
@@ -180,7 +188,7 @@ taskDecl
   : TASK name=IDENT (LPAREN taskParam (COMMA taskParam)* RPAREN)? SEMI
   ;
 
-taskParam : IDENT ASSIGN expression ;
+taskParam : ident ASSIGN expression ;
 
 programConfig
   : PROGRAM accessModifier* inst=IDENT (WITH task=IDENT)? COLON type=IDENT
@@ -199,7 +207,7 @@ statement
   | IF cond=expression THEN statementList
     (elsifPart)* (ELSE elseBody=statementList)? END_IF SEMI?    # ifStmt
   | CASE sel=expression OF caseArm* (ELSE elseBody=statementList)? END_CASE SEMI? # caseStmt
-  | FOR var=IDENT ASSIGN from=expression TO to=expression (BY by=expression)? DO
+  | FOR var=ident ASSIGN from=expression TO to=expression (BY by=expression)? DO
     statementList END_FOR SEMI?                                 # forStmt
   | WHILE cond=expression DO statementList END_WHILE SEMI?      # whileStmt
   | REPEAT statementList UNTIL cond=expression END_REPEAT SEMI? # repeatStmt
@@ -218,8 +226,8 @@ caseLabel
   ;
 
 callArg
-  : name=IDENT ASSIGN value=expression        # namedInput
-  | NOT? name=IDENT OUTPUT_ASSIGN target=variable # namedOutput
+  : name=ident ASSIGN value=expression        # namedInput
+  | NOT? name=ident OUTPUT_ASSIGN target=variable # namedOutput
   | value=expression                          # positionalArg
   ;
 
@@ -249,11 +257,11 @@ primary
 // A variable access: a name, a direct address, then fields, indices,
 // bit accesses (`x.3`) and dereferences (`p^`, refused later).
 variable
-  : (IDENT | DIRECT) selector*
+  : (ident | DIRECT) selector*
   ;
 
 selector
-  : DOT IDENT                                                   # fieldSel
+  : DOT ident                                                   # fieldSel
   | DOT INTEGER                                                 # bitSel
   | LBRACKET expression (COMMA expression)* RBRACKET            # indexSel
   | CARET                                                       # derefSel
@@ -266,5 +274,5 @@ literal
   | DURATION                                                    # durationLiteral
   | (TOD_LIT | DATE_LIT | DT_LIT)                               # dateLiteral
   | (STRING_LIT | WSTRING_LIT)                                  # stringLiteral
-  | type=IDENT HASH sign=(MINUS | PLUS)? value=(INTEGER | REAL_LIT | IDENT | TRUE | FALSE | STRING_LIT) # typedLiteral
+  | type=IDENT HASH sign=(MINUS | PLUS)? (value=(INTEGER | REAL_LIT | TRUE | FALSE | STRING_LIT) | enumName=ident) # typedLiteral
   ;

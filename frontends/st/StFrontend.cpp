@@ -453,7 +453,7 @@ void AstBuilder::configuration(P::ConfigurationDeclContext *c) {
     task.name = t->name->getText();
     task.loc = loc(t->name);
     for (auto *p : t->taskParam()) {
-      std::string key = StringRef(p->IDENT()->getText()).upper();
+      std::string key = StringRef(p->ident()->getText()).upper();
       Expr *v = expr(p->expression());
       if (key == "INTERVAL")
         task.interval = v;
@@ -462,7 +462,7 @@ void AstBuilder::configuration(P::ConfigurationDeclContext *c) {
       else if (key == "PRIORITY")
         task.priority = v;
       else
-        refuse(loc(p), "unknown task parameter '" + p->IDENT()->getText() +
+        refuse(loc(p), "unknown task parameter '" + p->ident()->getText() +
                            "' (INTERVAL, SINGLE or PRIORITY)");
     }
     cfg->tasks.push_back(task);
@@ -556,9 +556,9 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
       v->attrs = attrs;
       out.push_back(v);
     };
-    if (d->IDENT().empty()) // `AT %IX0.0 : BOOL;` names itself by address
+    if (d->ident().empty()) // `AT %IX0.0 : BOOL;` names itself by address
       add(location, loc(d->DIRECT()));
-    for (auto *id : d->IDENT())
+    for (auto *id : d->ident())
       add(id->getText(), loc(id));
   }
 }
@@ -590,7 +590,7 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
         return refuse(loc(f->DIRECT()), "located structure fields are not "
                                         "supported");
       TypeSyntax *ft = typeSpec(f->typeSpec());
-      for (auto *id : f->IDENT()) {
+      for (auto *id : f->ident()) {
         VarDecl *v = unit.make<VarDecl>();
         v->name = id->getText();
         v->loc = loc(id);
@@ -652,7 +652,7 @@ Initializer *AstBuilder::initializer(P::InitializerContext *c) {
   auto *s = static_cast<P::StructInitContext *>(c);
   auto *i = unit.make<Initializer>(Initializer::Struct, loc(s));
   for (auto *f : s->fieldInit())
-    i->fields.push_back({f->IDENT()->getText(), initializer(f->initializer())});
+    i->fields.push_back({f->ident()->getText(), initializer(f->initializer())});
   return i;
 }
 
@@ -878,8 +878,8 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
   e->name = head->getText();
   for (auto *sel : c->selector()) {
     if (auto *f = dynamic_cast<P::FieldSelContext *>(sel)) {
-      Expr *fe = unit.make<Expr>(ExprKind::Field, loc(f->IDENT()));
-      fe->name = f->IDENT()->getText();
+      Expr *fe = unit.make<Expr>(ExprKind::Field, loc(f->ident()));
+      fe->name = f->ident()->getText();
       fe->operands.push_back(e);
       e = fe;
     } else if (auto *b = dynamic_cast<P::BitSelContext *>(sel)) {
@@ -944,9 +944,9 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   }
   auto *t = static_cast<P::TypedLiteralContext *>(c);
   std::string typeName = t->type->getText();
-  std::string value = t->value->getText();
+  std::string value = t->value ? t->value->getText() : t->enumName->getText();
   bool negative = t->sign && t->sign->getType() == P::MINUS;
-  switch (t->value->getType()) {
+  switch (t->value ? t->value->getType() : P::IDENT) {
   case P::INTEGER: {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
     e->typeName = typeName;
