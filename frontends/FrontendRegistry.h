@@ -53,6 +53,8 @@ bool loadNetIR(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadPnml(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadStructuredText(unsigned bufferID, DiagEngine &diag,
                         net::Design &design);
+bool loadInstructionList(unsigned bufferID, DiagEngine &diag,
+                         net::Design &design);
 bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
 
 /// PLC sources are collected across all input files (a program and the

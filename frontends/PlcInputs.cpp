@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
+#include "frontends/il/IlFrontend.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
 #include "frontends/st/StFrontend.h"
@@ -41,6 +42,11 @@ bool netlift::loadStructuredText(unsigned bufferID, DiagEngine &diag,
                                  net::Design &) {
   StringRef text = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
   return st::parseStructuredText(text, diag, unitForLoading());
+}
+
+bool netlift::loadInstructionList(unsigned bufferID, DiagEngine &diag,
+                                  net::Design &) {
+  return il::parseInstructionList(bufferID, diag, unitForLoading());
 }
 
 /// `--ranges FILE`: one `NAME LO..HI` per line; `#` or `//` start comments.

@@ -18,6 +18,7 @@ FORMATS = {
     "pnml": ((".pnml",), None, ()),
     "st": ((".st", ".txt", ".test", ".EXP"), "st",
            ("PROVENANCE.txt", "readme")),
+    "il": ((".il", ".txt"), "il", ()),
     "tcpou": ((".TcPOU", ".TcGVL", ".TcDUT"), None, ()),
 }
 

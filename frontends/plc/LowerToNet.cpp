@@ -123,6 +123,8 @@ private:
   NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
   std::string instancePath(Expr *e, Frame &f);
   void fbCall(Expr *call, Frame &f, Sink &out);
+  void noteClockBound(const std::string &member, Expr *value, Frame &f,
+                      SMLoc at);
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
   NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
   NExpr *convert(NExpr *v, const PType *from, const PType *to, SMLoc at);
@@ -1143,6 +1145,20 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
   return b.ref(prefix + sanitize(fn->name), call->loc);
 }
 
+void Lowering::noteClockBound(const std::string &member, Expr *value,
+                              Frame &f, SMLoc at) {
+  // A timer's bounding input (PT) must be a constant wherever it is set:
+  // its largest value is the cap of the timer's clock.
+  for (auto &[clockVar, cu] : clocks)
+    if (cu.path + "." + sanitize(cu.member) == member) {
+      std::optional<int64_t> c = constValue(value, f);
+      if (!c)
+        refuse(at, cu.member + " of timer '" + cu.path +
+                       "' must be a constant (it bounds the timer's clock)");
+      cu.cap = std::max(cu.cap, *c);
+    }
+}
+
 void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
   Expr callee(ExprKind::Name, call->loc);
   callee.var = call->var;
@@ -1173,16 +1189,7 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
     std::string member = path + "." + sanitize(p->name);
     NExpr *v = expr(a.value, f, out);
     assign(b.ref(member, a.loc), v, p->type, a.value, out, a.loc);
-    // A timer's bounding input must be a constant: it fixes the clock cap.
-    for (auto &[clockVar, cu] : clocks)
-      if (cu.path == path && sameName(cu.member, p->name)) {
-        std::optional<int64_t> c = constValue(a.value, f);
-        if (!c)
-          refuse(a.loc, p->name + " of timer '" + path +
-                            "' must be a constant (it bounds the timer's "
-                            "clock)");
-        cu.cap = std::max(cu.cap, *c);
-      }
+    noteClockBound(member, a.value, f, a.loc);
   }
   for (VarDecl *v : fb->vars)
     if (v->section == VarSection::Temp && v->type->kind != PTypeKind::FunctionBlock)
@@ -1314,6 +1321,8 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
       return;
     }
     NExpr *target = lvalue(s->target, f, out);
+    if (auto *r = llvm::dyn_cast<net::Ref>(target))
+      noteClockBound(r->name.str(), s->value, f, s->loc);
     assign(target, value, s->target->type, s->value, out, s->loc);
     return;
   }

@@ -176,6 +176,9 @@ struct VarDecl {
   std::string location; // "%IX0.0" for `AT %IX0.0`, empty otherwise
   TypeSyntax *typeSyntax = nullptr;
   std::vector<Attribute> attrs;
+  /// A temporary made by a frontend (the IL accumulator) whose type is that
+  /// of the first value assigned to it.
+  bool inferType = false;
 
   // Filled in by Sema.
   const PType *type = nullptr;

@@ -676,6 +676,16 @@ void Checker::stmts(StmtList &list) {
 void Checker::stmt(Stmt *s) {
   switch (s->kind) {
   case StmtKind::Assign: {
+    if (s->target->kind == ExprKind::Name) {
+      VarDecl *v = lookupVar(s->target->name);
+      if (v && v->inferType && !v->type) {
+        const PType *vt = expr(s->value);
+        if (!vt)
+          return;
+        vt = baseOf(vt);
+        v->type = vt->kind == PTypeKind::AnyInt ? elementaryType("DINT") : vt;
+      }
+    }
     const PType *t = lvalue(s->target);
     if (expr(s->value) && t)
       assignable(t, s->value, s->loc, "assignment");

@@ -33,7 +33,9 @@ tokens {
   LBRACKET, RBRACKET, COMMA, SEMI, COLON, DOT, DOTDOT, HASH,
   // Literals and names
   IDENT, INTEGER, REAL_LIT, DURATION, TOD_LIT, DATE_LIT, DT_LIT, STRING_LIT,
-  WSTRING_LIT, DIRECT
+  WSTRING_LIT, DIRECT,
+  // Line ends, emitted only when lexing Instruction List bodies (IL.g4)
+  EOL
 }
 
 // ---------------------------------------------------------------- units

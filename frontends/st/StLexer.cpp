@@ -159,7 +159,8 @@ size_t StLexer::keywordType(StringRef word) {
   return it == keywordTable().end() ? 0 : it->second;
 }
 
-StLexer::StLexer(StringRef text, DiagEngine &diag) : text(text), diag(diag) {
+StLexer::StLexer(StringRef text, DiagEngine &diag, bool lineEnds)
+    : text(text), diag(diag), lineEnds(lineEnds) {
   if (text.startswith("\xEF\xBB\xBF")) // UTF-8 byte order mark
     pos = lineStart = 3;
 }
@@ -195,6 +196,8 @@ std::unique_ptr<antlr4::Token> StLexer::fail(size_t at, const llvm::Twine &msg) 
 bool StLexer::skipTrivia() {
   while (pos < text.size()) {
     char c = text[pos];
+    if (c == '\n' && lineEnds)
+      return true; // an EOL token
     if (c == '\n') {
       ++pos;
       ++line;
@@ -325,6 +328,13 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
   }
 
   switch (c) {
+  case '\n': {
+    ++pos;
+    auto tok = make(P::EOL, start);
+    ++line;
+    lineStart = pos;
+    return tok;
+  }
   case '\'':
   case '"': {
     ++pos;

@@ -28,8 +28,9 @@ inline constexpr size_t kPragmaChannel = 2;
 class StLexer : public antlr4::TokenSource {
 public:
   /// `text` must stay alive as long as the tokens; `diag` receives lexical
-  /// errors (after the first one the lexer returns EOF).
-  StLexer(llvm::StringRef text, DiagEngine &diag);
+  /// errors (after the first one the lexer returns EOF). With `lineEnds`
+  /// (Instruction List bodies) each line end is an EOL token.
+  StLexer(llvm::StringRef text, DiagEngine &diag, bool lineEnds = false);
 
   std::unique_ptr<antlr4::Token> nextToken() override;
   size_t getLine() const override { return line; }
@@ -64,6 +65,7 @@ private:
   size_t tokenLine = 1, tokenCol = 0;
   size_t tokenIndex = 0;
   bool failed = false;
+  bool lineEnds = false;
 };
 
 } // namespace netlift::st

@@ -1,0 +1,26 @@
+//===- IlFrontend.h - Instruction List into the PLC model -------*- C++ -*-===//
+//
+// Reads IEC 61131-3 Instruction List: POU declarations are parsed as
+// Structured Text (they are the same language), bodies with IL.g4, and
+// each instruction list is lowered into the PLC model's statements with
+// the current result (the accumulator) made explicit. The result is the
+// same kind of unit the ST frontend gives, so IL and ST programs translate
+// through the same checker and lowering.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_IL_ILFRONTEND_H
+#define NETLIFT_FRONTENDS_IL_ILFRONTEND_H
+
+#include "frontends/plc/PlcAst.h"
+#include "ir/support/Diagnostics.h"
+
+namespace netlift::il {
+
+/// Parses the IL file in SourceMgr buffer `bufferID` into `unit`. Returns
+/// false after reporting an error.
+bool parseInstructionList(unsigned bufferID, DiagEngine &diag,
+                          plc::Unit &unit);
+
+} // namespace netlift::il
+
+#endif
