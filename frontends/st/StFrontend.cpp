@@ -1058,7 +1058,8 @@ Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
     return nullptr;
   if (tokens.LA(1) != antlr4::Token::EOF) {
     diag.error(lexer.locAt(tokens.LT(1)->getStartIndex()),
-               "unexpected text after the expression");
+               "unexpected '" + tokens.LT(1)->getText() +
+                   "' after the expression");
     return nullptr;
   }
   AstBuilder builder(text, diag, unit, tokens);
