@@ -11,11 +11,14 @@
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
 #include "frontends/st/StFrontend.h"
+#include "frontends/st/StLexer.h"
 #include "frontends/st/StdLib.h"
 
 #include "llvm/Support/MemoryBuffer.h"
 
 #include <pugixml.hpp>
+
+#include <algorithm>
 
 using namespace netlift;
 using llvm::SMLoc;
@@ -100,10 +103,134 @@ bool netlift::finishPlcInputs(DiagEngine &diag, net::Design &design) {
 // TwinCAT 3 (.TcPOU, .TcGVL, .TcDUT)
 //===----------------------------------------------------------------------===//
 
+/// Where a CDATA section's text starts and ends, searching from `from`.
+static bool cdataAfter(StringRef text, size_t from, size_t limit,
+                       size_t &begin, size_t &end) {
+  size_t open = text.find("<![CDATA[", from);
+  if (open == StringRef::npos || open > limit)
+    return false;
+  begin = open + 9;
+  end = text.find("]]>", begin);
+  return end != StringRef::npos;
+}
+
+/// TwinCAT keeps a POU's declaration and its body in two CDATA sections of
+/// an XML file. The Structured Text parser reads a copy of the file in
+/// which everything but those sections is blanked (line ends kept) and the
+/// closing END_ keyword is appended, so every location is the XML file's
+/// own line and column.
 bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag,
                           net::Design &) {
-  StringRef text = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
-  SMLoc start = SMLoc::getFromPointer(text.data());
-  diag.error(start, "TwinCAT input is not supported yet");
-  return false;
+  llvm::SourceMgr &sm = diag.sourceMgr();
+  const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
+  StringRef text = buf->getBuffer();
+  auto at = [&](ptrdiff_t offset) {
+    return SMLoc::getFromPointer(text.data() +
+                                 std::clamp<ptrdiff_t>(offset, 0,
+                                                       text.size()));
+  };
+  pugi::xml_document doc;
+  pugi::xml_parse_result res =
+      doc.load_buffer(text.data(), text.size(), pugi::parse_default,
+                      pugi::encoding_utf8);
+  if (!res) {
+    diag.error(at(res.offset),
+               std::string("malformed XML: ") + res.description());
+    return false;
+  }
+  pugi::xml_node root = doc.child("TcPlcObject");
+  if (!root) {
+    diag.error(at(0), "not a TwinCAT file (no TcPlcObject element)");
+    return false;
+  }
+  std::string blanked(text.size(), ' ');
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n')
+      blanked[i] = '\n';
+  std::string trailer;
+  auto keep = [&](pugi::xml_node element, bool required) {
+    size_t from = size_t(element.offset_debug());
+    pugi::xml_node next = element.next_sibling();
+    size_t limit = next ? size_t(next.offset_debug()) : text.size();
+    size_t b, e;
+    if (!cdataAfter(text, from, limit, b, e)) {
+      if (required)
+        diag.error(at(from), "expected the Structured Text of <" +
+                                 std::string(element.name()) +
+                                 "> in a CDATA section");
+      return !required;
+    }
+    for (size_t i = b; i < e; ++i)
+      blanked[i] = text[i];
+    return true;
+  };
+  for (pugi::xml_node obj : root.children()) {
+    if (obj.type() != pugi::node_element)
+      continue;
+    StringRef kind = obj.name();
+    if (kind == "GVL" || kind == "DUT") {
+      if (!keep(obj.child("Declaration"), true))
+        return false;
+      continue;
+    }
+    if (kind != "POU") {
+      diag.error(at(obj.offset_debug()),
+                 "TwinCAT <" + kind.str() + "> objects are not supported");
+      return false;
+    }
+    for (pugi::xml_node part : obj.children()) {
+      StringRef pn = part.name();
+      if (pn == "Method" || pn == "Property" || pn == "Action" ||
+          pn == "Transition") {
+        diag.error(at(part.offset_debug()),
+                   pn.str() + " '" + part.attribute("Name").value() +
+                       "' of POU '" + obj.attribute("Name").value() +
+                       "' is not supported (object-oriented and SFC parts "
+                       "are refused)");
+        return false;
+      }
+    }
+    pugi::xml_node decl = obj.child("Declaration");
+    if (!decl || !keep(decl, true))
+      return false;
+    if (pugi::xml_node impl = obj.child("Implementation")) {
+      pugi::xml_node body = impl.first_child();
+      while (body && body.type() != pugi::node_element)
+        body = body.next_sibling();
+      if (body && StringRef(body.name()) != "ST") {
+        diag.error(at(body.offset_debug()),
+                   "TwinCAT <" + std::string(body.name()) +
+                       "> bodies are not supported (only ST)");
+        return false;
+      }
+      if (body && !keep(body, false))
+        return false;
+    }
+    // The closing keyword the declaration's first keyword calls for.
+    size_t db, de;
+    cdataAfter(text, size_t(decl.offset_debug()), text.size(), db, de);
+    llvm::SourceMgr scratch;
+    DiagEngine quiet(scratch);
+    st::StLexer lexer(text.substr(db, de - db), quiet);
+    for (;;) {
+      auto t = lexer.nextToken();
+      if (t->getType() == antlr4::Token::EOF)
+        break;
+      if (t->getChannel() != 0)
+        continue;
+      size_t kw = t->getType();
+      trailer += kw == st::StLexer::keywordType("PROGRAM") ? "\nEND_PROGRAM"
+                 : kw == st::StLexer::keywordType("FUNCTION_BLOCK")
+                     ? "\nEND_FUNCTION_BLOCK"
+                 : kw == st::StLexer::keywordType("FUNCTION") ? "\nEND_FUNCTION"
+                                                              : "";
+      break;
+    }
+  }
+  unsigned id = sm.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(blanked + trailer,
+                                           buf->getBufferIdentifier()),
+      SMLoc());
+  return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
+                                 unitForLoading());
 }

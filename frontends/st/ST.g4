@@ -84,7 +84,7 @@ fbMember
   ;
 
 functionDecl
-  : FUNCTION accessModifier* name=IDENT (COLON result=typeSpec)?
+  : FUNCTION accessModifier* name=IDENT (COLON result=typeSpec)? SEMI?
     pouVarBlock* body=statementList END_FUNCTION
   ;
 
