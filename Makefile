@@ -52,6 +52,7 @@ bench: build
 	bash bench/run.sh $(BUILD)
 	bash bench/reach-bench.sh $(BUILD)
 	bash bench/enforce-bench.sh $(BUILD)
+	bash bench/st-bench.sh $(BUILD)
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

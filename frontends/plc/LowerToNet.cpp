@@ -152,6 +152,7 @@ private:
   std::set<std::string> externallyRead;     // `inst.member` read by caller
   std::map<std::string, InstanceUse> instanceUses;
   std::map<std::string, ClockUse> clocks; // by clock variable name
+  std::map<std::string, std::string> clockOfBound; // `t.PT` -> clock var
   std::map<std::string, Pou *> instanceTypes;
   std::map<std::string, const PType *> varTypes; // NetIR var -> PLC type
   std::set<VarDecl *> written;
@@ -537,6 +538,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       cu.var = name;
       cu.member = bound;
       cu.path = path;
+      clockOfBound[path + "." + sanitize(bound)] = name;
       for (VarDecl *o : fb->vars)
         if (o->type && o->type->kind == PTypeKind::Time && o != m)
           cu.timeMembers.push_back(path + "." + sanitize(o->name));
@@ -1149,14 +1151,15 @@ void Lowering::noteClockBound(const std::string &member, Expr *value,
                               Frame &f, SMLoc at) {
   // A timer's bounding input (PT) must be a constant wherever it is set:
   // its largest value is the cap of the timer's clock.
-  for (auto &[clockVar, cu] : clocks)
-    if (cu.path + "." + sanitize(cu.member) == member) {
-      std::optional<int64_t> c = constValue(value, f);
-      if (!c)
-        refuse(at, cu.member + " of timer '" + cu.path +
-                       "' must be a constant (it bounds the timer's clock)");
-      cu.cap = std::max(cu.cap, *c);
-    }
+  auto it = clockOfBound.find(member);
+  if (it == clockOfBound.end())
+    return;
+  ClockUse &cu = clocks[it->second];
+  std::optional<int64_t> c = constValue(value, f);
+  if (!c)
+    refuse(at, cu.member + " of timer '" + cu.path +
+                   "' must be a constant (it bounds the timer's clock)");
+  cu.cap = std::max(cu.cap, *c);
 }
 
 void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
@@ -1597,6 +1600,7 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   externallyRead.clear();
   instanceUses.clear();
   clocks.clear();
+  clockOfBound.clear();
   instanceTypes.clear();
   varTypes.clear();
 
@@ -1657,26 +1661,24 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   body(program->body, top, action, {});
 
   // Clock caps, and the TIME members they bound.
+  auto varIndex = [&](StringRef name) -> int32_t {
+    net::Symbol sym = mod->lookup(name);
+    return sym.kind == net::SymKind::Var ? int32_t(sym.index) : -1;
+  };
   for (auto &[name, cu] : clocks) {
-    int32_t x = -1;
-    for (uint32_t i = 0; i < mod->vars.size(); ++i)
-      if (mod->vars[i].name == name)
-        x = int32_t(i);
+    int32_t x = varIndex(name);
     // The instance's own initial PT counts too (never called: cap 0).
-    for (auto &tm : cu.timeMembers)
-      for (uint32_t i = 0; i < mod->vars.size(); ++i)
-        if (mod->vars[i].name == tm && StringRef(tm).endswith("." + cu.member))
-          if (auto *lit = llvm::dyn_cast_or_null<net::IntLit>(
-                  mod->vars[i].init))
-            cu.cap = std::max(cu.cap, lit->value);
+    int32_t bound = varIndex(cu.path + "." + sanitize(cu.member));
+    if (bound >= 0)
+      if (auto *lit = llvm::dyn_cast_or_null<net::IntLit>(mod->vars[bound].init))
+        cu.cap = std::max(cu.cap, lit->value);
     int64_t cap = std::max<int64_t>(cu.cap, 1);
     mod->vars[x].type = design.types.getClock(cap);
     // The clock parks at PT when idle, so it starts there too.
     mod->vars[x].init = b.intLit(cap, mod->vars[x].loc);
     for (auto &tm : cu.timeMembers)
-      for (uint32_t i = 0; i < mod->vars.size(); ++i)
-        if (mod->vars[i].name == tm)
-          mod->vars[i].type = design.types.getRange(0, cap);
+      if (int32_t i = varIndex(tm); i >= 0)
+        mod->vars[i].type = design.types.getRange(0, cap);
   }
 
   // Dead values reset at the end of the scan.
@@ -1697,17 +1699,16 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
           !externallyRead.count(m))
         dead = true;
       // A timer's bounding input keeps its value: the clock parks at it.
-      for (auto &[cn, cu] : clocks)
-        if (cu.path == path && cu.member == member)
-          dead = false;
+      if (clockOfBound.count(m))
+        dead = false;
     }
     if (!dead || resetNames.count(m))
       continue;
-    for (uint32_t i = 0; i < mod->vars.size(); ++i)
-      if (mod->vars[i].name == m && mod->vars[i].init) {
-        resets.push_back({m, mod->vars[i].init});
-        resetNames.insert(m);
-      }
+    int32_t i = varIndex(m);
+    if (i >= 0 && mod->vars[i].init) {
+      resets.push_back({m, mod->vars[i].init});
+      resetNames.insert(m);
+    }
   }
   for (auto &[name, init] : resets)
     action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));

@@ -95,10 +95,12 @@ StringRef netlift::plc::spelling(PouKind k) {
 }
 
 VarDecl *Pou::find(StringRef n) const {
-  for (VarDecl *v : vars)
-    if (sameName(v->name, n))
-      return v;
-  return nullptr;
+  if (indexed != vars.size()) {
+    for (; indexed < vars.size(); ++indexed)
+      index.try_emplace(StringRef(vars[indexed]->name).upper(), vars[indexed]);
+  }
+  auto it = index.find(n.upper());
+  return it == index.end() ? nullptr : it->second;
 }
 
 Pou *Unit::findPou(StringRef n) const {

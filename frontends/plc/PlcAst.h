@@ -16,6 +16,7 @@
 #ifndef NETLIFT_FRONTENDS_PLC_PLCAST_H
 #define NETLIFT_FRONTENDS_PLC_PLCAST_H
 
+#include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/SMLoc.h"
 
@@ -256,7 +257,13 @@ struct Pou {
   // Filled in by Sema.
   const PType *resultType = nullptr;
   VarDecl *resultVar = nullptr; // functions: the variable named like it
+  /// The variable declared with this name (case-insensitive), or null.
   VarDecl *find(llvm::StringRef name) const;
+
+private:
+  // Upper-case name -> first declaration; rebuilt when vars grows.
+  mutable llvm::StringMap<VarDecl *> index;
+  mutable size_t indexed = 0;
 };
 
 struct TypeDecl {

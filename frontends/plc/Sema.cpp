@@ -15,6 +15,7 @@
 #include "llvm/ADT/StringSwitch.h"
 
 #include <map>
+#include <set>
 
 using namespace netlift;
 using namespace netlift::plc;
@@ -242,6 +243,10 @@ private:
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
   VarDecl *lookupVar(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
+  void indexEnum(const PType *t);
+  // Enumerators by upper-case name: every enumerated type of the unit.
+  llvm::StringMap<std::vector<std::pair<const PType *, int64_t>>> enumsByName;
+  std::set<const PType *> indexedEnums;
 
   Unit &unit;
   DiagEngine &diag;
@@ -511,15 +516,15 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
 }
 
 void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
+  llvm::StringMap<VarDecl *> seen;
   for (size_t i = 0; i < vars.size(); ++i) {
     VarDecl *v = vars[i];
     v->owner = owner;
-    for (size_t j = 0; j < i; ++j)
-      if (sameName(vars[j]->name, v->name)) {
-        error(v->loc, "'" + v->name + "' is declared twice");
-        diag.note(vars[j]->loc, "first declared here");
-        break;
-      }
+    auto [it, fresh] = seen.try_emplace(StringRef(v->name).upper(), v);
+    if (!fresh) {
+      error(v->loc, "'" + v->name + "' is declared twice");
+      diag.note(it->second->loc, "first declared here");
+    }
     // A variable sharing its type syntax with the ones before it (`a, b :
     // INT`) shares the resolved type too.
     if (i > 0 && vars[i - 1]->typeSyntax == v->typeSyntax)
@@ -546,30 +551,33 @@ VarDecl *Checker::lookupVar(StringRef name) {
   return nullptr;
 }
 
+void Checker::indexEnum(const PType *t) {
+  if (!t || !indexedEnums.insert(t).second)
+    return;
+  if (t->kind == PTypeKind::Array)
+    indexEnum(t->elem);
+  if (t->kind == PTypeKind::Struct)
+    for (VarDecl *f : t->fields)
+      indexEnum(f->type);
+  if (t->kind != PTypeKind::Enum)
+    return;
+  for (size_t i = 0; i < t->enumerators.size(); ++i)
+    enumsByName[StringRef(t->enumerators[i]).upper()].push_back(
+        {t, int64_t(i)});
+}
+
 int64_t Checker::lookupEnumerator(StringRef name, const PType *&type) {
-  const PType *found = nullptr;
+  type = nullptr;
+  auto it = enumsByName.find(name.upper());
+  if (it == enumsByName.end())
+    return -1;
   int64_t value = -1;
-  auto scan = [&](const PType *t) {
-    if (!t || t->kind != PTypeKind::Enum)
-      return;
-    for (size_t i = 0; i < t->enumerators.size(); ++i)
-      if (sameName(t->enumerators[i], name) && found != t) {
-        if (found && found->name != t->name)
-          value = -2; // ambiguous
-        else if (value != -2) {
-          found = t;
-          value = int64_t(i);
-        }
-      }
-  };
-  for (auto &[k, t] : named)
-    scan(t);
-  if (current)
-    for (VarDecl *v : current->vars)
-      scan(v->type);
-  for (VarDecl *g : allGlobals)
-    scan(g->type);
-  type = found;
+  for (auto &[t, v] : it->second) {
+    if (type && type->name != t->name)
+      return -2; // ambiguous
+    type = t;
+    value = v;
+  }
   return value;
 }
 
@@ -620,6 +628,13 @@ bool Checker::run() {
       p->resultVar = rv;
     }
   }
+  for (auto &[k, t] : named)
+    indexEnum(t);
+  for (VarDecl *g : allGlobals)
+    indexEnum(g->type);
+  for (Pou *p : unit.pous)
+    for (VarDecl *v : p->vars)
+      indexEnum(v->type);
   for (Pou *p : unit.pous)
     checkPou(p);
   for (Configuration *c : unit.configs) {
