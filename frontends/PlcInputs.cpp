@@ -104,8 +104,8 @@ bool netlift::finishPlcInputs(DiagEngine &diag, net::Design &design) {
 //===----------------------------------------------------------------------===//
 
 /// Where a CDATA section's text starts and ends, searching from `from`.
-static bool cdataAfter(StringRef text, size_t from, size_t limit,
-                       size_t &begin, size_t &end) {
+static bool cdataAfter(StringRef text, size_t from, size_t limit, size_t &begin,
+                       size_t &end) {
   size_t open = text.find("<![CDATA[", from);
   if (open == StringRef::npos || open > limit)
     return false;
@@ -119,20 +119,17 @@ static bool cdataAfter(StringRef text, size_t from, size_t limit,
 /// which everything but those sections is blanked (line ends kept) and the
 /// closing END_ keyword is appended, so every location is the XML file's
 /// own line and column.
-bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag,
-                          net::Design &) {
+bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   StringRef text = buf->getBuffer();
   auto at = [&](ptrdiff_t offset) {
     return SMLoc::getFromPointer(text.data() +
-                                 std::clamp<ptrdiff_t>(offset, 0,
-                                                       text.size()));
+                                 std::clamp<ptrdiff_t>(offset, 0, text.size()));
   };
   pugi::xml_document doc;
-  pugi::xml_parse_result res =
-      doc.load_buffer(text.data(), text.size(), pugi::parse_default,
-                      pugi::encoding_utf8);
+  pugi::xml_parse_result res = doc.load_buffer(
+      text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!res) {
     diag.error(at(res.offset),
                std::string("malformed XML: ") + res.description());
@@ -227,10 +224,10 @@ bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag,
       break;
     }
   }
-  unsigned id = sm.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBufferCopy(blanked + trailer,
-                                           buf->getBufferIdentifier()),
-      SMLoc());
+  unsigned id =
+      sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBufferCopy(
+                                blanked + trailer, buf->getBufferIdentifier()),
+                            SMLoc());
   return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
                                  unitForLoading());
 }

@@ -68,9 +68,8 @@ std::vector<BodySpan> findBodies(StringRef text, DiagEngine &diag) {
       inConfig = true;
     if (type == SP::END_CONFIGURATION)
       inConfig = false;
-    if (inConfig ||
-        (type != SP::PROGRAM && type != SP::FUNCTION_BLOCK &&
-         type != SP::FUNCTION))
+    if (inConfig || (type != SP::PROGRAM && type != SP::FUNCTION_BLOCK &&
+                     type != SP::FUNCTION))
       continue;
     size_t endType = type == SP::PROGRAM          ? SP::END_PROGRAM
                      : type == SP::FUNCTION_BLOCK ? SP::END_FUNCTION_BLOCK
@@ -87,8 +86,8 @@ std::vector<BodySpan> findBodies(StringRef text, DiagEngine &diag) {
         bodyTok = j + 1;
     if (j >= toks.size() || toks[j]->getType() != endType)
       break; // the ST parser reports the missing END_
-    size_t begin = bodyTok < j ? toks[bodyTok]->getStartIndex()
-                               : toks[j]->getStartIndex();
+    size_t begin =
+        bodyTok < j ? toks[bodyTok]->getStartIndex() : toks[j]->getStartIndex();
     spans.push_back({begin, toks[j]->getStartIndex()});
     i = j;
   }
@@ -357,8 +356,7 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     return;
   }
 
-  auto call = [&](Expr *callee, std::vector<CallArg> args,
-                  Expr *condition) {
+  auto call = [&](Expr *callee, std::vector<CallArg> args, Expr *condition) {
     std::set<std::string> written{rootOf(callee)};
     for (CallArg &a : args)
       if (a.isOutput)
@@ -380,8 +378,9 @@ void IlLowering::instruction(IP::InstructionContext *c) {
 
   if (auto *w = dynamic_cast<IP::CallWithArgsContext *>(c)) {
     if (up != "CAL" && up != "CALC" && up != "CALCN")
-      refuse(at, "'" + op + "' takes no parenthesised arguments after a "
-                            "name");
+      refuse(at, "'" + op +
+                     "' takes no parenthesised arguments after a "
+                     "name");
     Expr *callee = unit.make<Expr>(ExprKind::Name, loc(w->target));
     callee->name = w->target->getText();
     std::vector<CallArg> args;
@@ -491,8 +490,8 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     if (labelsSeen.count(label))
       refuse(at, "backward jump to '" + ops[0]->name +
                      "' is a loop netlift cannot bound; it is refused");
-    VarDecl *flag = temp("_JMP" + std::to_string(flags.size() + 1), "BOOL",
-                         false);
+    VarDecl *flag =
+        temp("_JMP" + std::to_string(flags.size() + 1), "BOOL", false);
     flags.push_back(flag);
     Expr *value = up == "JMP"    ? nullptr
                   : up == "JMPC" ? need(at, op)
@@ -552,15 +551,14 @@ void IlLowering::lower(IP::IlBodyContext *body) {
     if (auto *label = line->labelDef()) {
       std::string name = StringRef(label->name->getText()).upper();
       if (!labelsSeen.insert(name).second)
-        refuse(loc(label), "label '" + label->name->getText() +
-                               "' is defined twice");
+        refuse(loc(label),
+               "label '" + label->name->getText() + "' is defined twice");
       // Jumps to this label end here.
       size_t before = active.size();
-      active.erase(std::remove_if(active.begin(), active.end(),
-                                  [&](const Jump &j) {
-                                    return j.label == name;
-                                  }),
-                   active.end());
+      active.erase(
+          std::remove_if(active.begin(), active.end(),
+                         [&](const Jump &j) { return j.label == name; }),
+          active.end());
       if (active.size() != before)
         guard = nullptr;
       if (!parens.empty())
@@ -586,8 +584,7 @@ void IlLowering::lower(IP::IlBodyContext *body) {
   pou->body.insert(pou->body.begin(), init.begin(), init.end());
 }
 
-bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag,
-                              Unit &unit) {
+bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   StringRef text = buf->getBuffer();
@@ -601,8 +598,7 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag,
       if (blanked[i] != '\n')
         blanked[i] = ' ';
   unsigned declID = sm.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBufferCopy(blanked,
-                                           buf->getBufferIdentifier()),
+      llvm::MemoryBuffer::getMemBufferCopy(blanked, buf->getBufferIdentifier()),
       SMLoc());
   size_t firstPou = unit.pous.size();
   if (!st::parseStructuredText(sm.getMemoryBuffer(declID)->getBuffer(), diag,
@@ -615,8 +611,7 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag,
   }
   for (size_t k = 0; k < spans.size(); ++k) {
     Pou *pou = unit.pous[firstPou + k];
-    StringRef body = text.substr(spans[k].begin,
-                                 spans[k].end - spans[k].begin);
+    StringRef body = text.substr(spans[k].begin, spans[k].end - spans[k].begin);
     st::StLexer lexer(body, diag, /*lineEnds=*/true);
     antlr4::CommonTokenStream tokens(&lexer);
     IP parser(&tokens);
@@ -629,10 +624,10 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag,
           return;
         seen = true;
         offset = t ? t->getStartIndex() : 0;
-        text = t && t->getType() != antlr4::Token::EOF
-                   ? "syntax error in instruction list at '" + t->getText() +
-                         "'"
-                   : "syntax error in instruction list: " + msg;
+        text =
+            t && t->getType() != antlr4::Token::EOF
+                ? "syntax error in instruction list at '" + t->getText() + "'"
+                : "syntax error in instruction list: " + msg;
         if (t && t->getType() == SP::EOL)
           text = "syntax error in instruction list: unexpected end of line";
       }

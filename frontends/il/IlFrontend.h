@@ -18,8 +18,7 @@ namespace netlift::il {
 
 /// Parses the IL file in SourceMgr buffer `bufferID` into `unit`. Returns
 /// false after reporting an error.
-bool parseInstructionList(unsigned bufferID, DiagEngine &diag,
-                          plc::Unit &unit);
+bool parseInstructionList(unsigned bufferID, DiagEngine &diag, plc::Unit &unit);
 
 } // namespace netlift::il
 

@@ -151,7 +151,7 @@ private:
   std::vector<std::string> instanceMembers; // FB member variables
   std::set<std::string> externallyRead;     // `inst.member` read by caller
   std::map<std::string, InstanceUse> instanceUses;
-  std::map<std::string, ClockUse> clocks; // by clock variable name
+  std::map<std::string, ClockUse> clocks;          // by clock variable name
   std::map<std::string, std::string> clockOfBound; // `t.PT` -> clock var
   std::map<std::string, Pou *> instanceTypes;
   std::map<std::string, const PType *> varTypes; // NetIR var -> PLC type
@@ -408,8 +408,7 @@ std::optional<std::pair<int64_t, int64_t>> Lowering::inputRange(VarDecl *v) {
         return r;
       refuse(a.loc, "malformed range pragma (write {range LO..HI})");
     }
-    if (t.consume_front("attribute") &&
-        t.trim().consume_front("'range'")) {
+    if (t.consume_front("attribute") && t.trim().consume_front("'range'")) {
       StringRef rest = t.trim();
       rest.consume_front("'range'");
       rest = rest.trim();
@@ -457,13 +456,12 @@ void Lowering::declareProgramVar(VarDecl *v) {
     const net::Type *nt = nullptr;
     if (auto r = inputRange(v)) {
       if (t->kind != PTypeKind::Int && t->kind != PTypeKind::Time)
-        refuse(v->loc, "a range is given for non-integer input '" + v->name +
-                           "'");
+        refuse(v->loc,
+               "a range is given for non-integer input '" + v->name + "'");
       if (r->first < t->lo || r->second > t->hi)
         if (t->kind == PTypeKind::Int)
           refuse(v->loc, "range " + Twine(r->first) + ".." + Twine(r->second) +
-                             " of input '" + v->name + "' exceeds " +
-                             t->str());
+                             " of input '" + v->name + "' exceeds " + t->str());
       nt = design.types.getRange(r->first, r->second);
       inputRanges[v] = *r;
     } else if (t->kind == PTypeKind::Enum ||
@@ -616,9 +614,9 @@ std::optional<int64_t> Lowering::constValue(Expr *e, Frame &f) {
         v->section == VarSection::InOut || written.count(v) ||
         (v->owner && v->owner->kind != PouKind::Program && !v->constant))
       return std::nullopt;
-    if (!v->type || (v->type->kind != PTypeKind::Int &&
-                     v->type->kind != PTypeKind::Time &&
-                     v->type->kind != PTypeKind::Bool))
+    if (!v->type ||
+        (v->type->kind != PTypeKind::Int && v->type->kind != PTypeKind::Time &&
+         v->type->kind != PTypeKind::Bool))
       return std::nullopt;
     Initializer *init = v->typeSyntax ? v->typeSyntax->init : nullptr;
     if (!init)
@@ -812,8 +810,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     NExpr *base = expr(e->base(), f, pre);
     NExpr *shifted = b.binary(net::BinaryOp::Shr, base,
                               b.intLit(e->intValue, e->loc), e->loc);
-    NExpr *bit = b.binary(net::BinaryOp::BitAnd, shifted, b.intLit(1, e->loc),
-                          e->loc);
+    NExpr *bit =
+        b.binary(net::BinaryOp::BitAnd, shifted, b.intLit(1, e->loc), e->loc);
     return b.binary(net::BinaryOp::Ne, bit, b.intLit(0, e->loc), e->loc);
   }
   case ExprKind::Deref:
@@ -832,7 +830,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
         return b.unary(net::UnaryOp::Not, a, e->loc);
       NExpr *n = b.unary(net::UnaryOp::BitNot, a, e->loc);
       return t->kind == PTypeKind::Int && !t->isSigned ? maskTo(n, t, e->loc)
-                                                        : n;
+                                                       : n;
     }
     }
   }
@@ -934,16 +932,15 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
       refuse(at, "TIME to integer conversion gives milliseconds, but a tick "
                  "is not a whole number of milliseconds (choose "
                  "--timescale)");
-    NExpr *ms = b.binary(net::BinaryOp::Mul, v,
-                         b.intLit(tickNs / 1000000, at), at);
+    NExpr *ms =
+        b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs / 1000000, at), at);
     return wrapTo(ms, to, {0, 0, false}, at);
   }
   if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time) {
     if (1000000 % tickNs != 0)
       refuse(at, "integer to TIME conversion reads milliseconds, but a "
                  "millisecond is not a whole number of ticks");
-    return b.binary(net::BinaryOp::Mul, v, b.intLit(1000000 / tickNs, at),
-                    at);
+    return b.binary(net::BinaryOp::Mul, v, b.intLit(1000000 / tickNs, at), at);
   }
   if (from->kind == to->kind && from->kind == PTypeKind::Time)
     return v;
@@ -966,12 +963,12 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
       r = b.binary(op, r, a[i], at);
     return wrap ? wrapTo(r, e->type, {0, 0, false}, at) : r;
   };
-  bool logical = !src.empty() && src[0]->type &&
-                 src[0]->type->kind == PTypeKind::Bool;
+  bool logical =
+      !src.empty() && src[0]->type && src[0]->type->kind == PTypeKind::Bool;
   switch (info.fn) {
   case StdFn::Abs:
-    return wrapTo(b.call(net::Builtin::Abs, {a[0]}, at), e->type,
-                  {0, 0, false}, at);
+    return wrapTo(b.call(net::Builtin::Abs, {a[0]}, at), e->type, {0, 0, false},
+                  at);
   case StdFn::Min:
   case StdFn::Max: {
     net::Builtin fn =
@@ -1037,23 +1034,23 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
   case StdFn::Rol:
   case StdFn::Ror: {
     const PType *t = e->type->isSubrange ? e->type->base : e->type;
-    NExpr *x = t->isSigned && info.fn != StdFn::Shl ? maskTo(a[0], t, at)
-                                                    : a[0];
+    NExpr *x =
+        t->isSigned && info.fn != StdFn::Shl ? maskTo(a[0], t, at) : a[0];
     if (info.fn == StdFn::Shl)
-      return wrapTo(b.binary(net::BinaryOp::Shl, x, a[1], at), t,
-                    {0, 0, false}, at);
+      return wrapTo(b.binary(net::BinaryOp::Shl, x, a[1], at), t, {0, 0, false},
+                    at);
     if (info.fn == StdFn::Shr)
-      return wrapTo(b.binary(net::BinaryOp::Shr, x, a[1], at), t,
-                    {0, 0, false}, at);
+      return wrapTo(b.binary(net::BinaryOp::Shr, x, a[1], at), t, {0, 0, false},
+                    at);
     // Rotations by n mod width.
     NExpr *n = b.binary(net::BinaryOp::Mod, a[1], b.intLit(t->width, at), at);
     NExpr *back = b.binary(net::BinaryOp::Sub, b.intLit(t->width, at), n, at);
     NExpr *left = info.fn == StdFn::Rol ? n : back;
     NExpr *right = info.fn == StdFn::Rol ? back : n;
-    NExpr *r = b.binary(
-        net::BinaryOp::BitOr,
-        maskTo(b.binary(net::BinaryOp::Shl, x, left, at), t, at),
-        b.binary(net::BinaryOp::Shr, maskTo(x, t, at), right, at), at);
+    NExpr *r =
+        b.binary(net::BinaryOp::BitOr,
+                 maskTo(b.binary(net::BinaryOp::Shl, x, left, at), t, at),
+                 b.binary(net::BinaryOp::Shr, maskTo(x, t, at), right, at), at);
     return wrapTo(r, t, {0, 0, false}, at);
   }
   case StdFn::Gt:
@@ -1070,15 +1067,15 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
                                               : net::BinaryOp::Ne;
     NExpr *r = b.binary(op, a[0], a[1], at);
     for (size_t i = 2; i < a.size(); ++i)
-      r = b.binary(net::BinaryOp::And, r, b.binary(op, a[i - 1], a[i], at),
-                   at);
+      r = b.binary(net::BinaryOp::And, r, b.binary(op, a[i - 1], a[i], at), at);
     return r;
   }
   case StdFn::Convert:
     return convert(a[0], src[0]->type, info.to, at);
   case StdFn::RealMath:
-    refuse(at, "'" + e->name + "' is REAL arithmetic, which is not "
-                               "supported");
+    refuse(at, "'" + e->name +
+                   "' is REAL arithmetic, which is not "
+                   "supported");
   case StdFn::StringOp:
     refuse(at, "string function '" + e->name + "' is not supported");
   case StdFn::Refused:
@@ -1147,8 +1144,8 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
   return b.ref(prefix + sanitize(fn->name), call->loc);
 }
 
-void Lowering::noteClockBound(const std::string &member, Expr *value,
-                              Frame &f, SMLoc at) {
+void Lowering::noteClockBound(const std::string &member, Expr *value, Frame &f,
+                              SMLoc at) {
   // A timer's bounding input (PT) must be a constant wherever it is set:
   // its largest value is the cap of the timer's clock.
   auto it = clockOfBound.find(member);
@@ -1195,7 +1192,8 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
     noteClockBound(member, a.value, f, a.loc);
   }
   for (VarDecl *v : fb->vars)
-    if (v->section == VarSection::Temp && v->type->kind != PTypeKind::FunctionBlock)
+    if (v->section == VarSection::Temp &&
+        v->type->kind != PTypeKind::FunctionBlock)
       if (NExpr *init = defaultValue(v->type, v->loc))
         out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
                                init, v->loc));
@@ -1301,7 +1299,8 @@ void Lowering::body(StmtList &list, Frame &f, Sink &out,
 void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
                     const std::vector<LoopCtx> &loops) {
   auto flagVar = [&](const char *what) {
-    std::string name = unique(std::string("_") + what + std::to_string(++flags));
+    std::string name =
+        unique(std::string("_") + what + std::to_string(++flags));
     declareTemp(name, elementaryType("BOOL"), s->loc);
     return name;
   };
@@ -1318,8 +1317,8 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
                             b.intLit(bit, s->loc), s->loc);
       NExpr *clear = b.binary(net::BinaryOp::BitAnd, lvalue(base, f, out),
                               b.intLit(~bit, s->loc), s->loc);
-      NExpr *r = b.cond(value, wrapTo(set, t, {0, 0, false}, s->loc), clear,
-                        s->loc);
+      NExpr *r =
+          b.cond(value, wrapTo(set, t, {0, 0, false}, s->loc), clear, s->loc);
       out.push_back(b.assign(target, r, s->loc));
       return;
     }
@@ -1429,11 +1428,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     NExpr *var = lvalue(s->target, f, out);
     std::string k = "_k" + std::to_string(++loopVars);
     Sink iter;
-    NExpr *value = b.binary(
-        net::BinaryOp::Add, b.intLit(*from, s->loc),
-        b.binary(net::BinaryOp::Mul, b.ref(k, s->loc), b.intLit(*by, s->loc),
-                 s->loc),
-        s->loc);
+    NExpr *value = b.binary(net::BinaryOp::Add, b.intLit(*from, s->loc),
+                            b.binary(net::BinaryOp::Mul, b.ref(k, s->loc),
+                                     b.intLit(*by, s->loc), s->loc),
+                            s->loc);
     iter.push_back(b.assign(var, value, s->loc));
     if (!loop.continueFlag.empty())
       iter.push_back(b.assign(b.ref(loop.continueFlag, s->loc),
@@ -1480,15 +1478,15 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     const LoopCtx &loop = loops.back();
     const std::string &flag =
         s->kind == StmtKind::Exit ? loop.exitFlag : loop.continueFlag;
-    out.push_back(b.assign(b.ref(flag, s->loc), b.boolLit(true, s->loc),
-                           s->loc));
+    out.push_back(
+        b.assign(b.ref(flag, s->loc), b.boolLit(true, s->loc), s->loc));
     return;
   }
   case StmtKind::Return:
     if (f.returnFlag.empty())
       refuse(s->loc, "internal: RETURN without a flag");
-    out.push_back(b.assign(b.ref(f.returnFlag, s->loc),
-                           b.boolLit(true, s->loc), s->loc));
+    out.push_back(
+        b.assign(b.ref(f.returnFlag, s->loc), b.boolLit(true, s->loc), s->loc));
     return;
   }
 }
@@ -1592,8 +1590,8 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   currentProgram = program;
   mod = b.createModule(sanitize(program->name), false, program->loc);
   if (!mod)
-    refuse(program->loc, "a module named '" + program->name +
-                             "' exists already");
+    refuse(program->loc,
+           "a module named '" + program->name + "' exists already");
   resets.clear();
   resetNames.clear();
   instanceMembers.clear();
@@ -1670,7 +1668,8 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
     // The instance's own initial PT counts too (never called: cap 0).
     int32_t bound = varIndex(cu.path + "." + sanitize(cu.member));
     if (bound >= 0)
-      if (auto *lit = llvm::dyn_cast_or_null<net::IntLit>(mod->vars[bound].init))
+      if (auto *lit =
+              llvm::dyn_cast_or_null<net::IntLit>(mod->vars[bound].init))
         cu.cap = std::max(cu.cap, lit->value);
     int64_t cap = std::max<int64_t>(cu.cap, 1);
     mod->vars[x].type = design.types.getClock(cap);
@@ -1714,8 +1713,8 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
     action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
 
   uint32_t cycle = b.addPlace("cycle", 1, 1, program->loc);
-  net::PreArc pre{cycle, 1, net::Interval{uint32_t(periodTicks),
-                                          uint32_t(periodTicks)}};
+  net::PreArc pre{cycle, 1,
+                  net::Interval{uint32_t(periodTicks), uint32_t(periodTicks)}};
   net::PostArc post{cycle, 1};
   uint32_t scan = b.addTransition("scan", {pre}, {post}, program->loc);
   b.setUrgent(scan);

@@ -61,9 +61,26 @@ enum class ExprKind : uint8_t {
 };
 
 enum class Op : uint8_t {
-  Neg, Plus, Not, // unary
-  Or, OrElse, Xor, And, AndThen, Eq, Ne, Lt, Le, Gt, Ge, Add, Sub, Mul, Div,
-  Mod, Pow
+  Neg,
+  Plus,
+  Not, // unary
+  Or,
+  OrElse,
+  Xor,
+  And,
+  AndThen,
+  Eq,
+  Ne,
+  Lt,
+  Le,
+  Gt,
+  Ge,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  Pow
 };
 
 llvm::StringRef spelling(Op op);
@@ -93,9 +110,9 @@ struct Expr {
 
   // Filled in by Sema.
   const PType *type = nullptr;
-  VarDecl *var = nullptr;  // Name: the variable it denotes
-  Pou *callee = nullptr;   // Call: a user or library function
-  int64_t enumValue = -1;  // EnumLit or Name denoting an enumerator
+  VarDecl *var = nullptr; // Name: the variable it denotes
+  Pou *callee = nullptr;  // Call: a user or library function
+  int64_t enumValue = -1; // EnumLit or Name denoting an enumerator
 
   Expr(ExprKind k, llvm::SMLoc l) : kind(k), loc(l) {}
   Expr *base() const { return operands.empty() ? nullptr : operands[0]; }

@@ -376,8 +376,8 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
     if (!base)
       return nullptr;
     if (base->kind != PTypeKind::Int) {
-      error(ts->loc, "a subrange needs an integer base type, not '" +
-                         base->str() + "'");
+      error(ts->loc,
+            "a subrange needs an integer base type, not '" + base->str() + "'");
       return nullptr;
     }
     int64_t lo, hi;
@@ -413,8 +413,8 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
         return nullptr;
       }
       if (lo > hi) {
-        error(loE->loc, "array bounds " + Twine(lo) + ".." + Twine(hi) +
-                            " are empty");
+        error(loE->loc,
+              "array bounds " + Twine(lo) + ".." + Twine(hi) + " are empty");
         return nullptr;
       }
       t->dims.push_back({lo, hi});
@@ -612,8 +612,7 @@ bool Checker::run() {
   declareVars(allGlobals, nullptr);
   for (Configuration *c : unit.configs)
     for (VarDecl *g : c->globals)
-      checkInitializer(g->typeSyntax ? g->typeSyntax->init : nullptr,
-                       g->type);
+      checkInitializer(g->typeSyntax ? g->typeSyntax->init : nullptr, g->type);
   for (Pou *p : unit.pous) {
     current = p;
     declareVars(p->vars, p);
@@ -811,13 +810,13 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
       return true;
     bool widening = fb->width < tb->width && (tb->isSigned || !fb->isSigned);
     bool sameWidth = fb->width == tb->width &&
-                     (fb->isSigned == tb->isSigned || fb->isBits ||
-                      tb->isBits);
+                     (fb->isSigned == tb->isSigned || fb->isBits || tb->isBits);
     if (widening || sameWidth)
       return true;
-    error(at, "type mismatch in " + what + ": " + ft->str() + " does not "
-                  "convert implicitly to " + to->str() + " (use " +
-                  fb->str() + "_TO_" + tb->str() + ")");
+    error(at, "type mismatch in " + what + ": " + ft->str() +
+                  " does not "
+                  "convert implicitly to " +
+                  to->str() + " (use " + fb->str() + "_TO_" + tb->str() + ")");
     return false;
   }
   case PTypeKind::Real:
@@ -826,10 +825,10 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     return mismatch();
   default:
     if (tb->kind == fb->kind &&
-        (tb == fb || (tb->kind != PTypeKind::Enum &&
-                      tb->kind != PTypeKind::Struct &&
-                      tb->kind != PTypeKind::Array &&
-                      tb->kind != PTypeKind::FunctionBlock) ||
+        (tb == fb ||
+         (tb->kind != PTypeKind::Enum && tb->kind != PTypeKind::Struct &&
+          tb->kind != PTypeKind::Array &&
+          tb->kind != PTypeKind::FunctionBlock) ||
          (!tb->name.empty() && tb->name == fb->name)))
       return true;
     return mismatch();
@@ -851,11 +850,12 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
     if (wide->width > narrow->width && (wide->isSigned || !narrow->isSigned))
       return wide;
     if (wide->width == narrow->width &&
-        (wide->isSigned == narrow->isSigned || wide->isBits ||
-         narrow->isBits))
+        (wide->isSigned == narrow->isSigned || wide->isBits || narrow->isBits))
       return wide;
-    error(e->loc, "operands of '" + spelling(e->op) + "' have incompatible "
-                      "types " + a->str() + " and " + b->str());
+    error(e->loc, "operands of '" + spelling(e->op) +
+                      "' have incompatible "
+                      "types " +
+                      a->str() + " and " + b->str());
     return nullptr;
   }
   if (a->kind == PTypeKind::Real || b->kind == PTypeKind::Real) {
@@ -863,8 +863,10 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
         (b->kind == PTypeKind::Real || b->isInteger()))
       return a->kind == PTypeKind::Real ? a : b;
   }
-  error(e->loc, "operands of '" + spelling(e->op) + "' have incompatible "
-                    "types " + a->str() + " and " + b->str());
+  error(e->loc, "operands of '" + spelling(e->op) +
+                    "' have incompatible "
+                    "types " +
+                    a->str() + " and " + b->str());
   return nullptr;
 }
 
@@ -899,8 +901,8 @@ const PType *Checker::lvalue(Expr *e, bool forOutput) {
   if (e->kind == ExprKind::Field && e->base()->type &&
       e->base()->type->kind == PTypeKind::FunctionBlock && e->var &&
       e->var->section == VarSection::Output) {
-    error(e->loc, "assignment to output '" + e->name +
-                      "' of function block instance");
+    error(e->loc,
+          "assignment to output '" + e->name + "' of function block instance");
     return nullptr;
   }
   (void)forOutput;
@@ -922,8 +924,8 @@ const PType *Checker::expr(Expr *e) {
       }
       if (t->kind == PTypeKind::Int &&
           (e->intValue < t->lo || e->intValue > t->hi) && !t->isBits) {
-        error(e->loc, "value " + Twine(e->intValue) +
-                          " is out of range for " + t->str());
+        error(e->loc, "value " + Twine(e->intValue) + " is out of range for " +
+                          t->str());
         return nullptr;
       }
       if (t->kind == PTypeKind::Bool && e->intValue != 0 && e->intValue != 1) {
@@ -1002,8 +1004,9 @@ const PType *Checker::expr(Expr *e) {
     const PType *et = nullptr;
     int64_t ev = lookupEnumerator(e->name, et);
     if (ev == -2) {
-      error(e->loc, "'" + e->name + "' names a value of several enumerated "
-                                    "types; write TYPE#" +
+      error(e->loc, "'" + e->name +
+                        "' names a value of several enumerated "
+                        "types; write TYPE#" +
                         e->name);
       return nullptr;
     }
@@ -1057,8 +1060,8 @@ const PType *Checker::expr(Expr *e) {
       return nullptr;
     }
     if (e->intValue < 0 || e->intValue >= int64_t(b->width)) {
-      error(e->loc, "bit " + Twine(e->intValue) + " does not exist in " +
-                        b->str());
+      error(e->loc,
+            "bit " + Twine(e->intValue) + " does not exist in " + b->str());
       return nullptr;
     }
     t = boolType();
@@ -1097,8 +1100,8 @@ const PType *Checker::expr(Expr *e) {
       return nullptr;
     const PType *b = baseOf(a);
     if (e->op == Op::Not) {
-      if (!b->isAnyBit() &&
-          !(b->kind == PTypeKind::Int) && b->kind != PTypeKind::AnyInt) {
+      if (!b->isAnyBit() && !(b->kind == PTypeKind::Int) &&
+          b->kind != PTypeKind::AnyInt) {
         error(e->loc, "NOT applied to " + a->str());
         return nullptr;
       }
@@ -1141,9 +1144,10 @@ const PType *Checker::expr(Expr *e) {
         t = commonNumeric(a, b, e);
         break;
       }
-      error(e->loc, "operands of " + spelling(e->op) + " must both be BOOL "
-                                                       "or both bit strings, "
-                                                       "not " +
+      error(e->loc, "operands of " + spelling(e->op) +
+                        " must both be BOOL "
+                        "or both bit strings, "
+                        "not " +
                         a->str() + " and " + b->str());
       return nullptr;
     case Op::Eq:
@@ -1184,8 +1188,8 @@ const PType *Checker::expr(Expr *e) {
         else if (e->op == Op::Div)
           ok = ab->kind == PTypeKind::Time && bb->isInteger();
         if (!ok) {
-          error(e->loc, "'" + spelling(e->op) + "' on " + a->str() +
-                            " and " + b->str());
+          error(e->loc, "'" + spelling(e->op) + "' on " + a->str() + " and " +
+                            b->str());
           return nullptr;
         }
         t = elementaryType("TIME");
@@ -1203,8 +1207,8 @@ const PType *Checker::expr(Expr *e) {
           return nullptr;
         break;
       }
-      error(e->loc, "'" + spelling(e->op) + "' on " + a->str() + " and " +
-                        b->str());
+      error(e->loc,
+            "'" + spelling(e->op) + "' on " + a->str() + " and " + b->str());
       return nullptr;
     case Op::Pow:
       if ((ab->isInteger() || ab->kind == PTypeKind::Real) &&
@@ -1250,18 +1254,18 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
       p = params[positional++];
     } else {
       p = fn->find(a.name);
-      if (!p || (p->section != VarSection::Input &&
-                 p->section != VarSection::InOut &&
-                 p->section != VarSection::Output)) {
+      if (!p ||
+          (p->section != VarSection::Input && p->section != VarSection::InOut &&
+           p->section != VarSection::Output)) {
         error(a.loc, "'" + fn->name + "' has no parameter '" + a.name + "'");
         return;
       }
     }
     if (a.isOutput != (p->section == VarSection::Output)) {
-      error(a.loc, a.isOutput ? "'=>' binds outputs; '" + p->name +
-                                    "' is an " + spelling(p->section)
-                              : "output '" + p->name +
-                                    "' must be bound with '=>'");
+      error(a.loc, a.isOutput
+                       ? "'=>' binds outputs; '" + p->name + "' is an " +
+                             spelling(p->section)
+                       : "output '" + p->name + "' must be bound with '=>'");
       return;
     }
     if (a.isOutput || p->section == VarSection::InOut) {
@@ -1269,11 +1273,10 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
       if (t && p->type &&
           (p->section == VarSection::InOut
                ? baseOf(t) != baseOf(p->type) &&
-                     !(t->kind == p->type->kind &&
-                       t->kind != PTypeKind::Int)
+                     !(t->kind == p->type->kind && t->kind != PTypeKind::Int)
                : false)) {
-        error(a.loc, "VAR_IN_OUT '" + p->name + "' of type " +
-                         p->type->str() + " bound to a " + t->str());
+        error(a.loc, "VAR_IN_OUT '" + p->name + "' of type " + p->type->str() +
+                         " bound to a " + t->str());
         return;
       }
       if (a.isOutput && t && p->type) {
@@ -1441,7 +1444,8 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   case StdFn::Ror:
     if (!arity(2, 2))
       return nullptr;
-    if (baseOf(types[0])->kind != PTypeKind::Int || !baseOf(types[1])->isInteger()) {
+    if (baseOf(types[0])->kind != PTypeKind::Int ||
+        !baseOf(types[1])->isInteger()) {
       error(e->loc, "'" + e->name + "' shifts a bit string by an integer");
       return nullptr;
     }

@@ -6,8 +6,8 @@
 // missing arguments, type mismatches, assignments to inputs and constants,
 // EXIT outside a loop. It knows the standard functions and the standard
 // function blocks (ST source in frontends/st/StdLib.cpp, added to the unit
-// before checking). Whether something can be *modelled* is not its business: the
-// lowering (LowerToNet.h) refuses REAL arithmetic, strings and unbounded
+// before checking). Whether something can be *modelled* is not its business:
+// the lowering (LowerToNet.h) refuses REAL arithmetic, strings and unbounded
 // loops.
 //
 //===----------------------------------------------------------------------===//
@@ -42,7 +42,7 @@ struct PType {
   bool isSigned = true;
   bool isBits = false;
   bool isSubrange = false;
-  int64_t lo = 0, hi = 0; // Int: the values; Enum: 0..n-1
+  int64_t lo = 0, hi = 0;      // Int: the values; Enum: 0..n-1
   const PType *base = nullptr; // Subrange: the elementary type
   // Enum
   std::vector<std::string> enumerators;
@@ -66,12 +66,33 @@ struct PType {
 /// The standard functions of IEC 61131-3 netlift knows by name.
 enum class StdFn : uint8_t {
   None,
-  Abs, Min, Max, Limit, Sel, Mux, Move,
-  Add, Sub, Mul, Div, Mod,
-  And, Or, Xor, Not,
-  Shl, Shr, Rol, Ror,
-  Gt, Ge, Eq, Le, Lt, Ne,
-  Convert, // X_TO_Y and TO_Y between BOOL, integer and bit-string types
+  Abs,
+  Min,
+  Max,
+  Limit,
+  Sel,
+  Mux,
+  Move,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  And,
+  Or,
+  Xor,
+  Not,
+  Shl,
+  Shr,
+  Rol,
+  Ror,
+  Gt,
+  Ge,
+  Eq,
+  Le,
+  Lt,
+  Ne,
+  Convert,  // X_TO_Y and TO_Y between BOOL, integer and bit-string types
   RealMath, // SQRT, SIN, EXPT, TRUNC, ... (typed, refused when lowered)
   StringOp, // LEN, CONCAT, ... (typed, refused when lowered)
   Refused,  // recognised but not supported at all (BCD, date/time)

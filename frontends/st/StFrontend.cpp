@@ -294,9 +294,7 @@ private:
     return SMLoc::getFromPointer(text.data() + t->getStartIndex());
   }
   SMLoc loc(antlr4::ParserRuleContext *c) const { return loc(c->getStart()); }
-  SMLoc loc(antlr4::tree::TerminalNode *n) const {
-    return loc(n->getSymbol());
-  }
+  SMLoc loc(antlr4::tree::TerminalNode *n) const { return loc(n->getSymbol()); }
   std::nullptr_t refuse(SMLoc at, const llvm::Twine &what) {
     if (!failed)
       diag.error(at, what);
@@ -611,9 +609,9 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     if (e->base)
       t->name = e->base->getText();
     for (auto *v : e->enumValue())
-      t->enumerators.push_back(
-          {v->name->getText(), v->value ? expr(v->value) : nullptr,
-           loc(v->name)});
+      t->enumerators.push_back({v->name->getText(),
+                                v->value ? expr(v->value) : nullptr,
+                                loc(v->name)});
     return t;
   }
   if (auto *s = dynamic_cast<P::SubrangeTypeContext *>(c)) {
@@ -643,8 +641,8 @@ Initializer *AstBuilder::initializer(P::InitializerContext *c) {
       int64_t count = 1;
       if (el->count && !st::parseIntegerLiteral(el->count->getText(), count))
         return refuse(loc(el->count), "malformed repeat count");
-      Initializer *inner = el->initializer() ? initializer(el->initializer())
-                                             : nullptr;
+      Initializer *inner =
+          el->initializer() ? initializer(el->initializer()) : nullptr;
       i->elems.push_back({count, inner});
     }
     return i;
@@ -837,10 +835,10 @@ Expr *AstBuilder::expr(P::ExpressionContext *c) {
   auto *rhs = c->children.size() == 3
                   ? dynamic_cast<P::ExpressionContext *>(c->children[2])
                   : nullptr;
-  auto *opNode = c->children.size() == 3
-                     ? dynamic_cast<antlr4::tree::TerminalNode *>(
-                           c->children[1])
-                     : nullptr;
+  auto *opNode =
+      c->children.size() == 3
+          ? dynamic_cast<antlr4::tree::TerminalNode *>(c->children[1])
+          : nullptr;
   if (!lhs || !rhs || !opNode)
     return refuse(loc(c), "unsupported expression");
   Expr *e = unit.make<Expr>(ExprKind::Binary, loc(opNode));
@@ -907,8 +905,9 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   if (auto *i = dynamic_cast<P::IntLiteralContext *>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
     if (!st::parseIntegerLiteral(i->getText(), e->intValue))
-      return refuse(at, "integer literal '" + i->getText() + "' is out of "
-                                                             "range");
+      return refuse(at, "integer literal '" + i->getText() +
+                            "' is out of "
+                            "range");
     return e;
   }
   if (auto *r = dynamic_cast<P::RealLiteralContext *>(c)) {

@@ -186,7 +186,8 @@ std::unique_ptr<antlr4::Token> StLexer::make(size_t type, size_t start,
   return tok;
 }
 
-std::unique_ptr<antlr4::Token> StLexer::fail(size_t at, const llvm::Twine &msg) {
+std::unique_ptr<antlr4::Token> StLexer::fail(size_t at,
+                                             const llvm::Twine &msg) {
   diag.error(locAt(at), msg);
   failed = true;
   pos = text.size();
@@ -249,9 +250,9 @@ bool StLexer::skipTrivia() {
 }
 
 void StLexer::lexBasedOrDecimal() {
-  while (pos < text.size() &&
-         (std::isdigit(static_cast<unsigned char>(text[pos])) ||
-          text[pos] == '_'))
+  while (
+      pos < text.size() &&
+      (std::isdigit(static_cast<unsigned char>(text[pos])) || text[pos] == '_'))
     ++pos;
 }
 
@@ -463,6 +464,6 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
   }
   if (static_cast<unsigned char>(c) >= 0x80)
     return fail(start, "non-ASCII character outside a string or comment");
-  return fail(start, llvm::Twine("unexpected character '") + llvm::Twine(c) +
-                         "'");
+  return fail(start,
+              llvm::Twine("unexpected character '") + llvm::Twine(c) + "'");
 }

@@ -190,10 +190,10 @@ bool st::addStandardLibrary(DiagEngine &diag, plc::Unit &unit) {
   // Only the blocks the user did not define are kept, so a user's own TON
   // replaces netlift's.
   llvm::SourceMgr &sm = diag.sourceMgr();
-  unsigned id = sm.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBuffer(kStandardLibrary,
-                                       "<netlift standard library>"),
-      llvm::SMLoc());
+  unsigned id =
+      sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBuffer(
+                                kStandardLibrary, "<netlift standard library>"),
+                            llvm::SMLoc());
   std::vector<plc::Pou *> before = unit.pous;
   if (!parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag, unit))
     return false;
