@@ -42,6 +42,8 @@ using NExpr = net::Expr;
 using NStmt = net::Stmt;
 using Sink = std::vector<NStmt *>;
 
+static void collectWritten(StmtList &l, std::set<VarDecl *> &w);
+
 namespace {
 
 /// Thrown to abandon the translation after the first refusal; caught in
@@ -133,6 +135,8 @@ private:
   Range rangeOf(Expr *e);
   std::optional<int64_t> constValue(Expr *e, Frame &f);
   bool mayJump(const StmtList &l, bool loopLevel);
+  std::optional<int64_t> loopBound(Stmt *loop, Stmt *before, Frame &f);
+  Stmt *previous = nullptr; // the statement before the one being lowered
   void assign(NExpr *target, NExpr *value, const PType *targetType,
               Expr *valueExpr, Sink &out, SMLoc at);
 
@@ -1263,6 +1267,7 @@ void Lowering::body(StmtList &list, Frame &f, Sink &out,
                     const std::vector<LoopCtx> &loops) {
   for (size_t i = 0; i < list.size(); ++i) {
     Stmt *s = list[i];
+    previous = i ? list[i - 1] : nullptr;
     stmt(s, f, out, loops);
     if (i + 1 == list.size())
       break;
@@ -1294,6 +1299,97 @@ void Lowering::body(StmtList &list, Frame &f, Sink &out,
     out.push_back(b.ifStmt({arm}, false, {}, s->loc));
     return;
   }
+}
+
+/// An upper bound on the iterations of a WHILE or REPEAT loop of the form
+///   i := c0;  WHILE i < C DO ... i := i + s; ... END_WHILE
+///   i := c0;  REPEAT ... i := i + s; ... UNTIL i >= C END_REPEAT
+/// (any of < <= > >= <>, the counter on either side, s of either sign):
+/// the counter is set to a constant just before the loop, changed by
+/// exactly one top-level `i := i +/- s` in the body and written nowhere
+/// else in it, and compared with a constant. Null when no bound is proved.
+std::optional<int64_t> Lowering::loopBound(Stmt *loop, Stmt *before, Frame &f) {
+  Expr *cond = loop->value;
+  if (!cond || cond->kind != ExprKind::Binary)
+    return std::nullopt;
+  Op op = cond->op;
+  Expr *lhs = cond->operands[0], *rhs = cond->operands[1];
+  if (lhs->kind != ExprKind::Name || !lhs->var) {
+    std::swap(lhs, rhs);
+    static const std::map<Op, Op> mirror = {{Op::Lt, Op::Gt}, {Op::Gt, Op::Lt},
+                                            {Op::Le, Op::Ge}, {Op::Ge, Op::Le},
+                                            {Op::Ne, Op::Ne}, {Op::Eq, Op::Eq}};
+    auto m = mirror.find(op);
+    if (m == mirror.end())
+      return std::nullopt;
+    op = m->second;
+  }
+  if (lhs->kind != ExprKind::Name || !lhs->var)
+    return std::nullopt;
+  VarDecl *i = lhs->var;
+  std::optional<int64_t> limit = constValue(rhs, f);
+  if (!limit)
+    return std::nullopt;
+  // The constant start.
+  if (!before || before->kind != StmtKind::Assign ||
+      before->target->kind != ExprKind::Name || before->target->var != i)
+    return std::nullopt;
+  std::optional<int64_t> start = constValue(before->value, f);
+  if (!start)
+    return std::nullopt;
+  // The one step.
+  std::optional<int64_t> step;
+  StmtList others;
+  for (Stmt *st : loop->body) {
+    if (st->kind == StmtKind::Assign && st->target->kind == ExprKind::Name &&
+        st->target->var == i && st->value->kind == ExprKind::Binary &&
+        (st->value->op == Op::Add || st->value->op == Op::Sub) &&
+        st->value->operands[0]->kind == ExprKind::Name &&
+        st->value->operands[0]->var == i && !step) {
+      step = constValue(st->value->operands[1], f);
+      if (!step)
+        return std::nullopt;
+      if (st->value->op == Op::Sub)
+        step = -*step;
+      continue;
+    }
+    others.push_back(st);
+  }
+  if (!step || *step == 0)
+    return std::nullopt;
+  std::set<VarDecl *> w;
+  collectWritten(others, w);
+  if (w.count(i))
+    return std::nullopt;
+  // Iterations while the condition holds (WHILE) or until it holds
+  // (REPEAT, at least one).
+  bool isWhile = loop->kind == StmtKind::While;
+  auto holds = [&](int64_t v) {
+    switch (op) {
+    case Op::Lt:
+      return v < *limit;
+    case Op::Le:
+      return v <= *limit;
+    case Op::Gt:
+      return v > *limit;
+    case Op::Ge:
+      return v >= *limit;
+    case Op::Ne:
+      return v != *limit;
+    case Op::Eq:
+      return v == *limit;
+    default:
+      return false;
+    }
+  };
+  const int64_t kMax = 100000;
+  int64_t v = *start;
+  for (int64_t n = 0; n <= kMax; ++n) {
+    if (isWhile ? !holds(v) : (n > 0 && holds(v)))
+      return n;
+    v += *step;
+  }
+  return std::nullopt;
 }
 
 void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
@@ -1468,11 +1564,66 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     return;
   }
   case StmtKind::While:
-    refuse(s->loc, "WHILE loops are refused: netlift cannot bound their "
-                   "iterations (use FOR with constant bounds)");
-  case StmtKind::Repeat:
-    refuse(s->loc, "REPEAT loops are refused: netlift cannot bound their "
-                   "iterations (use FOR with constant bounds)");
+  case StmtKind::Repeat: {
+    bool isWhile = s->kind == StmtKind::While;
+    std::optional<int64_t> n = loopBound(s, previous, f);
+    if (!n)
+      refuse(s->loc, Twine(isWhile ? "WHILE" : "REPEAT") +
+                         " loop refused: netlift cannot prove a bound on its "
+                         "iterations (it proves `i := c; WHILE i < C DO ... "
+                         "i := i + s; END_WHILE` and the like; otherwise use "
+                         "FOR with constant bounds)");
+    // for k in 0..n-1 { if <still looping> { body } }: the bound is an
+    // upper bound, the condition keeps the iteration count exact.
+    LoopCtx loop;
+    loop.exitFlag = flagVar("exit");
+    if (mayJump(s->body, true))
+      loop.continueFlag = flagVar("continue");
+    out.push_back(b.assign(b.ref(loop.exitFlag, s->loc),
+                           b.boolLit(false, s->loc), s->loc));
+    std::vector<LoopCtx> inner = loops;
+    inner.push_back(loop);
+    Sink iter;
+    if (isWhile) {
+      // Leaving the loop is an EXIT at the top of the iteration.
+      Sink cond;
+      NExpr *c = expr(s->value, f, cond);
+      iter.insert(iter.end(), cond.begin(), cond.end());
+      net::IfArm stop{
+          b.unary(net::UnaryOp::Not, c, s->loc),
+          design.copy(llvm::ArrayRef<NStmt *>(b.assign(
+              b.ref(loop.exitFlag, s->loc), b.boolLit(true, s->loc), s->loc)))};
+      iter.push_back(b.ifStmt({stop}, false, {}, s->loc));
+    }
+    Sink bodyStmts;
+    if (!loop.continueFlag.empty())
+      bodyStmts.push_back(b.assign(b.ref(loop.continueFlag, s->loc),
+                                   b.boolLit(false, s->loc), s->loc));
+    body(s->body, f, bodyStmts, inner);
+    if (!isWhile) {
+      Sink cond;
+      NExpr *c = expr(s->value, f, cond);
+      bodyStmts.insert(bodyStmts.end(), cond.begin(), cond.end());
+      net::IfArm stop{c, design.copy(llvm::ArrayRef<NStmt *>(
+                             b.assign(b.ref(loop.exitFlag, s->loc),
+                                      b.boolLit(true, s->loc), s->loc)))};
+      bodyStmts.push_back(b.ifStmt({stop}, false, {}, s->loc));
+    }
+    NExpr *running =
+        b.unary(net::UnaryOp::Not, b.ref(loop.exitFlag, s->loc), s->loc);
+    if (!f.returnFlag.empty())
+      running = b.binary(
+          net::BinaryOp::And, running,
+          b.unary(net::UnaryOp::Not, b.ref(f.returnFlag, s->loc), s->loc),
+          s->loc);
+    net::IfArm run{running, design.copy(llvm::ArrayRef<NStmt *>(bodyStmts))};
+    iter.push_back(b.ifStmt({run}, false, {}, s->loc));
+    std::string k = "_k" + std::to_string(++loopVars);
+    if (*n > 0)
+      out.push_back(b.forStmt(k, b.intLit(0, s->loc), b.intLit(*n - 1, s->loc),
+                              iter, s->loc));
+    return;
+  }
   case StmtKind::Exit:
   case StmtKind::Continue: {
     const LoopCtx &loop = loops.back();
