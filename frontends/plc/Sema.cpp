@@ -983,6 +983,25 @@ const PType *Checker::expr(Expr *e) {
       for (VarDecl *g : allGlobals)
         if (!e->var && sameName(g->location, e->name))
           e->var = g;
+      if (!e->var && current && current->kind == PouKind::Program) {
+        // IEC lets a program use %IX0.1 without declaring it: an implicit
+        // variable of the size the address names, located there.
+        StringRef addr(e->name);
+        char size = addr.size() > 2 ? char(std::toupper(addr[2])) : 'X';
+        const char *typeName = size == 'B'   ? "BYTE"
+                               : size == 'W' ? "WORD"
+                               : size == 'D' ? "DWORD"
+                               : size == 'L' ? "LWORD"
+                                             : "BOOL";
+        VarDecl *v = unit.make<VarDecl>();
+        v->name = e->name;
+        v->loc = e->loc;
+        v->location = e->name;
+        v->owner = current;
+        v->type = elementaryType(typeName);
+        current->vars.push_back(v);
+        e->var = v;
+      }
       if (!e->var) {
         error(e->loc, "direct address " + e->name +
                           " is not declared (declare it with AT)");
