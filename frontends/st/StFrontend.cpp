@@ -78,7 +78,7 @@ bool st::parseDuration(StringRef literal, int64_t &ns, std::string &error) {
     return false;
   }
   long double total = 0;
-  // Units from largest to smallest; each may appear once, in this order.
+  // Matched in this order ("ms" before "m"); each may appear once.
   static const struct {
     const char *name;
     long double ns;
@@ -118,7 +118,8 @@ bool st::parseDuration(StringRef literal, int64_t &ns, std::string &error) {
                   .str();
       return false;
     }
-    if (unit <= lastUnit) {
+    // Units must get smaller from left to right (1h2m3s, not 1s2h).
+    if (lastUnit >= 0 && units[unit].ns >= units[lastUnit].ns) {
       error = ("units out of order in duration '" + literal + "'").str();
       return false;
     }
