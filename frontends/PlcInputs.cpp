@@ -209,6 +209,7 @@ bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
     llvm::SourceMgr scratch;
     DiagEngine quiet(scratch);
     st::StLexer lexer(text.substr(db, de - db), quiet);
+    lexer.setSilent();
     for (;;) {
       auto t = lexer.nextToken();
       if (t->getType() == antlr4::Token::EOF)

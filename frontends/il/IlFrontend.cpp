@@ -51,6 +51,7 @@ std::vector<BodySpan> findBodies(StringRef text, DiagEngine &diag) {
   llvm::SourceMgr scratchSm;
   DiagEngine quiet(scratchSm);
   st::StLexer lexer(text, quiet);
+  lexer.setSilent();
   std::vector<std::unique_ptr<antlr4::Token>> toks;
   for (;;) {
     auto t = lexer.nextToken();

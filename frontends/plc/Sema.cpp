@@ -88,11 +88,12 @@ const Elementary kElementary[] = {
     {"LDT", PTypeKind::Date, 0, false, false},
 };
 
-const llvm::StringMap<PType *> &elementaryTable() {
-  static const llvm::StringMap<PType *> table = [] {
-    llvm::StringMap<PType *> t;
+/// The elementary types, held by value (StringMap entries do not move).
+const llvm::StringMap<PType> &elementaryTable() {
+  static const llvm::StringMap<PType> table = [] {
+    llvm::StringMap<PType> t;
     for (const Elementary &e : kElementary) {
-      auto *ty = new PType{e.kind};
+      PType *ty = &t.try_emplace(e.name, PType{e.kind}).first->second;
       ty->name = e.name;
       ty->width = e.width;
       ty->isSigned = e.isSigned;
@@ -111,7 +112,6 @@ const llvm::StringMap<PType *> &elementaryTable() {
       }
       if (e.kind == PTypeKind::Bool)
         ty->hi = 1;
-      t[e.name] = ty;
     }
     return t;
   }();
@@ -137,7 +137,7 @@ const PType *baseOf(const PType *t) {
 
 const PType *plc::elementaryType(StringRef name) {
   auto it = elementaryTable().find(name.upper());
-  return it == elementaryTable().end() ? nullptr : it->second;
+  return it == elementaryTable().end() ? nullptr : &it->second;
 }
 
 StdFnInfo plc::lookupStdFunction(StringRef name) {

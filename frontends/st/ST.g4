@@ -42,6 +42,9 @@ tokens {
 
 compilationUnit : libraryElement* EOF ;
 
+// One expression alone (IL operands, --ranges values).
+expressionOnly : expression EOF ;
+
 libraryElement
   : programDecl
   | functionBlockDecl

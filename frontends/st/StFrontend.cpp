@@ -150,10 +150,10 @@ namespace {
 
 /// How a token type reads in an error message.
 std::string describeTokenType(const antlr4::dfa::Vocabulary &vocab,
-                              size_t type) {
+                              size_t type, const std::string &eofName) {
   switch (type) {
   case antlr4::Token::EOF:
-    return "end of file";
+    return eofName;
   case P::IDENT:
     return "an identifier";
   case P::INTEGER:
@@ -240,7 +240,7 @@ public:
     offset = offendingSymbol ? offendingSymbol->getStartIndex() : 0;
     std::string found =
         !offendingSymbol || offendingSymbol->getType() == antlr4::Token::EOF
-            ? "end of file"
+            ? eofName
             : "'" + offendingSymbol->getText() + "'";
     auto *parser = static_cast<antlr4::Parser *>(recognizer);
     antlr4::misc::IntervalSet expected;
@@ -254,8 +254,8 @@ public:
     }
     std::vector<std::string> names;
     for (ssize_t t : expected.toList())
-      names.push_back(
-          describeTokenType(parser->getVocabulary(), static_cast<size_t>(t)));
+      names.push_back(describeTokenType(parser->getVocabulary(),
+                                        static_cast<size_t>(t), eofName));
     if (!names.empty() && names.size() <= 4) {
       message = "expected ";
       for (size_t i = 0; i < names.size(); ++i) {
@@ -271,6 +271,7 @@ public:
   bool seen = false;
   size_t offset = 0;
   std::string message;
+  std::string eofName = "end of file";
 };
 
 //===----------------------------------------------------------------------===//
@@ -997,7 +998,7 @@ namespace {
 template <typename Ctx>
 Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
                antlr4::CommonTokenStream &tokens, P &parser,
-               Ctx *(P::*rule)()) {
+               Ctx *(P::*rule)(), const char *eofName = "end of file") {
   parser.removeErrorListeners();
   parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
       antlr4::atn::PredictionMode::SLL);
@@ -1017,6 +1018,7 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
       antlr4::atn::PredictionMode::LL);
   parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
   FirstErrorListener listener;
+  listener.eofName = eofName;
   parser.addErrorListener(&listener);
   Ctx *tree = nullptr;
   try {
@@ -1052,16 +1054,11 @@ Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
   StLexer lexer(text, diag);
   antlr4::CommonTokenStream tokens(&lexer);
   P parser(&tokens);
-  P::ExpressionContext *tree =
-      parseWith(text, diag, lexer, tokens, parser, &P::expression);
+  P::ExpressionOnlyContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::expressionOnly,
+                "end of the expression");
   if (!tree)
     return nullptr;
-  if (tokens.LA(1) != antlr4::Token::EOF) {
-    diag.error(lexer.locAt(tokens.LT(1)->getStartIndex()),
-               "unexpected '" + tokens.LT(1)->getText() +
-                   "' after the expression");
-    return nullptr;
-  }
   AstBuilder builder(text, diag, unit, tokens);
-  return builder.expr(tree);
+  return builder.expr(tree->expression());
 }

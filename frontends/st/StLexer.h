@@ -42,6 +42,9 @@ public:
   }
 
   bool hadError() const { return failed; }
+  /// Lexical errors end the token stream without a message (for scans that
+  /// only look for structure; the real parse reports them).
+  void setSilent() { silent = true; }
   llvm::SMLoc locAt(size_t offset) const {
     return llvm::SMLoc::getFromPointer(text.data() + offset);
   }
@@ -66,6 +69,7 @@ private:
   size_t tokenIndex = 0;
   bool failed = false;
   bool lineEnds = false;
+  bool silent = false;
 };
 
 } // namespace netlift::st
