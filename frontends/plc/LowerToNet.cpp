@@ -125,6 +125,8 @@ private:
   NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
   std::string instancePath(Expr *e, Frame &f);
   void fbCall(Expr *call, Frame &f, Sink &out);
+  void enabledBody(Pou *callee, const std::string &prefix, Expr *call,
+                   Frame &nf, Sink &out);
   void noteClockBound(const std::string &member, Expr *value, Frame &f,
                       SMLoc at);
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
@@ -1137,7 +1139,7 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
                  : nullptr,
              pre, call->loc);
   }
-  body(fn->body, nf, pre, {});
+  enabledBody(fn, prefix, call, nf, pre);
   for (CallArg &a : call->args)
     if (a.isOutput) {
       NExpr *v = b.ref(prefix + sanitize(a.name), a.loc);
@@ -1146,6 +1148,40 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
       pre.push_back(b.assign(lvalue(a.value, f, pre), v, a.loc));
     }
   return b.ref(prefix + sanitize(fn->name), call->loc);
+}
+
+/// The body of a called function or FB under IEC's EN/ENO rule: with EN
+/// FALSE the body does not run and ENO is FALSE; otherwise ENO starts TRUE
+/// and the body may clear it. EN is TRUE when the call does not give it.
+void Lowering::enabledBody(Pou *callee, const std::string &prefix, Expr *call,
+                           Frame &nf, Sink &out) {
+  VarDecl *en = callee->find("EN"), *eno = callee->find("ENO");
+  if (en && en->section != VarSection::Input)
+    en = nullptr;
+  if (eno && eno->section != VarSection::Output)
+    eno = nullptr;
+  SMLoc at = call->loc;
+  if (en) {
+    bool given = false;
+    for (CallArg &a : call->args)
+      given |= !a.isOutput && sameName(a.name, "EN");
+    if (!given)
+      out.push_back(
+          b.assign(b.ref(prefix + "EN", at), b.boolLit(true, at), at));
+  }
+  if (eno)
+    out.push_back(b.assign(b.ref(prefix + "ENO", at),
+                           en ? b.ref(prefix + "EN", at) : b.boolLit(true, at),
+                           at));
+  if (!en) {
+    body(callee->body, nf, out, {});
+    return;
+  }
+  Sink guarded;
+  body(callee->body, nf, guarded, {});
+  net::IfArm arm{b.ref(prefix + "EN", at),
+                 design.copy(llvm::ArrayRef<NStmt *>(guarded))};
+  out.push_back(b.ifStmt({arm}, false, {}, at));
 }
 
 void Lowering::noteClockBound(const std::string &member, Expr *value, Frame &f,
@@ -1201,7 +1237,7 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
       if (NExpr *init = defaultValue(v->type, v->loc))
         out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
                                init, v->loc));
-  body(fb->body, nf, out, {});
+  enabledBody(fb, path + ".", call, nf, out);
   for (CallArg &a : call->args)
     if (a.isOutput) {
       std::string member = path + "." + sanitize(a.name);

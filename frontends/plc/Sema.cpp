@@ -243,6 +243,7 @@ private:
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
   VarDecl *lookupVar(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
+  VarDecl *enEno(Pou *p, StringRef name);
   void indexEnum(const PType *t);
   // Enumerators by upper-case name: every enumerated type of the unit.
   llvm::StringMap<std::vector<std::pair<const PType *, int64_t>>> enumsByName;
@@ -579,6 +580,35 @@ int64_t Checker::lookupEnumerator(StringRef name, const PType *&type) {
     value = v;
   }
   return value;
+}
+
+/// IEC gives every function and function block the Boolean input EN
+/// (TRUE when not given: the body runs) and output ENO. netlift declares
+/// them the first time a body, a call or a reader names them.
+VarDecl *Checker::enEno(Pou *p, StringRef name) {
+  if (!p || p->kind == PouKind::Program)
+    return nullptr;
+  bool en = name.equals_insensitive("EN"), eno = name.equals_insensitive("ENO");
+  if (!en && !eno)
+    return nullptr;
+  if (VarDecl *v = p->find(name))
+    return v;
+  VarDecl *v = unit.make<VarDecl>();
+  v->name = en ? "EN" : "ENO";
+  v->loc = p->loc;
+  v->section = en ? VarSection::Input : VarSection::Output;
+  v->type = boolType();
+  v->owner = p;
+  if (en) {
+    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, p->loc);
+    v->typeSyntax->name = "BOOL";
+    v->typeSyntax->init = unit.make<Initializer>(Initializer::Value, p->loc);
+    v->typeSyntax->init->value = unit.make<Expr>(ExprKind::BoolLit, p->loc);
+    v->typeSyntax->init->value->intValue = 1;
+    v->typeSyntax->init->value->type = boolType();
+  }
+  p->vars.push_back(v);
+  return v;
 }
 
 bool Checker::run() {
@@ -1015,6 +1045,11 @@ const PType *Checker::expr(Expr *e) {
       t = v->type;
       break;
     }
+    if (VarDecl *v = enEno(current, e->name)) {
+      e->var = v;
+      t = v->type;
+      break;
+    }
     if (current && current->resultVar && sameName(current->name, e->name)) {
       e->var = current->resultVar;
       t = current->resultType;
@@ -1055,6 +1090,8 @@ const PType *Checker::expr(Expr *e) {
     }
     if (bt->kind == PTypeKind::FunctionBlock) {
       VarDecl *m = bt->fb->find(e->name);
+      if (!m)
+        m = enEno(bt->fb, e->name);
       if (!m || (m->section != VarSection::Input &&
                  m->section != VarSection::Output &&
                  m->section != VarSection::InOut)) {
@@ -1273,6 +1310,8 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
       p = params[positional++];
     } else {
       p = fn->find(a.name);
+      if (!p)
+        p = enEno(fn, a.name);
       if (!p ||
           (p->section != VarSection::Input && p->section != VarSection::InOut &&
            p->section != VarSection::Output)) {

@@ -149,8 +149,8 @@ bool st::parseDuration(StringRef literal, int64_t &ns, std::string &error) {
 namespace {
 
 /// How a token type reads in an error message.
-std::string describeTokenType(const antlr4::dfa::Vocabulary &vocab,
-                              size_t type, const std::string &eofName) {
+std::string describeTokenType(const antlr4::dfa::Vocabulary &vocab, size_t type,
+                              const std::string &eofName) {
   switch (type) {
   case antlr4::Token::EOF:
     return eofName;
@@ -997,8 +997,8 @@ namespace {
 /// reporting the first syntax error. Returns null on error.
 template <typename Ctx>
 Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
-               antlr4::CommonTokenStream &tokens, P &parser,
-               Ctx *(P::*rule)(), const char *eofName = "end of file") {
+               antlr4::CommonTokenStream &tokens, P &parser, Ctx *(P::*rule)(),
+               const char *eofName = "end of file") {
   parser.removeErrorListeners();
   parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
       antlr4::atn::PredictionMode::SLL);
