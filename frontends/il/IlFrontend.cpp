@@ -9,7 +9,8 @@
 //  - `OP(` pushes the pending operation; `)` applies it to the inner CR.
 //  - Jumps go forward only (a backward jump is a loop netlift cannot
 //    bound): a jump sets a flag, and every instruction up to the label runs
-//    under `IF NOT flag`. CR is undefined after a label until a load.
+//    under `IF NOT flag`. A jump carries CR to its label (stored in a
+//    temporary per label, which the fall-through path also writes).
 //  - S, R on a BOOL set or reset it when CR is TRUE; the FB input
 //    operators (S1, R1, CLK, CU, CD, PV, IN, PT, and S/R on an SR or RS
 //    instance) call the instance with that input from CR.
@@ -25,6 +26,7 @@
 #include "llvm/ADT/StringSwitch.h"
 #include "llvm/Support/MemoryBuffer.h"
 
+#include <map>
 #include <set>
 
 using namespace netlift;
@@ -147,6 +149,8 @@ private:
   };
   std::vector<Jump> active;
   std::set<std::string> labelsSeen;
+  std::map<std::string, VarDecl *> labelCr; // CR carried by jumps
+  std::set<std::string> startsFresh; // labels whose code begins with a load
   std::vector<VarDecl *> flags;
   // The guard block statements go into while the active jumps are the same.
   Stmt *guard = nullptr;
@@ -501,11 +505,23 @@ void IlLowering::instruction(IP::InstructionContext *c) {
       value = unit.make<Expr>(ExprKind::BoolLit, at);
       value->intValue = 1;
     }
+    // The jump carries CR to its label (when the label's code reads it).
+    if (cr && !startsFresh.count(label)) {
+      VarDecl *&carry = labelCr[label];
+      if (!carry)
+        carry = temp("_CR_" + ops[0]->name, nullptr, true);
+      Stmt *keep = unit.make<Stmt>(StmtKind::Assign, at);
+      keep->target = nameRef(carry, at);
+      keep->value = cr;
+      emit(keep);
+    }
     Stmt *st = unit.make<Stmt>(StmtKind::Assign, at);
     st->target = nameRef(flag, at);
     st->value = value;
     emit(st);
     active.push_back({label, flag});
+    if (up == "JMP")
+      cr = nullptr; // what follows is reached only through a label
     return;
   }
   if (up == "RET" || up == "RETC" || up == "RETCN") {
@@ -548,12 +564,33 @@ void IlLowering::instruction(IP::InstructionContext *c) {
 }
 
 void IlLowering::lower(IP::IlBodyContext *body) {
+  // Labels followed by LD/LDN need no CR from their jumps (and jumps may
+  // then carry CRs of different types there).
+  for (auto *line : body->ilLine()) {
+    auto *label = line->labelDef();
+    auto *s = line->instruction()
+                  ? dynamic_cast<IP::SimpleContext *>(line->instruction())
+                  : nullptr;
+    if (label && s) {
+      std::string op = StringRef(s->op->getText()).upper();
+      if (op == "LD" || op == "LDN")
+        startsFresh.insert(StringRef(label->name->getText()).upper());
+    }
+  }
   for (auto *line : body->ilLine()) {
     if (auto *label = line->labelDef()) {
       std::string name = StringRef(label->name->getText()).upper();
       if (!labelsSeen.insert(name).second)
         refuse(loc(label),
                "label '" + label->name->getText() + "' is defined twice");
+      // CR at a label: what the jumps carried, or what falls through.
+      auto carried = labelCr.find(name);
+      if (carried != labelCr.end() && cr && !startsFresh.count(name)) {
+        Stmt *keep = unit.make<Stmt>(StmtKind::Assign, loc(label));
+        keep->target = nameRef(carried->second, loc(label));
+        keep->value = cr;
+        emit(keep); // still under the guards of the jumps to this label
+      }
       // Jumps to this label end here.
       size_t before = active.size();
       active.erase(
@@ -564,7 +601,8 @@ void IlLowering::lower(IP::IlBodyContext *body) {
         guard = nullptr;
       if (!parens.empty())
         refuse(loc(label), "label inside a parenthesised operation");
-      cr = nullptr; // undefined after a label until a load
+      cr = carried != labelCr.end() ? nameRef(carried->second, loc(label))
+                                    : nullptr;
     }
     if (line->instruction())
       instruction(line->instruction());

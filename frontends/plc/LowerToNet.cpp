@@ -555,6 +555,9 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     b.addVar(name, netType(m->type, m->loc, "member " + m->name),
              initialValue(m, mi, m->type), m->loc);
     instanceMembers.push_back(name);
+    if (m->edge) // what the caller passed last time
+      b.addVar(name + ".prev", design.types.getBool(),
+               b.boolLit(false, m->loc), m->loc);
   }
   (void)at;
 }
@@ -1228,9 +1231,33 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
     ++use.given[sanitize(p->name)];
     std::string member = path + "." + sanitize(p->name);
     NExpr *v = expr(a.value, f, out);
+    if (p->edge) {
+      // x : BOOL R_EDGE sees TRUE only at a rising edge of the argument.
+      NExpr *prev = b.ref(member + ".prev", a.loc);
+      NExpr *edge =
+          p->edge == 'R'
+              ? b.binary(net::BinaryOp::And, v,
+                         b.unary(net::UnaryOp::Not, prev, a.loc), a.loc)
+              : b.binary(net::BinaryOp::And,
+                         b.unary(net::UnaryOp::Not, v, a.loc),
+                         b.ref(member + ".prev", a.loc), a.loc);
+      out.push_back(b.assign(b.ref(member, a.loc), edge, a.loc));
+      out.push_back(b.assign(b.ref(member + ".prev", a.loc), v, a.loc));
+      continue;
+    }
     assign(b.ref(member, a.loc), v, p->type, a.value, out, a.loc);
     noteClockBound(member, a.value, f, a.loc);
   }
+  for (VarDecl *v : fb->vars)
+    if (v->edge) {
+      bool given = false;
+      for (CallArg &a : call->args)
+        given |= !a.isOutput && sameName(a.name, v->name);
+      // No new value: no edge.
+      if (!given)
+        out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
+                               b.boolLit(false, v->loc), v->loc));
+    }
   for (VarDecl *v : fb->vars)
     if (v->section == VarSection::Temp &&
         v->type->kind != PTypeKind::FunctionBlock)

@@ -197,6 +197,9 @@ struct VarDecl {
   /// A temporary made by a frontend (the IL accumulator) whose type is that
   /// of the first value assigned to it.
   bool inferType = false;
+  /// `x : BOOL R_EDGE` ('R') or `F_EDGE` ('F'): inside the function block
+  /// the input is TRUE only at an edge of what the caller passes.
+  char edge = 0;
 
   // Filled in by Sema.
   const PType *type = nullptr;

@@ -700,6 +700,11 @@ void Checker::checkPou(Pou *p) {
     }
     if (v->typeSyntax)
       checkInitializer(v->typeSyntax->init, v->type);
+    if (v->edge && (p->kind != PouKind::FunctionBlock ||
+                    v->section != VarSection::Input ||
+                    (v->type && v->type->kind != PTypeKind::Bool)))
+      error(v->loc, Twine(v->edge == 'R' ? "R_EDGE" : "F_EDGE") +
+                        " is allowed only on BOOL inputs of function blocks");
     if (v->type && v->type->kind == PTypeKind::FunctionBlock &&
         v->type->fb == p)
       error(v->loc, "function block '" + p->name + "' contains itself");

@@ -162,7 +162,7 @@ globalVarBlock : varBlock ;
 varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
 
 varDecl
-  : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec SEMI
+  : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec edge=IDENT? SEMI
   | AT DIRECT COLON typeSpec SEMI
   | accessPath COLON typeSpec SEMI
   ;

@@ -543,6 +543,14 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
     if (failed)
       return;
     std::vector<Attribute> attrs = pragmasBefore(d->getStart());
+    char edge = 0;
+    if (d->edge) {
+      std::string e = StringRef(d->edge->getText()).upper();
+      if (e != "R_EDGE" && e != "F_EDGE")
+        return (void)refuse(loc(d->edge), "expected ';', found '" +
+                                              d->edge->getText() + "'");
+      edge = e[0];
+    }
     std::string location = d->DIRECT() ? d->DIRECT()->getText() : "";
     auto add = [&](std::string name, SMLoc at) {
       VarDecl *v = unit.make<VarDecl>();
@@ -554,6 +562,7 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
       v->location = location;
       v->typeSyntax = type;
       v->attrs = attrs;
+      v->edge = edge;
       out.push_back(v);
     };
     if (d->ident().empty()) // `AT %IX0.0 : BOOL;` names itself by address
