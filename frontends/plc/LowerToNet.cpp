@@ -556,8 +556,8 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
              initialValue(m, mi, m->type), m->loc);
     instanceMembers.push_back(name);
     if (m->edge) // what the caller passed last time
-      b.addVar(name + ".prev", design.types.getBool(),
-               b.boolLit(false, m->loc), m->loc);
+      b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
+               m->loc);
   }
   (void)at;
 }

@@ -244,6 +244,9 @@ private:
   VarDecl *lookupVar(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
   VarDecl *enEno(Pou *p, StringRef name);
+  // The enumerated type an ambiguous enumerator resolves to (assignment
+  // target, CASE selector), if any.
+  const PType *expectedEnum = nullptr;
   void indexEnum(const PType *t);
   // Enumerators by upper-case name: every enumerated type of the unit.
   llvm::StringMap<std::vector<std::pair<const PType *, int64_t>>> enumsByName;
@@ -700,9 +703,9 @@ void Checker::checkPou(Pou *p) {
     }
     if (v->typeSyntax)
       checkInitializer(v->typeSyntax->init, v->type);
-    if (v->edge && (p->kind != PouKind::FunctionBlock ||
-                    v->section != VarSection::Input ||
-                    (v->type && v->type->kind != PTypeKind::Bool)))
+    if (v->edge &&
+        (p->kind != PouKind::FunctionBlock || v->section != VarSection::Input ||
+         (v->type && v->type->kind != PTypeKind::Bool)))
       error(v->loc, Twine(v->edge == 'R' ? "R_EDGE" : "F_EDGE") +
                         " is allowed only on BOOL inputs of function blocks");
     if (v->type && v->type->kind == PTypeKind::FunctionBlock &&
@@ -736,7 +739,11 @@ void Checker::stmt(Stmt *s) {
       }
     }
     const PType *t = lvalue(s->target);
-    if (expr(s->value) && t)
+    // An enumerator several types share takes the target's type.
+    expectedEnum = t && t->kind == PTypeKind::Enum ? t : nullptr;
+    const PType *vt = expr(s->value);
+    expectedEnum = nullptr;
+    if (vt && t)
       assignable(t, s->value, s->loc, "assignment");
     return;
   }
@@ -764,7 +771,9 @@ void Checker::stmt(Stmt *s) {
         for (Expr *b : {l.lo, l.hi}) {
           if (!b)
             continue;
+          expectedEnum = sel && sel->kind == PTypeKind::Enum ? sel : nullptr;
           const PType *lt = expr(b);
+          expectedEnum = nullptr;
           int64_t v;
           if (lt && sel && sel->kind == PTypeKind::Enum) {
             if (lt != sel && baseOf(lt) != sel)
@@ -1062,6 +1071,12 @@ const PType *Checker::expr(Expr *e) {
     }
     const PType *et = nullptr;
     int64_t ev = lookupEnumerator(e->name, et);
+    if (ev == -2 && expectedEnum)
+      for (size_t i = 0; i < expectedEnum->enumerators.size(); ++i)
+        if (sameName(expectedEnum->enumerators[i], e->name)) {
+          ev = int64_t(i);
+          et = expectedEnum;
+        }
     if (ev == -2) {
       error(e->loc, "'" + e->name +
                         "' names a value of several enumerated "

@@ -547,8 +547,8 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
     if (d->edge) {
       std::string e = StringRef(d->edge->getText()).upper();
       if (e != "R_EDGE" && e != "F_EDGE")
-        return (void)refuse(loc(d->edge), "expected ';', found '" +
-                                              d->edge->getText() + "'");
+        return (void)refuse(loc(d->edge),
+                            "expected ';', found '" + d->edge->getText() + "'");
       edge = e[0];
     }
     std::string location = d->DIRECT() ? d->DIRECT()->getText() : "";
