@@ -1557,7 +1557,9 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   case StdFn::StringOp:
     return elementaryType("STRING");
   case StdFn::Refused:
-    return elementaryType("DATE");
+    error(e->loc, "'" + e->name + "' is not supported (BCD conversions are "
+                                  "refused)");
+    return nullptr;
   case StdFn::None:
     break;
   }
