@@ -19,6 +19,7 @@
 #include "frontends/il/IlFrontend.h"
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StLexer.h"
+#include "frontends/st/StdLib.h"
 
 #include "IL.h"
 #include "ST.h"
@@ -27,6 +28,7 @@
 #include "llvm/Support/MemoryBuffer.h"
 
 #include <map>
+#include <optional>
 #include <set>
 
 using namespace netlift;
@@ -48,7 +50,7 @@ struct BodySpan {
 
 /// Finds the instruction-list bodies: after a POU's last END_VAR (or its
 /// name and result type) up to its END_ keyword.
-std::vector<BodySpan> findBodies(StringRef text, DiagEngine &diag) {
+std::vector<BodySpan> findBodies(StringRef text) {
   std::vector<BodySpan> spans;
   llvm::SourceMgr scratchSm;
   DiagEngine quiet(scratchSm);
@@ -63,7 +65,6 @@ std::vector<BodySpan> findBodies(StringRef text, DiagEngine &diag) {
     if (eof)
       break;
   }
-  (void)diag;
   bool inConfig = false;
   for (size_t i = 0; i < toks.size(); ++i) {
     size_t type = toks[i]->getType();
@@ -281,13 +282,10 @@ bool IlLowering::isFbInstance(Expr *e) {
   VarDecl *v = pou->find(e->name);
   if (!v || !v->typeSyntax || v->typeSyntax->kind != TypeSyntaxKind::Named)
     return false;
+  // The standard blocks join the unit only when every file is read.
   Pou *p = unit.findPou(v->typeSyntax->name);
-  if (p)
-    return p->kind == PouKind::FunctionBlock;
-  return llvm::StringSwitch<bool>(StringRef(v->typeSyntax->name).upper())
-      .Cases("TON", "TOF", "TP", "CTU", "CTD", "CTUD", true)
-      .Cases("R_TRIG", "F_TRIG", "SR", "RS", true)
-      .Default(false);
+  return p ? p->kind == PouKind::FunctionBlock
+           : st::isStandardFunctionBlock(v->typeSyntax->name);
 }
 
 void IlLowering::callArgs(std::vector<IP::CallArgContext *> args,
@@ -305,6 +303,33 @@ void IlLowering::callArgs(std::vector<IP::CallArgContext *> args,
   }
 }
 
+/// The binary IL operators: the operation and whether the operand is
+/// negated (ANDN, &N, ORN, XORN). Null for anything else.
+static std::optional<std::pair<Op, bool>> binaryOperator(StringRef up) {
+  bool negated = up == "ANDN" || up == "&N" || up == "ORN" || up == "XORN";
+  if (negated)
+    up = up.drop_back();
+  Op op = llvm::StringSwitch<Op>(up)
+              .Cases("AND", "&", Op::And)
+              .Case("OR", Op::Or)
+              .Case("XOR", Op::Xor)
+              .Case("ADD", Op::Add)
+              .Case("SUB", Op::Sub)
+              .Case("MUL", Op::Mul)
+              .Case("DIV", Op::Div)
+              .Case("MOD", Op::Mod)
+              .Case("GT", Op::Gt)
+              .Case("GE", Op::Ge)
+              .Case("EQ", Op::Eq)
+              .Case("NE", Op::Ne)
+              .Case("LE", Op::Le)
+              .Case("LT", Op::Lt)
+              .Default(Op::Pow);
+  if (op == Op::Pow)
+    return std::nullopt;
+  return std::make_pair(op, negated);
+}
+
 void IlLowering::instruction(IP::InstructionContext *c) {
   SMLoc at = loc(c);
   if (dynamic_cast<IP::CloseParenContext *>(c)) {
@@ -315,30 +340,12 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     Expr *inner = need(at, ")");
     cr = p.saved;
     // Apply the deferred operation as if its operand were the inner CR.
-    std::string op = p.op;
-    if (op == "ANDN" || op == "ORN" || op == "XORN" || op == "&N") {
-      inner = notOf(inner, at);
-      op.pop_back();
-    }
-    Op bop = llvm::StringSwitch<Op>(op)
-                 .Cases("AND", "&", Op::And)
-                 .Case("OR", Op::Or)
-                 .Case("XOR", Op::Xor)
-                 .Case("ADD", Op::Add)
-                 .Case("SUB", Op::Sub)
-                 .Case("MUL", Op::Mul)
-                 .Case("DIV", Op::Div)
-                 .Case("MOD", Op::Mod)
-                 .Case("GT", Op::Gt)
-                 .Case("GE", Op::Ge)
-                 .Case("EQ", Op::Eq)
-                 .Case("NE", Op::Ne)
-                 .Case("LE", Op::Le)
-                 .Case("LT", Op::Lt)
-                 .Default(Op::Pow);
-    if (bop == Op::Pow)
+    auto bop = binaryOperator(p.op);
+    if (!bop)
       refuse(p.loc, "'" + p.op + "(' is not an operator that takes '('");
-    cr = binary(bop, need(p.loc, p.op), inner, p.loc);
+    if (bop->second)
+      inner = notOf(inner, at);
+    cr = binary(bop->first, need(p.loc, p.op), inner, p.loc);
     return;
   }
   std::string op;
@@ -465,27 +472,11 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     cr = notOf(need(at, op), at);
     return;
   }
-  Op bop = llvm::StringSwitch<Op>(up)
-               .Cases("AND", "&", "ANDN", "&N", Op::And)
-               .Cases("OR", "ORN", Op::Or)
-               .Cases("XOR", "XORN", Op::Xor)
-               .Case("ADD", Op::Add)
-               .Case("SUB", Op::Sub)
-               .Case("MUL", Op::Mul)
-               .Case("DIV", Op::Div)
-               .Case("MOD", Op::Mod)
-               .Case("GT", Op::Gt)
-               .Case("GE", Op::Ge)
-               .Case("EQ", Op::Eq)
-               .Case("NE", Op::Ne)
-               .Case("LE", Op::Le)
-               .Case("LT", Op::Lt)
-               .Default(Op::Pow);
-  if (bop != Op::Pow) {
+  if (auto bop = binaryOperator(up)) {
     Expr *v = one();
-    if (up == "ANDN" || up == "&N" || up == "ORN" || up == "XORN")
+    if (bop->second)
       v = notOf(v, at);
-    cr = binary(bop, need(at, op), v, at);
+    cr = binary(bop->first, need(at, op), v, at);
     return;
   }
   if (up == "JMP" || up == "JMPC" || up == "JMPCN") {
@@ -627,7 +618,7 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   StringRef text = buf->getBuffer();
-  std::vector<BodySpan> spans = findBodies(text, diag);
+  std::vector<BodySpan> spans = findBodies(text);
 
   // The declarations, with the bodies blanked out (line ends kept, so every
   // location is the same), parsed as Structured Text.

@@ -110,8 +110,7 @@ private:
   std::string unique(std::string name);
   static std::string sanitize(StringRef name);
   void declareProgramVar(VarDecl *v);
-  void declareInstance(const std::string &path, Pou *fb, Initializer *init,
-                       SMLoc at);
+  void declareInstance(const std::string &path, Pou *fb, Initializer *init);
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
 
@@ -444,7 +443,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return; // the global is declared once
   if (t->kind == PTypeKind::FunctionBlock) {
     declareInstance(sanitize(v->name), t->fb,
-                    v->typeSyntax ? v->typeSyntax->init : nullptr, v->loc);
+                    v->typeSyntax ? v->typeSyntax->init : nullptr);
     return;
   }
   if (v->section == VarSection::InOut)
@@ -507,7 +506,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
 }
 
 void Lowering::declareInstance(const std::string &path, Pou *fb,
-                               Initializer *init, SMLoc at) {
+                               Initializer *init) {
   instanceTypes[path] = fb;
   for (VarDecl *m : fb->vars) {
     if (m->section == VarSection::External)
@@ -519,7 +518,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
         if (sameName(fname, m->name))
           mi = finit;
     if (m->type->kind == PTypeKind::FunctionBlock) {
-      declareInstance(name, m->type->fb, mi, m->loc);
+      declareInstance(name, m->type->fb, mi);
       continue;
     }
     if (m->section == VarSection::InOut)
@@ -536,8 +535,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     }
     if (isClock) {
       // The cap is fixed once every call is lowered (see run()).
-      uint32_t x = b.addVar(name, design.types.getClock(1), nullptr, m->loc);
-      (void)x;
+      b.addVar(name, design.types.getClock(1), nullptr, m->loc);
       ClockUse &cu = clocks[name];
       cu.var = name;
       cu.member = bound;
@@ -559,7 +557,6 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
                m->loc);
   }
-  (void)at;
 }
 
 uint32_t Lowering::declareTemp(const std::string &name, const PType *t,
@@ -741,17 +738,12 @@ NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
     globalUsers[v].insert(currentProgram->name);
     return b.ref(sanitize(v->name), at);
   }
-  if (v == (v->owner ? v->owner->resultVar : nullptr))
-    return b.ref(f.prefix + sanitize(v->name), at);
   return b.ref(f.prefix + sanitize(v->name), at);
 }
 
 NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
   switch (e->kind) {
   case ExprKind::Name:
-    if (e->var && e->var->section == VarSection::External) {
-      // Resolved to the global by Sema; nothing to do.
-    }
     if (!e->var)
       refuse(e->loc, "cannot assign to '" + e->name + "'");
     return varRef(e->var, f, e->loc);
@@ -1863,8 +1855,6 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   Frame top;
   top.pou = program;
   top.external = true;
-  if (program->kind == PouKind::FunctionBlock)
-    top.external = true;
   Sink action;
   if (mayJump(program->body, false)) {
     top.returnFlag = unique("_return");
@@ -2006,10 +1996,10 @@ bool Lowering::run() {
       collectTimes(p, seen, ns);
       if (task && task->interval && task->interval->kind == ExprKind::TimeLit)
         ns.push_back(task->interval->intValue);
-      for (VarDecl *g : unit.globals)
-        if (g->typeSyntax)
-          initTimes(g->typeSyntax->init, ns);
     }
+    for (VarDecl *g : unit.globals)
+      if (g->typeSyntax)
+        initTimes(g->typeSyntax->init, ns);
     if (opts.scanPeriodNs)
       ns.push_back(*opts.scanPeriodNs);
     if (opts.timescaleNs) {

@@ -235,15 +235,15 @@ private:
   void stmts(StmtList &list);
   void stmt(Stmt *s);
   const PType *expr(Expr *e);
-  const PType *lvalue(Expr *e, bool forOutput = false);
+  const PType *lvalue(Expr *e);
   const PType *call(Expr *e, bool asStatement);
-  void fbCall(Expr *e, VarDecl *inst);
   void functionArgs(Expr *e, Pou *fn);
   bool assignable(const PType *to, Expr *from, SMLoc at, const Twine &what);
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
   VarDecl *lookupVar(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
   VarDecl *enEno(Pou *p, StringRef name);
+  bool orderStdArgs(Expr *e, StdFn fn);
   // The enumerated type an ambiguous enumerator resolves to (assignment
   // target, CASE selector), if any.
   const PType *expectedEnum = nullptr;
@@ -334,12 +334,15 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
   if (TypeDecl *td = unit.findType(name)) {
     if (resolving[key]++) {
       error(td->loc, "type '" + td->name + "' is defined in terms of itself");
+      named[key] = nullptr;
       return nullptr;
     }
     const PType *t = resolve(td->type, td->name);
     resolving[key] = 0;
-    if (!t)
+    if (!t) {
+      named[key] = nullptr; // reported once; later uses stay quiet
       return nullptr;
+    }
     // Structured and enumerated types take their declared name.
     if (t->name.empty() || t->kind == PTypeKind::Enum ||
         t->kind == PTypeKind::Struct || t->isSubrange) {
@@ -914,7 +917,7 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
   return nullptr;
 }
 
-const PType *Checker::lvalue(Expr *e, bool forOutput) {
+const PType *Checker::lvalue(Expr *e) {
   const PType *t = expr(e);
   if (!t)
     return nullptr;
@@ -949,7 +952,6 @@ const PType *Checker::lvalue(Expr *e, bool forOutput) {
           "assignment to output '" + e->name + "' of function block instance");
     return nullptr;
   }
-  (void)forOutput;
   return t;
 }
 
@@ -1341,13 +1343,13 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
     }
     if (a.isOutput != (p->section == VarSection::Output)) {
       error(a.loc, a.isOutput
-                       ? "'=>' binds outputs; '" + p->name + "' is an " +
+                       ? "'=>' binds outputs; '" + p->name + "' is a " +
                              spelling(p->section)
                        : "output '" + p->name + "' must be bound with '=>'");
       return;
     }
     if (a.isOutput || p->section == VarSection::InOut) {
-      const PType *t = lvalue(a.value, true);
+      const PType *t = lvalue(a.value);
       if (t && p->type &&
           (p->section == VarSection::InOut
                ? baseOf(t) != baseOf(p->type) &&
@@ -1378,8 +1380,59 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
     }
 }
 
-void Checker::fbCall(Expr *e, VarDecl *inst) {
-  functionArgs(e, inst->type->fb);
+/// Puts the named inputs of a standard function call in parameter order
+/// (IEC names: IN; IN1..INn; MN, IN, MX for LIMIT; G, IN0, IN1 for SEL;
+/// K, IN0..INn for MUX; IN, N for shifts). All arguments are named or none.
+bool Checker::orderStdArgs(Expr *e, StdFn fn) {
+  size_t named = 0;
+  for (CallArg &a : e->args)
+    named += !a.name.empty();
+  if (named == 0)
+    return true;
+  if (named != e->args.size()) {
+    error(e->loc, "'" + e->name + "': give all arguments by name or none");
+    return false;
+  }
+  auto position = [&](StringRef n) -> int {
+    std::string u = n.upper();
+    StringRef up(u);
+    unsigned k;
+    switch (fn) {
+    case StdFn::Limit:
+      return up == "MN" ? 0 : up == "IN" ? 1 : up == "MX" ? 2 : -1;
+    case StdFn::Sel:
+      return up == "G" ? 0 : up == "IN0" ? 1 : up == "IN1" ? 2 : -1;
+    case StdFn::Mux:
+      if (up == "K")
+        return 0;
+      return up.consume_front("IN") && !up.getAsInteger(10, k) ? int(k) + 1
+                                                               : -1;
+    case StdFn::Shl:
+    case StdFn::Shr:
+    case StdFn::Rol:
+    case StdFn::Ror:
+      return up == "IN" ? 0 : up == "N" ? 1 : -1;
+    default:
+      if (up == "IN")
+        return 0;
+      return up.consume_front("IN") && !up.getAsInteger(10, k) && k >= 1
+                 ? int(k) - 1
+                 : -1;
+    }
+  };
+  std::vector<CallArg> ordered(e->args.size());
+  std::vector<bool> filled(e->args.size(), false);
+  for (CallArg &a : e->args) {
+    int p = position(a.name);
+    if (p < 0 || size_t(p) >= ordered.size() || filled[p]) {
+      error(a.loc, "'" + e->name + "' has no parameter '" + a.name + "' here");
+      return false;
+    }
+    ordered[p] = a;
+    filled[p] = true;
+  }
+  e->args = std::move(ordered);
+  return true;
 }
 
 const PType *Checker::call(Expr *e, bool asStatement) {
@@ -1398,7 +1451,7 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       return nullptr;
     }
     e->var = v;
-    fbCall(e, v);
+    functionArgs(e, v->type->fb);
     return voidType();
   }
   if (Pou *p = unit.findPou(e->name)) {
@@ -1421,14 +1474,13 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     error(e->loc, "unknown function '" + e->name + "'");
     return nullptr;
   }
+  if (!orderStdArgs(e, info.fn))
+    return nullptr;
   std::vector<const PType *> types;
   for (CallArg &a : e->args) {
-    if (a.isOutput || !a.name.empty()) {
-      // Standard functions take IN, IN1.., G, K, MN, MX named inputs too.
-      if (a.isOutput) {
-        error(a.loc, "standard function '" + e->name + "' has no outputs");
-        return nullptr;
-      }
+    if (a.isOutput) {
+      error(a.loc, "standard function '" + e->name + "' has no outputs");
+      return nullptr;
     }
     const PType *t = expr(a.value);
     if (!t)
@@ -1557,8 +1609,9 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   case StdFn::StringOp:
     return elementaryType("STRING");
   case StdFn::Refused:
-    error(e->loc, "'" + e->name + "' is not supported (BCD conversions are "
-                                  "refused)");
+    error(e->loc, "'" + e->name +
+                      "' is not supported (BCD conversions are "
+                      "refused)");
     return nullptr;
   case StdFn::None:
     break;

@@ -16,6 +16,7 @@
 #include "llvm/ADT/StringSwitch.h"
 
 #include <cmath>
+#include <type_traits>
 
 using namespace netlift;
 using namespace netlift::plc;
@@ -315,6 +316,7 @@ private:
                                   "extensions are refused)");
   }
 
+  template <typename Ctx> Pou *pou(PouKind kind, Ctx *c);
   Pou *program(P::ProgramDeclContext *c);
   Pou *functionBlock(P::FunctionBlockDeclContext *c);
   Pou *function(P::FunctionDeclContext *c);
@@ -368,27 +370,39 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
     else if (auto *g = el->globalVarBlock())
       varBlock(g->varBlock(), unit.globals);
     else if (auto *r = el->refusedElement())
-      return refuse(loc(r->kw), llvm::Twine(r->kw->getText()) +
-                                    " is not supported (object-oriented and "
-                                    "vendor extensions are refused)"),
-             false;
+      refuse(loc(r->kw), llvm::Twine(r->kw->getText()) +
+                             " is not supported (object-oriented and vendor "
+                             "extensions are refused)");
   }
   return !failed;
 }
 
-Pou *AstBuilder::program(P::ProgramDeclContext *c) {
-  for (auto *m : c->fbMember())
-    return refuseMember(m, "program");
+/// The parts every POU has: name, pragmas, variable blocks, body.
+template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   Pou *pou = unit.make<Pou>();
-  pou->kind = PouKind::Program;
+  pou->kind = kind;
   pou->name = c->name->getText();
   pou->loc = loc(c->name);
   pou->attrs = pragmasBefore(c->getStart());
+  if constexpr (std::is_same_v<Ctx, P::FunctionDeclContext>) {
+    auto *f = c;
+    if (!f->result)
+      return refuse(loc(c->name), "function '" + pou->name +
+                                      "' has no result type (': TYPE' after "
+                                      "its name)");
+    pou->resultSyntax = typeSpec(f->result);
+  }
   for (auto *vb : c->pouVarBlock())
     varBlock(vb->varBlock(), pou->vars);
   statements(c->body, pou->body);
   unit.pous.push_back(pou);
   return pou;
+}
+
+Pou *AstBuilder::program(P::ProgramDeclContext *c) {
+  for (auto *m : c->fbMember())
+    return refuseMember(m, "program");
+  return pou(PouKind::Program, c);
 }
 
 Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
@@ -402,34 +416,11 @@ Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
                   "blocks are refused)");
   for (auto *m : c->fbMember())
     return refuseMember(m, "function block");
-  Pou *pou = unit.make<Pou>();
-  pou->kind = PouKind::FunctionBlock;
-  pou->name = c->name->getText();
-  pou->loc = loc(c->name);
-  pou->attrs = pragmasBefore(c->getStart());
-  for (auto *vb : c->pouVarBlock())
-    varBlock(vb->varBlock(), pou->vars);
-  statements(c->body, pou->body);
-  unit.pous.push_back(pou);
-  return pou;
+  return pou(PouKind::FunctionBlock, c);
 }
 
 Pou *AstBuilder::function(P::FunctionDeclContext *c) {
-  Pou *pou = unit.make<Pou>();
-  pou->kind = PouKind::Function;
-  pou->name = c->name->getText();
-  pou->loc = loc(c->name);
-  pou->attrs = pragmasBefore(c->getStart());
-  if (!c->result)
-    return refuse(loc(c->name), "function '" + pou->name +
-                                    "' has no result type (': TYPE' after "
-                                    "its name)");
-  pou->resultSyntax = typeSpec(c->result);
-  for (auto *vb : c->pouVarBlock())
-    varBlock(vb->varBlock(), pou->vars);
-  statements(c->body, pou->body);
-  unit.pous.push_back(pou);
-  return pou;
+  return pou(PouKind::Function, c);
 }
 
 void AstBuilder::typeDecl(P::TypeDeclContext *c) {

@@ -186,6 +186,14 @@ FUNCTION_BLOCK TP
 END_FUNCTION_BLOCK
 )ST";
 
+bool st::isStandardFunctionBlock(llvm::StringRef name) {
+  for (const char *fb : {"R_TRIG", "F_TRIG", "SR", "RS", "CTU", "CTD", "CTUD",
+                         "TON", "TOF", "TP"})
+    if (name.equals_insensitive(fb))
+      return true;
+  return false;
+}
+
 bool st::addStandardLibrary(DiagEngine &diag, plc::Unit &unit) {
   // Only the blocks the user did not define are kept, so a user's own TON
   // replaces netlift's.

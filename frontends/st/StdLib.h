@@ -16,6 +16,9 @@ namespace netlift::st {
 /// Adds the standard function blocks the unit does not define itself.
 bool addStandardLibrary(DiagEngine &diag, plc::Unit &unit);
 
+/// Is `name` (case-insensitive) one of the standard function blocks?
+bool isStandardFunctionBlock(llvm::StringRef name);
+
 } // namespace netlift::st
 
 #endif

@@ -1,6 +1,8 @@
-//===- StFrontendTest.cpp - ST literals and the PLC model ------------------===//
-#include "frontends/plc/Sema.h"
+//===- StFrontendTest.cpp - ST literals and the PLC model
+//------------------===//
 #include "frontends/st/StFrontend.h"
+#include "frontends/plc/Sema.h"
+#include "frontends/st/StdLib.h"
 
 #include "llvm/Support/MemoryBuffer.h"
 
@@ -53,8 +55,7 @@ unsigned check(const char *text, plc::Unit &unit) {
   DiagEngine diag(sm);
   unsigned id =
       sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBufferCopy(text), {});
-  if (!st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
-                               unit))
+  if (!st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag, unit))
     return diag.numErrors();
   plc::checkUnit(unit, diag);
   return diag.numErrors();
@@ -96,6 +97,21 @@ TEST(PlcModel, OperatorPrecedence) {
   EXPECT_EQ(cmp->op, plc::Op::Gt);
   EXPECT_EQ(cmp->operands[0]->op, plc::Op::Add);
   EXPECT_EQ(cmp->operands[0]->operands[1]->op, plc::Op::Mul);
+}
+
+TEST(StdLib, EveryShippedBlockIsKnownByName) {
+  // The IL frontend asks isStandardFunctionBlock before the library joins
+  // the unit: the list must name exactly the shipped blocks.
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  plc::Unit unit;
+  ASSERT_TRUE(st::addStandardLibrary(diag, unit));
+  ASSERT_EQ(unit.pous.size(), 10u);
+  for (plc::Pou *p : unit.pous) {
+    EXPECT_TRUE(p->isLibrary);
+    EXPECT_TRUE(st::isStandardFunctionBlock(p->name)) << p->name;
+  }
+  EXPECT_FALSE(st::isStandardFunctionBlock("MyBlock"));
 }
 
 } // namespace
