@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ir/semantics/Semantics.h"
+#include "ir/semantics/PtKernel.h"
 
 #include "ir/net/Printer.h"
 
@@ -77,6 +78,8 @@ struct Semantics::Impl {
   std::vector<uint32_t> eventInputs; // event input port indices
   std::vector<uint32_t> clockVarSlots;
   std::vector<int32_t> eventInputIndex; // port -> position in eventInputs
+  /// The compiled successor function, when the module is a plain P/T net.
+  std::unique_ptr<PtKernel> kernel;
 
   // Per-state working data.
   std::vector<int64_t> vals; // all slots: packed state, then inputs
@@ -639,6 +642,7 @@ Semantics::Semantics(const Module &mod, const StateLayout &layout, Options o)
     }
   for (uint32_t p = 0; p < m.places.size(); ++p)
     timed |= L.clockSlot(p) >= 0;
+  I.kernel = PtKernel::compile(m, L, opts);
   I.vals.assign(L.numSlots(), 0);
   I.present.assign(I.eventInputs.size(), 0);
   I.en.assign(m.transitions.size(), 0);
@@ -687,6 +691,15 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
 bool Semantics::successors(const uint64_t *state, Callback cb,
                            RuntimeError &err) {
   Impl &I = *impl;
+  if (I.kernel) {
+    I.succScratch.resize(L.numWords());
+    if (I.kernel->successors(state, I.succScratch.data(),
+                             [&](uint32_t t, const uint64_t *succ) {
+                               cb(llvm::ArrayRef<uint32_t>(t), succ);
+                             }))
+      return true;
+    // An overflow: the interpreter below reports it.
+  }
   I.unpack(state);
   I.cur = state;
   uint64_t combos = uint64_t(1) << std::min<size_t>(I.eventInputs.size(), 63);

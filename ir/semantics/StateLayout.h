@@ -16,6 +16,7 @@
 
 #include "ir/net/Module.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -64,6 +65,12 @@ public:
   bool isUnbounded(uint32_t place) const;
   /// Places whose width comes from a P-invariant bound.
   size_t numStructurallyBounded() const { return structurallyBounded.size(); }
+  /// Does a P-invariant keep this place within its slot (so that neither
+  /// its capacity nor its encoding can be exceeded by any firing)?
+  bool isStructurallyBounded(uint32_t place) const {
+    return std::binary_search(structurallyBounded.begin(),
+                              structurallyBounded.end(), place);
+  }
 
   int64_t get(const uint64_t *state, uint32_t slot) const {
     const Slot &s = slotVec[slot];

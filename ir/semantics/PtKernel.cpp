@@ -1,0 +1,197 @@
+//===- PtKernel.cpp - compiled successors of plain P/T nets ---------------===//
+#include "ir/semantics/PtKernel.h"
+
+#include "ir/semantics/Semantics.h"
+
+#include "llvm/ADT/SmallVector.h"
+
+using namespace netlift;
+using namespace netlift::sem;
+using namespace netlift::net;
+
+/// Is every transition of `m` a plain P/T transition, so that the general
+/// interpreter would do nothing but move tokens?
+static bool isPlainPT(const Module &m, const StateLayout &L,
+                      const Options &opts) {
+  if (opts.policy != StepPolicy::Interleaving)
+    return false;
+  for (const Port &p : m.ports)
+    if (p.isInput())
+      return false; // free inputs multiply the steps
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    if (L.clockSlot(p) >= 0)
+      return false;
+  for (const Var &v : m.vars)
+    if (v.type->isClock())
+      return false; // ticks
+  for (const Transition &t : m.transitions) {
+    if (t.isForced() || !t.conds().empty() || t.guard() || t.hasAction())
+      return false;
+    for (const PreArc &a : t.pre())
+      if (!a.time.isTrivial())
+        return false;
+  }
+  return true;
+}
+
+std::unique_ptr<PtKernel>
+PtKernel::compile(const Module &m, const StateLayout &L, const Options &opts) {
+  if (!isPlainPT(m, L, opts))
+    return nullptr;
+  std::unique_ptr<PtKernel> k(new PtKernel(L));
+  k->words = L.numWords();
+  for (const Transition &t : m.transitions) {
+    // Pre- and post-weight per place, in first-mention order (a handful
+    // of arcs: a linear search is the fastest map).
+    struct PlaceArcs {
+      uint32_t place;
+      uint64_t pre = 0, post = 0;
+    };
+    llvm::SmallVector<PlaceArcs, 8> arcs;
+    auto arcsOf = [&](uint32_t p) -> PlaceArcs & {
+      for (PlaceArcs &a : arcs)
+        if (a.place == p)
+          return a;
+      return arcs.emplace_back(PlaceArcs{p});
+    };
+    for (const PreArc &a : t.pre())
+      arcsOf(a.place).pre += a.weight;
+    for (const PostArc &a : t.post())
+      arcsOf(a.place).post += a.weight;
+    Compiled c{};
+    c.urgent = t.urgent;
+    bool never = false;
+    uint32_t lo = UINT32_MAX, hi = 0;
+    for (const PlaceArcs &a : arcs) {
+      const Slot &s = L.slots()[L.markingSlot(a.place)];
+      if (a.pre > uint64_t(s.hi))
+        never = true; // demands more than the place can ever hold
+      lo = std::min(lo, s.bitOffset / 64);
+      hi =
+          std::max(hi, (s.bitOffset + std::max<uint32_t>(s.width, 1) - 1) / 64);
+    }
+    c.maskBegin = k->masks.size();
+    c.fieldBegin = k->fields.size();
+    c.limitBegin = k->limits.size();
+    c.effectBegin = k->effect.size();
+    if (never || arcs.empty()) {
+      // Never enabled (an impossible demand), or a transition without arcs
+      // whose firing changes nothing: keep it out of every test by an
+      // impossible field test or an empty effect.
+      c.wordLo = 0;
+      c.numWords = 0;
+      if (never)
+        k->fields.push_back({L.markingSlot(arcs[0].place), UINT32_MAX});
+    } else {
+      c.wordLo = lo;
+      c.numWords = hi - lo + 1;
+      k->effect.resize(k->effect.size() + 2 * c.numWords, 0);
+      uint64_t *sub = &k->effect[c.effectBegin];
+      uint64_t *add = sub + c.numWords;
+      // Adds `w << bitOffset` into a multi-word integer of the touched
+      // words (modulo its width: the result always fits, see the header).
+      auto place = [&](uint64_t *acc, const Slot &s, uint64_t w) {
+        uint32_t word = s.bitOffset / 64 - lo, bit = s.bitOffset % 64;
+        unsigned __int128 v = (unsigned __int128)w << bit;
+        uint64_t carry = 0;
+        for (uint32_t i = word; i < c.numWords; ++i) {
+          uint64_t part = i == word       ? uint64_t(v)
+                          : i == word + 1 ? uint64_t(v >> 64)
+                                          : 0;
+          unsigned __int128 sum = (unsigned __int128)acc[i] + part + carry;
+          acc[i] = uint64_t(sum);
+          carry = uint64_t(sum >> 64);
+        }
+      };
+      uint32_t firstMask = k->masks.size();
+      auto addMask = [&](uint32_t word, uint64_t bit) {
+        for (uint32_t i = firstMask; i < k->masks.size(); ++i)
+          if (k->masks[i].word == word) {
+            k->masks[i].mask |= bit;
+            return;
+          }
+        k->masks.push_back({word, bit});
+      };
+      for (const PlaceArcs &a : arcs) {
+        uint32_t slot = L.markingSlot(a.place);
+        const Slot &s = L.slots()[slot];
+        if (a.pre == 1 && s.width == 1)
+          addMask(s.bitOffset / 64, uint64_t(1) << (s.bitOffset % 64));
+        else if (a.pre > 0)
+          k->fields.push_back({slot, uint32_t(a.pre)});
+        place(sub, s, a.pre);
+        place(add, s, a.post);
+        if (a.post > a.pre && !L.isStructurallyBounded(a.place))
+          k->limits.push_back({slot, uint32_t(a.post - a.pre), uint64_t(s.hi),
+                               m.places[a.place].capacity == kInf});
+      }
+    }
+    c.maskEnd = k->masks.size();
+    c.fieldEnd = k->fields.size();
+    c.limitEnd = k->limits.size();
+    k->trans.push_back(c);
+  }
+  return k;
+}
+
+bool PtKernel::enabled(const Compiled &c, const uint64_t *s,
+                       bool &overflow) const {
+  for (uint32_t i = c.maskBegin; i < c.maskEnd; ++i)
+    if ((s[masks[i].word] & masks[i].mask) != masks[i].mask)
+      return false;
+  for (uint32_t i = c.fieldBegin; i < c.fieldEnd; ++i)
+    if (uint64_t(L.get(s, fields[i].slot)) < fields[i].weight)
+      return false;
+  for (uint32_t i = c.limitBegin; i < c.limitEnd; ++i) {
+    const LimitTest &t = limits[i];
+    if (uint64_t(L.get(s, t.slot)) + t.gain > t.limit) {
+      if (!t.overflowIsError)
+        return false;
+      overflow = true;
+    }
+  }
+  return true;
+}
+
+void PtKernel::fire(const Compiled &c, const uint64_t *s, uint64_t *out) const {
+  const uint64_t *sub = &effect[c.effectBegin];
+  const uint64_t *add = sub + c.numWords;
+  if (c.numWords == 1) {
+    out[c.wordLo] = s[c.wordLo] - sub[0] + add[0];
+    return;
+  }
+  // (s - sub + add) over the touched words, carries and borrows included.
+  unsigned borrow = 0, carry = 0;
+  for (uint32_t i = 0; i < c.numWords; ++i) {
+    uint64_t x = s[c.wordLo + i];
+    unsigned __int128 d = (unsigned __int128)x - sub[i] - borrow;
+    borrow = unsigned(d >> 64) & 1;
+    unsigned __int128 e = (unsigned __int128)uint64_t(d) + add[i] + carry;
+    carry = unsigned(e >> 64);
+    out[c.wordLo + i] = uint64_t(e);
+  }
+}
+
+bool PtKernel::successors(const uint64_t *state, uint64_t *succ, Emit emit) {
+  std::vector<uint32_t> &en = enabledScratch;
+  en.clear();
+  bool overflow = false, urgentEnabled = false;
+  for (uint32_t t = 0; t < trans.size(); ++t)
+    if (enabled(trans[t], state, overflow)) {
+      en.push_back(t);
+      urgentEnabled |= trans[t].urgent;
+    }
+  if (overflow)
+    return false;
+  std::copy(state, state + words, succ);
+  for (uint32_t t : en) {
+    const Compiled &c = trans[t];
+    if (urgentEnabled && !c.urgent)
+      continue;
+    fire(c, state, succ);
+    emit(t, succ);
+    // Restore the touched words for the next transition.
+    std::copy(state + c.wordLo, state + c.wordLo + c.numWords, succ + c.wordLo);
+  }
+  return true;
+}
