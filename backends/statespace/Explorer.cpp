@@ -11,11 +11,49 @@ using namespace netlift;
 using namespace netlift::statespace;
 using Clock = std::chrono::steady_clock;
 
+namespace {
+/// The token figures of the summary (most tokens in a place, most tokens
+/// in a marking), read off packed states: 1-bit places are counted a word
+/// at a time, the others slot by slot.
+class TokenStats {
+public:
+  explicit TokenStats(const sem::StateLayout &L) : L(L) {
+    oneBitMask.assign(L.numWords(), 0);
+    for (uint32_t p = 0; p < L.module().places.size(); ++p) {
+      uint32_t slot = L.markingSlot(p);
+      const sem::Slot &s = L.slots()[slot];
+      if (s.width == 1 && s.lo == 0)
+        oneBitMask[s.bitOffset / 64] |= uint64_t(1) << (s.bitOffset % 64);
+      else
+        wideSlots.push_back(slot);
+    }
+  }
+  void account(const uint64_t *state, ExploreResult &r) const {
+    uint64_t tokens = 0, most = 0;
+    for (uint32_t w = 0; w < oneBitMask.size(); ++w)
+      tokens += __builtin_popcountll(state[w] & oneBitMask[w]);
+    if (tokens)
+      most = 1;
+    for (uint32_t slot : wideSlots) {
+      uint64_t k = uint64_t(L.get(state, slot));
+      tokens += k;
+      most = std::max(most, k);
+    }
+    r.maxTokensInPlace = std::max(r.maxTokensInPlace, most);
+    r.maxTokensPerMarking = std::max(r.maxTokensPerMarking, tokens);
+  }
+
+private:
+  const sem::StateLayout &L;
+  std::vector<uint64_t> oneBitMask;
+  std::vector<uint32_t> wideSlots;
+};
+} // namespace
+
 Explorer::Explorer(sem::Semantics &s, ExploreOptions o)
     : sem(s), opts(o), states(s.layout().numWords()) {}
 
-uint32_t Explorer::internLabel(llvm::ArrayRef<uint32_t> step) {
-  // Most steps are one transition or a tick: look those up directly.
+uint32_t Explorer::internNewLabel(llvm::ArrayRef<uint32_t> step) {
   if (step.size() <= 1) {
     uint32_t key = step.empty() ? 0 : step[0] + 1;
     if (key >= singleLabel.size())
@@ -60,7 +98,6 @@ std::vector<std::pair<uint32_t, uint32_t>> Explorer::pathTo(uint32_t s) const {
 
 bool Explorer::run(ExploreResult &r) {
   const sem::StateLayout &L = sem.layout();
-  const net::Module &m = sem.module();
   auto start = Clock::now();
   std::vector<uint64_t> init(L.numWords());
   sem::RuntimeError err;
@@ -84,7 +121,106 @@ bool Explorer::run(ExploreResult &r) {
   auto lastReport = start;
   uint32_t next = 0; // breadth-first: states are expanded in index order
   uint64_t expanded = 0;
-  std::vector<uint64_t> cur(L.numWords());
+  // The successors of a state are generated into a batch and looked up
+  // in the store together, so that the cache misses of the lookups
+  // overlap. Breadth-first, the lookups of one state's batch are moreover
+  // deferred until the next state's successors are generated: its buckets
+  // arrive in the cache meanwhile. Batches are committed in expansion
+  // order, so states are numbered exactly as without the look-ahead.
+  struct Pending {
+    uint32_t hash, label;
+    bool isTick;
+  };
+  struct Batch {
+    uint32_t from;
+    std::vector<Pending> pending;
+    std::vector<uint64_t> words;
+    bool ok;
+    sem::RuntimeError err;
+  };
+  // Batches generated but not yet committed, oldest first (a ring).
+  const uint32_t lookAhead = opts.depthFirst ? 0 : kLookAhead;
+  std::vector<Batch> ring(lookAhead + 1);
+  uint32_t head = 0, inFlight = 0;
+  auto front = [&]() -> Batch & { return ring[head]; };
+  auto popFront = [&]() {
+    head = (head + 1) % ring.size();
+    --inFlight;
+  };
+  TokenStats tokenStats(L);
+  const uint32_t W = L.numWords();
+  auto generate = [&](uint32_t s, Batch &b) {
+    b.from = s;
+    b.pending.clear();
+    b.words.clear();
+    b.ok = sem.successors(
+        states.state(s),
+        [&](llvm::ArrayRef<uint32_t> st, const uint64_t *succ) {
+          uint32_t h = states.hash(succ);
+          states.prefetchBucket(h);
+          b.pending.push_back({h, internLabel(st), st.empty()});
+          size_t at = b.words.size();
+          b.words.resize(at + W);
+          for (uint32_t i = 0; i < W; ++i) // a few words: no memcpy call
+            b.words[at + i] = succ[i];
+        },
+        b.err);
+  };
+  auto prefetchCandidates = [&](const Batch &b) {
+    for (const Pending &p : b.pending)
+      states.prefetchCandidate(p.hash);
+  };
+  // Stores a batch's successors; false when the search stops.
+  auto commit = [&](const Batch &b) {
+    uint32_t s = b.from;
+    tokenStats.account(states.state(s), r);
+    bool step = false;
+    uint32_t tick = kNone;
+    for (size_t i = 0; i < b.pending.size(); ++i) {
+      const uint64_t *succ = &b.words[i * W];
+      const Pending &p = b.pending[i];
+      // --max-states: never store more than the limit.
+      if (opts.maxStates && states.size() >= opts.maxStates &&
+          states.find(succ, p.hash) == kNone) {
+        r.limitReached = "states";
+        return false;
+      }
+      auto [t, fresh] = states.insert(succ, p.hash);
+      if (p.isTick)
+        tick = t;
+      else
+        step = true;
+      ++r.edges;
+      if (opts.recordEdges)
+        edgeList.push_back({s, t, p.label});
+      if (fresh) {
+        parent.push_back(s);
+        parentLabel.push_back(p.label);
+        if (opts.depthFirst)
+          stack.push_back(t);
+        if (opts.stopAt && opts.stopAt(states.state(t))) {
+          r.found = t;
+          return false;
+        }
+      }
+    }
+    if (!b.ok) {
+      r.error = b.err;
+      r.errorState = s;
+      return false;
+    }
+    if (b.pending.empty())
+      r.deadlocks.push_back(s);
+    if (timed) {
+      if (hasStep.size() <= s) {
+        hasStep.resize(s + 1, 0);
+        tickSucc.resize(s + 1, kNone);
+      }
+      hasStep[s] = step;
+      tickSucc[s] = tick;
+    }
+    return true;
+  };
   while (!r.found) {
     uint32_t s;
     if (opts.depthFirst) {
@@ -93,8 +229,17 @@ bool Explorer::run(ExploreResult &r) {
       s = stack.back();
       stack.pop_back();
     } else {
-      if (next == states.size())
-        break;
+      if (next == states.size()) {
+        if (!inFlight)
+          break;
+        // The queue is empty until the deferred batches are stored.
+        prefetchCandidates(front());
+        bool go = commit(front());
+        popFront();
+        if (!go)
+          break;
+        continue;
+      }
       s = next++;
     }
     // Limits are checked between expansions, so a stop is clean.
@@ -124,68 +269,18 @@ bool Explorer::run(ExploreResult &r) {
       }
     }
     ++expanded;
-    // Copy: the store's arena may move while successors are inserted.
-    std::copy(states.state(s), states.state(s) + L.numWords(), cur.begin());
-    uint64_t tokens = 0;
-    for (uint32_t p = 0; p < m.places.size(); ++p) {
-      uint64_t k = L.get(cur.data(), L.markingSlot(p));
-      tokens += k;
-      r.maxTokensInPlace = std::max(r.maxTokensInPlace, k);
-    }
-    r.maxTokensPerMarking = std::max(r.maxTokensPerMarking, tokens);
-    bool any = false, step = false;
-    uint32_t tick = kNone;
-    bool stopped = false;
-    bool ok = sem.successors(
-        cur.data(),
-        [&](llvm::ArrayRef<uint32_t> st, const uint64_t *succ) {
-          if (stopped)
-            return;
-          any = true;
-          // --max-states: never store more than the limit.
-          if (opts.maxStates && states.size() >= opts.maxStates &&
-              states.find(succ) == kNone) {
-            r.limitReached = "states";
-            stopped = true;
-            return;
-          }
-          auto [t, fresh] = states.insert(succ);
-          uint32_t label = internLabel(st);
-          if (st.empty())
-            tick = t;
-          else
-            step = true;
-          ++r.edges;
-          if (opts.recordEdges)
-            edgeList.push_back({s, t, label});
-          if (fresh) {
-            parent.push_back(s);
-            parentLabel.push_back(label);
-            if (opts.depthFirst)
-              stack.push_back(t);
-            if (opts.stopAt && opts.stopAt(states.state(t))) {
-              r.found = t;
-              stopped = true;
-            }
-          }
-        },
-        err);
-    if (!ok) {
-      r.error = err;
-      r.errorState = s;
-      break;
-    }
-    if (!r.limitReached.empty())
-      break;
-    if (!any)
-      r.deadlocks.push_back(s);
-    if (timed) {
-      if (hasStep.size() <= s) {
-        hasStep.resize(s + 1, 0);
-        tickSucc.resize(s + 1, kNone);
-      }
-      hasStep[s] = step;
-      tickSucc[s] = tick;
+    Batch &b = ring[(head + inFlight) % ring.size()];
+    generate(s, b);
+    ++inFlight;
+    if (inFlight > lookAhead) {
+      if (lookAhead == 0)
+        prefetchCandidates(b);
+      bool go = commit(front());
+      popFront();
+      if (!go)
+        break;
+      if (inFlight)
+        prefetchCandidates(front());
     }
   }
   if (showProgress)

@@ -69,9 +69,22 @@ public:
   /// first being ("", 0).
   std::vector<std::pair<uint32_t, uint32_t>> pathTo(uint32_t s) const;
   static constexpr uint32_t kNone = UINT32_MAX;
+  /// States whose successors are generated ahead of being stored
+  /// (breadth-first only; see run()).
+  static constexpr uint32_t kLookAhead = 2;
 
 private:
-  uint32_t internLabel(llvm::ArrayRef<uint32_t> step);
+  /// The label id of a step; one-transition steps and the tick are looked
+  /// up in a table (every edge asks).
+  uint32_t internLabel(llvm::ArrayRef<uint32_t> step) {
+    if (step.size() <= 1) {
+      uint32_t key = step.empty() ? 0 : step[0] + 1;
+      if (key < singleLabel.size() && singleLabel[key] != kNone)
+        return singleLabel[key];
+    }
+    return internNewLabel(step);
+  }
+  uint32_t internNewLabel(llvm::ArrayRef<uint32_t> step);
 
   sem::Semantics &sem;
   ExploreOptions opts;

@@ -6,15 +6,21 @@
 using namespace netlift::statespace;
 
 uint32_t StateStore::hashState(const uint64_t *s, uint32_t n) {
-  // A multiply-xorshift mix per word: fast, and good enough for open
-  // addressing with the full 32-bit hash kept in the bucket.
-  uint64_t h = 0x9E3779B97F4A7C15ull ^ n;
+  // Words are combined by multiply-xorshift, then the whole is finished by
+  // the murmur3 64-bit finaliser, whose every output bit depends on every
+  // input bit: packed markings differ in few, clustered bits, and both the
+  // bucket (low bits) and the kept 32-bit hash must still spread.
+  uint64_t h = 0x9E3779B97F4A7C15ull * (n + 1);
   for (uint32_t i = 0; i < n; ++i) {
-    h ^= s[i] + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 31;
+    h = (h ^ s[i]) * 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 29;
   }
-  return uint32_t(h ^ (h >> 32));
+  h ^= h >> 33;
+  h *= 0xFF51AFD7ED558CCDull;
+  h ^= h >> 33;
+  h *= 0xC4CEB9FE1A85EC53ull;
+  h ^= h >> 33;
+  return uint32_t(h);
 }
 
 void StateStore::grow() {
@@ -41,10 +47,9 @@ static inline bool sameState(const uint64_t *a, const uint64_t *b, uint32_t n) {
   return true;
 }
 
-uint32_t StateStore::find(const uint64_t *s) const {
+uint32_t StateStore::find(const uint64_t *s, uint32_t h) const {
   if (table.empty())
     return kEmpty;
-  uint32_t h = hashState(s, words);
   size_t mask = table.size() - 1;
   for (size_t i = h & mask;; i = (i + 1) & mask) {
     const Bucket &b = table[i];
@@ -55,10 +60,9 @@ uint32_t StateStore::find(const uint64_t *s) const {
   }
 }
 
-std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s) {
+std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s, uint32_t h) {
   if ((size_t(count) + 1) * 4 > table.size() * 3)
     grow();
-  uint32_t h = hashState(s, words);
   size_t mask = table.size() - 1;
   size_t i = h & mask;
   for (;; i = (i + 1) & mask) {

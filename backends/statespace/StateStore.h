@@ -26,9 +26,34 @@ public:
   StateStore &operator=(const StateStore &) = delete;
 
   /// The index of `state`, and whether it was new.
-  std::pair<uint32_t, bool> insert(const uint64_t *state);
+  std::pair<uint32_t, bool> insert(const uint64_t *state) {
+    return insert(state, hash(state));
+  }
+  /// The same, with `h == hash(state)` computed beforehand.
+  std::pair<uint32_t, bool> insert(const uint64_t *state, uint32_t h);
   /// The index of `state`, or UINT32_MAX when it is not stored.
-  uint32_t find(const uint64_t *state) const;
+  uint32_t find(const uint64_t *state) const {
+    return find(state, hash(state));
+  }
+  uint32_t find(const uint64_t *state, uint32_t h) const;
+
+  uint32_t hash(const uint64_t *state) const { return hashState(state, words); }
+  /// Look-ahead for a batch of lookups: a table far larger than the cache
+  /// costs a miss per lookup, so a caller with several states to look up
+  /// first calls prefetchBucket for all of them, then prefetchCandidate
+  /// (which reads the now-cached bucket and fetches the stored state it
+  /// points to), then inserts: the misses overlap instead of adding up.
+  void prefetchBucket(uint32_t h) const {
+    if (!table.empty())
+      __builtin_prefetch(&table[h & (table.size() - 1)]);
+  }
+  void prefetchCandidate(uint32_t h) const {
+    if (table.empty())
+      return;
+    const Bucket &b = table[h & (table.size() - 1)];
+    if (b.index != kEmpty && b.hash == h)
+      __builtin_prefetch(state(b.index));
+  }
   const uint64_t *state(uint32_t i) const {
     return &blocks[i >> kBlockShift][size_t(i & kBlockMask) * words];
   }

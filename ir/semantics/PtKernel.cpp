@@ -13,7 +13,7 @@ using namespace netlift::net;
 /// interpreter would do nothing but move tokens?
 static bool isPlainPT(const Module &m, const StateLayout &L,
                       const Options &opts) {
-  if (opts.policy != StepPolicy::Interleaving)
+  if (!opts.compilePT || opts.policy != StepPolicy::Interleaving)
     return false;
   for (const Port &p : m.ports)
     if (p.isInput())
@@ -129,13 +129,23 @@ PtKernel::compile(const Module &m, const StateLayout &L, const Options &opts) {
     c.maskEnd = k->masks.size();
     c.fieldEnd = k->fields.size();
     c.limitEnd = k->limits.size();
+    if (c.maskBegin < c.maskEnd) {
+      k->firstWord.push_back(k->masks[c.maskBegin].word);
+      k->firstMask.push_back(k->masks[c.maskBegin].mask);
+      ++c.maskBegin; // tested by the hot loop
+    } else {
+      k->firstWord.push_back(0);
+      k->firstMask.push_back(0);
+    }
+    k->hasMore.push_back(c.maskBegin < c.maskEnd || c.fieldBegin < c.fieldEnd ||
+                         c.limitBegin < c.limitEnd);
     k->trans.push_back(c);
   }
   return k;
 }
 
-bool PtKernel::enabled(const Compiled &c, const uint64_t *s,
-                       bool &overflow) const {
+bool PtKernel::restEnabled(const Compiled &c, const uint64_t *s,
+                           bool &overflow) const {
   for (uint32_t i = c.maskBegin; i < c.maskEnd; ++i)
     if ((s[masks[i].word] & masks[i].mask) != masks[i].mask)
       return false;
@@ -154,13 +164,9 @@ bool PtKernel::enabled(const Compiled &c, const uint64_t *s,
 }
 
 void PtKernel::fire(const Compiled &c, const uint64_t *s, uint64_t *out) const {
+  // (s - sub + add) over the touched words, carries and borrows included.
   const uint64_t *sub = &effect[c.effectBegin];
   const uint64_t *add = sub + c.numWords;
-  if (c.numWords == 1) {
-    out[c.wordLo] = s[c.wordLo] - sub[0] + add[0];
-    return;
-  }
-  // (s - sub + add) over the touched words, carries and borrows included.
   unsigned borrow = 0, carry = 0;
   for (uint32_t i = 0; i < c.numWords; ++i) {
     uint64_t x = s[c.wordLo + i];
@@ -174,23 +180,38 @@ void PtKernel::fire(const Compiled &c, const uint64_t *s, uint64_t *out) const {
 
 bool PtKernel::successors(const uint64_t *state, uint64_t *succ, Emit emit) {
   std::vector<uint32_t> &en = enabledScratch;
-  en.clear();
+  en.resize(trans.size());
+  uint32_t numEnabled = 0;
   bool overflow = false, urgentEnabled = false;
-  for (uint32_t t = 0; t < trans.size(); ++t)
-    if (enabled(trans[t], state, overflow)) {
-      en.push_back(t);
-      urgentEnabled |= trans[t].urgent;
-    }
+  const uint32_t *word = firstWord.data();
+  const uint64_t *mask = firstMask.data();
+  const uint8_t *more = hasMore.data();
+  for (uint32_t t = 0, n = trans.size(); t < n; ++t) {
+    if ((state[word[t]] & mask[t]) != mask[t])
+      continue;
+    if (more[t] && !restEnabled(trans[t], state, overflow))
+      continue;
+    en[numEnabled++] = t;
+    urgentEnabled |= trans[t].urgent;
+  }
   if (overflow)
     return false;
   std::copy(state, state + words, succ);
-  for (uint32_t t : en) {
+  for (uint32_t i = 0; i < numEnabled; ++i) {
+    uint32_t t = en[i];
     const Compiled &c = trans[t];
     if (urgentEnabled && !c.urgent)
       continue;
+    if (c.numWords == 1) {
+      // The common case: one word changes.
+      uint64_t w = state[c.wordLo];
+      succ[c.wordLo] = w - effect[c.effectBegin] + effect[c.effectBegin + 1];
+      emit(t, succ);
+      succ[c.wordLo] = w;
+      continue;
+    }
     fire(c, state, succ);
     emit(t, succ);
-    // Restore the touched words for the next transition.
     std::copy(state + c.wordLo, state + c.wordLo + c.numWords, succ + c.wordLo);
   }
   return true;

@@ -71,12 +71,20 @@ private:
     bool urgent;
   };
   PtKernel(const StateLayout &layout) : L(layout) {}
-  bool enabled(const Compiled &c, const uint64_t *s, bool &overflow) const;
+  /// The tests beyond the first mask test (see `firstWord`).
+  bool restEnabled(const Compiled &c, const uint64_t *s, bool &overflow) const;
   void fire(const Compiled &c, const uint64_t *s, uint64_t *out) const;
 
   const StateLayout &L;
   uint32_t words = 0;
   std::vector<Compiled> trans;
+  // The hot loop's view of each transition, in flat arrays: most
+  // transitions of a 1-safe net are decided by one mask test on one word
+  // (firstMask 0 when a transition has none); `hasMore` flags those that
+  // need restEnabled.
+  std::vector<uint32_t> firstWord;
+  std::vector<uint64_t> firstMask;
+  std::vector<uint8_t> hasMore;
   std::vector<MaskTest> masks;
   std::vector<FieldTest> fields;
   std::vector<LimitTest> limits;

@@ -37,6 +37,9 @@ struct Options {
   unsigned unboundedBits = 8;
   /// Most input valuations enumerated per state before refusing.
   uint64_t maxInputValuations = 1u << 16;
+  /// Expand plain P/T nets with the compiled kernel (PtKernel.h); off, the
+  /// general interpreter does it (the two must agree: a cross-check).
+  bool compilePT = true;
 };
 
 /// A runtime error of the model (write conflict, out-of-range write,

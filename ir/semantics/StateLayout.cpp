@@ -59,7 +59,7 @@ StateLayout::StateLayout(const Module &mod, unsigned unboundedBits) : m(mod) {
     const Place &pl = m.places[p];
     uint64_t hi = pl.capacity == kInf ? (uint64_t(1) << unboundedBits) - 1
                                       : uint64_t(pl.capacity);
-    if (bound[p] != kNoBound && bound[p] < hi) {
+    if (bound[p] != kNoBound && bound[p] <= hi) {
       hi = bound[p];
       structurallyBounded.push_back(p);
     }

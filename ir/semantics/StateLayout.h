@@ -63,10 +63,9 @@ public:
   int32_t portSlot(uint32_t port) const { return portFirst[port]; }
   /// Unbounded places (their width is a choice, not a bound).
   bool isUnbounded(uint32_t place) const;
-  /// Places whose width comes from a P-invariant bound.
-  size_t numStructurallyBounded() const { return structurallyBounded.size(); }
-  /// Does a P-invariant keep this place within its slot (so that neither
-  /// its capacity nor its encoding can be exceeded by any firing)?
+  /// Does a P-invariant keep this place within its slot (the bound is at
+  /// most its capacity, so that neither the capacity nor the encoding can
+  /// be exceeded by any firing)?
   bool isStructurallyBounded(uint32_t place) const {
     return std::binary_search(structurallyBounded.begin(),
                               structurallyBounded.end(), place);

@@ -297,6 +297,11 @@ static cl::opt<unsigned> reachPlaceBits(
     "place-bits",
     cl::desc("Bits for the marking of unbounded places (default 8)"),
     cl::init(8), cl::sub(reachCmd), cl::cat(category));
+static cl::opt<bool> reachInterpreter(
+    "interpreter",
+    cl::desc("Use the general interpreter even for plain P/T nets (to "
+             "cross-check the compiled P/T kernel)"),
+    cl::sub(reachCmd), cl::cat(category));
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
 /// is renamed into place only when everything was written.
@@ -774,6 +779,7 @@ static int runReach() {
   so.policy = reachPolicy;
   so.timing = reachTiming;
   so.unboundedBits = reachPlaceBits;
+  so.compilePT = !reachInterpreter;
   sem::StateLayout layout(*top, so.unboundedBits);
   sem::Semantics semantics(*top, layout, so);
 
