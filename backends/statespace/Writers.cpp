@@ -102,6 +102,40 @@ void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
   os << "}\n";
 }
 
+void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
+                                   llvm::raw_ostream &os) {
+  std::vector<Attribute> attrs = attributes(sem);
+  // Edges grouped by source state, each group in generation order.
+  uint32_t n = x.store().size();
+  std::vector<uint32_t> first(n + 1, 0);
+  for (const Edge &e : x.edges())
+    ++first[e.from + 1];
+  for (uint32_t s = 0; s < n; ++s)
+    first[s + 1] += first[s];
+  std::vector<uint32_t> order(x.edges().size()),
+      fill(first.begin(), first.end() - 1);
+  for (uint32_t i = 0; i < x.edges().size(); ++i)
+    order[fill[x.edges()[i].from]++] = i;
+  for (uint32_t s = 0; s < n; ++s) {
+    os << "state nr. " << s << "\n ";
+    bool any = false;
+    for (const Attribute &a : attrs) {
+      int64_t v = valueOf(sem, a, x.store().state(s));
+      if (a.kind == Attribute::Place && v == 0)
+        continue; // a marking lists its marked places
+      os << " " << a.name << (a.kind == Attribute::Place ? ":" : "=") << v;
+      any = true;
+    }
+    if (!any)
+      os << " (empty)";
+    os << "\n";
+    for (uint32_t i = first[s]; i < first[s + 1]; ++i) {
+      const Edge &e = x.edges()[order[i]];
+      os << "== " << x.label(e.label) << " ==> " << e.to << "\n";
+    }
+  }
+}
+
 void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
                                     const ExploreResult &r,
                                     llvm::raw_ostream &os) {

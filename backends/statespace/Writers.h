@@ -1,11 +1,11 @@
 //===- Writers.h - state spaces as files ------------------------*- C++ -*-===//
 //
 // Writes an explored state space: Aldebaran `.aut` (CADP, mCRL2, TINA),
-// Graphviz DOT, JSON (every state with its attributes and every edge; the
-// input of structural reasoning, docs/formats.md), the one-object summary
-// of `reach --summary json`, and readable traces (a table of steps and the
-// values each step changed). All deterministic: states in discovery order,
-// edges in generation order.
+// Graphviz DOT, ViVe-style `.arc`, JSON (every state with its attributes and
+// every edge; the input of structural reasoning, docs/formats.md), the
+// one-object summary of `reach --summary json`, and readable traces (a table of
+// steps and the values each step changed). All deterministic: states in
+// discovery order, edges in generation order.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_BACKENDS_STATESPACE_WRITERS_H
@@ -19,6 +19,10 @@ namespace netlift::statespace {
 
 void writeAut(const Explorer &x, llvm::raw_ostream &os);
 void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
+/// ViVe-style reachability graph text (docs/formats.md): per state a line
+/// `state nr. N`, its marked places and values, then one line
+/// `== {t1,t3} ==> M` per step leaving it.
+void writeArc(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
 void writeJson(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
                llvm::raw_ostream &os);
 /// CSV: a header `id,deadlock,<attribute>...` and one row per state.

@@ -237,7 +237,7 @@ static cl::opt<EmitFormat>
                                      "net")),
                cl::sub(emitCmd), cl::cat(category));
 
-enum class GraphFormat { None, Aut, Dot, Json, Csv };
+enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
 static cl::opt<GraphFormat> reachFormat(
     "format", cl::desc("Write the state space"), cl::init(GraphFormat::None),
     cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
@@ -245,7 +245,9 @@ static cl::opt<GraphFormat> reachFormat(
                clEnumValN(GraphFormat::Json, "json",
                           "every state with its values, every edge"),
                clEnumValN(GraphFormat::Csv, "csv",
-                          "every state with its values (edges: --edges)")),
+                          "every state with its values (edges: --edges)"),
+               clEnumValN(GraphFormat::Arc, "arc",
+                          "ViVe-style reachability graph text")),
     cl::sub(reachCmd), cl::cat(category));
 static cl::opt<std::string>
     reachEdges("edges", cl::desc("Also write the edges as CSV to FILE"),
@@ -836,6 +838,9 @@ static int runReach() {
         case GraphFormat::Csv:
           statespace::writeCsvStates(explorer, semantics, r, os);
           break;
+        case GraphFormat::Arc:
+          statespace::writeArc(explorer, semantics, os);
+          break;
         }
       }))
     return 1;
@@ -899,7 +904,8 @@ int main(int argc, char **argv) {
           "  netlift opt IN -p PIPELINE [-o OUT] [--verify-each] "
           "[--print-after-all] [--stats]\n"
           "  netlift emit IN --to net|dot [-o OUT]\n"
-          "  netlift reach IN [--format aut|dot|json] [-o OUT] [--summary "
+          "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] "
+          "[--summary "
           "json] [--find EXPR]\n"
           "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n"
           "  netlift edit-automaton SPEC.kiss2 [--to table|dot] [-o OUT]\n"
