@@ -11,6 +11,7 @@ packages=(
   libfmt-dev libpugixml-dev
   libgtest-dev googletest
   graphviz clang-format
+  spin                                 # cross-checks the Promela export (test/backends/checkers)
 )
 
 missing=()

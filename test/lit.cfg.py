@@ -32,6 +32,12 @@ config.environment["PATH"] = os.pathsep.join(
 if lit_config.params.get("roundtrip", "0") not in ("0", ""):
     config.environment["NETLIFT_VERIFY_ROUNDTRIP"] = "1"
 
+# spin (Debian package, installed by scripts/setup.sh) and a C compiler:
+# the Promela export is cross-checked by running spin's verifier.
+import shutil
+if shutil.which("spin") and shutil.which("cc"):
+    config.available_features.add("spin")
+
 if config.sanitize:
     config.environment["ASAN_OPTIONS"] = "detect_leaks=1"
     config.environment["UBSAN_OPTIONS"] = "print_stacktrace=1:halt_on_error=1"

@@ -6,6 +6,7 @@
 // renamed into place, so an error never leaves a half-written file behind.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/checkers/Promela.h"
 #include "backends/enforce/Enforce.h"
 #include "backends/mealy/MealyWriters.h"
 #include "backends/nces/NetDot.h"
@@ -228,13 +229,16 @@ static cl::opt<bool> showStats("stats",
                                         "stderr"),
                                cl::sub(optCmd), cl::cat(category));
 
-enum class EmitFormat { Net, Dot };
+enum class EmitFormat { Net, Dot, Promela };
 static cl::opt<EmitFormat>
     emitFormat("to", cl::desc("Output format"), cl::Required,
                cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
                           clEnumValN(EmitFormat::Dot, "dot",
                                      "Graphviz drawing of the "
-                                     "net")),
+                                     "net"),
+                          clEnumValN(EmitFormat::Promela, "promela",
+                                     "Promela for spin (the flattened top; "
+                                     "place/transition nets)")),
                cl::sub(emitCmd), cl::cat(category));
 
 enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
@@ -419,6 +423,10 @@ static int runOpt() {
   return writeDesign(design);
 }
 
+static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
+                                  llvm::StringRef topName,
+                                  llvm::StringRef command);
+
 static int runEmit() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
@@ -426,6 +434,19 @@ static int runEmit() {
   std::vector<std::string> inputs{emitInput};
   if (!loadInputs(inputs, inputFormat, diag, design))
     return 1;
+  if (emitFormat == EmitFormat::Promela) {
+    net::Module *top = explorableTop(design, diag, plcTop, "emit");
+    if (!top)
+      return 1;
+    sem::StateLayout layout(*top, sem::Options().unboundedBits);
+    std::string text;
+    llvm::raw_string_ostream buf(text);
+    if (!checkers::writePromela(*top, layout, diag, buf))
+      return 1;
+    return writeOutput(outputFile, [&](llvm::raw_ostream &os) { os << text; })
+               ? 0
+               : 1;
+  }
   return writeOutput(outputFile,
                      [&](llvm::raw_ostream &os) {
                        switch (emitFormat) {
@@ -435,6 +456,8 @@ static int runEmit() {
                        case EmitFormat::Dot:
                          writeDot(design, os);
                          break;
+                       case EmitFormat::Promela:
+                         break; // above
                        }
                      })
              ? 0

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Cross-checks `netlift reach` against spin on the Promela export: for each
+model, `netlift emit --to promela` is compiled by spin into a verifier (pan,
+breadth-first, no partial-order reduction) and its count of stored states
+and of transitions (stored + matched, which counts the initial state once
+more than netlift's edges) must equal netlift's states and edges + 1.
+With --bench, also prints both tools' speed and memory side by side.
+
+usage: check-spin.py [--bench] NETLIFT MODEL...
+Prints one line per model and a closing 'N passed, M failed' line; exit 1
+when some failed.
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def spin_run(pml, work):
+    subprocess.run(["spin", "-a", pml], cwd=work, check=True,
+                   capture_output=True, text=True)
+    # Enough hash-table slots (-w) for the benchmark's larger models, and no
+    # memory cap; compile time is not part of the figures.
+    subprocess.run(["cc", "-O2", "-DBFS", "-DNOREDUCE", "-DSAFETY",
+                    "-DMEMLIM=20000", "-o", "pan", "pan.c"], cwd=work,
+                   check=True, capture_output=True, text=True)
+    start = time.monotonic()
+    r = subprocess.run(["./pan", "-w24"], cwd=work, capture_output=True,
+                       text=True, timeout=3600)
+    seconds = time.monotonic() - start
+    out = r.stdout
+    stored = re.search(r"(\d+) states, stored", out)
+    trans = re.search(r"(\d+) transitions \(= stored\+matched\)", out)
+    errors = re.search(r"errors: (\d+)", out)
+    mem = re.search(r"([\d.]+)\s+total actual memory usage", out)
+    if not stored or not trans or not errors:
+        raise RuntimeError("unexpected pan output:\n" + out[-2000:])
+    return {"states": int(stored.group(1)), "transitions": int(trans.group(1)),
+            "errors": int(errors.group(1)), "seconds": seconds,
+            "mbytes": float(mem.group(1)) if mem else float("nan")}
+
+
+def main():
+    args = sys.argv[1:]
+    bench = "--bench" in args
+    args = [a for a in args if a != "--bench"]
+    netlift, models = args[0], args[1:]
+    passed = failed = 0
+    for model in models:
+        name = os.path.basename(os.path.dirname(model)) \
+            if os.path.basename(model) == "model.pnml" else os.path.basename(model)
+        with tempfile.TemporaryDirectory() as work:
+            pml = os.path.join(work, "model.pml")
+            e = subprocess.run([netlift, "emit", "--to", "promela", model,
+                                "-o", pml], capture_output=True, text=True)
+            if e.returncode != 0:
+                print(f"FAIL {name}: emit: {e.stderr.strip()[:300]}")
+                failed += 1
+                continue
+            r = subprocess.run([netlift, "reach", model, "--summary", "json",
+                                "-q"], capture_output=True, text=True)
+            ours = json.loads(r.stdout)
+            theirs = spin_run(pml, work)
+        ok = (theirs["errors"] == 0 and ours["complete"]
+              and theirs["states"] == ours["states"]
+              and theirs["transitions"] == ours["transitions"] + 1)
+        line = (f"{name}: netlift {ours['states']} states {ours['transitions']}"
+                f" edges; spin {theirs['states']} states"
+                f" {theirs['transitions'] - 1} edges")
+        if bench:
+            line += (f"; netlift {ours['states_per_second']:.0f} states/s"
+                     f" {ours['bytes_per_state']:.1f} B/state,"
+                     f" spin {theirs['states'] / max(theirs['seconds'], 1e-9):.0f}"
+                     f" states/s (whole run) {theirs['mbytes']:.1f} MB")
+        print(("ok   " if ok else "FAIL ") + line)
+        passed += ok
+        failed += not ok
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
