@@ -31,3 +31,22 @@ if [ -d "$corpus" ]; then
 else
   echo "(MCC corpus not found beside the checkout: skipped)"
 fi
+# Side by side with spin on the same models (netlift's Promela export; pan
+# breadth-first without reduction; spin's figure is its whole run).
+if command -v spin >/dev/null && command -v cc >/dev/null; then
+  echo "-- netlift vs spin 6.5.2 (same state graphs checked) --"
+  models=()
+  for spec in "philosophers 10" "philosophers 16"; do
+    f="$tmp/${spec// /}.net"
+    python3 "$here/gen-models.py" $spec > "$f"
+    models+=("$f")
+  done
+  if [ -d "$corpus" ]; then
+    for m in AirplaneLD-PT-0010 Referendum-PT-0010 RefineWMG-PT-002002 HexagonalGrid-PT-110 Peterson-PT-2; do
+      models+=("$corpus/PT/$m/model.pnml")
+    done
+  fi
+  python3 "$here/../scripts/check-spin.py" --bench "$build/bin/netlift" "${models[@]}"
+else
+  echo "(spin not installed: the side-by-side comparison is skipped)"
+fi
