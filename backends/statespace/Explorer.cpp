@@ -89,8 +89,8 @@ uint32_t Explorer::internNewLabel(llvm::ArrayRef<uint32_t> step) {
 std::vector<std::pair<uint32_t, uint32_t>> Explorer::pathTo(uint32_t s) const {
   std::vector<std::pair<uint32_t, uint32_t>> path;
   while (s != kNone) {
-    path.push_back({parentLabel[s], s});
-    s = parent[s];
+    path.push_back({tree[s].label, s});
+    s = tree[s].parent;
   }
   std::reverse(path.begin(), path.end());
   return path;
@@ -106,8 +106,7 @@ bool Explorer::run(ExploreResult &r) {
     return false;
   }
   states.insert(init.data());
-  parent.push_back(kNone);
-  parentLabel.push_back(kNone);
+  tree.push_back({kNone, kNone});
   bool timed = sem.isTimed();
   std::vector<uint8_t> hasStep;
   std::vector<uint32_t> tickSucc;
@@ -194,8 +193,7 @@ bool Explorer::run(ExploreResult &r) {
       if (opts.recordEdges)
         edgeList.push_back({s, t, p.label});
       if (fresh) {
-        parent.push_back(s);
-        parentLabel.push_back(p.label);
+        tree.push_back({s, p.label});
         if (opts.depthFirst)
           stack.push_back(t);
         if (opts.stopAt && opts.stopAt(states.state(t))) {
@@ -246,7 +244,7 @@ bool Explorer::run(ExploreResult &r) {
     if ((expanded & 1023) == 0) {
       double secs = std::chrono::duration<double>(Clock::now() - start).count();
       size_t mem = states.bytes() + edgeList.capacity() * sizeof(Edge) +
-                   parent.capacity() * 8;
+                   tree.capacity() * sizeof(TreeEdge);
       r.peakBytes = std::max(r.peakBytes, mem);
       if (opts.timeLimit > 0 && secs > opts.timeLimit) {
         r.limitReached = "time";
@@ -330,6 +328,6 @@ bool Explorer::run(ExploreResult &r) {
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   r.peakBytes = std::max(r.peakBytes, states.bytes() +
                                           edgeList.capacity() * sizeof(Edge) +
-                                          parent.capacity() * 8);
+                                          tree.capacity() * sizeof(TreeEdge));
   return true;
 }

@@ -63,7 +63,9 @@ public:
   bool run(ExploreResult &result);
 
   const StateStore &store() const { return states; }
-  const std::vector<Edge> &edges() const { return edgeList; }
+  const std::vector<Edge, HugePageAllocator<Edge>> &edges() const {
+    return edgeList;
+  }
   const std::string &label(uint32_t id) const { return labels[id]; }
   /// The path from the initial state to `s`: (label, state) pairs, the
   /// first being ("", 0).
@@ -89,8 +91,13 @@ private:
   sem::Semantics &sem;
   ExploreOptions opts;
   StateStore states;
-  std::vector<Edge> edgeList;
-  std::vector<uint32_t> parent, parentLabel;
+  std::vector<Edge, HugePageAllocator<Edge>> edgeList;
+  /// How each state was first reached (its BFS tree edge), in one array
+  /// on huge pages: every new state appends to it.
+  struct TreeEdge {
+    uint32_t parent, label;
+  };
+  std::vector<TreeEdge, HugePageAllocator<TreeEdge>> tree;
   llvm::StringMap<uint32_t> labelIds;
   std::vector<uint32_t> singleLabel; // tick (0) and one-transition steps
   std::vector<std::string> labels;

@@ -74,8 +74,8 @@ std::pair<uint32_t, bool> StateStore::insert(const uint64_t *s, uint32_t h) {
   }
   uint32_t idx = count++;
   table[i] = {h, idx};
-  if ((idx & kBlockMask) == 0)
+  if ((idx & blockMask) == 0)
     blocks.emplace_back(blockBytes());
-  std::copy(s, s + words, &blocks.back()[size_t(idx & kBlockMask) * words]);
+  std::copy(s, s + words, &blocks.back()[size_t(idx & blockMask) * words]);
   return {idx, true};
 }

@@ -21,7 +21,13 @@ namespace netlift::statespace {
 
 class StateStore {
 public:
-  explicit StateStore(uint32_t wordsPerState) : words(wordsPerState) {}
+  explicit StateStore(uint32_t wordsPerState) : words(wordsPerState) {
+    // Blocks of at least one huge page (see blockBytes).
+    while ((size_t(1) << blockShift) * words * sizeof(uint64_t) <
+           detail::kHugeThreshold)
+      ++blockShift;
+    blockMask = (uint32_t(1) << blockShift) - 1;
+  }
   StateStore(const StateStore &) = delete;
   StateStore &operator=(const StateStore &) = delete;
 
@@ -55,7 +61,7 @@ public:
       __builtin_prefetch(state(b.index));
   }
   const uint64_t *state(uint32_t i) const {
-    return &blocks[i >> kBlockShift][size_t(i & kBlockMask) * words];
+    return &blocks[i >> blockShift][size_t(i & blockMask) * words];
   }
   uint32_t size() const { return count; }
   uint32_t wordsPerState() const { return words; }
@@ -78,12 +84,11 @@ private:
   static uint32_t hashState(const uint64_t *s, uint32_t n);
   void grow();
 
-  // 2^16 states per block: large enough for huge pages, small enough that
-  // a small model does not reserve much.
-  static constexpr uint32_t kBlockShift = 16;
-  static constexpr uint32_t kBlockMask = (1u << kBlockShift) - 1;
+  // 2^blockShift states per block: at least 2^16 and at least one huge
+  // page (every lookup reads the arena at random, so its pages must be
+  // huge), yet small enough that a small model does not reserve much.
   size_t blockBytes() const {
-    return (size_t(1) << kBlockShift) * words * sizeof(uint64_t);
+    return (size_t(1) << blockShift) * words * sizeof(uint64_t);
   }
   /// Uninitialised storage for one block (pages are touched only as
   /// states are written).
@@ -105,6 +110,7 @@ private:
   };
 
   uint32_t words;
+  uint32_t blockShift = 16, blockMask;
   uint32_t count = 0;
   std::vector<Block> blocks;
   std::vector<Bucket, HugePageAllocator<Bucket>> table;
