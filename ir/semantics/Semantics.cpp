@@ -25,6 +25,9 @@ using namespace netlift::net;
 using llvm::cast;
 
 namespace {
+/// A step: the transitions firing together (a handful: kept inline).
+using Step = llvm::SmallVector<uint32_t, 8>;
+
 /// Thrown inside the interpreter; turned into a RuntimeError at the API.
 struct EvalError {
   std::string message;
@@ -439,7 +442,7 @@ struct Semantics::Impl {
 
   /// Are all transitions of `set` enabled together (token demand and
   /// capacities summed)?
-  bool jointlyEnabled(const std::vector<uint32_t> &set) {
+  bool jointlyEnabled(llvm::ArrayRef<uint32_t> set) {
     llvm::SmallDenseMap<uint32_t, int64_t, 16> delta, demand;
     for (uint32_t ti : set) {
       const Transition &t = m.transitions[ti];
@@ -474,41 +477,52 @@ struct Semantics::Impl {
   }
 
   /// Adds every closure of `step` under forced transitions to `out`.
-  void closure(std::vector<uint32_t> step,
-               std::vector<std::vector<uint32_t>> &out) {
+  void closure(Step step, llvm::SmallVectorImpl<Step> &out) {
     if (forcedList.empty()) {
       out.push_back(std::move(step));
       return;
     }
-    std::vector<char> inStep(m.transitions.size(), 0);
+    // inStep is all zero between calls: set for this step, cleared before
+    // recursing.
+    inStep.resize(m.transitions.size(), 0);
     for (uint32_t t : step)
       inStep[t] = 1;
     std::vector<uint32_t> cand;
+    Step with(step);
     for (uint32_t f : forcedList) {
       if (inStep[f] || !en[f] || !eventEnabled(f, inStep))
         continue;
-      std::vector<uint32_t> with = step;
       with.push_back(f);
       if (jointlyEnabled(with))
         cand.push_back(f);
+      with.pop_back();
     }
+    for (uint32_t t : step)
+      inStep[t] = 0;
     if (cand.empty()) {
       out.push_back(std::move(step));
       return;
     }
-    // Every maximal subset of the candidates that fits with the step.
+    // Every maximal subset of the candidates that fits with the step; the
+    // common case is that all of them fit together (no conflict).
+    with.append(cand.begin(), cand.end());
+    if (jointlyEnabled(with)) {
+      closure(std::move(with), out);
+      return;
+    }
     std::vector<std::vector<uint32_t>> maximal =
         maximalSubsets(cand, [&](const std::vector<uint32_t> &chosen) {
-          std::vector<uint32_t> with = step;
-          with.insert(with.end(), chosen.begin(), chosen.end());
-          return jointlyEnabled(with);
+          Step w(step);
+          w.append(chosen.begin(), chosen.end());
+          return jointlyEnabled(w);
         });
     for (auto &mx : maximal) {
-      std::vector<uint32_t> next = step;
-      next.insert(next.end(), mx.begin(), mx.end());
+      Step next(step);
+      next.append(mx.begin(), mx.end());
       closure(std::move(next), out);
     }
   }
+  std::vector<char> inStep;
 
   // --- Firing -------------------------------------------------------------
   /// The packed pre-state of the current successors() call.
@@ -518,7 +532,7 @@ struct Semantics::Impl {
 
   /// Fires a step: starts from the packed pre-state and changes only what
   /// the step touches, so the cost is that of its arcs and actions.
-  void fire(const std::vector<uint32_t> &step, uint64_t *out) {
+  void fire(llvm::ArrayRef<uint32_t> step, uint64_t *out) {
     std::copy(cur, cur + L.numWords(), out);
     touched.resize(m.places.size(), 0);
     touchedList.clear();
@@ -591,6 +605,80 @@ struct Semantics::Impl {
   std::vector<int64_t> local;
   std::vector<uint32_t> written;
   std::vector<uint32_t> spontScratch, stepScratch;
+
+  /// The (step, successor) pairs one successors() call has emitted, to
+  /// emit each once when several input valuations or closures lead to the
+  /// same: flat records and an open-addressing index, both reused across
+  /// calls (no allocation per state once warm).
+  class EmittedSteps {
+  public:
+    void clear() {
+      for (uint32_t i : used)
+        index[i] = 0;
+      used.clear();
+      records.clear();
+      starts.clear();
+    }
+    /// False when (step, succ) was emitted already.
+    bool insert(llvm::ArrayRef<uint32_t> step, llvm::ArrayRef<uint64_t> succ) {
+      uint64_t h = 0x9E3779B97F4A7C15ull * (step.size() + 1);
+      auto mix = [&](uint64_t x) {
+        h = (h ^ x) * 0xBF58476D1CE4E5B9ull;
+        h ^= h >> 31;
+      };
+      for (uint32_t t : step)
+        mix(t);
+      for (uint64_t w : succ)
+        mix(w);
+      if ((starts.size() + 1) * 2 > index.size())
+        rehash();
+      size_t mask = index.size() - 1;
+      size_t i = h & mask;
+      for (; index[i]; i = (i + 1) & mask)
+        if (same(index[i] - 1, step, succ))
+          return false;
+      starts.push_back(records.size());
+      records.push_back(step.size());
+      records.insert(records.end(), step.begin(), step.end());
+      records.insert(records.end(), succ.begin(), succ.end());
+      index[i] = starts.size();
+      used.push_back(i);
+      return true;
+    }
+
+  private:
+    bool same(uint32_t r, llvm::ArrayRef<uint32_t> step,
+              llvm::ArrayRef<uint64_t> succ) const {
+      const uint64_t *p = &records[starts[r]];
+      if (p[0] != step.size())
+        return false;
+      for (size_t k = 0; k < step.size(); ++k)
+        if (p[1 + k] != step[k])
+          return false;
+      return std::equal(succ.begin(), succ.end(), p + 1 + step.size());
+    }
+    void rehash() {
+      // Records are few per state: rebuilding by re-inserting is cheap.
+      size_t n = std::max<size_t>(64, index.size() * 2);
+      std::vector<uint64_t> old;
+      old.swap(records);
+      std::vector<uint32_t> oldStarts;
+      oldStarts.swap(starts);
+      index.assign(n, 0);
+      used.clear();
+      for (size_t r = 0; r < oldStarts.size(); ++r) {
+        const uint64_t *p = &old[oldStarts[r]];
+        size_t len = p[0];
+        size_t end = r + 1 < oldStarts.size() ? oldStarts[r + 1] : old.size();
+        llvm::SmallVector<uint32_t, 8> step(p + 1, p + 1 + len);
+        insert(step, llvm::ArrayRef<uint64_t>(p + 1 + len, &old[0] + end));
+      }
+    }
+    std::vector<uint64_t> records;     // [len, step..., succ...]...
+    std::vector<uint32_t> starts;      // record r begins at starts[r]
+    std::vector<uint32_t> index, used; // record + 1, or 0 when free
+  };
+  EmittedSteps emitted;
   std::vector<int64_t> predicateVals;
   std::vector<uint64_t> succScratch;
 
@@ -717,12 +805,13 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   bool manyValuations = combos > 1;
   bool dedupe = manyValuations || !I.forcedList.empty() ||
                 opts.policy == StepPolicy::Maximal;
-  std::set<std::pair<std::vector<uint32_t>, std::vector<uint64_t>>> seen;
   // The successor buffer is reused across states (no allocation per state).
   std::vector<uint64_t> &succ = I.succScratch;
   succ.resize(L.numWords());
-  auto emit = [&](const std::vector<uint32_t> &step) {
-    if (dedupe && !seen.insert({step, succ}).second)
+  if (dedupe)
+    I.emitted.clear();
+  auto emit = [&](llvm::ArrayRef<uint32_t> step) {
+    if (dedupe && !I.emitted.insert(step, succ))
       return;
     cb(step, succ.data());
   };
@@ -785,22 +874,26 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
         }
         continue;
       }
-      std::vector<std::vector<uint32_t>> seeds;
+      llvm::SmallVector<Step, 8> seeds;
       if (opts.policy == StepPolicy::Interleaving) {
         for (uint32_t t : spont)
-          seeds.push_back({t});
+          seeds.push_back(Step{t});
       } else if (!spont.empty()) {
-        std::vector<std::vector<uint32_t>> maximal =
-            maximalSubsets(spont, [&](const std::vector<uint32_t> &cur) {
-              return I.jointlyEnabled(cur);
-            });
-        seeds = std::move(maximal);
+        if (I.jointlyEnabled(spont)) {
+          seeds.push_back(Step(spont.begin(), spont.end()));
+        } else {
+          for (auto &mx :
+               maximalSubsets(spont, [&](const std::vector<uint32_t> &cur) {
+                 return I.jointlyEnabled(cur);
+               }))
+            seeds.push_back(Step(mx.begin(), mx.end()));
+        }
       }
       if (std::find(I.present.begin(), I.present.end(), 1) != I.present.end())
         seeds.push_back({});
       for (auto &seed : seeds) {
-        std::vector<std::vector<uint32_t>> steps;
-        I.closure(seed, steps);
+        llvm::SmallVector<Step, 4> steps;
+        I.closure(std::move(seed), steps);
         for (auto &step : steps) {
           if (step.empty())
             continue;
