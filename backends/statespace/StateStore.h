@@ -37,7 +37,8 @@ public:
   }
   /// The same, with `h == hash(state)` computed beforehand.
   std::pair<uint32_t, bool> insert(const uint64_t *state, uint32_t h);
-  /// The index of `state`, or UINT32_MAX when it is not stored.
+  static constexpr uint32_t kNotFound = UINT32_MAX;
+  /// The index of `state`, or kNotFound when it is not stored.
   uint32_t find(const uint64_t *state) const {
     return find(state, hash(state));
   }

@@ -2,6 +2,7 @@
 #include "ir/automata/Mealy.h"
 
 #include <algorithm>
+#include <map>
 
 using namespace netlift;
 using namespace netlift::automata;
@@ -92,4 +93,112 @@ std::vector<int64_t> MealyMachine::unspecifiedVectors() const {
     out[s] = missing;
   }
   return out;
+}
+
+/// Every input vector a cube covers, appended to `out`.
+static void expandCube(const std::string &cube, std::vector<uint32_t> &out) {
+  size_t n = cube.size();
+  uint32_t base = 0;
+  std::vector<uint32_t> free;
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t bit = uint32_t(1) << (n - 1 - i);
+    if (cube[i] == '1')
+      base |= bit;
+    else if (cube[i] == '-')
+      free.push_back(bit);
+  }
+  for (uint32_t k = 0; k < (uint32_t(1) << free.size()); ++k) {
+    uint32_t v = base;
+    for (size_t j = 0; j < free.size(); ++j)
+      if ((k >> j) & 1)
+        v |= free[j];
+    out.push_back(v);
+  }
+}
+
+/// Disjoint cubes covering exactly `vectors` (n-bit, distinct).
+static std::vector<std::string> mergeVectors(std::vector<uint32_t> vectors,
+                                             size_t n) {
+  // A cube as (value, mask of '-' positions); merging at position j joins
+  // two cubes equal but for bit j, both specified there.
+  std::vector<std::pair<uint32_t, uint32_t>> cubes;
+  for (uint32_t v : vectors)
+    cubes.push_back({v, 0});
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t bit = uint32_t(1) << (n - 1 - i);
+    std::map<std::pair<uint32_t, uint32_t>, std::pair<int, int>> halves;
+    for (size_t c = 0; c < cubes.size(); ++c) {
+      if (cubes[c].second & bit)
+        continue;
+      auto &h =
+          halves.try_emplace({cubes[c].first & ~bit, cubes[c].second}, -1, -1)
+              .first->second;
+      (cubes[c].first & bit ? h.second : h.first) = int(c);
+    }
+    std::vector<char> gone(cubes.size(), 0);
+    std::vector<std::pair<uint32_t, uint32_t>> merged;
+    for (auto &[key, h] : halves)
+      if (h.first >= 0 && h.second >= 0) {
+        gone[h.first] = gone[h.second] = 1;
+        merged.push_back({key.first, key.second | bit});
+      }
+    if (merged.empty())
+      continue;
+    for (size_t c = 0; c < cubes.size(); ++c)
+      if (!gone[c])
+        merged.push_back(cubes[c]);
+    cubes = std::move(merged);
+  }
+  std::sort(cubes.begin(), cubes.end());
+  std::vector<std::string> out;
+  for (auto [value, mask] : cubes) {
+    std::string s = vectorBits(value, n);
+    for (size_t i = 0; i < n; ++i)
+      if ((mask >> (n - 1 - i)) & 1)
+        s[i] = '-';
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+void MealyMachine::mergeInputCubes() {
+  if (inputs.size() > 24)
+    return;
+  struct Group {
+    uint32_t from, to;
+    std::string output;
+    std::vector<uint32_t> vectors;
+  };
+  std::vector<Group> groups;
+  std::vector<std::vector<uint32_t>> groupsOf(states.size());
+  for (const MealyTransition &t : transitions) {
+    Group *g = nullptr;
+    for (uint32_t k : groupsOf[t.from])
+      if (groups[k].to == t.to && groups[k].output == t.output)
+        g = &groups[k];
+    if (!g) {
+      groupsOf[t.from].push_back(groups.size());
+      g = &groups.emplace_back(Group{t.from, t.to, t.output, {}});
+    }
+    expandCube(t.input, g->vectors);
+  }
+  std::vector<MealyTransition> rows;
+  for (uint32_t s = 0; s < states.size(); ++s) {
+    // Pairs in order of their smallest vector.
+    std::vector<uint32_t> order = groupsOf[s];
+    for (uint32_t k : order) {
+      std::sort(groups[k].vectors.begin(), groups[k].vectors.end());
+      groups[k].vectors.erase(
+          std::unique(groups[k].vectors.begin(), groups[k].vectors.end()),
+          groups[k].vectors.end());
+    }
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return groups[a].vectors[0] < groups[b].vectors[0];
+    });
+    for (uint32_t k : order)
+      for (std::string &cube : mergeVectors(groups[k].vectors, inputs.size()))
+        rows.push_back({std::move(cube), s, groups[k].to, groups[k].output,
+                        llvm::SMLoc()});
+  }
+  transitions = std::move(rows);
 }

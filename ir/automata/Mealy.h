@@ -51,6 +51,13 @@ public:
   /// For each state, how many of the 2^inputs input vectors no transition
   /// covers (machines with more than 24 inputs are not counted: -1).
   std::vector<int64_t> unspecifiedVectors() const;
+  /// Rewrites the rows of each state so that the input vectors leading to
+  /// one (target, output) pair are covered by few disjoint cubes: vectors
+  /// differing in one position merge into a cube with '-' there, position
+  /// by position. The machine's behaviour is unchanged; rows come out per
+  /// state, pairs in order of their first vector, cubes in vector order.
+  /// Machines of more than 24 inputs are left as they are.
+  void mergeInputCubes();
 };
 
 } // namespace netlift::automata

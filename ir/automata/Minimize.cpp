@@ -185,6 +185,8 @@ bool netlift::automata::minimize(const MealyMachine &m, MealyMachine &out,
       out.transitions.push_back(std::move(t));
     }
   }
+  // One row per input vector above; written back as cubes.
+  out.mergeInputCubes();
   return true;
 }
 

@@ -81,6 +81,10 @@ struct Semantics::Impl {
   std::vector<uint32_t> eventInputs; // event input port indices
   std::vector<uint32_t> clockVarSlots;
   std::vector<int32_t> eventInputIndex; // port -> position in eventInputs
+  // fixInputs(): one valuation instead of all of them.
+  bool inputsFixed = false;
+  std::vector<int64_t> fixedLeaves;
+  std::vector<uint8_t> fixedPresent;
   /// The compiled successor function, when the module is a plain P/T net.
   std::unique_ptr<PtKernel> kernel;
 
@@ -679,6 +683,16 @@ struct Semantics::Impl {
     std::vector<uint32_t> index, used; // record + 1, or 0 when free
   };
   EmittedSteps emitted;
+
+  /// The first valuation of the free inputs successors() tries (the only
+  /// one when they are fixed).
+  void resetInputs() {
+    for (size_t k = 0; k < inputSlots.size(); ++k)
+      vals[inputSlots[k]] =
+          inputsFixed ? fixedLeaves[k] : L.slots()[inputSlots[k]].lo;
+    for (size_t e = 0; e < present.size(); ++e)
+      present[e] = inputsFixed ? fixedPresent[e] : 0;
+  }
   std::vector<int64_t> predicateVals;
   std::vector<uint64_t> succScratch;
 
@@ -791,17 +805,20 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   I.unpack(state);
   I.cur = state;
   uint64_t combos = uint64_t(1) << std::min<size_t>(I.eventInputs.size(), 63);
-  for (uint32_t s : I.inputSlots) {
-    uint64_t span = uint64_t(L.slots()[s].hi - L.slots()[s].lo) + 1;
-    if (span == 0 || combos > opts.maxInputValuations / span) {
-      err = {"the free inputs have more than " +
-                 std::to_string(opts.maxInputValuations) +
-                 " valuations per step; connect them or narrow their types",
-             {}};
-      return false;
+  if (I.inputsFixed)
+    combos = 1;
+  else
+    for (uint32_t s : I.inputSlots) {
+      uint64_t span = uint64_t(L.slots()[s].hi - L.slots()[s].lo) + 1;
+      if (span == 0 || combos > opts.maxInputValuations / span) {
+        err = {"the free inputs have more than " +
+                   std::to_string(opts.maxInputValuations) +
+                   " valuations per step; connect them or narrow their types",
+               {}};
+        return false;
+      }
+      combos *= span;
     }
-    combos *= span;
-  }
   bool manyValuations = combos > 1;
   bool dedupe = manyValuations || !I.forcedList.empty() ||
                 opts.policy == StepPolicy::Maximal;
@@ -815,9 +832,7 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
       return;
     cb(step, succ.data());
   };
-  for (uint32_t s : I.inputSlots)
-    I.vals[s] = L.slots()[s].lo;
-  std::fill(I.present.begin(), I.present.end(), 0);
+  I.resetInputs();
   bool tickAllowed = false;
   try {
     for (uint64_t n = 0; n < combos; ++n) {
@@ -919,6 +934,19 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   return true;
 }
 
+void Semantics::fixInputs(llvm::ArrayRef<int64_t> leafValues,
+                          llvm::ArrayRef<uint8_t> eventsPresent) {
+  Impl &I = *impl;
+  I.inputsFixed = !leafValues.empty() || !eventsPresent.empty();
+  if (!I.inputsFixed)
+    return;
+  assert(leafValues.size() == I.inputSlots.size() &&
+         eventsPresent.size() == I.eventInputs.size() &&
+         "one value per input leaf and event input");
+  I.fixedLeaves.assign(leafValues.begin(), leafValues.end());
+  I.fixedPresent.assign(eventsPresent.begin(), eventsPresent.end());
+}
+
 bool Semantics::evalPredicate(const Expr *e, const uint64_t *state,
                               RuntimeError &err) {
   return evalInState(e, state, err) != 0;
@@ -933,8 +961,9 @@ int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
   v.assign(L.numSlots(), 0);
   for (uint32_t s = 0; s < L.numPacked(); ++s)
     v[s] = L.get(state, s);
-  for (uint32_t s : I.inputSlots)
-    v[s] = L.slots()[s].lo;
+  for (size_t k = 0; k < I.inputSlots.size(); ++k)
+    v[I.inputSlots[k]] =
+        I.inputsFixed ? I.fixedLeaves[k] : L.slots()[I.inputSlots[k]].lo;
   try {
     return I.eval(e, v);
   } catch (const EvalError &x) {

@@ -72,8 +72,17 @@ public:
   /// on a runtime error.
   bool successors(const uint64_t *state, Callback cb, RuntimeError &err);
 
+  /// Restricts successors() and evalInState() to one valuation of the free
+  /// inputs (the Mealy view of a controller: one input vector per step).
+  /// `leafValues[k]` is the value of the k-th scalar leaf of the cond/data
+  /// input ports (ports in module order, leaves in slot order);
+  /// `eventsPresent[k]` says whether the k-th event input port is present.
+  /// Two empty arrays restore the default: every valuation, enumerated.
+  void fixInputs(llvm::ArrayRef<int64_t> leafValues,
+                 llvm::ArrayRef<uint8_t> eventsPresent);
+
   /// Evaluates a verified Boolean expression of the module in a state
-  /// (inputs read as their lowest value).
+  /// (inputs read as their lowest value, or as fixed by fixInputs).
   bool evalPredicate(const net::Expr *e, const uint64_t *state,
                      RuntimeError &err);
   /// Value of slot-free signals (defined outputs) in a state.

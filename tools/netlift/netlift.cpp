@@ -8,6 +8,7 @@
 //===----------------------------------------------------------------------===//
 #include "backends/checkers/Promela.h"
 #include "backends/enforce/Enforce.h"
+#include "backends/mealy/ExtractMealy.h"
 #include "backends/mealy/MealyWriters.h"
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
@@ -56,7 +57,8 @@ static cl::SubCommand
              "flattened)");
 static cl::SubCommand
     mealyCmd("mealy",
-             "Read a Mealy machine (KISS2), check that it is deterministic, "
+             "Read a Mealy machine (KISS2) or extract one from a controller "
+             "model (PLC program, NetIR), check that it is deterministic, "
              "and write it as KISS2 or DOT");
 static cl::SubCommand eaCmd("edit-automaton",
                             "Build the edit automaton of a Mealy specification "
@@ -160,25 +162,31 @@ static cl::opt<std::string>
                     "program instance or function block to translate"),
            cl::value_desc("NAME"), cl::sub(translateCmd), cl::sub(optCmd),
            cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+           cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
            cl::cat(category));
+static cl::alias plcModule("module", cl::desc("Alias for --top"),
+                           cl::aliasopt(plcTop));
 static cl::opt<std::string> plcTimescale(
     "timescale",
     cl::desc("PLC input: the length of one tick, e.g. 10ms (default: the "
              "greatest common divisor of the program's TIME values)"),
     cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
+    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 static cl::opt<std::string> plcScanPeriod(
     "scan-period",
     cl::desc("PLC input: the scan period (default: the task INTERVAL, else "
              "one tick)"),
     cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
+    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 static cl::opt<std::string> plcRanges(
     "ranges",
     cl::desc("PLC input: value ranges of integer inputs, one 'NAME LO..HI' "
              "a line"),
     cl::value_desc("FILE"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::cat(category));
+    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
+    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 
 /// Hands the PLC options to the frontends; false after an error message.
 static bool setFrontendOptions() {
@@ -464,27 +472,31 @@ static int runEmit() {
              : 1;
 }
 
-/// Reads a deterministic KISS2 machine (the specification formats of
-/// mealy, edit-automaton and enforce).
+/// Reads the specification of mealy, edit-automaton and enforce: a
+/// deterministic KISS2 machine, or any model (a PLC program, NetIR ...)
+/// whose controller's Mealy machine is extracted (docs/enforce.md).
 static bool readMealy(const std::string &path, DiagEngine &diag,
                       automata::MealyMachine &m) {
   llvm::SourceMgr &sm = diag.sourceMgr();
-  {
-    llvm::StringRef ext = llvm::sys::path::extension(path);
-    bool isKiss = inputFormat == "kiss2" ||
-                  (inputFormat.empty() &&
-                   (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
-    if (!isKiss) {
-      llvm::errs() << "netlift: error: mealy reads KISS2 machines (.kiss2, "
-                      "or --from kiss2); extraction from PLC models is not "
-                      "implemented yet\n";
-      return false;
-    }
+  llvm::StringRef ext = llvm::sys::path::extension(path);
+  bool isKiss = inputFormat == "kiss2" ||
+                (inputFormat.empty() &&
+                 (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
+  if (isKiss) {
     unsigned id = addInputFile(sm, path);
     if (!id)
       return false;
     return readKiss2(id, diag, m) && m.checkDeterminism(diag);
   }
+  net::Design design;
+  std::vector<std::string> inputs{path};
+  if (!loadInputs(inputs, inputFormat, diag, design))
+    return false;
+  net::Module *top = explorableTop(design, diag, plcTop, "mealy");
+  if (!top)
+    return false;
+  MealyExtractOptions opts;
+  return extractMealy(*top, opts, diag, m);
 }
 
 static int runMealy() {
@@ -930,9 +942,10 @@ int main(int argc, char **argv) {
           "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] "
           "[--summary "
           "json] [--find EXPR]\n"
-          "  netlift mealy IN.kiss2 [--to kiss2|dot] [-o OUT] [--info]\n"
-          "  netlift edit-automaton SPEC.kiss2 [--to table|dot] [-o OUT]\n"
-          "  netlift enforce SPEC.kiss2 TRACE.csv [-o ENFORCED.csv]\n"
+          "  netlift mealy IN.kiss2|MODEL [--to kiss2|dot] [-o OUT] [--info] "
+          "[--minimize]\n"
+          "  netlift edit-automaton SPEC [--to table|dot] [-o OUT]\n"
+          "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
           "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] "
           "[--ag FILE.dot]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",

@@ -1,0 +1,169 @@
+//===- ExtractMealy.cpp - the Mealy machine of a controller ---------------===//
+#include "backends/mealy/ExtractMealy.h"
+
+#include "backends/statespace/StateStore.h"
+#include "ir/semantics/StateLayout.h"
+
+#include "llvm/ADT/SmallVector.h"
+
+using namespace netlift;
+using namespace netlift::net;
+
+namespace {
+/// The Boolean signals of the machine: input leaves in port order (the
+/// order Semantics::fixInputs takes them in), output ports in port order.
+struct Signals {
+  std::vector<uint32_t> inputPorts, outputPorts;
+};
+} // namespace
+
+static bool collectSignals(const Module &m, const MealyExtractOptions &opts,
+                           DiagEngine &diag, Signals &sig) {
+  bool ok = true;
+  for (uint32_t p = 0; p < m.ports.size(); ++p) {
+    const Port &port = m.ports[p];
+    const char *role = port.isInput() ? "input" : "output";
+    if (port.kind == PortKind::Event) {
+      diag.error(port.loc, llvm::Twine("event ") + role + " '" + port.name +
+                               "': a Mealy machine reads and writes Boolean "
+                               "vectors, not events");
+      ok = false;
+      continue;
+    }
+    if (!port.type->isBool()) {
+      diag.error(port.loc, llvm::Twine(role) + " '" + port.name + "' is " +
+                               port.type->str() +
+                               ", not Boolean: a Mealy machine reads and "
+                               "writes Boolean signals");
+      ok = false;
+      continue;
+    }
+    (port.isInput() ? sig.inputPorts : sig.outputPorts).push_back(p);
+  }
+  if (ok && sig.inputPorts.size() > opts.maxInputs) {
+    diag.error(m.ports[sig.inputPorts[opts.maxInputs]].loc,
+               "module '" + m.name + "' has " +
+                   llvm::Twine(sig.inputPorts.size()) +
+                   " inputs: a Mealy machine of more than " +
+                   llvm::Twine(opts.maxInputs) +
+                   " inputs (2^N input vectors per state) is not extracted");
+    ok = false;
+  }
+  return ok;
+}
+
+bool netlift::extractMealy(const Module &m, const MealyExtractOptions &opts,
+                           DiagEngine &diag, automata::MealyMachine &out) {
+  Signals sig;
+  if (!collectSignals(m, opts, diag, sig))
+    return false;
+  sem::StateLayout layout(m, opts.semantics.unboundedBits);
+  sem::Semantics sem(m, layout, opts.semantics);
+  const uint32_t W = layout.numWords();
+  const size_t n = sig.inputPorts.size();
+
+  out = automata::MealyMachine();
+  out.name = m.name.str();
+  for (uint32_t p : sig.inputPorts)
+    out.inputs.push_back(m.ports[p].name.str());
+  for (uint32_t p : sig.outputPorts)
+    out.outputs.push_back(m.ports[p].name.str());
+
+  auto runtimeError = [&](const sem::RuntimeError &e) {
+    diag.error(e.loc, "runtime error: " + e.message);
+    return false;
+  };
+  statespace::StateStore states(W);
+  std::vector<uint64_t> init(W);
+  sem::RuntimeError err;
+  if (!sem.initialState(init.data(), err))
+    return runtimeError(err);
+  states.insert(init.data());
+
+  std::vector<int64_t> leaves(n);
+  std::vector<uint64_t> at(W), tick(W), next(W);
+  llvm::SmallVector<std::string, 2> stepNames;
+  for (uint32_t s = 0; s < states.size(); ++s) {
+    for (uint32_t v = 0; v < (uint32_t(1) << n); ++v) {
+      std::string vector = automata::vectorBits(v, n);
+      for (size_t k = 0; k < n; ++k)
+        leaves[k] = vector[k] == '1';
+      sem.fixInputs(leaves, {});
+      auto where = [&] {
+        return "in state s" + std::to_string(s) +
+               (n ? " with inputs " + vector : std::string());
+      };
+      // Time passes while no step is possible; the first step is the
+      // scan (it is unique, or the controller is not a Mealy machine).
+      std::copy(states.state(s), states.state(s) + W, at.begin());
+      for (uint64_t waited = 0;; ++waited) {
+        stepNames.clear();
+        bool ticks = false;
+        if (!sem.successors(
+                at.data(),
+                [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
+                  if (step.empty()) {
+                    ticks = true;
+                    std::copy(succ, succ + W, tick.begin());
+                    return;
+                  }
+                  std::string name;
+                  for (uint32_t t : step)
+                    name +=
+                        (name.empty() ? "" : ",") + m.transitions[t].name.str();
+                  stepNames.push_back("{" + name + "}");
+                  std::copy(succ, succ + W, next.begin());
+                },
+                err))
+          return runtimeError(err);
+        if (stepNames.size() > 1) {
+          diag.error(m.loc, "module '" + m.name + "' is not deterministic: " +
+                                where() + " both " + stepNames[0] + " and " +
+                                stepNames[1] + " can happen");
+          return false;
+        }
+        if (stepNames.size() == 1)
+          break;
+        if (!ticks || waited == opts.maxWaitTicks) {
+          diag.error(m.loc, "module '" + m.name + "' never takes a step " +
+                                where() +
+                                (ticks ? " (waited " +
+                                             std::to_string(opts.maxWaitTicks) +
+                                             " ticks)"
+                                       : std::string(" (a deadlock)")));
+          return false;
+        }
+        at.swap(tick);
+      }
+      std::string output;
+      for (uint32_t p : sig.outputPorts) {
+        const Port &port = m.ports[p];
+        int64_t value;
+        if (port.definition) {
+          err = {};
+          value = sem.evalInState(port.definition, next.data(), err);
+          if (!err.message.empty())
+            return runtimeError(err);
+        } else {
+          value = layout.get(next.data(), layout.portSlot(p));
+        }
+        output += value ? '1' : '0';
+      }
+      if (states.size() >= opts.maxStates &&
+          states.find(next.data()) == statespace::StateStore::kNotFound) {
+        diag.error(m.loc, "module '" + m.name + "' has more than " +
+                              std::to_string(opts.maxStates) +
+                              " states at cycle boundaries: not extracted");
+        return false;
+      }
+      uint32_t target = states.insert(next.data()).first;
+      out.transitions.push_back({vector, s, target, output, llvm::SMLoc()});
+    }
+  }
+  sem.fixInputs({}, {});
+  for (uint32_t s = 0; s < states.size(); ++s)
+    out.states.push_back("s" + std::to_string(s));
+  out.initial = 0;
+  out.mergeInputCubes();
+  return true;
+}
