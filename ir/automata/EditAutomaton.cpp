@@ -142,6 +142,42 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
       // (machine state, inputs read) pairs known to admit no chain: every
       // chain through them is skipped, so each pair is searched once.
       std::set<std::pair<uint32_t, uint32_t>> hopeless;
+      // The chain in `path` has arrived (the machine shows the target
+      // vector in the target state): its observed vectors become
+      // suppressions into intermediate states, the target vector the
+      // validation out of the last one. False (with `why`) if that breaks
+      // determinism.
+      auto arrive = [&]() {
+        if (path.empty())
+          return true; // the specified transition itself
+        // A first observed vector the specification already validates from
+        // this state is explained by it: the chain adds nothing (and would
+        // break determinism).
+        const EditTransition *known = ea.step(tr.from, path.front().second);
+        if (known && known->kind == EditKind::Validate)
+          return true;
+        uint32_t from = tr.from;
+        for (auto &[mq, vec] : path) {
+          auto key = std::make_tuple(tr.from, tr.in, mq, vec);
+          auto [slot, fresh] = inter.try_emplace(key, ea.states.size());
+          if (fresh)
+            ea.states.push_back({m.states[tr.from] + ">" + m.states[tr.to] +
+                                     "#" + std::to_string(ea.states.size()),
+                                 false});
+          if (!ea.add({from, vec, EditKind::Suppress, slot->second})) {
+            why = "desynchronisation of " + target + " from state '" +
+                  m.states[tr.from] +
+                  "' makes the automaton nondeterministic on " + vec;
+            return false;
+          }
+          from = slot->second;
+        }
+        if (!ea.add({from, target, EditKind::Validate, tr.to})) {
+          why = "nondeterministic validation of " + target;
+          return false;
+        }
+        return true;
+      };
       std::function<bool(uint32_t, uint32_t)> explore = [&](uint32_t q,
                                                             uint32_t read) {
         if (++visits > kMaxVisits) {
@@ -159,33 +195,8 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
             for (size_t k : it->second)
               if (rows[k].to == tr.to && rows[k].out == tr.out) {
                 admissible = true;
-                // A first observed vector the specification already
-                // validates from this state is explained by it: the
-                // chain adds nothing (and would break determinism).
-                const EditTransition *known =
-                    ea.step(tr.from, path.front().second);
-                if (known && known->kind == EditKind::Validate)
-                  break;
-                // Materialise the chain.
-                uint32_t from = tr.from;
-                for (auto &[mq, vec] : path) {
-                  auto key = std::make_tuple(tr.from, tr.in, mq, vec);
-                  auto [slot, fresh] = inter.try_emplace(key, ea.states.size());
-                  if (fresh)
-                    ea.states.push_back({m.states[tr.from] + ">" +
-                                             m.states[tr.to] + "#" +
-                                             std::to_string(ea.states.size()),
-                                         false});
-                  if (!ea.add({from, vec, EditKind::Suppress, slot->second})) {
-                    why = "desynchronisation of " + target + " from state '" +
-                          m.states[tr.from] +
-                          "' makes the automaton nondeterministic on " + vec;
-                    return false;
-                  }
-                  from = slot->second;
-                }
-                if (!ea.add({from, target, EditKind::Validate, tr.to}))
-                  why = "nondeterministic validation of " + target;
+                if (!arrive())
+                  return false;
                 break;
               }
         }
@@ -199,6 +210,17 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
           for (size_t k : it->second) {
             if (hopeless.count({rows[k].to, r2}))
               continue;
+            // Already in the target state showing the target vector: the
+            // chain has arrived. Reading the rest later is the machine's
+            // reaction to `in` from the target state, which the
+            // specification validates from there: continuing the chain
+            // would only duplicate that (docs/enforce.md).
+            if (rows[k].to == tr.to && rows[k].out == tr.out) {
+              admissible = true;
+              if (!arrive())
+                return false;
+              continue;
+            }
             path.push_back({rows[k].to, vectorBits(tr.in, n) + rows[k].out});
             bool below = explore(rows[k].to, r2);
             path.pop_back();

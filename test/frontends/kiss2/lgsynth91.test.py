@@ -1,6 +1,7 @@
 import os, subprocess, sys, tempfile
 netlift, root = sys.argv[1], sys.argv[2]
 passed = failed = 0
+built, refused = 0, []
 with tempfile.TemporaryDirectory() as tmp:
     for f in sorted(os.listdir(root)):
         if not f.endswith(".kiss2"):
@@ -25,6 +26,10 @@ with tempfile.TemporaryDirectory() as tmp:
                             capture_output=True, text=True, timeout=300)
         ok = ok and (r5.returncode == 0 or
                      (r5.returncode == 1 and "netlift: error: " in r5.stderr))
+        if r5.returncode == 0:
+            built += 1
+        else:
+            refused.append(f[:-6])
         if not ok:
             print("FAIL", f, r1.stderr[:200], r2.stderr[:200], r3.stderr[:200], r4.stdout[:200])
             failed += 1
@@ -33,3 +38,4 @@ with tempfile.TemporaryDirectory() as tmp:
             print(f"ok {f}: minimal {states} states")
             passed += 1
 print(f"{passed} passed, {failed} failed")
+print(f"edit automata: {built} built, {len(refused)} refused ({' '.join(refused)})")
