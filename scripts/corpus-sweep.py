@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs `netlift translate` over every file of ../shared/corpus that a
+"""Runs `netlift translate` (`netlift mealy` for automata) over every file of ../shared/corpus that a
 frontend exists for and prints, per format, how many files were translated,
 refused (grouped by reason, names and numbers elided) and crashed (any exit
 other than 0/1, or a hang). Exits 1 if anything crashed.
@@ -13,13 +13,16 @@ import subprocess
 import sys
 
 # Format folder -> (file extensions, --from format or None for "by
-# extension", files to skip). matiec keeps ST in .txt and .test files.
+# extension", files to skip, subcommand). matiec keeps ST in .txt and .test
+# files.
 FORMATS = {
-    "pnml": ((".pnml",), None, ()),
+    "pnml": ((".pnml",), None, (), "translate"),
     "st": ((".st", ".txt", ".test", ".EXP"), "st",
-           ("PROVENANCE.txt", "readme")),
-    "il": ((".il", ".txt"), "il", ()),
-    "tcpou": ((".TcPOU", ".TcGVL", ".TcDUT"), None, ()),
+           ("PROVENANCE.txt", "readme"), "translate"),
+    "il": ((".il", ".txt"), "il", (), "translate"),
+    "tcpou": ((".TcPOU", ".TcGVL", ".TcDUT"), None, (), "translate"),
+    "kiss2": ((".kiss2",), None, (), "mealy"),
+    "dot": ((".dot",), None, (), "mealy"),
 }
 
 
@@ -42,7 +45,7 @@ def main():
         return 0
     crashed_any = False
     only = sys.argv[3:]
-    for fmt, (exts, from_fmt, skip) in FORMATS.items():
+    for fmt, (exts, from_fmt, skip, command) in FORMATS.items():
         if only and fmt not in only:
             continue
         files = sorted(os.path.join(d, f)
@@ -51,7 +54,7 @@ def main():
         ok, refused, crashed = 0, collections.Counter(), []
         for f in files:
             try:
-                cmd = [netlift, "translate", f, "-o", os.devnull]
+                cmd = [netlift, command, f, "-o", os.devnull]
                 if from_fmt:
                     cmd += ["--from", from_fmt]
                 r = subprocess.run(cmd, capture_output=True, text=True,

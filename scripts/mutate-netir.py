@@ -26,7 +26,12 @@ WORDS = [b" IF ", b" THEN ", b" END_IF;", b" ELSE ", b" := ", b" VAR ", b" END_V
          b" EXIT;", b" WHILE ", b" DO ", b" INT", b" BOOL", b" ARRAY[1..2] OF ",
          b"\n  LD ", b"\n  ST ", b"\n  JMPC l\n", b"\nl:\n", b" AND( ", b"\n)\n",
          b" CAL ", b" %IX0.1 ", b" 16#FF ", b" -32768 ", b" trans ", b" place ",
-         b" module ", b"{range 0..3}", b" FUNCTION_BLOCK ", b" END_PROGRAM "]
+         b" module ", b"{range 0..3}", b" FUNCTION_BLOCK ", b" END_PROGRAM ",
+         b" -> ", b' [label="a/b"]', b" digraph ", b"<br/>", b" subgraph { ",
+         b"\n.i 2\n", b"\n# symbol input 0 = a\n"]
+
+# Automata are read by `mealy` and `edit-automaton`, models by the rest.
+AUTOMATA = (".kiss2", ".dot")
 
 
 def mutate(rng, data):
@@ -64,9 +69,12 @@ def main():
                 data = mutate(rng, data)
             with open(path, "wb") as f:
                 f.write(data)
-            for args in (["translate", path], ["opt", path, "-p", "flatten"],
-                         ["reach", path, "-q", "--max-states", "2000",
-                          "--time-limit", "5"]):
+            commands = ([["mealy", path], ["mealy", path, "--minimize", "--to", "dot"],
+                          ["edit-automaton", path]] if ext in AUTOMATA else
+                         [["translate", path], ["opt", path, "-p", "flatten"],
+                          ["reach", path, "-q", "--max-states", "2000",
+                           "--time-limit", "5"]])
+            for args in commands:
                 try:
                     r = subprocess.run([netlift] + args, capture_output=True, timeout=20)
                 except subprocess.TimeoutExpired:

@@ -25,6 +25,14 @@ void netlift::writeKiss2(const MealyMachine &m, llvm::raw_ostream &os) {
       os << ' ' << n;
     os << '\n';
   }
+  // A machine over symbols keeps its alphabets as comments the KISS2
+  // reader understands (and other tools skip).
+  for (size_t k = 0; k < m.inputSymbols.size(); ++k)
+    os << "# symbol input " << vectorBits(k, m.inputs.size()) << " = "
+       << m.inputSymbols[k] << '\n';
+  for (size_t k = 0; k < m.outputSymbols.size(); ++k)
+    os << "# symbol output " << vectorBits(k, m.outputs.size()) << " = "
+       << m.outputSymbols[k] << '\n';
   os << ".p " << m.transitions.size() << "\n.s " << m.states.size() << "\n.r "
      << m.states[m.initial] << '\n';
   for (const MealyTransition &t : m.transitions)
@@ -33,14 +41,52 @@ void netlift::writeKiss2(const MealyMachine &m, llvm::raw_ostream &os) {
   os << ".e\n";
 }
 
+/// `text` as a DOT double-quoted string.
+static void quoted(llvm::raw_ostream &os, llvm::StringRef text) {
+  os << '"';
+  for (char c : text)
+    os << (c == '"' || c == '\\' ? "\\" : "") << c;
+  os << '"';
+}
+
 void netlift::writeMealyDot(const MealyMachine &m, llvm::raw_ostream &os) {
   os << "digraph mealy {\n";
-  for (const std::string &s : m.states)
-    os << "  \"" << s << "\" [shape=circle, label=\"" << s << "\"];\n";
-  os << "  __start0 [label=\"\", shape=none];\n  __start0 -> \""
-     << m.states[m.initial] << "\" [label=\"\"];\n";
-  for (const MealyTransition &t : m.transitions)
-    os << "  \"" << m.states[t.from] << "\" -> \"" << m.states[t.to]
-       << "\" [label=\"" << t.input << '/' << t.output << "\"];\n";
+  for (const std::string &s : m.states) {
+    os << "  ";
+    quoted(os, s);
+    os << " [shape=circle, label=";
+    quoted(os, s);
+    os << "];\n";
+  }
+  os << "  __start0 [label=\"\", shape=none];\n  __start0 -> ";
+  quoted(os, m.states[m.initial]);
+  os << " [label=\"\"];\n";
+  std::vector<uint32_t> codes;
+  for (const MealyTransition &t : m.transitions) {
+    auto edge = [&](const std::string &in) {
+      // The reader splits at the first " / " if there is one: symbols
+      // containing '/' stay whole.
+      std::string out = m.outputLabel(t.output);
+      bool slashes = in.find('/') != std::string::npos ||
+                     out.find('/') != std::string::npos;
+      os << "  ";
+      quoted(os, m.states[t.from]);
+      os << " -> ";
+      quoted(os, m.states[t.to]);
+      os << " [label=";
+      quoted(os, in + (slashes ? " / " : "/") + out);
+      os << "];\n";
+    };
+    if (!m.isSymbolic()) {
+      edge(t.input);
+      continue;
+    }
+    // One edge per symbol of the row's cube.
+    codes.clear();
+    cubeVectors(t.input, codes);
+    for (uint32_t c : codes)
+      if (c < m.inputSymbols.size())
+        edge(m.inputSymbols[c]);
+  }
   os << "}\n";
 }

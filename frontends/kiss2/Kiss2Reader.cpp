@@ -42,12 +42,31 @@ bool netlift::readKiss2(unsigned bufferID, DiagEngine &diag, MealyMachine &m) {
   std::string reset;
   llvm::SMLoc resetLoc;
   std::vector<std::string> ilb, ob;
-  llvm::SMLoc ilbLoc, obLoc;
+  llvm::SMLoc ilbLoc, obLoc, inLegendLoc, outLegendLoc;
   bool ended = false;
   StringRef rest = buf;
   while (!rest.empty() && !ended) {
     auto [rawLine, next] = rest.split('\n');
     rest = next;
+    StringRef trimmed = rawLine.trim();
+    // netlift's legend of a machine over symbols (MealyWriters.cpp):
+    // `# symbol input|output CODE = SYMBOL`, codes 0, 1, ... in order.
+    if (trimmed.consume_front("# symbol ")) {
+      bool isInput = trimmed.consume_front("input ");
+      if (!isInput && !trimmed.consume_front("output "))
+        return err(llvm::SMLoc::getFromPointer(trimmed.data()),
+                   "expected 'input' or 'output' in a symbol legend line");
+      auto &symbols = isInput ? m.inputSymbols : m.outputSymbols;
+      auto [code, symbol] = trimmed.split(" = ");
+      if (symbol.empty() || code != vectorBits(symbols.size(), code.size()))
+        return err(llvm::SMLoc::getFromPointer(trimmed.data()),
+                   "expected '" + vectorBits(symbols.size(), code.size()) +
+                       " = SYMBOL' (symbol codes count up from 0)");
+      symbols.push_back(symbol.str());
+      (isInput ? inLegendLoc : outLegendLoc) =
+          llvm::SMLoc::getFromPointer(trimmed.data());
+      continue;
+    }
     StringRef line = rawLine.split('#').first.rtrim("\r");
     llvm::SmallVector<Field, 8> f;
     splitFields(line, f);
@@ -142,6 +161,16 @@ bool netlift::readKiss2(unsigned bufferID, DiagEngine &diag, MealyMachine &m) {
   if (!ob.empty() && int(ob.size()) != numOut)
     return err(obLoc, "'.ob' names " + llvm::Twine(ob.size()) +
                           " outputs, but '.o' says " + llvm::Twine(numOut));
+  if (m.inputSymbols.empty() != m.outputSymbols.empty())
+    return err(m.inputSymbols.empty() ? outLegendLoc : inLegendLoc,
+               "a symbol legend needs both input and output symbols");
+  if (!m.inputSymbols.empty() &&
+      (MealyMachine::symbolWidth(m.inputSymbols.size()) != unsigned(numIn) ||
+       MealyMachine::symbolWidth(m.outputSymbols.size()) != unsigned(numOut)))
+    return err(inLegendLoc,
+               "the symbol legend does not match '.i'/'.o' (" +
+                   llvm::Twine(m.inputSymbols.size()) + " input and " +
+                   llvm::Twine(m.outputSymbols.size()) + " output symbols)");
   for (int i = 0; i < numIn; ++i)
     m.inputs.push_back(ilb.empty() ? "i" + std::to_string(i + 1) : ilb[i]);
   for (int i = 0; i < numOut; ++i)

@@ -53,8 +53,10 @@ bool MealyMachine::checkDeterminism(DiagEngine &diag) const {
           continue;
         ok = false;
         diag.error(b.loc,
-                   "nondeterministic: in state '" + states[b.from] +
-                       "', inputs " + b.input + " overlap " + a.input +
+                   "nondeterministic: in state '" + states[b.from] + "', " +
+                       (isSymbolic()
+                            ? "two edges read '" + inputLabel(b.input) + "'"
+                            : "inputs " + b.input + " overlap " + a.input) +
                        " but lead to " +
                        (a.to != b.to ? "different states ('" + states[a.to] +
                                            "', '" + states[b.to] + "')"
@@ -69,7 +71,9 @@ std::vector<int64_t> MealyMachine::unspecifiedVectors() const {
   std::vector<int64_t> out(states.size(), -1);
   if (inputs.size() > 24)
     return out;
-  uint64_t n = uint64_t(1) << inputs.size();
+  // A machine over symbols has only its alphabet's codes to cover.
+  uint64_t n =
+      isSymbolic() ? inputSymbols.size() : uint64_t(1) << inputs.size();
   std::vector<std::vector<const std::string *>> cubes(states.size());
   for (const MealyTransition &t : transitions)
     cubes[t.from].push_back(&t.input);
@@ -95,8 +99,8 @@ std::vector<int64_t> MealyMachine::unspecifiedVectors() const {
   return out;
 }
 
-/// Every input vector a cube covers, appended to `out`.
-static void expandCube(const std::string &cube, std::vector<uint32_t> &out) {
+void netlift::automata::cubeVectors(const std::string &cube,
+                                    std::vector<uint32_t> &out) {
   size_t n = cube.size();
   uint32_t base = 0;
   std::vector<uint32_t> free;
@@ -162,7 +166,7 @@ static std::vector<std::string> mergeVectors(std::vector<uint32_t> vectors,
 }
 
 void MealyMachine::mergeInputCubes() {
-  if (inputs.size() > 24)
+  if (inputs.size() > 24 || isSymbolic())
     return;
   struct Group {
     uint32_t from, to;
@@ -180,7 +184,7 @@ void MealyMachine::mergeInputCubes() {
       groupsOf[t.from].push_back(groups.size());
       g = &groups.emplace_back(Group{t.from, t.to, t.output, {}});
     }
-    expandCube(t.input, g->vectors);
+    cubeVectors(t.input, g->vectors);
   }
   std::vector<MealyTransition> rows;
   for (uint32_t s = 0; s < states.size(); ++s) {
@@ -201,4 +205,95 @@ void MealyMachine::mergeInputCubes() {
                         llvm::SMLoc()});
   }
   transitions = std::move(rows);
+}
+
+unsigned MealyMachine::symbolWidth(size_t n) {
+  unsigned bits = 1;
+  while ((size_t(1) << bits) < n)
+    ++bits;
+  return bits;
+}
+
+static uint32_t vectorValue(const std::string &v) {
+  uint32_t x = 0;
+  for (char c : v)
+    x = (x << 1) | (c == '1');
+  return x;
+}
+
+static std::string symbolOf(const std::vector<std::string> &symbols,
+                            const std::string &vector) {
+  if (symbols.empty() || vector.find_first_not_of("01") != std::string::npos)
+    return vector;
+  uint32_t code = vectorValue(vector);
+  return code < symbols.size() ? symbols[code] : vector;
+}
+
+std::string MealyMachine::inputLabel(const std::string &vector) const {
+  return symbolOf(inputSymbols, vector);
+}
+
+std::string MealyMachine::outputLabel(const std::string &vector) const {
+  return symbolOf(outputSymbols, vector);
+}
+
+static void namedSignals(std::vector<std::string> &names, size_t n,
+                         char prefix) {
+  names.clear();
+  for (size_t i = 0; i < n; ++i)
+    names.push_back(prefix + std::to_string(i + 1));
+}
+
+void MealyMachine::recodeSymbols(const std::vector<std::string> &newInputs,
+                                 const std::vector<std::string> &newOutputs) {
+  auto codeMap = [](const std::vector<std::string> &from,
+                    const std::vector<std::string> &to) {
+    std::vector<uint32_t> map;
+    for (const std::string &sym : from)
+      map.push_back(
+          uint32_t(std::find(to.begin(), to.end(), sym) - to.begin()));
+    return map;
+  };
+  std::vector<uint32_t> inMap = codeMap(inputSymbols, newInputs),
+                        outMap = codeMap(outputSymbols, newOutputs);
+  unsigned inBits = symbolWidth(newInputs.size()),
+           outBits = symbolWidth(newOutputs.size());
+  std::vector<MealyTransition> rows;
+  std::vector<uint32_t> codes;
+  for (const MealyTransition &t : transitions) {
+    codes.clear();
+    cubeVectors(t.input, codes);
+    for (uint32_t c : codes)
+      if (c < inMap.size())
+        rows.push_back({vectorBits(inMap[c], inBits), t.from, t.to,
+                        vectorBits(outMap[vectorValue(t.output)], outBits),
+                        t.loc});
+  }
+  transitions = std::move(rows);
+  inputSymbols = newInputs;
+  outputSymbols = newOutputs;
+  namedSignals(inputs, inBits, 'i');
+  namedSignals(outputs, outBits, 'o');
+}
+
+bool netlift::automata::alignAlphabets(MealyMachine &a, MealyMachine &b,
+                                       std::string &why) {
+  if (!a.isSymbolic() && !b.isSymbolic())
+    return true;
+  if (a.isSymbolic() != b.isSymbolic()) {
+    why = "one machine reads input symbols, the other Boolean signals";
+    return false;
+  }
+  auto unite = [](std::vector<std::string> x,
+                  const std::vector<std::string> &y) {
+    for (const std::string &s : y)
+      if (std::find(x.begin(), x.end(), s) == x.end())
+        x.push_back(s);
+    return x;
+  };
+  std::vector<std::string> in = unite(a.inputSymbols, b.inputSymbols),
+                           out = unite(a.outputSymbols, b.outputSymbols);
+  a.recodeSymbols(in, out);
+  b.recodeSymbols(in, out);
+  return true;
 }

@@ -155,6 +155,8 @@ bool netlift::automata::minimize(const MealyMachine &m, MealyMachine &out,
   out.name = m.name;
   out.inputs = m.inputs;
   out.outputs = m.outputs;
+  out.inputSymbols = m.inputSymbols;
+  out.outputSymbols = m.outputSymbols;
   std::vector<int64_t> newIndex(N, -1); // by block
   std::vector<uint32_t> repr;           // block -> original state
   std::deque<uint32_t> queue;

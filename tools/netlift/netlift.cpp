@@ -15,6 +15,7 @@
 #include "backends/statespace/Writers.h"
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
+#include "frontends/dot/DotMealyReader.h"
 #include "frontends/kiss2/Kiss2Reader.h"
 #include "frontends/st/StFrontend.h"
 #include "ir/automata/EditAutomaton.h"
@@ -55,11 +56,11 @@ static cl::SubCommand
     reachCmd("reach",
              "Explore the reachable states of a model (its top module, "
              "flattened)");
-static cl::SubCommand
-    mealyCmd("mealy",
-             "Read a Mealy machine (KISS2) or extract one from a controller "
-             "model (PLC program, NetIR), check that it is deterministic, "
-             "and write it as KISS2 or DOT");
+static cl::SubCommand mealyCmd(
+    "mealy",
+    "Read a Mealy machine (KISS2, DOT) or extract one from a controller "
+    "model (PLC program, NetIR), check that it is deterministic, "
+    "and write it as KISS2 or DOT");
 static cl::SubCommand eaCmd("edit-automaton",
                             "Build the edit automaton of a Mealy specification "
                             "(desynchronised reading of simultaneous input "
@@ -488,6 +489,12 @@ static bool readMealy(const std::string &path, DiagEngine &diag,
       return false;
     return readKiss2(id, diag, m) && m.checkDeterminism(diag);
   }
+  if (inputFormat == "dot" || (inputFormat.empty() && ext == ".dot")) {
+    unsigned id = addInputFile(sm, path);
+    if (!id)
+      return false;
+    return readMealyDot(id, diag, m) && m.checkDeterminism(diag);
+  }
   net::Design design;
   std::vector<std::string> inputs{path};
   if (!loadInputs(inputs, inputFormat, diag, design))
@@ -514,7 +521,8 @@ static int runMealy() {
     if (!read(mealyEquiv, other))
       return 1;
     automata::EquivalenceResult r;
-    if (!automata::checkEquivalence(m, other, r, why)) {
+    if (!automata::alignAlphabets(m, other, why) ||
+        !automata::checkEquivalence(m, other, r, why)) {
       llvm::errs() << "netlift: error: " << why << "\n";
       return 1;
     }
@@ -524,9 +532,9 @@ static int runMealy() {
     }
     llvm::outs() << "not equivalent: after the inputs";
     for (const std::string &v : r.witness)
-      llvm::outs() << ' ' << v;
-    llvm::outs() << " the outputs are " << r.outputA << " and " << r.outputB
-                 << "\n";
+      llvm::outs() << ' ' << m.inputLabel(v);
+    llvm::outs() << " the outputs are " << m.outputLabel(r.outputA) << " and "
+                 << m.outputLabel(r.outputB) << "\n";
     return 3;
   }
   if (mealyMinimize) {
@@ -542,6 +550,9 @@ static int runMealy() {
     int64_t incomplete = 0;
     for (int64_t n : missing)
       incomplete += n > 0;
+    if (m.isSymbolic())
+      llvm::errs() << "input symbols: " << m.inputSymbols.size()
+                   << ", output symbols: " << m.outputSymbols.size() << ", ";
     llvm::errs() << "inputs: " << m.inputs.size()
                  << ", outputs: " << m.outputs.size()
                  << ", states: " << m.states.size()
@@ -555,7 +566,8 @@ static int runMealy() {
       for (size_t s = 0; s < missing.size(); ++s)
         if (missing[s] > 0)
           llvm::errs() << "state " << m.states[s] << ": " << missing[s]
-                       << " input vectors unspecified\n";
+                       << (m.isSymbolic() ? " input symbols" : " input vectors")
+                       << " unspecified\n";
   }
   return writeOutput(outputFile,
                      [&](llvm::raw_ostream &os) {
@@ -575,6 +587,12 @@ static bool specAutomaton(const std::string &path, DiagEngine &diag,
   if (!readMealy(path, diag, m))
     return false;
   std::string why;
+  if (m.isSymbolic()) {
+    llvm::errs() << "netlift: error: " << path
+                 << " reads input symbols, not Boolean signals: the PLC's "
+                    "desynchronised reading is defined per input signal\n";
+    return false;
+  }
   if (!automata::buildEditAutomaton(m, ea, why)) {
     llvm::errs() << "netlift: error: " << why << "\n";
     return false;
@@ -942,7 +960,8 @@ int main(int argc, char **argv) {
           "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] "
           "[--summary "
           "json] [--find EXPR]\n"
-          "  netlift mealy IN.kiss2|MODEL [--to kiss2|dot] [-o OUT] [--info] "
+          "  netlift mealy IN.kiss2|IN.dot|MODEL [--to kiss2|dot] [-o OUT] "
+          "[--info] "
           "[--minimize]\n"
           "  netlift edit-automaton SPEC [--to table|dot] [-o OUT]\n"
           "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
