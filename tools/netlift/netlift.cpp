@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "backends/checkers/Promela.h"
+#include "backends/enforce/EditAutomatonJson.h"
 #include "backends/enforce/Enforce.h"
 #include "backends/mealy/ExtractMealy.h"
 #include "backends/mealy/MealyWriters.h"
@@ -108,13 +109,15 @@ static cl::opt<bool> mealyInfo("info",
                                cl::sub(mealyCmd), cl::cat(category));
 static cl::opt<std::string> eaInput(cl::Positional, cl::desc("<spec>"),
                                     cl::Required, cl::sub(eaCmd));
-enum class EaFormat { Table, Dot };
+enum class EaFormat { Table, Dot, Json };
 static cl::opt<EaFormat> eaTo(
     "to", cl::desc("Output format"), cl::init(EaFormat::Table),
     cl::values(clEnumValN(EaFormat::Table, "table", "one transition a line"),
                clEnumValN(EaFormat::Dot, "dot",
                           "Graphviz (suppressions dashed, intermediate "
-                          "states shaded)")),
+                          "states shaded)"),
+               clEnumValN(EaFormat::Json, "json",
+                          "JSON, read back by enforce and edit-automaton")),
     cl::sub(eaCmd), cl::cat(category));
 static cl::list<std::string> enforceInputs(cl::Positional,
                                            cl::desc("<spec> <trace.csv>"),
@@ -580,9 +583,15 @@ static int runMealy() {
              : 1;
 }
 
-/// Reads a Mealy specification and builds its edit automaton.
+/// Reads an edit automaton written as JSON, or a Mealy specification and
+/// builds its edit automaton.
 static bool specAutomaton(const std::string &path, DiagEngine &diag,
                           automata::EditAutomaton &ea) {
+  if (inputFormat == "json" ||
+      (inputFormat.empty() && llvm::sys::path::extension(path) == ".json")) {
+    unsigned id = addInputFile(diag.sourceMgr(), path);
+    return id && readEditAutomatonJson(id, diag, ea);
+  }
   automata::MealyMachine m;
   if (!readMealy(path, diag, m))
     return false;
@@ -610,6 +619,8 @@ static int runEditAutomaton() {
                      [&](llvm::raw_ostream &os) {
                        if (eaTo == EaFormat::Dot)
                          writeEditAutomatonDot(ea, os);
+                       else if (eaTo == EaFormat::Json)
+                         writeEditAutomatonJson(ea, os);
                        else
                          writeEditAutomatonTable(ea, os);
                      })
@@ -963,7 +974,7 @@ int main(int argc, char **argv) {
           "  netlift mealy IN.kiss2|IN.dot|MODEL [--to kiss2|dot] [-o OUT] "
           "[--info] "
           "[--minimize]\n"
-          "  netlift edit-automaton SPEC [--to table|dot] [-o OUT]\n"
+          "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
           "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
           "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] "
           "[--ag FILE.dot]\n\n"
