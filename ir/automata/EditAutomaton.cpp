@@ -80,9 +80,80 @@ struct Concrete {
 };
 } // namespace
 
+/// Step 3 (netlift's extension, docs/enforce.md): the observer sees new
+/// inputs while the machine, in state `s`, still shows the outputs `p` it
+/// arrived with, because the PLC has not reacted yet. That vector is
+/// suppressed into a "lagging" state (or into the desynchronisation
+/// state already reached on it from `s`) from which the reactions that
+/// explain the lag are validated: with delayed outputs, the reaction of
+/// `s` to these same inputs; with synchronised inputs, its reaction to the
+/// inputs after a second change of another input, read in the same scan.
+static bool addLaggingReadings(
+    const MealyMachine &m, const std::vector<Concrete> &rows,
+    const std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> &react,
+    const EditAutomatonOptions &opts, EditAutomaton &ea, std::string &why) {
+  if (!opts.delayedOutputs && !opts.synchronisedInputs)
+    return true;
+  size_t n = m.inputs.size();
+  // (inputs, outputs) each state is entered with.
+  std::vector<std::set<std::pair<uint32_t, std::string>>> arrivals(
+      m.states.size());
+  for (const Concrete &r : rows)
+    arrivals[r.to].insert({r.in, r.out});
+  auto reactions = [&](uint32_t s, uint32_t in) -> const std::vector<size_t> * {
+    auto it = react.find({s, in});
+    return it == react.end() ? nullptr : &it->second;
+  };
+  for (uint32_t s = 0; s < m.states.size(); ++s)
+    for (const auto &[prev, p] : arrivals[s]) {
+      // The input vectors the plant may show before the PLC reacts, each
+      // with the reactions that explain the lag.
+      std::map<uint32_t, std::vector<size_t>> lagging;
+      if (opts.delayedOutputs)
+        for (uint32_t in = 0; in < (uint32_t(1) << n); ++in)
+          if (in != prev)
+            if (const auto *ks = reactions(s, in))
+              for (size_t k : *ks)
+                if (rows[k].out != p)
+                  lagging[in].push_back(k);
+      if (opts.synchronisedInputs)
+        for (size_t a = 0; a < n; ++a)
+          for (size_t b = 0; b < n; ++b) {
+            if (a == b)
+              continue;
+            uint32_t first = prev ^ (uint32_t(1) << a);
+            uint32_t both = first ^ (uint32_t(1) << b);
+            if (const auto *ks = reactions(s, both))
+              for (size_t k : *ks)
+                lagging[first].push_back(k);
+          }
+      for (auto &[in, ks] : lagging) {
+        std::string seen = vectorBits(in, n) + p;
+        const EditTransition *known = ea.step(s, seen);
+        if (known && known->kind == EditKind::Validate)
+          continue; // the specification explains the vector
+        uint32_t lag = known ? known->to : uint32_t(ea.states.size());
+        if (!known) {
+          ea.states.push_back(
+              {m.states[s] + "~" + seen + "#" + std::to_string(lag), false});
+          ea.add({s, seen, EditKind::Suppress, lag});
+        }
+        for (size_t k : ks) {
+          std::string shown = vectorBits(rows[k].in, n) + rows[k].out;
+          if (!ea.add({lag, shown, EditKind::Validate, rows[k].to})) {
+            why = "a lagging reaction in state '" + m.states[s] + "' after " +
+                  seen + " makes the automaton nondeterministic on " + shown;
+            return false;
+          }
+        }
+      }
+    }
+  return true;
+}
+
 bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
-                                           EditAutomaton &ea,
-                                           std::string &why) {
+                                           EditAutomaton &ea, std::string &why,
+                                           const EditAutomatonOptions &opts) {
   size_t n = m.inputs.size();
   if (n > 16) {
     why = "edit automata enumerate input vectors: at most 16 inputs";
@@ -239,5 +310,5 @@ bool netlift::automata::buildEditAutomaton(const MealyMachine &m,
         return false;
     }
   }
-  return true;
+  return addLaggingReadings(m, rows, react, opts, ea, why);
 }

@@ -55,12 +55,25 @@ private:
   std::map<std::pair<uint32_t, std::string>, uint32_t> index;
 };
 
+/// The scan-cycle phenomena an edit automaton tolerates (docs/enforce.md).
+/// Desynchronisation is the paper's construction and always on; the other
+/// two are netlift's extensions of it.
+struct EditAutomatonOptions {
+  /// Outputs appear at the end of the scan: a vector may show the new
+  /// inputs with the outputs of before.
+  bool delayedOutputs = false;
+  /// Two changes of different inputs, one after the other, read in one
+  /// scan: the first shows no reaction, the second the reaction to both.
+  bool synchronisedInputs = false;
+};
+
 /// Builds the edit automaton of a deterministic Mealy machine for the
-/// desynchronisation of simultaneous input changes (at most 16 inputs).
-/// False with `why` set when it cannot (too many inputs, or the result
-/// would not be deterministic).
+/// desynchronisation of simultaneous input changes (at most 16 inputs),
+/// and the phenomena `opts` adds. False with `why` set when it cannot (too
+/// many inputs, or the result would not be deterministic).
 bool buildEditAutomaton(const MealyMachine &m, EditAutomaton &ea,
-                        std::string &why);
+                        std::string &why,
+                        const EditAutomatonOptions &opts = {});
 
 } // namespace netlift::automata
 

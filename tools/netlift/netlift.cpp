@@ -119,6 +119,16 @@ static cl::opt<EaFormat> eaTo(
                clEnumValN(EaFormat::Json, "json",
                           "JSON, read back by enforce and edit-automaton")),
     cl::sub(eaCmd), cl::cat(category));
+static cl::opt<bool> delayedOutputs(
+    "delayed-outputs",
+    cl::desc("Also tolerate outputs that appear one observation after the "
+             "inputs that caused them (docs/enforce.md)"),
+    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
+static cl::opt<bool> synchronisedInputs(
+    "synchronised-inputs",
+    cl::desc("Also tolerate two changes of different inputs read in one scan "
+             "(docs/enforce.md)"),
+    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 static cl::list<std::string> enforceInputs(cl::Positional,
                                            cl::desc("<spec> <trace.csv>"),
                                            cl::OneOrMore, cl::sub(enforceCmd));
@@ -589,6 +599,12 @@ static bool specAutomaton(const std::string &path, DiagEngine &diag,
                           automata::EditAutomaton &ea) {
   if (inputFormat == "json" ||
       (inputFormat.empty() && llvm::sys::path::extension(path) == ".json")) {
+    if (delayedOutputs || synchronisedInputs) {
+      llvm::errs() << "netlift: error: " << path
+                   << " is a built edit automaton: the phenomena it tolerates "
+                      "were chosen when it was built\n";
+      return false;
+    }
     unsigned id = addInputFile(diag.sourceMgr(), path);
     return id && readEditAutomatonJson(id, diag, ea);
   }
@@ -602,7 +618,10 @@ static bool specAutomaton(const std::string &path, DiagEngine &diag,
                     "desynchronised reading is defined per input signal\n";
     return false;
   }
-  if (!automata::buildEditAutomaton(m, ea, why)) {
+  automata::EditAutomatonOptions opts;
+  opts.delayedOutputs = delayedOutputs;
+  opts.synchronisedInputs = synchronisedInputs;
+  if (!automata::buildEditAutomaton(m, ea, why, opts)) {
     llvm::errs() << "netlift: error: " << why << "\n";
     return false;
   }
