@@ -1,5 +1,6 @@
 //===- StructuralReasoning.cpp - regions of a state space -----------------===//
 #include "backends/structural/StructuralReasoning.h"
+#include "backends/structural/EdwardsVenn.h"
 
 #include "llvm/Support/JSON.h"
 
@@ -211,9 +212,13 @@ void Analysis::writeDot(llvm::raw_ostream &os, bool allRegions) const {
     auto d = deadlocks.find(r);
     if (d != deadlocks.end())
       label += "\\n" + std::to_string(d->second) + " deadlocked";
+    // Filled like the region in the Edwards-Venn diagram.
     os << "  r" << r << " [label=\"" << label << "\""
        << (d != deadlocks.end() ? ", color=red, penwidth=2" : "")
-       << (c == 0 ? ", style=dashed" : "") << "];\n";
+       << (c == 0 ? ", style=dashed"
+                  : ", style=filled, fillcolor=\"" +
+                        regionColour(r, names.size()) + "\"")
+       << "];\n";
   }
   for (auto &[p, c] : edgeMap)
     os << "  r" << p.first << " -> r" << p.second << " [label=\"" << c

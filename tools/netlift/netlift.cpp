@@ -14,6 +14,7 @@
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
+#include "backends/structural/EdwardsVenn.h"
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/dot/DotMealyReader.h"
@@ -152,6 +153,20 @@ static cl::opt<std::string> srAg("ag",
                                  cl::desc("Write the attribute graph as DOT"),
                                  cl::value_desc("FILE.dot"), cl::sub(srCmd),
                                  cl::cat(category));
+static cl::opt<std::string>
+    srEv("ev",
+         cl::desc("Write the Edwards-Venn diagram as SVG (at most 10 "
+                  "attributes)"),
+         cl::value_desc("FILE.svg"), cl::sub(srCmd), cl::cat(category));
+static cl::opt<std::string>
+    srOrder("order",
+            cl::desc("Edwards-Venn curves: gray (cos, neighbouring regions "
+                     "differ in one attribute) or binary (sin)"),
+            cl::init("gray"), cl::sub(srCmd), cl::cat(category));
+static cl::opt<bool>
+    srEvNecklaces("ev-necklaces",
+                  cl::desc("Colour the Edwards-Venn regions by necklace"),
+                  cl::sub(srCmd), cl::cat(category));
 static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
                                        cl::Required, cl::sub(reachCmd));
 
@@ -779,6 +794,17 @@ static int runSr() {
     llvm::errs() << "netlift: error: --report is text or json\n";
     return 1;
   }
+  if (srOrder != "gray" && srOrder != "binary") {
+    llvm::errs() << "netlift: error: --order is gray or binary\n";
+    return 1;
+  }
+  if (!srEv.empty() && srAttrs.size() > structural::kMaxVennAttributes) {
+    llvm::errs() << "netlift: error: an Edwards-Venn diagram is drawn for at "
+                    "most "
+                 << structural::kMaxVennAttributes << " attributes, not "
+                 << srAttrs.size() << "\n";
+    return 1;
+  }
   std::vector<std::string> names;
   std::vector<net::Expr *> preds;
   for (const std::string &a : srAttrs) {
@@ -828,6 +854,20 @@ static int runSr() {
         an.writeDot(os, srAllRegions);
       }))
     return 1;
+  structural::VennOptions vo;
+  vo.grayOrder = srOrder == "gray";
+  vo.necklaces = srEvNecklaces;
+  if (!srEv.empty()) {
+    if (!writeOutput(srEv, [&](llvm::raw_ostream &os) {
+          structural::writeEdwardsVenn(an, vo, os);
+        }))
+      return 1;
+    for (structural::Region r : structural::undrawnRegions(an, vo.grayOrder))
+      llvm::errs() << "netlift: warning: the binary-order diagram has no area "
+                      "for region "
+                   << an.regionName(r) << " (" << an.regionCounts().at(r)
+                   << " states); --order gray draws every region\n";
+  }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
         if (srReport == "json")
           an.writeJson(os, srAllRegions);
@@ -995,7 +1035,8 @@ int main(int argc, char **argv) {
           "[--minimize]\n"
           "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
           "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
-          "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] "
+          "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] [--ev "
+          "F.svg] "
           "[--ag FILE.dot]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
           &llvm::errs()))
