@@ -14,6 +14,7 @@
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
+#include "backends/structural/DensityChart.h"
 #include "backends/structural/EdwardsVenn.h"
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
@@ -163,6 +164,11 @@ static cl::opt<std::string>
             cl::desc("Edwards-Venn curves: gray (cos, neighbouring regions "
                      "differ in one attribute) or binary (sin)"),
             cl::init("gray"), cl::sub(srCmd), cl::cat(category));
+static cl::opt<std::string> srDensity(
+    "density",
+    cl::desc("Write the attribute densities and the necklace distribution "
+             "as SVG bar charts"),
+    cl::value_desc("FILE.svg"), cl::sub(srCmd), cl::cat(category));
 static cl::opt<bool>
     srEvNecklaces("ev-necklaces",
                   cl::desc("Colour the Edwards-Venn regions by necklace"),
@@ -852,6 +858,10 @@ static int runSr() {
     an.addEdge(region[e.from], region[e.to]);
   if (!srAg.empty() && !writeOutput(srAg, [&](llvm::raw_ostream &os) {
         an.writeDot(os, srAllRegions);
+      }))
+    return 1;
+  if (!srDensity.empty() && !writeOutput(srDensity, [&](llvm::raw_ostream &os) {
+        structural::writeDensityChart(an, os);
       }))
     return 1;
   structural::VennOptions vo;
