@@ -80,19 +80,28 @@ int64_t valueOf(sem::Semantics &sem, const Attribute &a,
 }
 } // namespace
 
+std::string netlift::statespace::describeState(sem::Semantics &sem,
+                                              const uint64_t *state,
+                                              llvm::StringRef separator) {
+  std::string out;
+  for (const Attribute &a : attributes(sem)) {
+    int64_t v = valueOf(sem, a, state);
+    if (a.kind == Attribute::Place && v == 0)
+      continue; // markings list the marked places only
+    out += (out.empty() ? "" : separator.str()) + a.name + "=" +
+           std::to_string(v);
+  }
+  return out;
+}
+
 void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
                                    llvm::raw_ostream &os) {
-  std::vector<Attribute> attrs = attributes(sem);
   os << "digraph statespace {\n  node [shape=box, fontname=Helvetica];\n"
         "  edge [fontname=Helvetica, fontsize=10];\n";
   for (uint32_t s = 0; s < x.store().size(); ++s) {
-    std::string label = "s" + std::to_string(s);
-    for (const Attribute &a : attrs) {
-      int64_t v = valueOf(sem, a, x.store().state(s));
-      if (a.kind == Attribute::Place && v == 0)
-        continue; // markings list the marked places only
-      label += "\\n" + a.name + "=" + std::to_string(v);
-    }
+    std::string values = describeState(sem, x.store().state(s), "\\n");
+    std::string label =
+        "s" + std::to_string(s) + (values.empty() ? "" : "\\n" + values);
     os << "  s" << s << " [label=\"" << label << "\""
        << (s == 0 ? ", penwidth=2" : "") << "];\n";
   }

@@ -18,6 +18,10 @@
 namespace netlift::statespace {
 
 void writeAut(const Explorer &x, llvm::raw_ostream &os);
+/// A state's values as `name=value` items joined by `separator`: marked
+/// places only, then clocks, variables and outputs.
+std::string describeState(sem::Semantics &sem, const uint64_t *state,
+                          llvm::StringRef separator);
 void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
 /// ViVe-style reachability graph text (docs/formats.md): per state a line
 /// `state nr. N`, its marked places and values, then one line

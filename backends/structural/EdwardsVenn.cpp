@@ -234,11 +234,12 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
       tip += fmt::format(" ({:.1f}%)", 100.0 * states / a.numStates());
     if (deadlocks)
       tip += fmt::format(", {} deadlocked", deadlocks);
-    os << fmt::format("<g class=\"region\" data-region=\"{}\" "
+    os << fmt::format("<g class=\"region\" data-id=\"{}\" data-region=\"{}\" "
                       "data-states=\"{}\" data-deadlocks=\"{}\" "
                       "fill=\"{}\" stroke=\"{}\" stroke-width=\"0.6\">"
                       "<title>{}</title>\n",
-                      escape(name), states, deadlocks, fill, fill, escape(tip));
+                      r, escape(name), states, deadlocks, fill, fill,
+                      escape(tip));
     const Piece *biggest = &pieces[i];
     for (; i < pieces.size() && pieces[i].region == r; ++i) {
       const Piece &p = pieces[i];

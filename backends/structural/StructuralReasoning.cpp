@@ -218,7 +218,7 @@ void Analysis::writeDot(llvm::raw_ostream &os, bool allRegions) const {
        << (c == 0 ? ", style=dashed"
                   : ", style=filled, fillcolor=\"" +
                         regionColour(r, names.size()) + "\"")
-       << "];\n";
+       << ", id=\"ag-r" << r << "\"];\n";
   }
   for (auto &[p, c] : edgeMap)
     os << "  r" << p.first << " -> r" << p.second << " [label=\"" << c
