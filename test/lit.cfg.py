@@ -37,6 +37,21 @@ if lit_config.params.get("roundtrip", "0") not in ("0", ""):
 import shutil
 if shutil.which("spin") and shutil.which("cc"):
     config.available_features.add("spin")
+# Debian's chromium (scripts/setup.sh installs it when it can): the HTML
+# report is tested in a real browser.
+# It must also start here (headless, as root, no sandbox).
+import subprocess
+if shutil.which("chromium"):
+    try:
+        probe = subprocess.run(
+            ["chromium", "--headless", "--no-sandbox", "--disable-gpu",
+             "--disable-background-networking", "--no-first-run",
+             "--dump-dom", "about:blank"],
+            capture_output=True, timeout=60)
+        if probe.returncode == 0 and b"<html" in probe.stdout:
+            config.available_features.add("chromium")
+    except (OSError, subprocess.TimeoutExpired):
+        pass
 
 if config.sanitize:
     config.environment["ASAN_OPTIONS"] = "detect_leaks=1"

@@ -1,7 +1,10 @@
 //===- DensityChart.cpp - densities and necklaces as SVG bar charts -------===//
 #include "backends/structural/DensityChart.h"
 
+#include <algorithm>
 #include <fmt/format.h>
+
+#include "ir/support/XmlEscape.h"
 
 using namespace netlift;
 using namespace netlift::structural;
@@ -13,17 +16,6 @@ struct Bar {
   bool highlight;
 };
 
-std::string escape(const std::string &s) {
-  std::string out;
-  for (char c : s)
-    out += c == '&'   ? "&amp;"
-           : c == '<' ? "&lt;"
-           : c == '>' ? "&gt;"
-           : c == '"' ? "&quot;"
-                      : std::string(1, c);
-  return out;
-}
-
 /// One chart at horizontal offset `x0`: bars of count/total, a 0..1 axis.
 void chart(llvm::raw_ostream &os, double x0, const std::string &title,
            const std::vector<Bar> &bars, uint64_t total) {
@@ -32,7 +24,7 @@ void chart(llvm::raw_ostream &os, double x0, const std::string &title,
   os << fmt::format("<g transform=\"translate({},0)\">\n", x0);
   os << fmt::format("<text x=\"0\" y=\"20\" font-size=\"14\" "
                     "font-weight=\"bold\">{}</text>\n",
-                    escape(title));
+                    xmlEscape(title));
   for (int t = 0; t <= 4; ++t) {
     double y = kTop + kHeight * (1 - t / 4.0);
     os << fmt::format("<line x1=\"30\" y1=\"{0:.1f}\" x2=\"{1:.1f}\" "
@@ -54,7 +46,7 @@ void chart(llvm::raw_ostream &os, double x0, const std::string &title,
         "<text x=\"{9:.1f}\" y=\"{11:.1f}\" font-size=\"11\" "
         "text-anchor=\"end\" transform=\"rotate(-45 {9:.1f} {11:.1f})\">{0}"
         "</text></g>\n",
-        escape(bars[i].label), bars[i].count, total, share, x,
+        xmlEscape(bars[i].label), bars[i].count, total, share, x,
         kTop + kHeight - h, kBar, h, bars[i].highlight ? "#d62728" : "#1f77b4",
         x + kBar / 2, kTop + kHeight - h - 4, kTop + kHeight + 14);
   }
@@ -78,8 +70,9 @@ void netlift::structural::writeDensityChart(const Analysis &a,
   std::vector<uint64_t> n = a.necklaces();
   for (size_t j = 0; j < n.size(); ++j)
     necklaces.push_back({"j=" + std::to_string(j), n[j], false});
-  double left = 30 + 44.0 * k + 10 + 60;
-  double width = left + 30 + 44.0 * n.size() + 10 + 20;
+  // Each chart at least as wide as its title.
+  double left = std::max(30 + 44.0 * k + 70, 330.0);
+  double width = left + std::max(30 + 44.0 * n.size() + 30, 360.0);
   os << fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" "
                     "height=\"330\" viewBox=\"0 0 {0} 330\" "
                     "font-family=\"Helvetica, Arial, sans-serif\" "

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "ir/support/XmlEscape.h"
+
 using namespace netlift;
 using namespace netlift::structural;
 
@@ -122,28 +124,6 @@ std::string point(double rho, double theta) {
                      kCentre - rho * std::sin(theta));
 }
 
-std::string escape(const std::string &s) {
-  std::string out;
-  for (char c : s)
-    switch (c) {
-    case '&':
-      out += "&amp;";
-      break;
-    case '<':
-      out += "&lt;";
-      break;
-    case '>':
-      out += "&gt;";
-      break;
-    case '"':
-      out += "&quot;";
-      break;
-    default:
-      out += c;
-    }
-  return out;
-}
-
 /// Distinct, stable outline colours for the attributes.
 const char *const kAttrColours[kMaxVennAttributes] = {
     "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
@@ -238,8 +218,8 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
                       "data-states=\"{}\" data-deadlocks=\"{}\" "
                       "fill=\"{}\" stroke=\"{}\" stroke-width=\"0.6\">"
                       "<title>{}</title>\n",
-                      r, escape(name), states, deadlocks, fill, fill,
-                      escape(tip));
+                      r, xmlEscape(name), states, deadlocks, fill, fill,
+                      xmlEscape(tip));
     const Piece *biggest = &pieces[i];
     for (; i < pieces.size() && pieces[i].region == r; ++i) {
       const Piece &p = pieces[i];
@@ -318,7 +298,7 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
                       "stroke=\"{3}\" stroke-width=\"3\"/>"
                       "<text x=\"{4}\" y=\"{5}\">{6} ({7}): {8:.3f}</text>\n",
                       x, y, x + 22, kAttrColours[i], x + 28, y + 4,
-                      escape(a.attributes()[i]), shape,
+                      xmlEscape(a.attributes()[i]), shape,
                       a.numStates() ? double(c) / a.numStates() : 0.0);
   }
   os << fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\" "
@@ -332,7 +312,7 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
     os << fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"11\" "
                       "fill=\"#c00000\">not drawable in this order: {} "
                       "({} states)</text>\n",
-                      x, y, escape(a.regionName(r)), a.regionCounts().at(r));
+                      x, y, xmlEscape(a.regionName(r)), a.regionCounts().at(r));
     y += 16;
   }
   os << "</g>\n</svg>\n";

@@ -16,6 +16,7 @@
 #include "backends/statespace/Writers.h"
 #include "backends/structural/DensityChart.h"
 #include "backends/structural/EdwardsVenn.h"
+#include "backends/structural/HtmlReport.h"
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/dot/DotMealyReader.h"
@@ -34,6 +35,7 @@
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
+#include "llvm/Support/Program.h"
 #include "llvm/Support/SourceMgr.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -147,7 +149,8 @@ static cl::opt<bool> srAllRegions("all-regions",
                                            "occur"),
                                   cl::sub(srCmd), cl::cat(category));
 static cl::opt<std::string> srReport("report",
-                                     cl::desc("Report format: text or json"),
+                                     cl::desc("Report format: text, json or "
+                                              "html (one self-contained file)"),
                                      cl::init("text"), cl::sub(srCmd),
                                      cl::cat(category));
 static cl::opt<std::string> srAg("ag",
@@ -780,6 +783,36 @@ static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
   return top;
 }
 
+/// The attribute graph as SVG by graphviz's `dot`, or "" when it is not
+/// installed or fails (the report then shows the DOT text).
+static std::string renderWithGraphviz(const structural::Analysis &an) {
+  llvm::ErrorOr<std::string> dot = llvm::sys::findProgramByName("dot");
+  if (!dot)
+    return "";
+  llvm::SmallString<128> in, out;
+  if (llvm::sys::fs::createTemporaryFile("netlift-ag", "dot", in) ||
+      llvm::sys::fs::createTemporaryFile("netlift-ag", "svg", out))
+    return "";
+  {
+    std::error_code ec;
+    llvm::raw_fd_ostream os(in, ec);
+    if (ec)
+      return "";
+    an.writeDot(os, false);
+  }
+  llvm::StringRef args[] = {*dot, "-Tsvg", in};
+  llvm::Optional<llvm::StringRef> redirects[] = {
+      llvm::None, llvm::StringRef(out), llvm::StringRef("")};
+  int rc = llvm::sys::ExecuteAndWait(*dot, args, llvm::None, redirects);
+  std::string svg;
+  if (rc == 0)
+    if (auto buf = llvm::MemoryBuffer::getFile(out))
+      svg = (*buf)->getBuffer().str();
+  llvm::sys::fs::remove(in);
+  llvm::sys::fs::remove(out);
+  return svg;
+}
+
 /// `netlift sr`: explores the model and classifies every state by the
 /// selected attributes (docs/sr.md).
 static int runSr() {
@@ -796,8 +829,8 @@ static int runSr() {
     llvm::errs() << "netlift: error: sr needs 1 to 20 attributes (--attr)\n";
     return 1;
   }
-  if (srReport != "text" && srReport != "json") {
-    llvm::errs() << "netlift: error: --report is text or json\n";
+  if (srReport != "text" && srReport != "json" && srReport != "html") {
+    llvm::errs() << "netlift: error: --report is text, json or html\n";
     return 1;
   }
   if (srOrder != "gray" && srOrder != "binary") {
@@ -878,8 +911,21 @@ static int runSr() {
                    << an.regionName(r) << " (" << an.regionCounts().at(r)
                    << " states); --order gray draws every region\n";
   }
+  structural::HtmlReportInputs html;
+  if (srReport == "html") {
+    html.title = llvm::sys::path::filename(srInput).str();
+    html.venn = vo;
+    html.attributeGraphSvg = renderWithGraphviz(an);
+    // The first state (in discovery order) of each region is its example.
+    for (uint32_t s = 0; s < region.size(); ++s)
+      if (!html.examples.count(region[s]))
+        html.examples[region[s]] = statespace::describeState(
+            semantics, explorer.store().state(s), ", ");
+  }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
-        if (srReport == "json")
+        if (srReport == "html")
+          structural::writeHtmlReport(an, html, os);
+        else if (srReport == "json")
           an.writeJson(os, srAllRegions);
         else
           an.writeText(os, srAllRegions);
