@@ -104,7 +104,7 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
   if (key.sets.empty()) {
     os << "none";
   } else {
-    os << (key.exact ? "exact cover" : "no exact cover; best partial cover")
+    os << key.kindText()
        << fmt::format(" ({} of {} states have exactly one): ", key.coveredOnce,
                       total);
     for (size_t s = 0; s < key.sets.size(); ++s) {

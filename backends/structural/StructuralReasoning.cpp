@@ -4,6 +4,8 @@
 
 #include "llvm/Support/JSON.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -40,35 +42,148 @@ std::vector<uint64_t> Analysis::necklaces() const {
   return out;
 }
 
+std::string Analysis::KeyAttributes::kindText() const {
+  if (exact)
+    return "exact cover";
+  return exhaustive ? "no exact cover; best partial cover"
+                    : "no exact cover; a partial cover found greedily (too "
+                      "many attributes to try every subset)";
+}
+
+namespace {
+/// Enumerates the exact covers of the occurring regions by attributes
+/// (Algorithm X): every region must hold exactly one chosen attribute.
+struct CoverSearch {
+  std::vector<Region> regions;  // occurring, non-empty
+  std::vector<Region> together; // per attribute: attributes sharing a region
+  std::vector<Region> found;
+  size_t bestSize = SIZE_MAX;
+
+  void run(std::vector<uint8_t> &covered, Region chosen, Region allowed) {
+    if (size_t(__builtin_popcount(chosen)) > bestSize)
+      return;
+    // The uncovered region with the fewest allowed attributes.
+    int pick = -1;
+    int fewest = 64;
+    for (size_t i = 0; i < regions.size(); ++i)
+      if (!covered[i]) {
+        int n = __builtin_popcount(regions[i] & allowed);
+        if (n < fewest) {
+          fewest = n;
+          pick = int(i);
+        }
+      }
+    if (pick < 0) {
+      size_t size = __builtin_popcount(chosen);
+      if (size < bestSize) {
+        bestSize = size;
+        found.clear();
+      }
+      found.push_back(chosen);
+      return;
+    }
+    for (Region cand = regions[pick] & allowed; cand; cand &= cand - 1) {
+      unsigned a = __builtin_ctz(cand);
+      std::vector<size_t> newly;
+      for (size_t i = 0; i < regions.size(); ++i)
+        if (!covered[i] && ((regions[i] >> a) & 1)) {
+          covered[i] = 1;
+          newly.push_back(i);
+        }
+      run(covered, chosen | (Region(1) << a), allowed & ~together[a]);
+      for (size_t i : newly)
+        covered[i] = 0;
+      // Later candidates must not cover the picked region twice: they
+      // exclude this one, which is implied since each branch picks one.
+    }
+  }
+};
+
+std::vector<size_t> indices(Region set, size_t k) {
+  std::vector<size_t> idx;
+  for (size_t i = 0; i < k; ++i)
+    if ((set >> i) & 1)
+      idx.push_back(i);
+  return idx;
+}
+} // namespace
+
 Analysis::KeyAttributes Analysis::keyAttributes() const {
   KeyAttributes best;
   size_t k = names.size();
-  // Smallest sizes first; every exact cover of the smallest size.
-  for (size_t size = 1; size <= k && !best.exact; ++size) {
-    for (Region set = 0; set < (Region(1) << k); ++set) {
-      if (size_t(__builtin_popcount(set)) != size)
-        continue;
-      uint64_t once = 0;
-      for (auto &[r, c] : counts)
-        if (__builtin_popcount(r & set) == 1)
-          once += c;
-      std::vector<size_t> idx;
-      for (size_t i = 0; i < k; ++i)
-        if ((set >> i) & 1)
-          idx.push_back(i);
-      if (once == states) {
-        if (!best.exact) {
-          best.exact = true;
-          best.sets.clear();
-        }
-        best.sets.push_back(idx);
-        best.coveredOnce = once;
-      } else if (!best.exact && once > best.coveredOnce) {
-        best.sets = {idx};
-        best.coveredOnce = once;
-      }
+  if (k == 0 || states == 0)
+    return best;
+  std::vector<std::pair<Region, uint64_t>> occurring(counts.begin(),
+                                                     counts.end());
+  // Exact covers: impossible if some state has no attribute at all.
+  if (!counts.count(0)) {
+    CoverSearch search;
+    search.together.assign(k, 0);
+    for (auto &[r, c] : occurring) {
+      search.regions.push_back(r);
+      for (Region a = r; a; a &= a - 1)
+        search.together[__builtin_ctz(a)] |= r;
+    }
+    for (size_t a = 0; a < k; ++a)
+      search.together[a] |= Region(1) << a;
+    std::vector<uint8_t> covered(search.regions.size(), 0);
+    search.run(covered, 0, (Region(1) << k) - 1);
+    if (!search.found.empty()) {
+      std::sort(search.found.begin(), search.found.end());
+      best.exact = true;
+      best.coveredOnce = states;
+      for (Region set : search.found)
+        best.sets.push_back(indices(set, k));
+      return best;
     }
   }
+  auto coveredOnce = [&](Region set) {
+    uint64_t once = 0;
+    for (auto &[r, c] : occurring)
+      if (__builtin_popcount(r & set) == 1)
+        once += c;
+    return once;
+  };
+  // No exact cover: the subset covering the most states exactly once
+  // (smallest first, then lowest bits), exhaustively when affordable.
+  if ((uint64_t(1) << k) * occurring.size() <= 200000000) {
+    Region bestSet = 0;
+    for (size_t size = 1; size <= k; ++size)
+      for (Region set = 1; set < (Region(1) << k); ++set) {
+        if (size_t(__builtin_popcount(set)) != size)
+          continue;
+        uint64_t once = coveredOnce(set);
+        if (once > best.coveredOnce) {
+          best.coveredOnce = once;
+          bestSet = set;
+        }
+      }
+    if (bestSet)
+      best.sets = {indices(bestSet, k)};
+    return best;
+  }
+  // Greedy: add (or drop) the attribute that helps most until nothing does.
+  best.exhaustive = false;
+  Region set = 0;
+  uint64_t value = 0;
+  for (bool improved = true; improved;) {
+    improved = false;
+    Region bestMove = 0;
+    for (size_t a = 0; a < k; ++a) {
+      Region next = set ^ (Region(1) << a);
+      uint64_t v = coveredOnce(next);
+      if (v > value) {
+        value = v;
+        bestMove = next;
+        improved = true;
+      }
+    }
+    if (improved)
+      set = bestMove;
+  }
+  best.coveredOnce = value;
+  if (set)
+    best.sets = {indices(set, k)};
   return best;
 }
 
@@ -133,8 +248,7 @@ void Analysis::writeText(llvm::raw_ostream &os, bool allRegions) const {
     os << "none\n";
     return;
   }
-  os << (key.exact ? "exact cover" : "no exact cover; best partial cover")
-     << " (" << key.coveredOnce << " of " << states
+  os << key.kindText() << " (" << key.coveredOnce << " of " << states
      << " states have exactly one)\n";
   for (const auto &set : key.sets) {
     os << "  {";
@@ -187,6 +301,7 @@ void Analysis::writeJson(llvm::raw_ostream &os, bool allRegions) const {
     j.attributeObject("key_attributes", [&] {
       j.attribute("exact", key.exact);
       j.attribute("covered_once", int64_t(key.coveredOnce));
+      j.attribute("exhaustive", key.exhaustive);
       j.attributeArray("sets", [&] {
         for (const auto &set : key.sets)
           j.array([&] {

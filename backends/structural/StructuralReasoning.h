@@ -53,7 +53,16 @@ public:
     /// partial cover (one set) when there is none.
     std::vector<std::vector<size_t>> sets;
     uint64_t coveredOnce = 0; // states with exactly one key attribute
+    /// False when the partial cover comes from a greedy search (too many
+    /// attributes and regions to try every subset).
+    bool exhaustive = true;
+    /// "exact cover", "no exact cover; best partial cover", ...
+    std::string kindText() const;
   };
+  /// Exact covers by Knuth's Algorithm X over the occurring regions (all
+  /// of minimum size); without one, the subset with the most states
+  /// having exactly one attribute, tried exhaustively up to 2^k * regions
+  /// = 2e8, greedily beyond.
   KeyAttributes keyAttributes() const;
 
   std::string regionName(Region r) const;

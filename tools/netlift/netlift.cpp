@@ -17,6 +17,7 @@
 #include "backends/structural/DensityChart.h"
 #include "backends/structural/EdwardsVenn.h"
 #include "backends/structural/HtmlReport.h"
+#include "backends/structural/StateFile.h"
 #include "backends/structural/StructuralReasoning.h"
 #include "frontends/FrontendRegistry.h"
 #include "frontends/dot/DotMealyReader.h"
@@ -818,13 +819,6 @@ static std::string renderWithGraphviz(const structural::Analysis &an) {
 static int runSr() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
-  net::Design design;
-  std::vector<std::string> inputs{srInput};
-  if (!loadInputs(inputs, inputFormat, diag, design))
-    return 1;
-  net::Module *top = explorableTop(design, diag, "", "sr");
-  if (!top)
-    return 1;
   if (srAttrs.empty() || srAttrs.size() > 20) {
     llvm::errs() << "netlift: error: sr needs 1 to 20 attributes (--attr)\n";
     return 1;
@@ -844,8 +838,11 @@ static int runSr() {
                  << srAttrs.size() << "\n";
     return 1;
   }
+  // Each attribute: NAME alone, or NAME=PREDICATE, parsed as NetIR.
+  net::Design design;
   std::vector<std::string> names;
   std::vector<net::Expr *> preds;
+  std::vector<bool> plain;
   for (const std::string &a : srAttrs) {
     auto [name, pred] = llvm::StringRef(a).split('=');
     name = name.trim();
@@ -854,41 +851,82 @@ static int runSr() {
         llvm::MemoryBuffer::getMemBufferCopy(text, "<attr " + name.str() + ">"),
         llvm::SMLoc());
     net::Expr *e = net::parseExpression(id, diag, design);
-    if (!e || !net::verifyPredicate(design, *top, e, diag))
+    if (!e)
       return 1;
     names.push_back(name.str());
     preds.push_back(e);
+    plain.push_back(pred.empty());
   }
-  sem::Options so;
-  sem::StateLayout layout(*top, so.unboundedBits);
-  sem::Semantics semantics(*top, layout, so);
-  statespace::ExploreOptions eo;
-  eo.recordEdges = true;
-  statespace::Explorer explorer(semantics, eo);
-  statespace::ExploreResult r;
-  explorer.run(r);
-  if (r.error) {
-    llvm::errs() << "netlift: error: runtime error: " << r.error->message
-                 << "\n";
-    return 1;
-  }
-  // Region of every state, then the counts (memory: one word per state
-  // here; the counts themselves are per region).
-  std::vector<structural::Region> region(explorer.store().size());
-  for (uint32_t s = 0; s < region.size(); ++s)
-    for (size_t i = 0; i < preds.size(); ++i) {
-      sem::RuntimeError err;
-      if (semantics.evalPredicate(preds[i], explorer.store().state(s), err))
-        region[s] |= structural::Region(1) << i;
-    }
-  std::vector<char> dead(region.size(), 0);
-  for (uint32_t d : r.deadlocks)
-    dead[d] = 1;
   structural::Analysis an(names);
-  for (uint32_t s = 0; s < region.size(); ++s)
-    an.addState(region[s], dead[s]);
-  for (const statespace::Edge &e : explorer.edges())
-    an.addEdge(region[e.from], region[e.to]);
+  structural::HtmlReportInputs html;
+  html.title = llvm::sys::path::filename(srInput).str();
+  bool complete = true;
+
+  bool stateFile =
+      inputFormat == "states" ||
+      (inputFormat.empty() && llvm::sys::path::extension(srInput) == ".json");
+  if (stateFile) {
+    // A state space written by `reach --format json`, streamed.
+    unsigned id = addInputFile(sm, srInput);
+    if (!id)
+      return 1;
+    std::vector<structural::StateFileAttribute> attrs;
+    for (size_t i = 0; i < names.size(); ++i)
+      attrs.push_back({names[i], plain[i] ? nullptr : preds[i]});
+    structural::StateFileResult sr;
+    sr.collectExamples = srReport == "html";
+    if (!structural::analyseStateFile(id, diag, attrs, an, sr))
+      return 1;
+    complete = sr.complete;
+    html.examples = std::move(sr.examples);
+  } else {
+    std::vector<std::string> inputs{srInput};
+    if (!loadInputs(inputs, inputFormat, diag, design))
+      return 1;
+    net::Module *top = explorableTop(design, diag, "", "sr");
+    if (!top)
+      return 1;
+    for (net::Expr *e : preds)
+      if (!net::verifyPredicate(design, *top, e, diag))
+        return 1;
+    sem::Options so;
+    sem::StateLayout layout(*top, so.unboundedBits);
+    sem::Semantics semantics(*top, layout, so);
+    statespace::ExploreOptions eo;
+    eo.recordEdges = true;
+    statespace::Explorer explorer(semantics, eo);
+    statespace::ExploreResult r;
+    explorer.run(r);
+    if (r.error) {
+      llvm::errs() << "netlift: error: runtime error: " << r.error->message
+                   << "\n";
+      return 1;
+    }
+    complete = r.complete;
+    // Region of every state, then the counts (memory: one word per state
+    // here; the counts themselves are per region).
+    std::vector<structural::Region> region(explorer.store().size());
+    for (uint32_t s = 0; s < region.size(); ++s)
+      for (size_t i = 0; i < preds.size(); ++i) {
+        sem::RuntimeError err;
+        if (semantics.evalPredicate(preds[i], explorer.store().state(s), err))
+          region[s] |= structural::Region(1) << i;
+      }
+    std::vector<char> dead(region.size(), 0);
+    for (uint32_t d : r.deadlocks)
+      dead[d] = 1;
+    for (uint32_t s = 0; s < region.size(); ++s)
+      an.addState(region[s], dead[s]);
+    for (const statespace::Edge &e : explorer.edges())
+      an.addEdge(region[e.from], region[e.to]);
+    // The first state (in discovery order) of each region is its example.
+    if (srReport == "html")
+      for (uint32_t s = 0; s < region.size(); ++s)
+        if (!html.examples.count(region[s]))
+          html.examples[region[s]] = statespace::describeState(
+              semantics, explorer.store().state(s), ", ");
+  }
+
   if (!srAg.empty() && !writeOutput(srAg, [&](llvm::raw_ostream &os) {
         an.writeDot(os, srAllRegions);
       }))
@@ -911,16 +949,9 @@ static int runSr() {
                    << an.regionName(r) << " (" << an.regionCounts().at(r)
                    << " states); --order gray draws every region\n";
   }
-  structural::HtmlReportInputs html;
   if (srReport == "html") {
-    html.title = llvm::sys::path::filename(srInput).str();
     html.venn = vo;
     html.attributeGraphSvg = renderWithGraphviz(an);
-    // The first state (in discovery order) of each region is its example.
-    for (uint32_t s = 0; s < region.size(); ++s)
-      if (!html.examples.count(region[s]))
-        html.examples[region[s]] = statespace::describeState(
-            semantics, explorer.store().state(s), ", ");
   }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
         if (srReport == "html")
@@ -931,7 +962,7 @@ static int runSr() {
           an.writeText(os, srAllRegions);
       }))
     return 1;
-  return r.complete ? 0 : 2;
+  return complete ? 0 : 2;
 }
 
 /// Exit codes of `reach` (docs/reach.md): 0 complete, 1 error, 2 a limit

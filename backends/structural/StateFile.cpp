@@ -1,0 +1,518 @@
+//===- StateFile.cpp - state spaces read back from `reach` JSON -----------===//
+#include "backends/structural/StateFile.h"
+
+#include "ir/net/Printer.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+
+#include <unordered_map>
+
+using namespace netlift;
+using namespace netlift::net;
+using namespace netlift::structural;
+using llvm::StringRef;
+
+namespace {
+
+/// A pull reader over JSON text: the caller walks the structure it expects
+/// and skips what it does not know. Positions of errors are kept.
+class JsonCursor {
+public:
+  JsonCursor(StringRef buf, DiagEngine &diag) : buf(buf), diag(diag) {}
+
+  bool fail(const llvm::Twine &msg) {
+    if (ok)
+      diag.error(
+          llvm::SMLoc::getFromPointer(buf.data() + std::min(i, buf.size())),
+          msg);
+    ok = false;
+    return false;
+  }
+  void ws() {
+    while (i < buf.size() && (buf[i] == ' ' || buf[i] == '\n' ||
+                              buf[i] == '\t' || buf[i] == '\r'))
+      ++i;
+  }
+  bool peek(char c) {
+    ws();
+    return i < buf.size() && buf[i] == c;
+  }
+  bool expect(char c) {
+    if (!peek(c))
+      return fail(llvm::Twine("expected '") + llvm::Twine(c) +
+                  "' in the state file");
+    ++i;
+    return true;
+  }
+  /// After an element of an array or object: true if another follows.
+  bool more(char close) {
+    if (peek(',')) {
+      ++i;
+      return true;
+    }
+    if (peek(close)) {
+      ++i;
+      return false;
+    }
+    fail(llvm::Twine("expected ',' or '") + llvm::Twine(close) + "'");
+    return false;
+  }
+  /// Starts an array or object; false if it is empty (and consumed).
+  bool open(char openC, char closeC) {
+    if (!expect(openC))
+      return false;
+    if (peek(closeC)) {
+      ++i;
+      return false;
+    }
+    return true;
+  }
+  bool string(std::string &out) {
+    if (!expect('"'))
+      return false;
+    out.clear();
+    while (i < buf.size() && buf[i] != '"') {
+      char c = buf[i++];
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
+      if (i >= buf.size())
+        break;
+      char e = buf[i++];
+      switch (e) {
+      case 'n':
+        out += '\n';
+        break;
+      case 't':
+        out += '\t';
+        break;
+      case 'r':
+        out += '\r';
+        break;
+      case 'b':
+        out += '\b';
+        break;
+      case 'f':
+        out += '\f';
+        break;
+      case 'u': {
+        unsigned code = 0;
+        if (i + 4 > buf.size() || buf.substr(i, 4).getAsInteger(16, code))
+          return fail("bad \\u escape");
+        i += 4;
+        // Names are ASCII in practice; keep others as UTF-8.
+        if (code < 0x80) {
+          out += char(code);
+        } else if (code < 0x800) {
+          out += char(0xC0 | (code >> 6));
+          out += char(0x80 | (code & 0x3F));
+        } else {
+          out += char(0xE0 | (code >> 12));
+          out += char(0x80 | ((code >> 6) & 0x3F));
+          out += char(0x80 | (code & 0x3F));
+        }
+        break;
+      }
+      default:
+        out += e;
+      }
+    }
+    if (i >= buf.size())
+      return fail("unterminated string");
+    ++i;
+    return true;
+  }
+  bool key(std::string &out) { return string(out) && expect(':'); }
+  bool integer(int64_t &v) {
+    ws();
+    size_t start = i;
+    if (i < buf.size() && buf[i] == '-')
+      ++i;
+    while (i < buf.size() && buf[i] >= '0' && buf[i] <= '9')
+      ++i;
+    if (buf.slice(start, i).getAsInteger(10, v))
+      return fail("expected an integer");
+    return true;
+  }
+  bool boolean(bool &v) {
+    ws();
+    if (buf.substr(i).startswith("true")) {
+      v = true;
+      i += 4;
+      return true;
+    }
+    if (buf.substr(i).startswith("false")) {
+      v = false;
+      i += 5;
+      return true;
+    }
+    return fail("expected true or false");
+  }
+  bool skipValue() {
+    ws();
+    if (i >= buf.size())
+      return fail("unexpected end of the state file");
+    char c = buf[i];
+    std::string s;
+    if (c == '"')
+      return string(s);
+    if (c == '{' || c == '[') {
+      char close = c == '{' ? '}' : ']';
+      if (!open(c, close))
+        return ok;
+      do {
+        if (c == '{' && !key(s))
+          return false;
+        if (!skipValue())
+          return false;
+      } while (more(close));
+      return ok;
+    }
+    while (i < buf.size() && buf[i] != ',' && buf[i] != '}' && buf[i] != ']' &&
+           buf[i] != ' ' && buf[i] != '\n')
+      ++i;
+    return true;
+  }
+  llvm::SMLoc loc() const {
+    return llvm::SMLoc::getFromPointer(buf.data() + std::min(i, buf.size()));
+  }
+
+  bool ok = true;
+
+private:
+  StringRef buf;
+  DiagEngine &diag;
+  size_t i = 0;
+};
+
+/// Evaluates attribute predicates on a row of column values: every name
+/// (`p`, `t1.Q`, `v[2].x`) is resolved to its column once, up front.
+class RowEvaluator {
+public:
+  RowEvaluator(const std::vector<std::string> &columns, DiagEngine &diag)
+      : diag(diag) {
+    for (size_t c = 0; c < columns.size(); ++c)
+      byName.emplace(columns[c], c);
+    for (const std::string &c : columns)
+      known += (known.empty() ? "" : ", ") + c;
+  }
+
+  /// Resolves the names of `e`; false after reporting an unknown one or a
+  /// construct a row cannot answer.
+  bool resolve(const Expr *e) {
+    switch (e->getKind()) {
+    case ExprKind::IntLit:
+    case ExprKind::BoolLit:
+      return true;
+    case ExprKind::RealLit:
+      diag.error(e->loc, "real numbers are not values of a state file");
+      return false;
+    case ExprKind::Ref:
+    case ExprKind::Field:
+    case ExprKind::Index: {
+      std::string name = exprToString(e);
+      auto it = byName.find(name);
+      if (it == byName.end()) {
+        diag.error(e->loc, "no column '" + name +
+                               "' in the state file (columns: " + known + ")");
+        return false;
+      }
+      column[e] = it->second;
+      return true;
+    }
+    case ExprKind::Unary:
+      return resolve(llvm::cast<UnaryExpr>(e)->operand);
+    case ExprKind::Binary:
+      return resolve(llvm::cast<BinaryExpr>(e)->lhs) &&
+             resolve(llvm::cast<BinaryExpr>(e)->rhs);
+    case ExprKind::Cond: {
+      auto *c = llvm::cast<CondExpr>(e);
+      return resolve(c->cond) && resolve(c->thenExpr) && resolve(c->elseExpr);
+    }
+    case ExprKind::Call:
+      for (const Expr *a : llvm::cast<CallExpr>(e)->args)
+        if (!resolve(a))
+          return false;
+      return true;
+    }
+    return false;
+  }
+
+  /// The value of `e` on `row`; `error` set (and 0 returned) on division by
+  /// zero.
+  int64_t eval(const Expr *e, const std::vector<int64_t> &row,
+               std::string &error) const {
+    switch (e->getKind()) {
+    case ExprKind::IntLit:
+      return llvm::cast<IntLit>(e)->value;
+    case ExprKind::BoolLit:
+      return llvm::cast<BoolLit>(e)->value;
+    case ExprKind::RealLit:
+      return 0;
+    case ExprKind::Ref:
+    case ExprKind::Field:
+    case ExprKind::Index:
+      return row[column.at(e)];
+    case ExprKind::Unary: {
+      auto *u = llvm::cast<UnaryExpr>(e);
+      int64_t a = eval(u->operand, row, error);
+      return u->op == UnaryOp::Not ? !a : u->op == UnaryOp::Neg ? -a : ~a;
+    }
+    case ExprKind::Cond: {
+      auto *c = llvm::cast<CondExpr>(e);
+      return eval(c->cond, row, error) ? eval(c->thenExpr, row, error)
+                                       : eval(c->elseExpr, row, error);
+    }
+    case ExprKind::Call: {
+      auto *c = llvm::cast<CallExpr>(e);
+      int64_t a = eval(c->args[0], row, error);
+      if (c->fn == Builtin::Abs)
+        return a < 0 ? -a : a;
+      int64_t b = eval(c->args[1], row, error);
+      return c->fn == Builtin::Min ? std::min(a, b) : std::max(a, b);
+    }
+    case ExprKind::Binary:
+      break;
+    }
+    auto *b = llvm::cast<BinaryExpr>(e);
+    if (b->op == BinaryOp::And)
+      return eval(b->lhs, row, error) && eval(b->rhs, row, error);
+    if (b->op == BinaryOp::Or)
+      return eval(b->lhs, row, error) || eval(b->rhs, row, error);
+    int64_t x = eval(b->lhs, row, error), y = eval(b->rhs, row, error);
+    switch (b->op) {
+    case BinaryOp::Xor:
+      return (x != 0) != (y != 0);
+    case BinaryOp::Eq:
+      return x == y;
+    case BinaryOp::Ne:
+      return x != y;
+    case BinaryOp::Lt:
+      return x < y;
+    case BinaryOp::Le:
+      return x <= y;
+    case BinaryOp::Gt:
+      return x > y;
+    case BinaryOp::Ge:
+      return x >= y;
+    case BinaryOp::BitOr:
+      return x | y;
+    case BinaryOp::BitXor:
+      return x ^ y;
+    case BinaryOp::BitAnd:
+      return x & y;
+    case BinaryOp::Shl:
+      return int64_t(uint64_t(x) << (y & 63));
+    case BinaryOp::Shr:
+      return x >> (y & 63);
+    case BinaryOp::Add:
+      return int64_t(uint64_t(x) + uint64_t(y));
+    case BinaryOp::Sub:
+      return int64_t(uint64_t(x) - uint64_t(y));
+    case BinaryOp::Mul:
+      return int64_t(uint64_t(x) * uint64_t(y));
+    case BinaryOp::Div:
+    case BinaryOp::Mod:
+      if (y == 0 || (x == INT64_MIN && y == -1)) {
+        error = "division by zero or overflow in '" + exprToString(b) + "'";
+        return 0;
+      }
+      return b->op == BinaryOp::Div ? x / y : x % y;
+    default:
+      return 0;
+    }
+  }
+
+private:
+  DiagEngine &diag;
+  std::unordered_map<std::string, size_t> byName;
+  std::unordered_map<const Expr *, size_t> column;
+  std::string known;
+};
+
+constexpr uint32_t kNoState = ~uint32_t(0);
+
+} // namespace
+
+bool netlift::structural::analyseStateFile(
+    unsigned bufferID, DiagEngine &diag,
+    const std::vector<StateFileAttribute> &attrs, Analysis &analysis,
+    StateFileResult &result) {
+  StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
+  JsonCursor j(buf, diag);
+  std::vector<std::string> columns;
+  std::vector<bool> isPlace;
+  std::unique_ptr<RowEvaluator> eval;
+  std::vector<int64_t> plainColumn(attrs.size(), -1);
+  std::vector<uint32_t> regionOf; // by state number
+  bool sawStates = false;
+  std::string key, text;
+
+  auto prepare = [&]() {
+    eval = std::make_unique<RowEvaluator>(columns, diag);
+    for (size_t a = 0; a < attrs.size(); ++a) {
+      if (attrs[a].predicate) {
+        if (!eval->resolve(attrs[a].predicate))
+          return false;
+        continue;
+      }
+      auto it = std::find(columns.begin(), columns.end(), attrs[a].name);
+      if (it == columns.end()) {
+        std::string known;
+        for (const std::string &c : columns)
+          known += (known.empty() ? "" : ", ") + c;
+        diag.error(j.loc(), "no column '" + attrs[a].name +
+                                "' in the state file (columns: " + known + ")");
+        return false;
+      }
+      plainColumn[a] = it - columns.begin();
+    }
+    return true;
+  };
+
+  if (!j.open('{', '}'))
+    return j.ok && j.fail("the state file is empty");
+  std::vector<int64_t> row;
+  do {
+    if (!j.key(key))
+      return false;
+    if (key == "model") {
+      if (!j.string(result.model))
+        return false;
+    } else if (key == "complete") {
+      if (!j.boolean(result.complete))
+        return false;
+    } else if (key == "attributes") {
+      if (j.open('[', ']'))
+        do {
+          if (!j.open('{', '}'))
+            return j.fail("expected an attribute object");
+          std::string name, kind;
+          do {
+            if (!j.key(key))
+              return false;
+            bool okField = key == "name"   ? j.string(name)
+                           : key == "kind" ? j.string(kind)
+                                           : j.skipValue();
+            if (!okField)
+              return false;
+          } while (j.more('}'));
+          columns.push_back(name);
+          isPlace.push_back(kind == "place");
+        } while (j.more(']'));
+      if (!j.ok || !prepare())
+        return false;
+    } else if (key == "states") {
+      if (!eval)
+        return j.fail("'attributes' must come before 'states'");
+      sawStates = true;
+      if (j.open('[', ']'))
+        do {
+          int64_t id = -1;
+          bool dead = false;
+          row.clear();
+          if (!j.open('{', '}'))
+            return j.fail("expected a state object");
+          do {
+            if (!j.key(key))
+              return false;
+            if (key == "id") {
+              if (!j.integer(id))
+                return false;
+            } else if (key == "deadlock") {
+              if (!j.boolean(dead))
+                return false;
+            } else if (key == "values") {
+              if (j.open('[', ']'))
+                do {
+                  int64_t v;
+                  if (!j.integer(v))
+                    return false;
+                  row.push_back(v);
+                } while (j.more(']'));
+              if (!j.ok)
+                return false;
+            } else if (!j.skipValue()) {
+              return false;
+            }
+          } while (j.more('}'));
+          if (!j.ok)
+            return false;
+          if (id < 0 || id >= int64_t(kNoState))
+            return j.fail("a state without a valid \"id\"");
+          if (row.size() != columns.size())
+            return j.fail("state " + llvm::Twine(id) + " has " +
+                          llvm::Twine(row.size()) + " values for " +
+                          llvm::Twine(columns.size()) + " attributes");
+          Region r = 0;
+          for (size_t a = 0; a < attrs.size(); ++a) {
+            int64_t v;
+            if (plainColumn[a] >= 0) {
+              v = row[plainColumn[a]];
+            } else {
+              std::string err;
+              v = eval->eval(attrs[a].predicate, row, err);
+              if (!err.empty())
+                return j.fail("attribute '" + attrs[a].name + "' in state " +
+                              llvm::Twine(id) + ": " + err);
+            }
+            if (v)
+              r |= Region(1) << a;
+          }
+          if (size_t(id) >= regionOf.size())
+            regionOf.resize(size_t(id) + 1, kNoState);
+          if (regionOf[id] != kNoState)
+            return j.fail("state " + llvm::Twine(id) + " is listed twice");
+          regionOf[id] = r;
+          analysis.addState(r, dead);
+          if (result.collectExamples && !result.examples.count(r)) {
+            std::string text;
+            for (size_t c = 0; c < columns.size(); ++c)
+              if (!isPlace[c] || row[c] != 0)
+                text += (text.empty() ? "" : ", ") + columns[c] + "=" +
+                        std::to_string(row[c]);
+            result.examples[r] = text;
+          }
+        } while (j.more(']'));
+      if (!j.ok)
+        return false;
+    } else if (key == "edges") {
+      if (!sawStates)
+        return j.fail("'states' must come before 'edges'");
+      if (j.open('[', ']'))
+        do {
+          int64_t from = -1, to = -1;
+          if (!j.open('{', '}'))
+            return j.fail("expected an edge object");
+          do {
+            if (!j.key(key))
+              return false;
+            bool okField = key == "from" ? j.integer(from)
+                           : key == "to" ? j.integer(to)
+                                         : j.skipValue();
+            if (!okField)
+              return false;
+          } while (j.more('}'));
+          if (!j.ok)
+            return false;
+          for (int64_t s : {from, to})
+            if (s < 0 || size_t(s) >= regionOf.size() ||
+                regionOf[s] == kNoState)
+              return j.fail("an edge refers to state " + llvm::Twine(s) +
+                            ", which the file does not list");
+          analysis.addEdge(regionOf[from], regionOf[to]);
+        } while (j.more(']'));
+      if (!j.ok)
+        return false;
+    } else if (!j.skipValue()) {
+      return false;
+    }
+  } while (j.more('}'));
+  if (!j.ok)
+    return false;
+  if (!sawStates)
+    return j.fail("the file lists no states (is it written by `netlift reach "
+                  "--format json`?)");
+  return true;
+}
