@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Structural reasoning over a large state file: a synthetic file in the
 # format of `reach --format json` (compact, one state a line) with N states,
-# 20 Boolean attributes (at most 4096 regions) and 2 local edges per state, classified by `netlift sr`
+# 20 Boolean attributes (at most 4096 regions) and 2 edges per state to neighbouring states, classified by `netlift sr`
 # with all 20 attributes (and once with 5 predicates over them).
 # Usage: bench/sr-bench.sh [BUILD_DIR] [STATES]   (default 10000000)
 # Prints: file size, seconds, states/s, MB/s, peak RSS.
@@ -38,9 +38,11 @@ with open(path, "w") as f:
     f.write('],\n"edges":[\n')
     out = []
     for s in range(n):
-        # Local edges, as in a real state space: the next state and one a
-        # few steps on.
-        for t in ((s + 1) % n, (s + rng.randrange(2, 50)) % n):
+        # Edges as in a real state space, where a step changes few
+        # attributes: to the next and to the previous state of the walk
+        # (one hidden bit apart; the number of region pairs, which the
+        # attribute graph keeps, grows with far jumps, not with states).
+        for t in ((s + 1) % n, (s - 1) % n):
             out.append('{"from":%d,"to":%d}' % (s, t))
         if len(out) >= 200000:
             f.write(",\n".join(out) + (",\n" if s + 1 < n else "\n"))

@@ -5,6 +5,8 @@
 
 #include "llvm/Support/MemoryBuffer.h"
 
+#include <sys/mman.h>
+#include <unistd.h>
 #include <unordered_map>
 
 using namespace netlift;
@@ -124,6 +126,8 @@ public:
     return true;
   }
   bool key(std::string &out) { return string(out) && expect(':'); }
+  /// The text already read, up to which a mapped file may be dropped.
+  size_t position() const { return i; }
   bool integer(int64_t &v) {
     ws();
     size_t start = i;
@@ -374,6 +378,24 @@ bool netlift::structural::analyseStateFile(
   if (!j.open('{', '}'))
     return j.ok && j.fail("the state file is empty");
   std::vector<int64_t> row;
+  // A large file is mapped: give back the pages already read, so that
+  // memory does not grow with the file (they are read again from the file
+  // if an error message needs their text).
+  const llvm::MemoryBuffer *mb = diag.sourceMgr().getMemoryBuffer(bufferID);
+  size_t released = 0;
+  auto release = [&]() {
+    if (mb->getBufferKind() != llvm::MemoryBuffer::MemoryBuffer_MMap)
+      return;
+    constexpr size_t kChunk = size_t(64) << 20;
+    size_t page = size_t(sysconf(_SC_PAGESIZE));
+    uintptr_t base = uintptr_t(buf.data());
+    uintptr_t upto = (base + j.position()) & ~(uintptr_t(page) - 1);
+    uintptr_t from = (base + released + page - 1) & ~(uintptr_t(page) - 1);
+    if (upto < from + kChunk)
+      return;
+    madvise(reinterpret_cast<void *>(from), upto - from, MADV_DONTNEED);
+    released = upto - base;
+  };
   do {
     if (!j.key(key))
       return false;
@@ -466,6 +488,8 @@ bool netlift::structural::analyseStateFile(
             return j.fail("state " + llvm::Twine(id) + " is listed twice");
           regionOf[id] = r;
           analysis.addState(r, dead);
+          if ((id & 0xffff) == 0)
+            release();
           if (result.collectExamples && !result.examples.count(r)) {
             std::string text;
             for (size_t c = 0; c < columns.size(); ++c)
@@ -502,6 +526,8 @@ bool netlift::structural::analyseStateFile(
               return j.fail("an edge refers to state " + llvm::Twine(s) +
                             ", which the file does not list");
           analysis.addEdge(regionOf[from], regionOf[to]);
+          if ((from & 0xffff) == 0)
+            release();
         } while (j.more(']'));
       if (!j.ok)
         return false;

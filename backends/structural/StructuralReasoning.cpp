@@ -24,7 +24,19 @@ void Analysis::addState(Region r, bool deadlock) {
 
 void Analysis::addEdge(Region from, Region to) {
   ++edges;
-  ++edgeMap[{from, to}];
+  ++edgeHash[uint64_t(from) << 32 | to];
+  edgeMapStale = true;
+}
+
+const std::map<std::pair<Region, Region>, uint64_t> &
+Analysis::edgeCounts() const {
+  if (edgeMapStale) {
+    edgeMap.clear();
+    for (auto &[key, c] : edgeHash)
+      edgeMap[{Region(key >> 32), Region(key)}] = c;
+    edgeMapStale = false;
+  }
+  return edgeMap;
 }
 
 uint64_t Analysis::attributeCount(size_t i) const {
@@ -202,7 +214,7 @@ void Analysis::checkInvariants() const {
   uint64_t n = 0, e = 0;
   for (auto &[r, c] : counts)
     n += c;
-  for (auto &[p, c] : edgeMap)
+  for (auto &[p, c] : edgeCounts())
     e += c;
   if (n != states || e != edges) {
     llvm::errs() << "netlift: internal error: region counts do not add up\n";
@@ -239,7 +251,7 @@ void Analysis::writeText(llvm::raw_ostream &os, bool allRegions) const {
     os << "\n";
   }
   os << "\nedges between regions:\n";
-  for (auto &[p, c] : edgeMap)
+  for (auto &[p, c] : edgeCounts())
     os << "  " << regionName(p.first) << " -> " << regionName(p.second) << ": "
        << c << (p.first == p.second ? " (inside the region)" : "") << "\n";
   KeyAttributes key = keyAttributes();
@@ -291,7 +303,7 @@ void Analysis::writeJson(llvm::raw_ostream &os, bool allRegions) const {
       }
     });
     j.attributeArray("edges_between_regions", [&] {
-      for (auto &[p, c] : edgeMap)
+      for (auto &[p, c] : edgeCounts())
         j.object([&] {
           j.attribute("from", regionName(p.first));
           j.attribute("to", regionName(p.second));
@@ -335,7 +347,7 @@ void Analysis::writeDot(llvm::raw_ostream &os, bool allRegions) const {
                         regionColour(r, names.size()) + "\"")
        << ", id=\"ag-r" << r << "\"];\n";
   }
-  for (auto &[p, c] : edgeMap)
+  for (auto &[p, c] : edgeCounts())
     os << "  r" << p.first << " -> r" << p.second << " [label=\"" << c
        << "\"];\n";
   os << "}\n";

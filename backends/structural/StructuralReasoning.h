@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <map>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,8 @@ public:
   uint64_t numEdges() const { return edges; }
   const std::map<Region, uint64_t> &regionCounts() const { return counts; }
   const std::map<Region, uint64_t> &deadlockCounts() const { return deadlocks; }
-  const std::map<std::pair<Region, Region>, uint64_t> &edgeCounts() const {
-    return edgeMap;
-  }
+  /// Edges between (and inside) regions, ordered.
+  const std::map<std::pair<Region, Region>, uint64_t> &edgeCounts() const;
   /// States in which attribute i holds.
   uint64_t attributeCount(size_t i) const;
   /// necklace[j]: states with exactly j attributes.
@@ -78,7 +78,11 @@ private:
   std::vector<std::string> names;
   uint64_t states = 0, edges = 0;
   std::map<Region, uint64_t> counts, deadlocks;
-  std::map<std::pair<Region, Region>, uint64_t> edgeMap;
+  // Counted in a hash table (a state space has many edges, visiting the
+  // region pairs in no order); ordered once when asked for.
+  std::unordered_map<uint64_t, uint64_t> edgeHash;
+  mutable std::map<std::pair<Region, Region>, uint64_t> edgeMap;
+  mutable bool edgeMapStale = false;
 };
 
 } // namespace netlift::structural
