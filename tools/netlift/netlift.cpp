@@ -154,10 +154,12 @@ static cl::opt<std::string> srReport("report",
                                               "html (one self-contained file)"),
                                      cl::init("text"), cl::sub(srCmd),
                                      cl::cat(category));
-static cl::opt<std::string> srAg("ag",
-                                 cl::desc("Write the attribute graph as DOT"),
-                                 cl::value_desc("FILE.dot"), cl::sub(srCmd),
-                                 cl::cat(category));
+static cl::opt<std::string>
+    srAg("ag",
+         cl::desc("Write the attribute graph as DOT, or as SVG (drawn by "
+                  "graphviz's dot) when FILE ends in .svg"),
+         cl::value_desc("FILE.dot|FILE.svg"), cl::sub(srCmd),
+         cl::cat(category));
 static cl::opt<std::string>
     srEv("ev",
          cl::desc("Write the Edwards-Venn diagram as SVG (at most 10 "
@@ -786,7 +788,8 @@ static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
 
 /// The attribute graph as SVG by graphviz's `dot`, or "" when it is not
 /// installed or fails (the report then shows the DOT text).
-static std::string renderWithGraphviz(const structural::Analysis &an) {
+static std::string renderWithGraphviz(const structural::Analysis &an,
+                                      bool allRegions) {
   llvm::ErrorOr<std::string> dot = llvm::sys::findProgramByName("dot");
   if (!dot)
     return "";
@@ -799,7 +802,7 @@ static std::string renderWithGraphviz(const structural::Analysis &an) {
     llvm::raw_fd_ostream os(in, ec);
     if (ec)
       return "";
-    an.writeDot(os, false);
+    an.writeDot(os, allRegions);
   }
   llvm::StringRef args[] = {*dot, "-Tsvg", in};
   llvm::Optional<llvm::StringRef> redirects[] = {
@@ -927,10 +930,25 @@ static int runSr() {
               semantics, explorer.store().state(s), ", ");
   }
 
-  if (!srAg.empty() && !writeOutput(srAg, [&](llvm::raw_ostream &os) {
-        an.writeDot(os, srAllRegions);
-      }))
-    return 1;
+  if (!srAg.empty()) {
+    std::string svg;
+    if (llvm::StringRef(srAg).endswith(".svg")) {
+      svg = renderWithGraphviz(an, srAllRegions);
+      if (svg.empty()) {
+        llvm::errs() << "netlift: error: --ag " << srAg
+                     << ": drawing SVG needs graphviz's `dot` (write .dot "
+                        "instead)\n";
+        return 1;
+      }
+    }
+    if (!writeOutput(srAg, [&](llvm::raw_ostream &os) {
+          if (svg.empty())
+            an.writeDot(os, srAllRegions);
+          else
+            os << svg;
+        }))
+      return 1;
+  }
   if (!srDensity.empty() && !writeOutput(srDensity, [&](llvm::raw_ostream &os) {
         structural::writeDensityChart(an, os);
       }))
@@ -951,7 +969,7 @@ static int runSr() {
   }
   if (srReport == "html") {
     html.venn = vo;
-    html.attributeGraphSvg = renderWithGraphviz(an);
+    html.attributeGraphSvg = renderWithGraphviz(an, false);
   }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
         if (srReport == "html")
