@@ -337,23 +337,23 @@ private:
 
 constexpr uint32_t kNoState = ~uint32_t(0);
 
-} // namespace
+/// What both file formats share: the columns, the attributes resolved
+/// against them, the region of every state read so far, and the analysis
+/// fed state by state and edge by edge. Errors are returned as text for
+/// the reader to place.
+class RowClassifier {
+public:
+  RowClassifier(const std::vector<StateFileAttribute> &attrs, DiagEngine &diag,
+                Analysis &analysis, StateFileResult &result)
+      : attrs(attrs), diag(diag), analysis(analysis), result(result),
+        plainColumn(attrs.size(), -1) {}
 
-bool netlift::structural::analyseStateFile(
-    unsigned bufferID, DiagEngine &diag,
-    const std::vector<StateFileAttribute> &attrs, Analysis &analysis,
-    StateFileResult &result) {
-  StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
-  JsonCursor j(buf, diag);
-  std::vector<std::string> columns;
-  std::vector<bool> isPlace;
-  std::unique_ptr<RowEvaluator> eval;
-  std::vector<int64_t> plainColumn(attrs.size(), -1);
-  std::vector<uint32_t> regionOf; // by state number
-  bool sawStates = false;
-  std::string key, text;
-
-  auto prepare = [&]() {
+  /// The file's columns (and which are places); false after reporting,
+  /// at `loc`, an attribute naming no column.
+  bool setColumns(std::vector<std::string> names, std::vector<bool> places,
+                  llvm::SMLoc loc) {
+    columns = std::move(names);
+    isPlace = std::move(places);
     eval = std::make_unique<RowEvaluator>(columns, diag);
     for (size_t a = 0; a < attrs.size(); ++a) {
       if (attrs[a].predicate) {
@@ -366,36 +366,124 @@ bool netlift::structural::analyseStateFile(
         std::string known;
         for (const std::string &c : columns)
           known += (known.empty() ? "" : ", ") + c;
-        diag.error(j.loc(), "no column '" + attrs[a].name +
-                                "' in the state file (columns: " + known + ")");
+        diag.error(loc, "no column '" + attrs[a].name +
+                            "' in the state file (columns: " + known + ")");
         return false;
       }
       plainColumn[a] = it - columns.begin();
     }
     return true;
-  };
+  }
+  bool ready() const { return eval != nullptr; }
+  size_t numColumns() const { return columns.size(); }
 
-  if (!j.open('{', '}'))
-    return j.ok && j.fail("the state file is empty");
-  std::vector<int64_t> row;
-  // A large file is mapped: give back the pages already read, so that
-  // memory does not grow with the file (they are read again from the file
-  // if an error message needs their text).
-  const llvm::MemoryBuffer *mb = diag.sourceMgr().getMemoryBuffer(bufferID);
-  size_t released = 0;
-  auto release = [&]() {
+  /// One state; "" or what is wrong with it.
+  std::string addState(int64_t id, bool dead, const std::vector<int64_t> &row) {
+    if (id < 0 || id >= int64_t(kNoState))
+      return "a state without a valid id";
+    if (row.size() != columns.size())
+      return "state " + std::to_string(id) + " has " +
+             std::to_string(row.size()) + " values for " +
+             std::to_string(columns.size()) + " attributes";
+    Region r = 0;
+    for (size_t a = 0; a < attrs.size(); ++a) {
+      int64_t v;
+      if (plainColumn[a] >= 0) {
+        v = row[plainColumn[a]];
+      } else {
+        std::string err;
+        v = eval->eval(attrs[a].predicate, row, err);
+        if (!err.empty())
+          return "attribute '" + attrs[a].name + "' in state " +
+                 std::to_string(id) + ": " + err;
+      }
+      if (v)
+        r |= Region(1) << a;
+    }
+    if (size_t(id) >= regionOf.size())
+      regionOf.resize(size_t(id) + 1, kNoState);
+    if (regionOf[id] != kNoState)
+      return "state " + std::to_string(id) + " is listed twice";
+    regionOf[id] = r;
+    analysis.addState(r, dead);
+    if (result.collectExamples && !result.examples.count(r)) {
+      std::string text;
+      for (size_t c = 0; c < columns.size(); ++c)
+        if (!isPlace[c] || row[c] != 0)
+          text += (text.empty() ? "" : ", ") + columns[c] + "=" +
+                  std::to_string(row[c]);
+      result.examples[r] = text;
+    }
+    return "";
+  }
+
+  /// One edge; "" or what is wrong with it.
+  std::string addEdge(int64_t from, int64_t to) {
+    for (int64_t s : {from, to})
+      if (s < 0 || size_t(s) >= regionOf.size() || regionOf[s] == kNoState)
+        return "an edge refers to state " + std::to_string(s) +
+               ", which the file does not list";
+    analysis.addEdge(regionOf[from], regionOf[to]);
+    return "";
+  }
+
+private:
+  const std::vector<StateFileAttribute> &attrs;
+  DiagEngine &diag;
+  Analysis &analysis;
+  StateFileResult &result;
+  std::vector<std::string> columns;
+  std::vector<bool> isPlace;
+  std::unique_ptr<RowEvaluator> eval;
+  std::vector<int64_t> plainColumn;
+  std::vector<uint32_t> regionOf; // by state number
+};
+
+/// Gives back the pages of a mapped file already read, so that memory does
+/// not grow with the file (they are read again from the file if an error
+/// message needs their text).
+class PageReleaser {
+public:
+  explicit PageReleaser(const llvm::MemoryBuffer *mb) : mb(mb) {}
+  void readUpTo(size_t offset) {
     if (mb->getBufferKind() != llvm::MemoryBuffer::MemoryBuffer_MMap)
       return;
     constexpr size_t kChunk = size_t(64) << 20;
     size_t page = size_t(sysconf(_SC_PAGESIZE));
-    uintptr_t base = uintptr_t(buf.data());
-    uintptr_t upto = (base + j.position()) & ~(uintptr_t(page) - 1);
+    uintptr_t base = uintptr_t(mb->getBufferStart());
+    uintptr_t upto = (base + offset) & ~(uintptr_t(page) - 1);
     uintptr_t from = (base + released + page - 1) & ~(uintptr_t(page) - 1);
     if (upto < from + kChunk)
       return;
     madvise(reinterpret_cast<void *>(from), upto - from, MADV_DONTNEED);
     released = upto - base;
+  }
+
+private:
+  const llvm::MemoryBuffer *mb;
+  size_t released = 0;
+};
+
+} // namespace
+
+bool netlift::structural::analyseStateFile(
+    unsigned bufferID, DiagEngine &diag,
+    const std::vector<StateFileAttribute> &attrs, Analysis &analysis,
+    StateFileResult &result) {
+  const llvm::MemoryBuffer *mb = diag.sourceMgr().getMemoryBuffer(bufferID);
+  StringRef buf = mb->getBuffer();
+  JsonCursor j(buf, diag);
+  RowClassifier rows(attrs, diag, analysis, result);
+  PageReleaser pages(mb);
+  bool sawStates = false;
+  std::string key;
+  auto check = [&](const std::string &problem) {
+    return problem.empty() || j.fail(problem);
   };
+
+  if (!j.open('{', '}'))
+    return j.ok && j.fail("the state file is empty");
+  std::vector<int64_t> row;
   do {
     if (!j.key(key))
       return false;
@@ -406,6 +494,9 @@ bool netlift::structural::analyseStateFile(
       if (!j.boolean(result.complete))
         return false;
     } else if (key == "attributes") {
+      std::vector<std::string> names;
+      std::vector<bool> places;
+      llvm::SMLoc at = j.loc();
       if (j.open('[', ']'))
         do {
           if (!j.open('{', '}'))
@@ -420,13 +511,13 @@ bool netlift::structural::analyseStateFile(
             if (!okField)
               return false;
           } while (j.more('}'));
-          columns.push_back(name);
-          isPlace.push_back(kind == "place");
+          names.push_back(name);
+          places.push_back(kind == "place");
         } while (j.more(']'));
-      if (!j.ok || !prepare())
+      if (!j.ok || !rows.setColumns(std::move(names), std::move(places), at))
         return false;
     } else if (key == "states") {
-      if (!eval)
+      if (!rows.ready())
         return j.fail("'attributes' must come before 'states'");
       sawStates = true;
       if (j.open('[', ']'))
@@ -459,45 +550,10 @@ bool netlift::structural::analyseStateFile(
               return false;
             }
           } while (j.more('}'));
-          if (!j.ok)
+          if (!j.ok || !check(rows.addState(id, dead, row)))
             return false;
-          if (id < 0 || id >= int64_t(kNoState))
-            return j.fail("a state without a valid \"id\"");
-          if (row.size() != columns.size())
-            return j.fail("state " + llvm::Twine(id) + " has " +
-                          llvm::Twine(row.size()) + " values for " +
-                          llvm::Twine(columns.size()) + " attributes");
-          Region r = 0;
-          for (size_t a = 0; a < attrs.size(); ++a) {
-            int64_t v;
-            if (plainColumn[a] >= 0) {
-              v = row[plainColumn[a]];
-            } else {
-              std::string err;
-              v = eval->eval(attrs[a].predicate, row, err);
-              if (!err.empty())
-                return j.fail("attribute '" + attrs[a].name + "' in state " +
-                              llvm::Twine(id) + ": " + err);
-            }
-            if (v)
-              r |= Region(1) << a;
-          }
-          if (size_t(id) >= regionOf.size())
-            regionOf.resize(size_t(id) + 1, kNoState);
-          if (regionOf[id] != kNoState)
-            return j.fail("state " + llvm::Twine(id) + " is listed twice");
-          regionOf[id] = r;
-          analysis.addState(r, dead);
           if ((id & 0xffff) == 0)
-            release();
-          if (result.collectExamples && !result.examples.count(r)) {
-            std::string text;
-            for (size_t c = 0; c < columns.size(); ++c)
-              if (!isPlace[c] || row[c] != 0)
-                text += (text.empty() ? "" : ", ") + columns[c] + "=" +
-                        std::to_string(row[c]);
-            result.examples[r] = text;
-          }
+            pages.readUpTo(j.position());
         } while (j.more(']'));
       if (!j.ok)
         return false;
@@ -518,16 +574,10 @@ bool netlift::structural::analyseStateFile(
             if (!okField)
               return false;
           } while (j.more('}'));
-          if (!j.ok)
+          if (!j.ok || !check(rows.addEdge(from, to)))
             return false;
-          for (int64_t s : {from, to})
-            if (s < 0 || size_t(s) >= regionOf.size() ||
-                regionOf[s] == kNoState)
-              return j.fail("an edge refers to state " + llvm::Twine(s) +
-                            ", which the file does not list");
-          analysis.addEdge(regionOf[from], regionOf[to]);
           if ((from & 0xffff) == 0)
-            release();
+            pages.readUpTo(j.position());
         } while (j.more(']'));
       if (!j.ok)
         return false;
@@ -541,4 +591,101 @@ bool netlift::structural::analyseStateFile(
     return j.fail("the file lists no states (is it written by `netlift reach "
                   "--format json`?)");
   return true;
+}
+
+/// One CSV line's fields as integers; false (with `why`) if one is not.
+static bool csvIntegers(StringRef line, std::vector<int64_t> &out,
+                        std::string &why) {
+  out.clear();
+  llvm::SmallVector<StringRef, 32> fields;
+  line.split(fields, ',');
+  for (StringRef f : fields) {
+    int64_t v;
+    if (f.trim().getAsInteger(10, v)) {
+      why = "'" + f.str() + "' is not an integer";
+      return false;
+    }
+    out.push_back(v);
+  }
+  return true;
+}
+
+bool netlift::structural::analyseStateCsv(
+    unsigned statesID, unsigned edgesID, DiagEngine &diag,
+    const std::vector<StateFileAttribute> &attrs, Analysis &analysis,
+    StateFileResult &result) {
+  RowClassifier rows(attrs, diag, analysis, result);
+  auto lines = [&](unsigned id, auto &&onLine) {
+    const llvm::MemoryBuffer *mb = diag.sourceMgr().getMemoryBuffer(id);
+    PageReleaser pages(mb);
+    StringRef rest = mb->getBuffer();
+    size_t n = 0;
+    while (!rest.empty()) {
+      auto [line, next] = rest.split('\n');
+      rest = next;
+      line = line.rtrim("\r");
+      if (line.empty())
+        continue;
+      if (!onLine(line, n++))
+        return false;
+      if ((n & 0xffff) == 0)
+        pages.readUpTo(size_t(rest.data() - mb->getBufferStart()));
+    }
+    if (n == 0) {
+      diag.error(llvm::SMLoc::getFromPointer(mb->getBufferStart()),
+                 "the CSV file is empty (a header is expected)");
+      return false;
+    }
+    return true;
+  };
+  auto err = [&](StringRef line, const llvm::Twine &msg) {
+    diag.error(llvm::SMLoc::getFromPointer(line.data()), msg);
+    return false;
+  };
+  std::vector<int64_t> row, values;
+  std::string why;
+  // Header `id,deadlock,<attribute>...` (reach --format csv); the kinds of
+  // the columns are not in it, so examples list every column.
+  bool ok = lines(statesID, [&](StringRef line, size_t n) {
+    if (n == 0) {
+      llvm::SmallVector<StringRef, 32> fields;
+      line.split(fields, ',');
+      if (fields.size() < 2 || fields[0] != "id" || fields[1] != "deadlock")
+        return err(line, "expected the header 'id,deadlock,...' of `netlift "
+                         "reach --format csv`");
+      std::vector<std::string> names;
+      for (size_t i = 2; i < fields.size(); ++i)
+        names.push_back(fields[i].str());
+      std::vector<bool> places(names.size(), false);
+      return rows.setColumns(std::move(names), std::move(places),
+                             llvm::SMLoc::getFromPointer(line.data()));
+    }
+    if (!csvIntegers(line, values, why))
+      return err(line, why);
+    if (values.size() != rows.numColumns() + 2)
+      return err(line, "expected " + llvm::Twine(rows.numColumns() + 2) +
+                           " fields, found " + llvm::Twine(values.size()));
+    row.assign(values.begin() + 2, values.end());
+    std::string problem = rows.addState(values[0], values[1] != 0, row);
+    return problem.empty() || err(line, problem);
+  });
+  if (!ok || !edgesID)
+    return ok;
+  // Edges `from,label,to` (reach --edges); labels never contain a line
+  // end but may be quoted with commas inside, so from and to are the first
+  // and the last field.
+  return lines(edgesID, [&](StringRef line, size_t n) {
+    if (n == 0) {
+      if (line != "from,label,to")
+        return err(line, "expected the header 'from,label,to' of `netlift "
+                         "reach --edges`");
+      return true;
+    }
+    int64_t from, to;
+    if (line.substr(0, line.find(',')).getAsInteger(10, from) ||
+        line.substr(line.rfind(',') + 1).getAsInteger(10, to))
+      return err(line, "expected 'from,label,to' with state numbers");
+    std::string problem = rows.addEdge(from, to);
+    return problem.empty() || err(line, problem);
+  });
 }

@@ -1,7 +1,8 @@
 //===- StateFile.h - state spaces read back from `reach` JSON ---*- C++ -*-===//
 //
 // Structural reasoning over a state space explored earlier: reads the JSON
-// that `netlift reach --format json` writes (docs/formats.md), in one pass
+// that `netlift reach --format json` writes (docs/formats.md), or its CSV
+// (`--format csv` and `--edges`), in one pass
 // and without building a document, so that a file of 10^7 states is
 // classified with memory for one row, the regions and one region number per
 // state (the edges refer to states by number). Attributes are the file's
@@ -42,6 +43,14 @@ struct StateFileResult {
 bool analyseStateFile(unsigned bufferID, DiagEngine &diag,
                       const std::vector<StateFileAttribute> &attrs,
                       Analysis &analysis, StateFileResult &result);
+
+/// The same over `reach --format csv` output: the states file (header
+/// `id,deadlock,<attribute>...`) and, if `edgesID` is not 0, the edges file
+/// (`from,label,to`, written by `reach --edges`). Without edges the
+/// attribute graph has no edges.
+bool analyseStateCsv(unsigned statesID, unsigned edgesID, DiagEngine &diag,
+                     const std::vector<StateFileAttribute> &attrs,
+                     Analysis &analysis, StateFileResult &result);
 
 } // namespace netlift::structural
 

@@ -303,8 +303,11 @@ static cl::opt<GraphFormat> reachFormat(
                           "ViVe-style reachability graph text")),
     cl::sub(reachCmd), cl::cat(category));
 static cl::opt<std::string>
-    reachEdges("edges", cl::desc("Also write the edges as CSV to FILE"),
-               cl::value_desc("FILE"), cl::sub(reachCmd), cl::cat(category));
+    reachEdges("edges",
+               cl::desc("reach: also write the edges as CSV to FILE; sr: "
+                        "read them from FILE (with a CSV state file)"),
+               cl::value_desc("FILE"), cl::sub(reachCmd), cl::sub(srCmd),
+               cl::cat(category));
 static cl::opt<std::string>
     reachSummary("summary",
                  cl::desc("Print a summary: 'json' or 'text' (default)"),
@@ -865,20 +868,28 @@ static int runSr() {
   html.title = llvm::sys::path::filename(srInput).str();
   bool complete = true;
 
+  llvm::StringRef ext = llvm::sys::path::extension(srInput);
+  bool csv =
+      inputFormat == "states-csv" || (inputFormat.empty() && ext == ".csv");
   bool stateFile =
-      inputFormat == "states" ||
-      (inputFormat.empty() && llvm::sys::path::extension(srInput) == ".json");
+      csv || inputFormat == "states" || (inputFormat.empty() && ext == ".json");
+  if (!reachEdges.empty() && !csv) {
+    llvm::errs() << "netlift: error: --edges goes with a CSV state file\n";
+    return 1;
+  }
   if (stateFile) {
-    // A state space written by `reach --format json`, streamed.
+    // A state space written by `reach --format json|csv`, streamed.
     unsigned id = addInputFile(sm, srInput);
-    if (!id)
+    unsigned edgesID = reachEdges.empty() ? 0 : addInputFile(sm, reachEdges);
+    if (!id || (!reachEdges.empty() && !edgesID))
       return 1;
     std::vector<structural::StateFileAttribute> attrs;
     for (size_t i = 0; i < names.size(); ++i)
       attrs.push_back({names[i], plain[i] ? nullptr : preds[i]});
     structural::StateFileResult sr;
     sr.collectExamples = srReport == "html";
-    if (!structural::analyseStateFile(id, diag, attrs, an, sr))
+    if (csv ? !structural::analyseStateCsv(id, edgesID, diag, attrs, an, sr)
+            : !structural::analyseStateFile(id, diag, attrs, an, sr))
       return 1;
     complete = sr.complete;
     html.examples = std::move(sr.examples);
