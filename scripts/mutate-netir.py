@@ -69,11 +69,17 @@ def main():
                 data = mutate(rng, data)
             with open(path, "wb") as f:
                 f.write(data)
-            commands = ([["mealy", path], ["mealy", path, "--minimize", "--to", "dot"],
-                          ["edit-automaton", path]] if ext in AUTOMATA else
-                         [["translate", path], ["opt", path, "-p", "flatten"],
-                          ["reach", path, "-q", "--max-states", "2000",
-                           "--time-limit", "5"]])
+            if ext in AUTOMATA:
+                commands = [["mealy", path], ["mealy", path, "--minimize", "--to", "dot"],
+                            ["edit-automaton", path]]
+            elif ext in (".json", ".csv"):
+                # State files (sr) and built edit automata (edit-automaton).
+                commands = [["sr", path, "--attr", "x=1 == 1"],
+                            ["edit-automaton", path, "--from", "json"]]
+            else:
+                commands = [["translate", path], ["opt", path, "-p", "flatten"],
+                            ["reach", path, "-q", "--max-states", "2000",
+                             "--time-limit", "5"]]
             for args in commands:
                 try:
                     r = subprocess.run([netlift] + args, capture_output=True, timeout=20)
