@@ -897,7 +897,7 @@ static int runSr() {
     std::vector<std::string> inputs{srInput};
     if (!loadInputs(inputs, inputFormat, diag, design))
       return 1;
-    net::Module *top = explorableTop(design, diag, "", "sr");
+    net::Module *top = explorableTop(design, diag, plcTop, "sr");
     if (!top)
       return 1;
     for (net::Expr *e : preds)
