@@ -424,11 +424,31 @@ static int writeDesign(const net::Design &design) {
              : 1;
 }
 
+/// translate, opt and emit write the whole design: `--top` only chooses
+/// what a PLC frontend translates. Given with NetIR input alone it would
+/// do nothing, so it is refused rather than ignored.
+static bool topUsable(const std::vector<std::string> &inputs,
+                      llvm::StringRef command) {
+  if (plcTop.empty())
+    return true;
+  for (const std::string &in : inputs)
+    if (!(inputFormat == "net" ||
+          (inputFormat.empty() && llvm::sys::path::extension(in) == ".net")))
+      return true;
+  llvm::errs() << "netlift: error: " << command
+               << ": --top selects the program a PLC frontend translates; "
+                  "NetIR input is written whole (explore one module with "
+                  "reach --top, flatten one with opt -p 'flatten{top="
+               << plcTop << "}')\n";
+  return false;
+}
+
 static int runTranslate() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
   net::Design design;
-  if (!loadInputs(translateInputs, inputFormat, diag, design))
+  if (!topUsable(translateInputs, "translate") ||
+      !loadInputs(translateInputs, inputFormat, diag, design))
     return 1;
   return writeDesign(design);
 }
@@ -457,7 +477,8 @@ static int runOpt() {
     return 1;
   net::Design design;
   std::vector<std::string> inputs{optInput};
-  if (!loadInputs(inputs, inputFormat, diag, design))
+  if (!topUsable(inputs, "opt") ||
+      !loadInputs(inputs, inputFormat, diag, design))
     return 1;
   pm.verifyEach = verifyEach;
   if (printAfterAll)
@@ -484,7 +505,8 @@ static int runEmit() {
   DiagEngine diag(sm);
   net::Design design;
   std::vector<std::string> inputs{emitInput};
-  if (!loadInputs(inputs, inputFormat, diag, design))
+  if ((emitFormat != EmitFormat::Promela && !topUsable(inputs, "emit")) ||
+      !loadInputs(inputs, inputFormat, diag, design))
     return 1;
   if (emitFormat == EmitFormat::Promela) {
     net::Module *top = explorableTop(design, diag, plcTop, "emit");
