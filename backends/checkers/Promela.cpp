@@ -1,11 +1,13 @@
 //===- Promela.cpp - flat modules as Promela models for spin --------------===//
 #include "backends/checkers/Promela.h"
+#include "backends/checkers/PtSubset.h"
 
 #include <string>
 #include <vector>
 
 using namespace netlift;
 using namespace netlift::net;
+using namespace netlift::checkers;
 
 namespace {
 /// A Promela identifier for place `i`: its index keeps names unique, the
@@ -27,70 +29,11 @@ const char *typeFor(int64_t hi) {
   return "int";
 }
 
-/// Net effect of a transition on each place it touches, in arc order.
-struct PlaceEffect {
-  uint32_t place;
-  int64_t pre = 0, post = 0;
-};
-std::vector<PlaceEffect> effects(const Transition &t) {
-  std::vector<PlaceEffect> out;
-  auto of = [&](uint32_t p) -> PlaceEffect & {
-    for (PlaceEffect &e : out)
-      if (e.place == p)
-        return e;
-    return out.emplace_back(PlaceEffect{p});
-  };
-  for (const PreArc &a : t.pre())
-    of(a.place).pre += a.weight;
-  for (const PostArc &a : t.post())
-    of(a.place).post += a.weight;
-  return out;
-}
-
-/// The first construct of `m` the encoding does not cover, reported.
-bool refuseUncovered(const Module &m, DiagEngine &diag) {
-  const char *why = "the Promela export covers place/transition nets "
-                    "(weights, capacities, urgency) so far";
-  for (const Port &p : m.ports)
-    if (p.isInput()) {
-      diag.error(p.loc, "free input '" + p.name +
-                            "' cannot be exported to "
-                            "Promela: " +
-                            why);
-      return false;
-    } else if (p.isStored()) {
-      diag.error(p.loc, "stored output '" + p.name +
-                            "' cannot be exported to Promela: " + why);
-      return false;
-    }
-  for (const Var &v : m.vars) {
-    diag.error(v.loc, "variable '" + v.name +
-                          "' cannot be exported to Promela: " + why);
-    return false;
-  }
-  for (const Transition &t : m.transitions) {
-    const char *what = t.isForced()         ? "an event arc"
-                       : !t.conds().empty() ? "a condition arc"
-                       : t.guard()          ? "a guard"
-                       : t.hasAction()      ? "an action"
-                                            : nullptr;
-    for (const PreArc &a : t.pre())
-      if (!what && !a.time.isTrivial())
-        what = "a timed arc";
-    if (what) {
-      diag.error(t.loc,
-                 "transition '" + t.name + "' has " + what +
-                     ", which the Promela export does not cover: " + why);
-      return false;
-    }
-  }
-  return true;
-}
 } // namespace
 
 bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
                             DiagEngine &diag, llvm::raw_ostream &os) {
-  if (!refuseUncovered(m, diag))
+  if (!refuseBeyondPt(m, "Promela", diag))
     return false;
   std::vector<std::string> names;
   for (uint32_t p = 0; p < m.places.size(); ++p)
@@ -105,7 +48,7 @@ bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
     auto conj = [&](const std::string &c) {
       cond += (cond.empty() ? "" : " && ") + c;
     };
-    for (const PlaceEffect &e : effects(t)) {
+    for (const PlaceEffect &e : placeEffects(t)) {
       const std::string &n = names[e.place];
       if (e.pre > 0)
         conj(n + " >= " + std::to_string(e.pre));
@@ -138,7 +81,7 @@ bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
           guard += " && !" + enabling[u];
     os << "  :: d_step { " << guard << " ->\n";
     bool any = false;
-    for (const PlaceEffect &e : effects(t)) {
+    for (const PlaceEffect &e : placeEffects(t)) {
       int64_t gain = e.post - e.pre;
       if (gain == 0)
         continue;

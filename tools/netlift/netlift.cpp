@@ -6,6 +6,7 @@
 // renamed into place, so an error never leaves a half-written file behind.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/checkers/PnmlWriter.h"
 #include "backends/checkers/Promela.h"
 #include "backends/enforce/EditAutomatonJson.h"
 #include "backends/enforce/Enforce.h"
@@ -278,7 +279,7 @@ static cl::opt<bool> showStats("stats",
                                         "stderr"),
                                cl::sub(optCmd), cl::cat(category));
 
-enum class EmitFormat { Net, Dot, Promela };
+enum class EmitFormat { Net, Dot, Promela, Pnml };
 static cl::opt<EmitFormat>
     emitFormat("to", cl::desc("Output format"), cl::Required,
                cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
@@ -287,7 +288,10 @@ static cl::opt<EmitFormat>
                                      "net"),
                           clEnumValN(EmitFormat::Promela, "promela",
                                      "Promela for spin (the flattened top; "
-                                     "place/transition nets)")),
+                                     "place/transition nets)"),
+                          clEnumValN(EmitFormat::Pnml, "pnml",
+                                     "PNML P/T net (the flattened top; "
+                                     "capacities as complementary places)")),
                cl::sub(emitCmd), cl::cat(category));
 
 enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
@@ -505,18 +509,26 @@ static int runEmit() {
   DiagEngine diag(sm);
   net::Design design;
   std::vector<std::string> inputs{emitInput};
-  if ((emitFormat != EmitFormat::Promela && !topUsable(inputs, "emit")) ||
+  bool flatTop =
+      emitFormat == EmitFormat::Promela || emitFormat == EmitFormat::Pnml;
+  if ((!flatTop && !topUsable(inputs, "emit")) ||
       !loadInputs(inputs, inputFormat, diag, design))
     return 1;
-  if (emitFormat == EmitFormat::Promela) {
+  if (flatTop) {
+    // Checker formats take the flattened top module.
     net::Module *top = explorableTop(design, diag, plcTop, "emit");
     if (!top)
       return 1;
-    sem::StateLayout layout(*top, sem::Options().unboundedBits);
     std::string text;
     llvm::raw_string_ostream buf(text);
-    if (!checkers::writePromela(*top, layout, diag, buf))
-      return 1;
+    if (emitFormat == EmitFormat::Pnml) {
+      if (!checkers::writePnml(*top, diag, buf))
+        return 1;
+    } else {
+      sem::StateLayout layout(*top, sem::Options().unboundedBits);
+      if (!checkers::writePromela(*top, layout, diag, buf))
+        return 1;
+    }
     return writeOutput(outputFile, [&](llvm::raw_ostream &os) { os << text; })
                ? 0
                : 1;
@@ -531,6 +543,7 @@ static int runEmit() {
                          writeDot(design, os);
                          break;
                        case EmitFormat::Promela:
+                       case EmitFormat::Pnml:
                          break; // above
                        }
                      })
