@@ -81,15 +81,15 @@ int64_t valueOf(sem::Semantics &sem, const Attribute &a,
 } // namespace
 
 std::string netlift::statespace::describeState(sem::Semantics &sem,
-                                              const uint64_t *state,
-                                              llvm::StringRef separator) {
+                                               const uint64_t *state,
+                                               llvm::StringRef separator) {
   std::string out;
   for (const Attribute &a : attributes(sem)) {
     int64_t v = valueOf(sem, a, state);
     if (a.kind == Attribute::Place && v == 0)
       continue; // markings list the marked places only
-    out += (out.empty() ? "" : separator.str()) + a.name + "=" +
-           std::to_string(v);
+    out +=
+        (out.empty() ? "" : separator.str()) + a.name + "=" + std::to_string(v);
   }
   return out;
 }
