@@ -6,6 +6,7 @@
 // renamed into place, so an error never leaves a half-written file behind.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/checkers/Ctl.h"
 #include "backends/checkers/PnmlWriter.h"
 #include "backends/checkers/Promela.h"
 #include "backends/enforce/EditAutomatonJson.h"
@@ -80,6 +81,9 @@ static cl::SubCommand
           "Structural reasoning over a model's state space: regions of "
           "selected attributes, attribute graph, densities, necklaces, key "
           "attributes");
+static cl::SubCommand checkCmd("check",
+                               "Check CTL properties on a model's state space "
+                               "(docs/check.md)");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -194,7 +198,7 @@ static cl::opt<std::string>
                 cl::value_desc("format"), cl::sub(translateCmd),
                 cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
                 cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
-                cl::sub(srCmd), cl::cat(category));
+                cl::sub(srCmd), cl::sub(checkCmd), cl::cat(category));
 
 // Options of the PLC frontends (ST, TwinCAT), for every command that reads
 // a model.
@@ -205,7 +209,7 @@ static cl::opt<std::string>
            cl::value_desc("NAME"), cl::sub(translateCmd), cl::sub(optCmd),
            cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
            cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
-           cl::cat(category));
+           cl::sub(checkCmd), cl::cat(category));
 static cl::alias plcModule("module", cl::desc("Alias for --top"),
                            cl::aliasopt(plcTop));
 static cl::opt<std::string> plcTimescale(
@@ -342,7 +346,13 @@ static cl::opt<sem::Timing> reachTiming(
 static cl::opt<uint64_t> reachMaxStates("max-states",
                                         cl::desc("Stop after N states"),
                                         cl::init(0), cl::sub(reachCmd),
-                                        cl::cat(category));
+                                        cl::sub(checkCmd), cl::cat(category));
+static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
+                                       cl::Required, cl::sub(checkCmd));
+static cl::list<std::string>
+    checkFormulas("ctl", cl::desc("A CTL property (repeatable)"),
+                  cl::value_desc("FORMULA"), cl::sub(checkCmd),
+                  cl::cat(category));
 static cl::opt<std::string>
     reachMaxMemory("max-memory",
                    cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
@@ -1029,6 +1039,104 @@ static int runSr() {
   return complete ? 0 : 2;
 }
 
+/// `netlift check`: explores the model, then checks each CTL property on
+/// the state space (docs/check.md). Exit 0 all hold, 3 some fail, 2 the
+/// exploration was stopped by a limit, 1 an error.
+static int runCheck() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  if (checkFormulas.empty()) {
+    llvm::errs() << "netlift: error: check needs a property (--ctl FORMULA)\n";
+    return 1;
+  }
+  net::Design design;
+  std::vector<std::string> inputs{checkInput};
+  if (!loadInputs(inputs, inputFormat, diag, design))
+    return 1;
+  net::Module *top = explorableTop(design, diag, plcTop, "check");
+  if (!top)
+    return 1;
+  std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
+  for (size_t i = 0; i < checkFormulas.size(); ++i) {
+    unsigned id = sm.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(
+            checkFormulas[i], "<ctl " + std::to_string(i + 1) + ">"),
+        llvm::SMLoc());
+    auto f = checkers::parseCtl(id, diag, design, *top);
+    if (!f)
+      return 1;
+    formulas.push_back(std::move(f));
+  }
+  sem::Options so;
+  sem::StateLayout layout(*top, so.unboundedBits);
+  sem::Semantics semantics(*top, layout, so);
+  statespace::ExploreOptions eo;
+  eo.recordEdges = true;
+  eo.maxStates = reachMaxStates;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  explorer.run(r);
+  if (r.error) {
+    llvm::errs() << "netlift: error: runtime error: " << r.error->message
+                 << "\n";
+    return 1;
+  }
+  if (!r.complete) {
+    llvm::outs() << "undecided: the exploration stopped at a limit ("
+                 << explorer.store().size() << " states)\n";
+    return 2;
+  }
+  // The graph in CSR form, edges of one state together.
+  checkers::CtlGraph g;
+  size_t n = explorer.store().size();
+  g.deadlock.assign(n, 0);
+  for (uint32_t d : r.deadlocks)
+    g.deadlock[d] = 1;
+  g.succStart.assign(n + 1, 0);
+  for (const statespace::Edge &e : explorer.edges())
+    ++g.succStart[e.from + 1];
+  for (size_t i = 0; i < n; ++i)
+    g.succStart[i + 1] += g.succStart[i];
+  g.succ.resize(explorer.edges().size());
+  std::vector<uint32_t> fill(g.succStart.begin(), g.succStart.end() - 1);
+  for (const statespace::Edge &e : explorer.edges())
+    g.succ[fill[e.from]++] = e.to;
+  sem::RuntimeError err;
+  auto atomValue = [&](const net::Expr *e, uint32_t s) {
+    return semantics.evalPredicate(e, explorer.store().state(s), err);
+  };
+  bool allHold = true;
+  for (const auto &f : formulas) {
+    std::vector<uint8_t> sat = checkers::evaluateCtl(*f, g, atomValue);
+    bool holds = sat[0];
+    allHold = allHold && holds;
+    llvm::outs() << checkers::ctlToString(*f) << ": "
+                 << (holds ? "holds" : "fails") << "\n";
+    // Shortest traces (states are numbered in breadth-first order): a
+    // counterexample to AG p, a witness of EF p.
+    using K = checkers::CtlFormula;
+    if ((f->kind == K::AG && !holds) || (f->kind == K::EF && holds)) {
+      std::vector<uint8_t> inner = checkers::evaluateCtl(*f->lhs, g, atomValue);
+      bool want = f->kind == K::EF;
+      for (uint32_t s = 0; s < n; ++s)
+        if (bool(inner[s]) == want) {
+          llvm::outs() << (want ? "witness" : "counterexample")
+                       << ": a shortest path to a state where "
+                       << checkers::ctlToString(*f->lhs)
+                       << (want ? " holds" : " does not hold") << "\n";
+          statespace::writeTrace(explorer, semantics, s, llvm::outs());
+          break;
+        }
+    }
+  }
+  if (!err.message.empty()) {
+    llvm::errs() << "netlift: error: runtime error in a property: "
+                 << err.message << "\n";
+    return 1;
+  }
+  return allHold ? 0 : 3;
+}
+
 /// Exit codes of `reach` (docs/reach.md): 0 complete, 1 error, 2 a limit
 /// stopped the search, 3 the property checked is violated.
 static int runReach() {
@@ -1186,6 +1294,7 @@ int main(int argc, char **argv) {
           "[--minimize]\n"
           "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
           "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
+          "  netlift check MODEL --ctl FORMULA...\n"
           "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] [--ev "
           "F.svg] "
           "[--ag FILE.dot]\n\n"
@@ -1210,6 +1319,8 @@ int main(int argc, char **argv) {
     return runEnforce();
   if (srCmd)
     return runSr();
+  if (checkCmd)
+    return runCheck();
   llvm::errs()
       << "netlift: error: no subcommand given (translate, opt, "
          "emit, reach, sr, mealy, edit-automaton, enforce); see netlift "
