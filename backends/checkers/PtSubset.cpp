@@ -5,21 +5,6 @@ using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::checkers;
 
-std::vector<PlaceEffect> checkers::placeEffects(const Transition &t) {
-  std::vector<PlaceEffect> out;
-  auto of = [&](uint32_t p) -> PlaceEffect & {
-    for (PlaceEffect &e : out)
-      if (e.place == p)
-        return e;
-    return out.emplace_back(PlaceEffect{p});
-  };
-  for (const PreArc &a : t.pre())
-    of(a.place).pre += a.weight;
-  for (const PostArc &a : t.post())
-    of(a.place).post += a.weight;
-  return out;
-}
-
 bool checkers::refuseBeyondPt(const Module &m, llvm::StringRef format,
                               DiagEngine &diag) {
   std::string why = ("the " + format +

@@ -4,8 +4,7 @@
 // place/transition part of NetIR: places with weights, capacities and
 // urgency. This unit finds the first construct outside it (a free input, a
 // stored output, a variable, an event or condition arc, a guard, an
-// action, a timed arc) and reports it by name and place, and gives each
-// transition's net effect per place, which both encodings need.
+// action, a timed arc) and reports it by name and place.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_BACKENDS_CHECKERS_PTSUBSET_H
@@ -14,22 +13,12 @@
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
-#include <vector>
-
 namespace netlift::checkers {
 
 /// False after an error at the first construct of flat module `m` that a
 /// P/T export to `format` cannot carry.
 bool refuseBeyondPt(const net::Module &m, llvm::StringRef format,
                     DiagEngine &diag);
-
-/// Tokens a transition takes from and puts into one place (arcs to the
-/// same place summed), in order of first mention.
-struct PlaceEffect {
-  uint32_t place;
-  int64_t pre = 0, post = 0;
-};
-std::vector<PlaceEffect> placeEffects(const net::Transition &t);
 
 } // namespace netlift::checkers
 

@@ -193,3 +193,20 @@ Module *Design::findTop(StringRef name, std::string &why) const {
                           : "every module is instantiated by another";
   return top;
 }
+
+std::vector<netlift::net::PlaceEffect>
+netlift::net::placeEffects(const Transition &t) {
+  std::vector<PlaceEffect> out;
+  // A handful of arcs: a linear search is the fastest map.
+  auto of = [&](uint32_t p) -> PlaceEffect & {
+    for (PlaceEffect &e : out)
+      if (e.place == p)
+        return e;
+    return out.emplace_back(PlaceEffect{p});
+  };
+  for (const PreArc &a : t.pre())
+    of(a.place).pre += a.weight;
+  for (const PostArc &a : t.post())
+    of(a.place).post += a.weight;
+  return out;
+}

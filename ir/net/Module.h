@@ -286,6 +286,15 @@ struct Timescale {
 };
 
 /// Everything one .net file holds; owns all memory of its modules.
+/// Tokens a transition takes from and puts into one place (its arcs to the
+/// place summed per side), places in order of first mention: what the
+/// compiled P/T kernel and the P/T exports work with.
+struct PlaceEffect {
+  uint32_t place;
+  uint64_t pre = 0, post = 0;
+};
+std::vector<PlaceEffect> placeEffects(const Transition &t);
+
 class Design {
 public:
   Design();

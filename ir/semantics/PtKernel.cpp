@@ -41,28 +41,12 @@ PtKernel::compile(const Module &m, const StateLayout &L, const Options &opts) {
   std::unique_ptr<PtKernel> k(new PtKernel(L));
   k->words = L.numWords();
   for (const Transition &t : m.transitions) {
-    // Pre- and post-weight per place, in first-mention order (a handful
-    // of arcs: a linear search is the fastest map).
-    struct PlaceArcs {
-      uint32_t place;
-      uint64_t pre = 0, post = 0;
-    };
-    llvm::SmallVector<PlaceArcs, 8> arcs;
-    auto arcsOf = [&](uint32_t p) -> PlaceArcs & {
-      for (PlaceArcs &a : arcs)
-        if (a.place == p)
-          return a;
-      return arcs.emplace_back(PlaceArcs{p});
-    };
-    for (const PreArc &a : t.pre())
-      arcsOf(a.place).pre += a.weight;
-    for (const PostArc &a : t.post())
-      arcsOf(a.place).post += a.weight;
+    std::vector<PlaceEffect> arcs = placeEffects(t);
     Compiled c{};
     c.urgent = t.urgent;
     bool never = false;
     uint32_t lo = UINT32_MAX, hi = 0;
-    for (const PlaceArcs &a : arcs) {
+    for (const PlaceEffect &a : arcs) {
       const Slot &s = L.slots()[L.markingSlot(a.place)];
       if (a.pre > uint64_t(s.hi))
         never = true; // demands more than the place can ever hold
@@ -112,7 +96,7 @@ PtKernel::compile(const Module &m, const StateLayout &L, const Options &opts) {
           }
         k->masks.push_back({word, bit});
       };
-      for (const PlaceArcs &a : arcs) {
+      for (const PlaceEffect &a : arcs) {
         uint32_t slot = L.markingSlot(a.place);
         const Slot &s = L.slots()[slot];
         if (a.pre == 1 && s.width == 1)
