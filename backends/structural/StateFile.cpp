@@ -2,6 +2,7 @@
 #include "backends/structural/StateFile.h"
 
 #include "ir/net/Printer.h"
+#include "ir/net/ScalarOps.h"
 
 #include "llvm/Support/MemoryBuffer.h"
 
@@ -243,89 +244,56 @@ public:
     return false;
   }
 
-  /// The value of `e` on `row`; `error` set (and 0 returned) on division by
-  /// zero.
+  /// The value of `e` on `row` (NetIR's operators, net/ScalarOps.h);
+  /// `error` set and 0 returned where it has none.
   int64_t eval(const Expr *e, const std::vector<int64_t> &row,
                std::string &error) const {
+    int64_t r = 0;
+    OpError err = OpError::None;
     switch (e->getKind()) {
     case ExprKind::IntLit:
       return llvm::cast<IntLit>(e)->value;
     case ExprKind::BoolLit:
       return llvm::cast<BoolLit>(e)->value;
-    case ExprKind::RealLit:
+    case ExprKind::RealLit: // refused by resolve()
       return 0;
     case ExprKind::Ref:
     case ExprKind::Field:
     case ExprKind::Index:
       return row[column.at(e)];
-    case ExprKind::Unary: {
-      auto *u = llvm::cast<UnaryExpr>(e);
-      int64_t a = eval(u->operand, row, error);
-      return u->op == UnaryOp::Not ? !a : u->op == UnaryOp::Neg ? -a : ~a;
-    }
     case ExprKind::Cond: {
       auto *c = llvm::cast<CondExpr>(e);
       return eval(c->cond, row, error) ? eval(c->thenExpr, row, error)
                                        : eval(c->elseExpr, row, error);
     }
+    case ExprKind::Unary: {
+      auto *u = llvm::cast<UnaryExpr>(e);
+      err = applyUnary(u, eval(u->operand, row, error), r);
+      break;
+    }
     case ExprKind::Call: {
       auto *c = llvm::cast<CallExpr>(e);
       int64_t a = eval(c->args[0], row, error);
-      if (c->fn == Builtin::Abs)
-        return a < 0 ? -a : a;
-      int64_t b = eval(c->args[1], row, error);
-      return c->fn == Builtin::Min ? std::min(a, b) : std::max(a, b);
-    }
-    case ExprKind::Binary:
+      int64_t b = c->fn == Builtin::Abs ? 0 : eval(c->args[1], row, error);
+      err = applyBuiltin(c, a, b, r);
       break;
     }
-    auto *b = llvm::cast<BinaryExpr>(e);
-    if (b->op == BinaryOp::And)
-      return eval(b->lhs, row, error) && eval(b->rhs, row, error);
-    if (b->op == BinaryOp::Or)
-      return eval(b->lhs, row, error) || eval(b->rhs, row, error);
-    int64_t x = eval(b->lhs, row, error), y = eval(b->rhs, row, error);
-    switch (b->op) {
-    case BinaryOp::Xor:
-      return (x != 0) != (y != 0);
-    case BinaryOp::Eq:
-      return x == y;
-    case BinaryOp::Ne:
-      return x != y;
-    case BinaryOp::Lt:
-      return x < y;
-    case BinaryOp::Le:
-      return x <= y;
-    case BinaryOp::Gt:
-      return x > y;
-    case BinaryOp::Ge:
-      return x >= y;
-    case BinaryOp::BitOr:
-      return x | y;
-    case BinaryOp::BitXor:
-      return x ^ y;
-    case BinaryOp::BitAnd:
-      return x & y;
-    case BinaryOp::Shl:
-      return int64_t(uint64_t(x) << (y & 63));
-    case BinaryOp::Shr:
-      return x >> (y & 63);
-    case BinaryOp::Add:
-      return int64_t(uint64_t(x) + uint64_t(y));
-    case BinaryOp::Sub:
-      return int64_t(uint64_t(x) - uint64_t(y));
-    case BinaryOp::Mul:
-      return int64_t(uint64_t(x) * uint64_t(y));
-    case BinaryOp::Div:
-    case BinaryOp::Mod:
-      if (y == 0 || (x == INT64_MIN && y == -1)) {
-        error = "division by zero or overflow in '" + exprToString(b) + "'";
-        return 0;
-      }
-      return b->op == BinaryOp::Div ? x / y : x % y;
-    default:
-      return 0;
+    case ExprKind::Binary: {
+      auto *b = llvm::cast<BinaryExpr>(e);
+      if (b->op == BinaryOp::And)
+        return eval(b->lhs, row, error) && eval(b->rhs, row, error);
+      if (b->op == BinaryOp::Or)
+        return eval(b->lhs, row, error) || eval(b->rhs, row, error);
+      int64_t x = eval(b->lhs, row, error), y = eval(b->rhs, row, error);
+      err = applyBinary(b, x, y, r);
+      if (err != OpError::None && error.empty())
+        error = opErrorMessage(err, e, y);
+      return err == OpError::None ? r : 0;
     }
+    }
+    if (err != OpError::None && error.empty())
+      error = opErrorMessage(err, e, 0);
+    return err == OpError::None ? r : 0;
   }
 
 private:

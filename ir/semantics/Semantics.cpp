@@ -7,6 +7,8 @@
 //
 //===----------------------------------------------------------------------===//
 #include "ir/semantics/Semantics.h"
+
+#include "ir/net/ScalarOps.h"
 #include "ir/semantics/PtKernel.h"
 
 #include "ir/net/Printer.h"
@@ -205,18 +207,10 @@ struct Semantics::Impl {
     }
     case ExprKind::Unary: {
       auto *u = cast<UnaryExpr>(e);
-      int64_t a = eval(u->operand, v);
-      switch (u->op) {
-      case UnaryOp::Not:
-        return !a;
-      case UnaryOp::Neg:
-        if (a == INT64_MIN)
-          fail(e, "arithmetic overflow");
-        return -a;
-      case UnaryOp::BitNot:
-        return ~a;
-      }
-      return 0;
+      int64_t a = eval(u->operand, v), r;
+      if (OpError err = applyUnary(u, a, r); err != OpError::None)
+        fail(e, opErrorMessage(err, e, 0));
+      return r;
     }
     case ExprKind::Binary:
       return evalBinary(cast<BinaryExpr>(e), v);
@@ -226,18 +220,11 @@ struct Semantics::Impl {
     }
     case ExprKind::Call: {
       auto *c = cast<CallExpr>(e);
-      int64_t a = eval(c->args[0], v);
-      switch (c->fn) {
-      case Builtin::Abs:
-        if (a == INT64_MIN)
-          fail(e, "arithmetic overflow");
-        return a < 0 ? -a : a;
-      case Builtin::Min:
-        return std::min(a, eval(c->args[1], v));
-      case Builtin::Max:
-        return std::max(a, eval(c->args[1], v));
-      }
-      return 0;
+      int64_t a = eval(c->args[0], v), r;
+      int64_t b = c->fn == Builtin::Abs ? 0 : eval(c->args[1], v);
+      if (OpError err = applyBuiltin(c, a, b, r); err != OpError::None)
+        fail(e, opErrorMessage(err, e, 0));
+      return r;
     }
     }
     return 0;
@@ -271,55 +258,10 @@ struct Semantics::Impl {
     default:
       break;
     }
-    int64_t x = eval(b->lhs, v), y = eval(b->rhs, v), r = 0;
-    switch (b->op) {
-    case BinaryOp::Xor:
-      return (x != 0) != (y != 0);
-    case BinaryOp::Eq:
-      return x == y;
-    case BinaryOp::Ne:
-      return x != y;
-    case BinaryOp::Lt:
-      return x < y;
-    case BinaryOp::Le:
-      return x <= y;
-    case BinaryOp::Gt:
-      return x > y;
-    case BinaryOp::Ge:
-      return x >= y;
-    case BinaryOp::BitOr:
-      return x | y;
-    case BinaryOp::BitXor:
-      return x ^ y;
-    case BinaryOp::BitAnd:
-      return x & y;
-    case BinaryOp::Shl:
-    case BinaryOp::Shr:
-      if (y < 0 || y > 63)
-        fail(b, "shift by " + std::to_string(y) + " is outside 0..63");
-      return b->op == BinaryOp::Shl ? int64_t(uint64_t(x) << y) : x >> y;
-    case BinaryOp::Add:
-      if (__builtin_add_overflow(x, y, &r))
-        fail(b, "arithmetic overflow");
-      return r;
-    case BinaryOp::Sub:
-      if (__builtin_sub_overflow(x, y, &r))
-        fail(b, "arithmetic overflow");
-      return r;
-    case BinaryOp::Mul:
-      if (__builtin_mul_overflow(x, y, &r))
-        fail(b, "arithmetic overflow");
-      return r;
-    case BinaryOp::Div:
-    case BinaryOp::Mod:
-      if (y == 0)
-        fail(b, "division by zero in '" + exprToString(b) + "'");
-      if (x == INT64_MIN && y == -1)
-        fail(b, "arithmetic overflow");
-      return b->op == BinaryOp::Div ? x / y : x % y;
-    default:
-      return 0;
-    }
+    int64_t x = eval(b->lhs, v), y = eval(b->rhs, v), r;
+    if (OpError err = applyBinary(b, x, y, r); err != OpError::None)
+      fail(b, opErrorMessage(err, b, y));
+    return r;
   }
 
   // --- Actions ------------------------------------------------------------
