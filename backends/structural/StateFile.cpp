@@ -4,6 +4,7 @@
 #include "ir/net/Printer.h"
 #include "ir/net/ScalarOps.h"
 
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
 
 #include <sys/mman.h>
@@ -154,6 +155,28 @@ public:
     }
     return fail("expected true or false");
   }
+  /// An object, `field(key)` reading each member's value; false after an
+  /// error (an empty object is fine).
+  bool object(llvm::function_ref<bool(const std::string &)> field) {
+    if (!open('{', '}'))
+      return ok;
+    std::string k;
+    do {
+      if (!key(k) || !field(k))
+        return false;
+    } while (more('}'));
+    return ok;
+  }
+  /// An array, `element()` reading each element.
+  bool array(llvm::function_ref<bool()> element) {
+    if (!open('[', ']'))
+      return ok;
+    do {
+      if (!element())
+        return false;
+    } while (more(']'));
+    return ok;
+  }
   bool skipValue() {
     ws();
     if (i >= buf.size())
@@ -162,18 +185,10 @@ public:
     std::string s;
     if (c == '"')
       return string(s);
-    if (c == '{' || c == '[') {
-      char close = c == '{' ? '}' : ']';
-      if (!open(c, close))
-        return ok;
-      do {
-        if (c == '{' && !key(s))
-          return false;
-        if (!skipValue())
-          return false;
-      } while (more(close));
-      return ok;
-    }
+    if (c == '{')
+      return object([&](const std::string &) { return skipValue(); });
+    if (c == '[')
+      return array([&] { return skipValue(); });
     while (i < buf.size() && buf[i] != ',' && buf[i] != '}' && buf[i] != ']' &&
            buf[i] != ' ' && buf[i] != '\n')
       ++i;
@@ -439,121 +454,98 @@ bool netlift::structural::analyseStateFile(
     const std::vector<StateFileAttribute> &attrs, Analysis &analysis,
     StateFileResult &result) {
   const llvm::MemoryBuffer *mb = diag.sourceMgr().getMemoryBuffer(bufferID);
-  StringRef buf = mb->getBuffer();
-  JsonCursor j(buf, diag);
+  JsonCursor j(mb->getBuffer(), diag);
   RowClassifier rows(attrs, diag, analysis, result);
   PageReleaser pages(mb);
   bool sawStates = false;
-  std::string key;
   auto check = [&](const std::string &problem) {
     return problem.empty() || j.fail(problem);
   };
-
-  if (!j.open('{', '}'))
-    return j.ok && j.fail("the state file is empty");
   std::vector<int64_t> row;
-  do {
-    if (!j.key(key))
+
+  auto attribute = [&](std::vector<std::string> &names,
+                       std::vector<bool> &places) {
+    std::string name, kind;
+    if (!j.object([&](const std::string &key) {
+          return key == "name"   ? j.string(name)
+                 : key == "kind" ? j.string(kind)
+                                 : j.skipValue();
+        }))
       return false;
-    if (key == "model") {
-      if (!j.string(result.model))
-        return false;
-    } else if (key == "complete") {
-      if (!j.boolean(result.complete))
-        return false;
-    } else if (key == "attributes") {
+    names.push_back(name);
+    places.push_back(kind == "place");
+    return true;
+  };
+  auto state = [&]() {
+    int64_t id = -1;
+    bool dead = false;
+    row.clear();
+    if (!j.object([&](const std::string &key) {
+          if (key == "id")
+            return j.integer(id);
+          if (key == "deadlock")
+            return j.boolean(dead);
+          if (key == "values")
+            return j.array([&] {
+              int64_t v;
+              if (!j.integer(v))
+                return false;
+              row.push_back(v);
+              return true;
+            });
+          return j.skipValue();
+        }))
+      return false;
+    if (!check(rows.addState(id, dead, row)))
+      return false;
+    if ((id & 0xffff) == 0)
+      pages.readUpTo(j.position());
+    return true;
+  };
+  auto edge = [&]() {
+    int64_t from = -1, to = -1;
+    if (!j.object([&](const std::string &key) {
+          return key == "from" ? j.integer(from)
+                 : key == "to" ? j.integer(to)
+                               : j.skipValue();
+        }))
+      return false;
+    if (!check(rows.addEdge(from, to)))
+      return false;
+    if ((from & 0xffff) == 0)
+      pages.readUpTo(j.position());
+    return true;
+  };
+
+  if (!j.peek('{'))
+    return j.fail("expected a JSON object (a state file of `netlift reach "
+                  "--format json`)");
+  bool ok = j.object([&](const std::string &key) {
+    if (key == "model")
+      return j.string(result.model);
+    if (key == "complete")
+      return j.boolean(result.complete);
+    if (key == "attributes") {
       std::vector<std::string> names;
       std::vector<bool> places;
       llvm::SMLoc at = j.loc();
-      if (j.open('[', ']'))
-        do {
-          if (!j.open('{', '}'))
-            return j.fail("expected an attribute object");
-          std::string name, kind;
-          do {
-            if (!j.key(key))
-              return false;
-            bool okField = key == "name"   ? j.string(name)
-                           : key == "kind" ? j.string(kind)
-                                           : j.skipValue();
-            if (!okField)
-              return false;
-          } while (j.more('}'));
-          names.push_back(name);
-          places.push_back(kind == "place");
-        } while (j.more(']'));
-      if (!j.ok || !rows.setColumns(std::move(names), std::move(places), at))
-        return false;
-    } else if (key == "states") {
+      return j.array([&] { return attribute(names, places); }) &&
+             rows.setColumns(std::move(names), std::move(places), at);
+    }
+    if (key == "states") {
       if (!rows.ready())
         return j.fail("'attributes' must come before 'states'");
       sawStates = true;
-      if (j.open('[', ']'))
-        do {
-          int64_t id = -1;
-          bool dead = false;
-          row.clear();
-          if (!j.open('{', '}'))
-            return j.fail("expected a state object");
-          do {
-            if (!j.key(key))
-              return false;
-            if (key == "id") {
-              if (!j.integer(id))
-                return false;
-            } else if (key == "deadlock") {
-              if (!j.boolean(dead))
-                return false;
-            } else if (key == "values") {
-              if (j.open('[', ']'))
-                do {
-                  int64_t v;
-                  if (!j.integer(v))
-                    return false;
-                  row.push_back(v);
-                } while (j.more(']'));
-              if (!j.ok)
-                return false;
-            } else if (!j.skipValue()) {
-              return false;
-            }
-          } while (j.more('}'));
-          if (!j.ok || !check(rows.addState(id, dead, row)))
-            return false;
-          if ((id & 0xffff) == 0)
-            pages.readUpTo(j.position());
-        } while (j.more(']'));
-      if (!j.ok)
-        return false;
-    } else if (key == "edges") {
+      return j.array(state);
+    }
+    if (key == "edges") {
       if (!sawStates)
         return j.fail("'states' must come before 'edges'");
-      if (j.open('[', ']'))
-        do {
-          int64_t from = -1, to = -1;
-          if (!j.open('{', '}'))
-            return j.fail("expected an edge object");
-          do {
-            if (!j.key(key))
-              return false;
-            bool okField = key == "from" ? j.integer(from)
-                           : key == "to" ? j.integer(to)
-                                         : j.skipValue();
-            if (!okField)
-              return false;
-          } while (j.more('}'));
-          if (!j.ok || !check(rows.addEdge(from, to)))
-            return false;
-          if ((from & 0xffff) == 0)
-            pages.readUpTo(j.position());
-        } while (j.more(']'));
-      if (!j.ok)
-        return false;
-    } else if (!j.skipValue()) {
-      return false;
+      return j.array(edge);
     }
-  } while (j.more('}'));
-  if (!j.ok)
+    return j.skipValue();
+  });
+  if (!ok)
     return false;
   if (!sawStates)
     return j.fail("the file lists no states (is it written by `netlift reach "
