@@ -182,12 +182,6 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
   std::stable_sort(
       pieces.begin(), pieces.end(),
       [](const Piece &x, const Piece &y) { return x.region < y.region; });
-  const auto &counts = a.regionCounts();
-  const auto &dead = a.deadlockCounts();
-  auto countOf = [](const std::map<Region, uint64_t> &m, Region r) {
-    auto it = m.find(r);
-    return it == m.end() ? uint64_t(0) : it->second;
-  };
 
   double width = 2 * kCentre + 260, height = 2 * kCentre;
   os << fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -202,7 +196,7 @@ void netlift::structural::writeEdwardsVenn(const Analysis &a,
   // Regions: all pieces of one region in one group with its tooltip.
   for (size_t i = 0; i < pieces.size();) {
     Region r = pieces[i].region;
-    uint64_t states = countOf(counts, r), deadlocks = countOf(dead, r);
+    uint64_t states = a.statesIn(r), deadlocks = a.deadlocksIn(r);
     std::string fill;
     if (opts.necklaces)
       fill = __builtin_popcount(r) % 2 ? "#3a3a3a" : "#f4f4f4";

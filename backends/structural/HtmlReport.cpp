@@ -75,10 +75,6 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
   auto share = [&](uint64_t n) {
     return fmt::format("{:.2f}%", total ? 100.0 * n / total : 0.0);
   };
-  auto countOf = [](const std::map<Region, uint64_t> &m, Region r) {
-    auto it = m.find(r);
-    return it == m.end() ? uint64_t(0) : it->second;
-  };
 
   os << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">"
      << "\n<title>" << xmlEscape(in.title) << "</title>\n<style>" << kStyle
@@ -146,8 +142,7 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
     os << "<ul id=\"deadlocks\">\n";
     for (auto &[r, d] : a.deadlockCounts())
       os << fmt::format("<li>{}: {} of its {} states are deadlocks</li>\n",
-                        xmlEscape(a.regionName(r)), d,
-                        countOf(a.regionCounts(), r));
+                        xmlEscape(a.regionName(r)), d, a.statesIn(r));
     os << "</ul>\n";
   }
 
@@ -156,8 +151,7 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
         "</th></tr>\n";
   llvm::json::Object info;
   for (Region r = 0; r < (Region(1) << k); ++r) {
-    uint64_t c = countOf(a.regionCounts(), r),
-             d = countOf(a.deadlockCounts(), r);
+    uint64_t c = a.statesIn(r), d = a.deadlocksIn(r);
     auto ex = in.examples.find(r);
     std::string example = ex == in.examples.end() ? "" : ex->second;
     if (c)

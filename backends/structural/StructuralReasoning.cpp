@@ -39,6 +39,16 @@ Analysis::edgeCounts() const {
   return edgeMap;
 }
 
+uint64_t Analysis::statesIn(Region r) const {
+  auto it = counts.find(r);
+  return it == counts.end() ? 0 : it->second;
+}
+
+uint64_t Analysis::deadlocksIn(Region r) const {
+  auto it = deadlocks.find(r);
+  return it == deadlocks.end() ? 0 : it->second;
+}
+
 uint64_t Analysis::attributeCount(size_t i) const {
   uint64_t n = 0;
   for (auto &[r, c] : counts)
@@ -238,14 +248,12 @@ void Analysis::writeText(llvm::raw_ostream &os, bool allRegions) const {
                       states ? double(nk[j]) / states : 0.0);
   os << "\nregions:\n";
   for (Region r = 0; r < (Region(1) << names.size()); ++r) {
-    auto it = counts.find(r);
-    if (it == counts.end() && !allRegions)
+    uint64_t c = statesIn(r), d = deadlocksIn(r);
+    if (c == 0 && !allRegions)
       continue;
-    uint64_t c = it == counts.end() ? 0 : it->second;
     os << "  " << regionName(r) << ": " << c;
-    auto d = deadlocks.find(r);
-    if (d != deadlocks.end())
-      os << " (" << d->second << " deadlocked)";
+    if (d)
+      os << " (" << d << " deadlocked)";
     if (c == 0)
       os << " (never occurs)";
     os << "\n";
@@ -290,15 +298,12 @@ void Analysis::writeJson(llvm::raw_ostream &os, bool allRegions) const {
     });
     j.attributeArray("regions", [&] {
       for (Region r = 0; r < (Region(1) << names.size()); ++r) {
-        auto it = counts.find(r);
-        if (it == counts.end() && !allRegions)
+        if (!statesIn(r) && !allRegions)
           continue;
         j.object([&] {
           j.attribute("region", regionName(r));
-          j.attribute("states", int64_t(it == counts.end() ? 0 : it->second));
-          auto d = deadlocks.find(r);
-          j.attribute("deadlocks",
-                      int64_t(d == deadlocks.end() ? 0 : d->second));
+          j.attribute("states", int64_t(statesIn(r)));
+          j.attribute("deadlocks", int64_t(deadlocksIn(r)));
         });
       }
     });
@@ -331,17 +336,15 @@ void Analysis::writeDot(llvm::raw_ostream &os, bool allRegions) const {
   os << "digraph attribute_graph {\n  node [shape=ellipse, "
         "fontname=Helvetica];\n  edge [fontname=Helvetica, fontsize=10];\n";
   for (Region r = 0; r < (Region(1) << names.size()); ++r) {
-    auto it = counts.find(r);
-    if (it == counts.end() && !allRegions)
+    uint64_t c = statesIn(r), d = deadlocksIn(r);
+    if (c == 0 && !allRegions)
       continue;
-    uint64_t c = it == counts.end() ? 0 : it->second;
     std::string label = regionName(r) + "\\n" + std::to_string(c);
-    auto d = deadlocks.find(r);
-    if (d != deadlocks.end())
-      label += "\\n" + std::to_string(d->second) + " deadlocked";
+    if (d)
+      label += "\\n" + std::to_string(d) + " deadlocked";
     // Filled like the region in the Edwards-Venn diagram.
     os << "  r" << r << " [label=\"" << label << "\""
-       << (d != deadlocks.end() ? ", color=red, penwidth=2" : "")
+       << (d ? ", color=red, penwidth=2" : "")
        << (c == 0 ? ", style=dashed"
                   : ", style=filled, fillcolor=\"" +
                         regionColour(r, names.size()) + "\"")

@@ -42,6 +42,9 @@ public:
   const std::map<Region, uint64_t> &deadlockCounts() const { return deadlocks; }
   /// Edges between (and inside) regions, ordered.
   const std::map<std::pair<Region, Region>, uint64_t> &edgeCounts() const;
+  /// States in region `r` (0 if it never occurs), and its deadlocks.
+  uint64_t statesIn(Region r) const;
+  uint64_t deadlocksIn(Region r) const;
   /// States in which attribute i holds.
   uint64_t attributeCount(size_t i) const;
   /// necklace[j]: states with exactly j attributes.
