@@ -31,6 +31,7 @@ namespace {
 enum class Ctx {
   Signal,   // condition arcs: places and cond ports only
   Guard,    // guards, definitions, action right-hand sides, flows
+  State,    // properties of a state (reach --find, sr, check): no free inputs
   Constant, // initial values, case labels, loop bounds
 };
 
@@ -40,7 +41,7 @@ public:
       : d(d), m(m), diag(diag), types(d.types) {}
   void run();
   bool checkPredicate(Expr *e) {
-    return expectBool(e, Ctx::Guard, "a predicate");
+    return expectBool(e, Ctx::State, "a predicate");
   }
 
 private:
@@ -60,6 +61,9 @@ private:
   const Type *check(Expr *e, Ctx ctx);
   const Type *checkRef(Ref *r, Ctx ctx);
   bool expectBool(Expr *e, Ctx ctx, StringRef what);
+  /// The input port `p` is, or the first one its definition reads.
+  const Port *inputRead(const Port &p);
+  const Port *inputRead(const Expr *e);
   bool checkInit(Expr *init, const Type *type, StringRef what);
   void checkBlock(Block b);
   void checkStmt(Stmt *s);
@@ -380,6 +384,24 @@ const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
     if (ctx == Ctx::Signal && p.kind == PortKind::Data) {
       error(r->loc, "condition arcs carry Boolean signals; data port '" + name +
                         "' belongs in a guard");
+      return nullptr;
+    }
+    // A free input takes every value at every step; no state holds it
+    // (nor an output defined from one).
+    const Port *input = ctx == Ctx::State ? inputRead(p) : nullptr;
+    if (input && input != &p) {
+      error(r->loc, "output '" + name + "' is defined from input '" +
+                        input->name +
+                        "', which is not part of a state: a state property "
+                        "reads places, variables and outputs defined from "
+                        "them");
+      return nullptr;
+    }
+    if (input) {
+      error(r->loc, "input '" + name +
+                        "' is not part of a state (free inputs take every "
+                        "value at every step): a state property reads "
+                        "places, variables and outputs");
       return nullptr;
     }
     t = p.type;
@@ -959,6 +981,50 @@ void checkRecursion(Design &d, DiagEngine &diag) {
   for (auto &m : d.modules)
     if (!visit(m.get()))
       return;
+}
+
+const Port *ModuleVerifier::inputRead(const Port &p) {
+  if (p.isInput())
+    return &p;
+  return p.definition ? inputRead(p.definition) : nullptr;
+}
+
+const Port *ModuleVerifier::inputRead(const Expr *e) {
+  switch (e->getKind()) {
+  case ExprKind::Ref: {
+    auto *r = llvm::cast<Ref>(e);
+    return r->sym.kind == SymKind::Port ? inputRead(m.ports[r->sym.index])
+                                        : nullptr;
+  }
+  case ExprKind::Index: {
+    auto *x = llvm::cast<IndexExpr>(e);
+    const Port *p = inputRead(x->base);
+    return p ? p : inputRead(x->index);
+  }
+  case ExprKind::Field:
+    return inputRead(llvm::cast<FieldExpr>(e)->base);
+  case ExprKind::Unary:
+    return inputRead(llvm::cast<UnaryExpr>(e)->operand);
+  case ExprKind::Binary: {
+    auto *b = llvm::cast<BinaryExpr>(e);
+    const Port *p = inputRead(b->lhs);
+    return p ? p : inputRead(b->rhs);
+  }
+  case ExprKind::Cond: {
+    auto *c = llvm::cast<CondExpr>(e);
+    for (const Expr *x : {c->cond, c->thenExpr, c->elseExpr})
+      if (const Port *p = inputRead(x))
+        return p;
+    return nullptr;
+  }
+  case ExprKind::Call:
+    for (const Expr *a : llvm::cast<CallExpr>(e)->args)
+      if (const Port *p = inputRead(a))
+        return p;
+    return nullptr;
+  default:
+    return nullptr;
+  }
 }
 
 } // namespace
