@@ -163,7 +163,24 @@ bool PipelineParser::parse(
         ++pos;
         skipSpace();
         size_t vstart = pos;
-        while (pos < text.size() && text[pos] != ',' && text[pos] != '}')
+        // A value may itself be a comma-separated list (`points=1,2,3`): a
+        // comma ends it only when the next option `key=` follows.
+        auto startsOption = [&](size_t at) {
+          size_t q = at + 1;
+          while (q < text.size() && isspace((unsigned char)text[q]))
+            ++q;
+          size_t w = q;
+          while (q < text.size() &&
+                 (isalnum((unsigned char)text[q]) || text[q] == '_'))
+            ++q;
+          if (q == w || isdigit((unsigned char)text[w]))
+            return false;
+          while (q < text.size() && isspace((unsigned char)text[q]))
+            ++q;
+          return q < text.size() && text[q] == '=';
+        };
+        while (pos < text.size() && text[pos] != '}' &&
+               !(text[pos] == ',' && startsOption(pos)))
           ++pos;
         StringRef value = text.slice(vstart, pos).trim();
         if (value.empty())
