@@ -27,7 +27,7 @@ static const FrontendInfo *byExtension(StringRef path) {
     llvm::SmallVector<StringRef, 4> exts;
     f.extensions.split(exts, ',');
     for (StringRef e : exts)
-      if (e.trim().equals_insensitive(ext))
+      if (!e.trim().empty() && e.trim().equals_insensitive(ext))
         return &f;
   }
   return nullptr;
@@ -80,6 +80,27 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
   return true;
 }
 
+/// XML dialects share the extension .xml: the root element tells them
+/// apart (the first element after the prolog and comments).
+static const FrontendInfo *sniffXml(StringRef text) {
+  size_t pos = 0;
+  while ((pos = text.find('<', pos)) != StringRef::npos) {
+    StringRef rest = text.substr(pos + 1);
+    if (rest.startswith("?") || rest.startswith("!")) {
+      ++pos;
+      continue;
+    }
+    StringRef root = rest.take_while(
+        [](char c) { return !isspace((unsigned char)c) && c != '>' && c != '/'; });
+    StringRef id = root == "sspaceex" ? "spaceex" : root == "pnml" ? "pnml" : "";
+    for (const FrontendInfo &f : registry)
+      if (!id.empty() && f.id == id)
+        return &f;
+    return nullptr;
+  }
+  return nullptr;
+}
+
 static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
   if (from.empty()) {
     const FrontendInfo *fe = byExtension(path);
@@ -107,6 +128,18 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
     unsigned id = addInputFile(diag.sourceMgr(), path);
     if (!id)
       return false;
+    if (from.empty() &&
+        llvm::sys::path::extension(path).equals_insensitive(".xml")) {
+      fe = sniffXml(diag.sourceMgr().getMemoryBuffer(id)->getBuffer());
+      if (!fe) {
+        llvm::errs() << "netlift: error: '" << path
+                     << "': XML input not recognised (known by their root "
+                        "element: SpaceEx <sspaceex>); name the format with "
+                        "--from\n";
+        return false;
+      }
+      allNet = false;
+    }
     if (!fe->load(id, diag, design))
       return false;
   }

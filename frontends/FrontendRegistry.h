@@ -56,6 +56,8 @@ bool loadStructuredText(unsigned bufferID, DiagEngine &diag,
 bool loadInstructionList(unsigned bufferID, DiagEngine &diag,
                          net::Design &design);
 bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadHybridChart(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadSpaceEx(unsigned bufferID, DiagEngine &diag, net::Design &design);
 
 /// PLC sources are collected across all input files (a program and the
 /// function blocks it uses may live in different files) and translated

@@ -15,6 +15,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
+#include "frontends/XmlSupport.h"
 
 #include "ir/net/Builder.h"
 #include "ir/net/Parser.h"
@@ -45,13 +46,7 @@ public:
 
 private:
   llvm::SMLoc locOf(const pugi::xml_node &n) const {
-    ptrdiff_t off = n.offset_debug();
-    if (off < 0 || size_t(off) > buffer.size())
-      return llvm::SMLoc::getFromPointer(buffer.data());
-    // offset_debug points at the name; the diagnostic points at '<'.
-    if (off > 0 && buffer[off - 1] == '<')
-      --off;
-    return llvm::SMLoc::getFromPointer(buffer.data() + off);
+    return XmlBuffer(buffer).locOf(n);
   }
   bool error(const pugi::xml_node &n, const llvm::Twine &msg) {
     diag.error(locOf(n), msg);
@@ -150,14 +145,8 @@ bool PnmlReader::collect(const pugi::xml_node &page) {
 
 bool PnmlReader::run() {
   pugi::xml_document doc;
-  pugi::xml_parse_result r =
-      doc.load_buffer(buffer.data(), buffer.size(), pugi::parse_default);
-  if (!r) {
-    size_t off = std::min<size_t>(r.offset, buffer.size());
-    diag.error(llvm::SMLoc::getFromPointer(buffer.data() + off),
-               llvm::Twine("malformed XML: ") + r.description());
+  if (!XmlBuffer(buffer).parse(doc, diag))
     return false;
-  }
   pugi::xml_node root = doc.child("pnml");
   if (!root)
     return error(doc.first_child(), "not a PNML file: the root element is <" +

@@ -24,7 +24,7 @@ bool netlift::net::isReservedWord(StringRef n) {
       .Default(false);
 }
 
-namespace {
+namespace netlift::net::detail {
 
 /// Expressions and blocks nest at most this deep; deeper input is refused
 /// rather than allowed to exhaust the stack.
@@ -39,6 +39,19 @@ public:
   }
 
   bool parseFile();
+  // Entry points for EmbeddedParser (formats that embed NetIR syntax).
+  const Token &current() const { return tok; }
+  void advance() { consume(); }
+  bool expectToken(Tok k, StringRef what) { return expect(k, what); }
+  bool reportHere(const llvm::Twine &msg) { return errorHere(msg); }
+  bool report(SMLoc loc, const llvm::Twine &msg) { return error(loc, msg); }
+  Expr *expression() { return parseExpr(); }
+  bool statements(Block &out) { return parseBlock(out); }
+  bool typeDecl(const Type *&t) { return parseType(t, false); }
+  bool name(StringRef &n, SMLoc &loc, StringRef what) {
+    return parseSimpleName(n, loc, what);
+  }
+  bool hasFailed() const { return failed; }
   Expr *parseWholeExpression() {
     Expr *e = parseExpr();
     if (e && !tok.is(Tok::Eof)) {
@@ -199,7 +212,9 @@ private:
   std::vector<Definition> definitions;
 };
 
-} // namespace
+} // namespace netlift::net::detail
+
+using namespace netlift::net::detail;
 
 bool Parser::parseInt(int64_t &v, StringRef what) {
   if (!tok.is(Tok::Int))
@@ -1499,3 +1514,26 @@ Expr *netlift::net::parseExpression(unsigned bufferID, DiagEngine &diag,
   Parser p(buf->getBuffer(), diag, design);
   return p.parseWholeExpression();
 }
+
+EmbeddedParser::EmbeddedParser(StringRef buffer, DiagEngine &diag,
+                               Design &design)
+    : impl(std::make_unique<Parser>(buffer, diag, design)) {}
+EmbeddedParser::~EmbeddedParser() = default;
+const Token &EmbeddedParser::token() const { return impl->current(); }
+void EmbeddedParser::consume() { impl->advance(); }
+bool EmbeddedParser::expect(Tok k, StringRef what) {
+  return impl->expectToken(k, what);
+}
+bool EmbeddedParser::errorHere(const llvm::Twine &msg) {
+  return impl->reportHere(msg);
+}
+bool EmbeddedParser::error(SMLoc loc, const llvm::Twine &msg) {
+  return impl->report(loc, msg);
+}
+Expr *EmbeddedParser::expr() { return impl->expression(); }
+bool EmbeddedParser::block(Block &out) { return impl->statements(out); }
+bool EmbeddedParser::type(const Type *&t) { return impl->typeDecl(t); }
+bool EmbeddedParser::name(StringRef &n, SMLoc &loc, StringRef what) {
+  return impl->name(n, loc, what);
+}
+bool EmbeddedParser::failed() const { return impl->hasFailed(); }

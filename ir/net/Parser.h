@@ -11,8 +11,11 @@
 #ifndef NETLIFT_IR_NET_PARSER_H
 #define NETLIFT_IR_NET_PARSER_H
 
+#include "ir/net/Lexer.h"
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
+
+#include <memory>
 
 namespace netlift::net {
 
@@ -27,6 +30,36 @@ Expr *parseExpression(unsigned bufferID, DiagEngine &diag, Design &design);
 /// Is `name` usable as a NetIR identifier as it stands (not a reserved word
 /// of the expression language)?
 bool isReservedWord(llvm::StringRef name);
+
+namespace detail {
+class Parser;
+}
+
+/// NetIR's expression, type and statement syntax for other text formats
+/// that embed it (the .hyb charts): the host reader walks the shared token
+/// stream and asks for one construct at the current token. Locations stay
+/// in the host buffer, and the first error stops everything as in NetIR.
+class EmbeddedParser {
+public:
+  EmbeddedParser(llvm::StringRef buffer, DiagEngine &diag, Design &design);
+  ~EmbeddedParser();
+  const Token &token() const;
+  void consume();
+  bool expect(Tok k, llvm::StringRef what);
+  bool errorHere(const llvm::Twine &msg);
+  bool error(llvm::SMLoc loc, const llvm::Twine &msg);
+  Expr *expr();
+  /// `{ statement* }`
+  bool block(Block &out);
+  /// A finite NetIR type (`bool`, `0..9`, `int16`, ...).
+  bool type(const Type *&t);
+  /// An unqualified, non-reserved name.
+  bool name(llvm::StringRef &n, llvm::SMLoc &loc, llvm::StringRef what);
+  bool failed() const;
+
+private:
+  std::unique_ptr<detail::Parser> impl;
+};
 
 } // namespace netlift::net
 
