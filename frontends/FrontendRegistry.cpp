@@ -90,9 +90,12 @@ static const FrontendInfo *sniffXml(StringRef text) {
       ++pos;
       continue;
     }
-    StringRef root = rest.take_while(
-        [](char c) { return !isspace((unsigned char)c) && c != '>' && c != '/'; });
-    StringRef id = root == "sspaceex" ? "spaceex" : root == "pnml" ? "pnml" : "";
+    StringRef root = rest.take_while([](char c) {
+      return !isspace((unsigned char)c) && c != '>' && c != '/';
+    });
+    StringRef id = root == "sspaceex" ? "spaceex"
+                   : root == "pnml"   ? "pnml"
+                                      : "";
     for (const FrontendInfo &f : registry)
       if (!id.empty() && f.id == id)
         return &f;

@@ -457,8 +457,9 @@ bool Discretiser::collectAssignments() {
           if (mentionsReal(a->value, realOfVar, where))
             return error(where->loc,
                          "an action reads a real variable; after discretise "
-                         "reals exist only as position places, so only "
-                         "`x := constant` and comparisons are supported");
+                         "reals exist only as position places, which actions "
+                         "can only reset (`x := constant`); test thresholds "
+                         "in the guard instead");
           if (!toReal)
             continue;
           size_t ri = realOfVar[tr->sym.index];

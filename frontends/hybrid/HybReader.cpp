@@ -219,7 +219,8 @@ bool ChartReader::parseItem(unsigned region) {
     return p.expect(Tok::Semi, "';'");
   }
   if (isKw("nested") || isKw("junction") || isKw("history"))
-    return p.errorHere("'" + tok().text + "' is not supported in .hyb charts "
+    return p.errorHere("'" + tok().text +
+                       "' is not supported in .hyb charts "
                        "(flatten the hierarchy into states and regions)");
   if (tok().is(Tok::Ident))
     return parseTransition(region);
@@ -279,8 +280,8 @@ bool ChartReader::parseParam() {
       return false;
     e = substitute(e);
     if (!constant(e))
-      return p.error(e->loc, "the value of parameter '" + n +
-                                 "' is not a constant");
+      return p.error(e->loc,
+                     "the value of parameter '" + n + "' is not a constant");
     if (!params.insert({n, e}).second)
       return p.error(l, "parameter '" + n + "' is defined twice");
     if (tok().is(Tok::Comma)) {
@@ -421,8 +422,7 @@ bool ChartReader::parseTransition(unsigned region) {
   HybTransition t;
   t.loc = tok().loc();
   if (!p.name(t.from, t.fromLoc, "a state name") ||
-      !p.expect(Tok::Arrow, "'->'") ||
-      !p.name(t.to, t.toLoc, "a state name"))
+      !p.expect(Tok::Arrow, "'->'") || !p.name(t.to, t.toLoc, "a state name"))
     return false;
   if (tok().is(Tok::Colon)) {
     p.consume();
@@ -656,8 +656,8 @@ bool ChartReader::build() {
       int port = mod->findPort(t.event);
       if (port < 0 || mod->ports[port].kind != PortKind::Event ||
           !mod->ports[port].isInput())
-        return p.error(t.eventLoc, "'" + t.event +
-                                       "' is not an event input of the chart");
+        return p.error(t.eventLoc,
+                       "'" + t.event + "' is not an event input of the chart");
       b.setEvents(tr, {EventSource{uint32_t(port), true}});
     } else {
       b.setUrgent(tr);
@@ -687,9 +687,9 @@ bool ChartReader::build() {
     if (!st.flows.empty())
       b.addFlow(s, st.flows, st.flowLoc);
     if (!st.during.empty()) {
-      uint32_t tr = b.addTransition(d.save((st.name + "_during").str()),
-                                    {PreArc{s, 1, Interval{1, 1}}},
-                                    {PostArc{s}}, st.loc);
+      uint32_t tr =
+          b.addTransition(d.save((st.name + "_during").str()),
+                          {PreArc{s, 1, Interval{1, 1}}}, {PostArc{s}}, st.loc);
       b.setUrgent(tr);
       b.setAction(tr, st.during);
     }

@@ -237,8 +237,8 @@ struct SpaceExReader::ExprParser {
     }
     if (isalpha((unsigned char)s[pos]) || s[pos] == '_') {
       size_t start = pos;
-      while (pos < s.size() && (isalnum((unsigned char)s[pos]) ||
-                                s[pos] == '_' || s[pos] == '.'))
+      while (pos < s.size() &&
+             (isalnum((unsigned char)s[pos]) || s[pos] == '_' || s[pos] == '.'))
         ++pos;
       std::string name = s.slice(start, pos).str();
       skip();
@@ -272,8 +272,7 @@ struct SpaceExReader::ExprParser {
 
 } // namespace
 
-std::string SpaceExReader::real(const std::string &flat,
-                                pugi::xml_node where) {
+std::string SpaceExReader::real(const std::string &flat, pugi::xml_node where) {
   (void)where;
   if (reals.insert(flat).second)
     realOrder.push_back(flat);
@@ -312,8 +311,8 @@ bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
   for (pugi::xml_node n : comp.children()) {
     StringRef tag = n.name();
     if (tag != "bind" && tag != "param" && tag != "note")
-      return error(n, "unsupported element <" + tag +
-                          "> in a network component");
+      return error(n,
+                   "unsupported element <" + tag + "> in a network component");
   }
   for (pugi::xml_node bn : comp.children("bind")) {
     StringRef cid = bn.attribute("component").value();
@@ -442,7 +441,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     flows.push_back(std::move(pf));
   }
   if (placeOfId.empty())
-    return error(comp, "component '" + llvm::Twine(comp.attribute("id").value()) +
+    return error(comp, "component '" +
+                           llvm::Twine(comp.attribute("id").value()) +
                            "' has no location");
   for (PendingFlow &pf : flows) {
     for (const std::string &v : flowVars)
@@ -468,7 +468,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     StringRef label = StringRef(t.child_value("label")).trim();
     if (!label.empty()) {
       auto it = bind.find(label.str());
-      pt.label = it != bind.end() ? it->second.name : prefix + "." + label.str();
+      pt.label =
+          it != bind.end() ? it->second.name : prefix + "." + label.str();
       labelsOf[inst].insert(pt.label);
     }
     for (StringRef c : conjuncts(t.child_value("guard"))) {
@@ -485,8 +486,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
       // `x' == e`, `x' = e` or `x := e`.
       auto [lhsText, rhsText] = c.split(":=");
       bool assign = c.contains(":=");
-      ExprParser ep{*this, assign ? lhsText : c, 0, t.child("assignment"),
-                    bind, prefix};
+      ExprParser ep{*this, assign ? lhsText : c, 0, t.child("assignment"), bind,
+                    prefix};
       Expr *e = ep.orExpr();
       if (!ep.ok)
         return false;
@@ -548,8 +549,8 @@ bool SpaceExReader::run() {
     return error(top, "a module named '" + modName + "' exists");
   Bindings bind;
   for (pugi::xml_node p : top.children("param"))
-    bind[p.attribute("name").value()] = Binding{p.attribute("name").value(),
-                                                std::nullopt};
+    bind[p.attribute("name").value()] =
+        Binding{p.attribute("name").value(), std::nullopt};
   if (!instantiate(top, "", bind, 0))
     return false;
   // Variables: declared before their use is resolved by the verifier.
@@ -628,7 +629,6 @@ bool SpaceExReader::run() {
   return true;
 }
 
-bool netlift::loadSpaceEx(unsigned bufferID, DiagEngine &diag,
-                          Design &design) {
+bool netlift::loadSpaceEx(unsigned bufferID, DiagEngine &diag, Design &design) {
   return SpaceExReader(bufferID, diag, design).run();
 }
