@@ -23,6 +23,7 @@ FORMATS = {
     "tcpou": ((".TcPOU", ".TcGVL", ".TcDUT"), None, (), "translate"),
     "kiss2": ((".kiss2",), None, (), "mealy"),
     "dot": ((".dot",), None, (), "mealy"),
+    "spaceex": ((".xml",), None, (), "translate"),
 }
 
 
