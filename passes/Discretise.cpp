@@ -157,12 +157,6 @@ public:
   const Expr *bad = nullptr;
 };
 
-/// A constant (no state read) real or integer expression.
-std::optional<double> constValue(const Expr *e) {
-  RealEval ev(UINT32_MAX);
-  return ev.eval(e, 0);
-}
-
 /// Where a real variable is: a grid point or an open segment, and which
 /// flow place (if any) is acting on it. See the file comment for the names.
 enum class FormKind : uint8_t {
@@ -240,7 +234,7 @@ private:
   }
   bool collectReals();
   bool collectUses();
-  bool scanExpr(Expr *e, bool allowCompare);
+  bool scanExpr(Expr *e);
   bool collectAssignments();
   bool buildGrid(Real &r);
   bool checkExclusive(Real &r);
@@ -326,7 +320,7 @@ bool Discretiser::collectReals() {
       return error(v.loc, "real '" + v.name + "' has an empty range");
     r.init = r.lo;
     if (v.init) {
-      auto c = constValue(v.init);
+      auto c = evalConstReal(v.init);
       if (!c)
         return error(v.init->loc, "the initial value of real '" + v.name +
                                       "' is not a constant");
@@ -353,7 +347,7 @@ bool Discretiser::collectReals() {
   for (const Flow &f : m.flows) {
     unsigned moving = 0;
     for (const Flow::Equation &eq : f.equations) {
-      auto c = constValue(eq.rate);
+      auto c = evalConstReal(eq.rate);
       if (!c || *c != 0)
         ++moving;
     }
@@ -368,7 +362,7 @@ bool Discretiser::collectReals() {
 
 /// Checks a Boolean expression (guard, condition, definition): real
 /// variables may only be compared with constants; records the thresholds.
-bool Discretiser::scanExpr(Expr *e, bool allowCompare) {
+bool Discretiser::scanExpr(Expr *e) {
   if (!e)
     return true;
   switch (e->getKind()) {
@@ -395,42 +389,36 @@ bool Discretiser::scanExpr(Expr *e, bool allowCompare) {
       if (l || rr) {
         Real *x = l ? l : rr;
         Expr *other = l ? bin->rhs : bin->lhs;
-        auto c = constValue(other);
+        auto c = evalConstReal(other);
         if (!c)
           return error(other->loc, "real '" + x->name +
                                        "' is compared with something that "
                                        "is not a constant; discretise needs "
                                        "`x op constant`");
-        if (bin->op == BinaryOp::Eq || bin->op == BinaryOp::Ne) {
-          // Equality with a moving value holds only at an instant: allowed,
-          // it is true at the grid point itself.
-        }
         x->thresholds.insert(*c);
         return true;
       }
     }
-    return scanExpr(bin->lhs, allowCompare) && scanExpr(bin->rhs, allowCompare);
+    return scanExpr(bin->lhs) && scanExpr(bin->rhs);
   }
   case ExprKind::Unary:
-    return scanExpr(llvm::cast<UnaryExpr>(e)->operand, allowCompare);
+    return scanExpr(llvm::cast<UnaryExpr>(e)->operand);
   case ExprKind::Cond: {
     auto *c = llvm::cast<CondExpr>(e);
-    return scanExpr(c->cond, allowCompare) &&
-           scanExpr(c->thenExpr, allowCompare) &&
-           scanExpr(c->elseExpr, allowCompare);
+    return scanExpr(c->cond) && scanExpr(c->thenExpr) && scanExpr(c->elseExpr);
   }
   case ExprKind::Call: {
     for (Expr *a : llvm::cast<CallExpr>(e)->args)
-      if (!scanExpr(a, allowCompare))
+      if (!scanExpr(a))
         return false;
     return true;
   }
   case ExprKind::Index: {
     auto *x = llvm::cast<IndexExpr>(e);
-    return scanExpr(x->base, allowCompare) && scanExpr(x->index, allowCompare);
+    return scanExpr(x->base) && scanExpr(x->index);
   }
   case ExprKind::Field:
-    return scanExpr(llvm::cast<FieldExpr>(e)->base, allowCompare);
+    return scanExpr(llvm::cast<FieldExpr>(e)->base);
   default:
     return true;
   }
@@ -468,7 +456,7 @@ bool Discretiser::collectAssignments() {
                                      tr->name +
                                      "' is not supported by discretise "
                                      "(write it at the top of the action)");
-          auto c = constValue(a->value);
+          auto c = evalConstReal(a->value);
           if (!c)
             return error(a->value->loc, "real '" + tr->name +
                                             "' is assigned something that is "
@@ -479,7 +467,7 @@ bool Discretiser::collectAssignments() {
         }
         if (auto *i = llvm::dyn_cast<IfStmt>(s)) {
           for (const IfArm &arm : i->arms)
-            if (!scanExpr(arm.cond, true) || !walk(arm.body, false))
+            if (!scanExpr(arm.cond) || !walk(arm.body, false))
               return false;
           if (!walk(i->elseBody, false))
             return false;
@@ -563,14 +551,14 @@ bool Discretiser::collectUses() {
                                      "discretise");
       continue;
     }
-    if (!scanExpr(p.definition, true))
+    if (!scanExpr(p.definition))
       return false;
   }
   for (Transition &t : m.transitions) {
     for (Expr *c : t.conds())
-      if (!scanExpr(c, true))
+      if (!scanExpr(c))
         return false;
-    if (!scanExpr(t.guard(), true))
+    if (!scanExpr(t.guard()))
       return false;
   }
   for (Var &v : m.vars)
@@ -952,7 +940,7 @@ std::optional<bool> Discretiser::truthAt(const Expr *e, const Real &r,
   bool right = rr && rr->sym.kind == SymKind::Var && rr->sym.index == r.var;
   if (!left && !right)
     return std::nullopt;
-  double c = *constValue(left ? bin->rhs : bin->lhs);
+  double c = *evalConstReal(left ? bin->rhs : bin->lhs);
   // A value inside an open segment compares like its midpoint: every
   // threshold is a grid point, so no comparison changes inside a segment.
   double x = v.atPoint ? r.grid[v.k] : (r.grid[v.k - 1] + r.grid[v.k]) / 2;

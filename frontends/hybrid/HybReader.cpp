@@ -84,7 +84,6 @@ private:
   /// Replaces parameter names by their values (in place).
   Expr *substitute(Expr *e);
   Block substitute(Block blk);
-  std::optional<double> constant(Expr *e);
 
   EmbeddedParser &p;
   Design &d;
@@ -279,7 +278,7 @@ bool ChartReader::parseParam() {
     if (!e)
       return false;
     e = substitute(e);
-    if (!constant(e))
+    if (!evalConstReal(e))
       return p.error(e->loc,
                      "the value of parameter '" + n + "' is not a constant");
     if (!params.insert({n, e}).second)
@@ -317,7 +316,8 @@ bool ChartReader::parseReal() {
 }
 
 bool ChartReader::declareReal(const PendingReal &r) {
-  auto lv = constant(substitute(r.lo)), hv = constant(substitute(r.hi));
+  auto lv = evalConstReal(substitute(r.lo)),
+       hv = evalConstReal(substitute(r.hi));
   if (!lv)
     return p.error(r.lo->loc, "a range bound must be a constant");
   if (!hv)
@@ -326,7 +326,7 @@ bool ChartReader::declareReal(const PendingReal &r) {
     return p.error(r.loc, "empty range for real '" + r.name + "'");
   Expr *init = nullptr;
   if (r.init) {
-    auto iv = constant(substitute(r.init));
+    auto iv = evalConstReal(substitute(r.init));
     if (!iv)
       return p.error(r.init->loc, "the initial value must be a constant");
     init = b.realLit(*iv, r.init->loc);
@@ -464,39 +464,6 @@ bool ChartReader::parseTransition(unsigned region) {
   return true;
 }
 
-std::optional<double> ChartReader::constant(Expr *e) {
-  if (auto *i = llvm::dyn_cast<IntLit>(e))
-    return double(i->value);
-  if (auto *r = llvm::dyn_cast<RealLit>(e))
-    return r->value;
-  if (auto *u = llvm::dyn_cast<UnaryExpr>(e)) {
-    auto a = constant(u->operand);
-    if (a && u->op == UnaryOp::Neg)
-      return -*a;
-    return std::nullopt;
-  }
-  if (auto *bin = llvm::dyn_cast<BinaryExpr>(e)) {
-    auto a = constant(bin->lhs), c = constant(bin->rhs);
-    if (!a || !c)
-      return std::nullopt;
-    switch (bin->op) {
-    case BinaryOp::Add:
-      return *a + *c;
-    case BinaryOp::Sub:
-      return *a - *c;
-    case BinaryOp::Mul:
-      return *a * *c;
-    case BinaryOp::Div:
-      if (*c == 0)
-        return std::nullopt;
-      return *a / *c;
-    default:
-      return std::nullopt;
-    }
-  }
-  return std::nullopt;
-}
-
 Expr *ChartReader::substitute(Expr *e) {
   if (!e)
     return e;
@@ -508,12 +475,7 @@ Expr *ChartReader::substitute(Expr *e) {
     Expr *v = it->second;
     if (auto *i = llvm::dyn_cast<IntLit>(v))
       return b.intLit(i->value, e->loc);
-    auto c = constant(v);
-    // A parameter whose value is a whole number stays an integer so that
-    // it can be used in discrete data too.
-    if (c && std::floor(*c) == *c && std::fabs(*c) < 1e15 &&
-        !llvm::isa<RealLit>(v) && llvm::isa<IntLit>(v))
-      return b.intLit(int64_t(*c), e->loc);
+    auto c = evalConstReal(v);
     return b.realLit(*c, e->loc);
   }
   case ExprKind::Unary: {

@@ -149,3 +149,36 @@ bool netlift::net::evalConstInt(const Expr *e, int64_t &out) {
   }
   return false;
 }
+
+std::optional<double> netlift::net::evalConstReal(const Expr *e) {
+  if (auto *i = llvm::dyn_cast<IntLit>(e))
+    return double(i->value);
+  if (auto *r = llvm::dyn_cast<RealLit>(e))
+    return r->value;
+  if (auto *u = llvm::dyn_cast<UnaryExpr>(e)) {
+    auto a = evalConstReal(u->operand);
+    if (!a || u->op != UnaryOp::Neg)
+      return std::nullopt;
+    return -*a;
+  }
+  auto *b = llvm::dyn_cast<BinaryExpr>(e);
+  if (!b)
+    return std::nullopt;
+  auto x = evalConstReal(b->lhs), y = evalConstReal(b->rhs);
+  if (!x || !y)
+    return std::nullopt;
+  switch (b->op) {
+  case BinaryOp::Add:
+    return *x + *y;
+  case BinaryOp::Sub:
+    return *x - *y;
+  case BinaryOp::Mul:
+    return *x * *y;
+  case BinaryOp::Div:
+    if (*y == 0)
+      return std::nullopt;
+    return *x / *y;
+  default:
+    return std::nullopt;
+  }
+}

@@ -20,6 +20,7 @@
 #include "llvm/Support/SMLoc.h"
 
 #include <cstdint>
+#include <optional>
 
 namespace netlift::net {
 
@@ -285,6 +286,10 @@ public:
 /// Evaluate a constant integer expression (literals, enumerators, + - * /
 /// and unary minus) without a state; false if it is not constant.
 bool evalConstInt(const Expr *e, int64_t &out);
+
+/// Evaluate a constant real expression (integer and real literals, + - * /
+/// and unary minus); nullopt if it is not constant or divides by zero.
+std::optional<double> evalConstReal(const Expr *e);
 
 } // namespace netlift::net
 
