@@ -1352,14 +1352,7 @@ void Discretiser::finish() {
 
 bool Discretiser::run() {
   if (d.timescale) {
-    static const std::pair<StringRef, double> units[] = {
-        {"ns", 1e-9}, {"us", 1e-6}, {"ms", 1e-3},
-        {"s", 1},     {"min", 60},  {"h", 3600}};
-    double tick = 0;
-    for (auto &[u, f] : units)
-      if (d.timescale->unit == u)
-        tick = d.timescale->amount * f;
-    ticksPerUnit = 1 / tick; // rates are per second
+    ticksPerUnit = 1e9 / double(d.timescale->nanoseconds()); // rates per s
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
@@ -1506,26 +1499,11 @@ public:
     return true;
   }
 
-  bool flag(DiagEngine &diag, const char *key, bool &out) {
-    auto it = opts.find(key);
-    if (it == opts.end())
-      return true;
-    if (it->second == "true" || it->second == "1")
-      out = true;
-    else if (it->second == "false" || it->second == "0")
-      out = false;
-    else {
-      diag.error(llvm::SMLoc(),
-                 std::string("discretise: ") + key + "= takes true or false");
-      return false;
-    }
-    return true;
-  }
-
   bool run(Design &design, DiagEngine &diag, Statistics &stats) override {
     GridSpec spec;
     bool exact = false;
-    if (!parseOptions(diag, spec) || !flag(diag, "exact", exact))
+    if (!parseOptions(diag, spec) ||
+        !parseBoolOption(opts, "discretise", "exact", diag, exact))
       return false;
     bool numeric = false;
     if (opts.count("solver")) {
@@ -1536,23 +1514,10 @@ public:
         return false;
       }
     }
-    std::unique_ptr<llvm::raw_fd_ostream> file;
-    llvm::raw_ostream *report = nullptr;
-    if (opts.count("report")) {
-      if (opts.at("report") == "-") {
-        report = &llvm::outs();
-      } else {
-        std::error_code ec;
-        file = std::make_unique<llvm::raw_fd_ostream>(opts.at("report"), ec);
-        if (ec) {
-          diag.error(llvm::SMLoc(), "discretise: cannot write '" +
-                                        opts.at("report") +
-                                        "': " + ec.message());
-          return false;
-        }
-        report = file.get();
-      }
-    }
+    ReportStream reportStream;
+    if (!reportStream.open(opts, "discretise", diag))
+      return false;
+    llvm::raw_ostream *report = reportStream.get();
     for (auto &mod : design.modules) {
       if (!hasHybridParts(*mod))
         continue;

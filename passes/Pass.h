@@ -43,6 +43,24 @@ private:
   std::map<std::pair<std::string, std::string>, Counter> counters;
 };
 
+/// The stream a pass writes its human-readable report to, from the option
+/// `report=FILE` (`-`: standard output); no stream when the option is absent.
+class ReportStream {
+public:
+  /// False after reporting that FILE cannot be written.
+  bool open(const PassOptions &opts, llvm::StringRef pass, DiagEngine &diag);
+  llvm::raw_ostream *get() const { return os; }
+
+private:
+  std::unique_ptr<llvm::raw_fd_ostream> file;
+  llvm::raw_ostream *os = nullptr;
+};
+
+/// Reads the Boolean option `key` (true/false/1/0) into `out` when it is
+/// given; false after reporting a malformed value.
+bool parseBoolOption(const PassOptions &opts, llvm::StringRef pass,
+                     llvm::StringRef key, DiagEngine &diag, bool &out);
+
 class Pass {
 public:
   virtual ~Pass();

@@ -13,6 +13,42 @@ using llvm::StringRef;
 
 Pass::~Pass() = default;
 
+bool ReportStream::open(const PassOptions &opts, StringRef pass,
+                        DiagEngine &diag) {
+  auto it = opts.find("report");
+  if (it == opts.end())
+    return true;
+  if (it->second == "-") {
+    os = &llvm::outs();
+    return true;
+  }
+  std::error_code ec;
+  file = std::make_unique<llvm::raw_fd_ostream>(it->second, ec);
+  if (ec) {
+    diag.error(llvm::SMLoc(),
+               pass + ": cannot write '" + it->second + "': " + ec.message());
+    return false;
+  }
+  os = file.get();
+  return true;
+}
+
+bool netlift::parseBoolOption(const PassOptions &opts, StringRef pass,
+                              StringRef key, DiagEngine &diag, bool &out) {
+  auto it = opts.find(key.str());
+  if (it == opts.end())
+    return true;
+  if (it->second == "true" || it->second == "1")
+    out = true;
+  else if (it->second == "false" || it->second == "0")
+    out = false;
+  else {
+    diag.error(llvm::SMLoc(), pass + ": " + key + "= takes true or false");
+    return false;
+  }
+  return true;
+}
+
 // Pass factories, one per registry line, defined in the pass's own file.
 namespace netlift {
 #define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                            \

@@ -129,7 +129,14 @@ bool ChartReader::parseFile() {
     p.consume();
     if (!p.expect(Tok::Semi, "';'"))
       return false;
-    d.timescale = Timescale{amount, d.save(unit), loc};
+    Timescale ts{amount, d.save(unit), loc};
+    if (!d.mergeTimescale(ts)) {
+      p.error(loc, "timescale " + ts.str() + " differs from the timescale " +
+                       d.timescale->str() +
+                       " of an earlier file; the models of one design "
+                       "must agree on the length of a tick");
+      return false;
+    }
   }
   bool any = false;
   while (!tok().is(Tok::Eof)) {

@@ -2002,15 +2002,27 @@ bool Lowering::run() {
         initTimes(g->typeSyntax->init, ns);
     if (opts.scanPeriodNs)
       ns.push_back(*opts.scanPeriodNs);
+    // A NetIR or hybrid file read with the program (a plant model) fixes
+    // the tick already: the program's times are counted in it.
+    std::optional<int64_t> designNs;
+    if (design.timescale)
+      designNs = int64_t(design.timescale->nanoseconds());
+    if (opts.timescaleNs && designNs && *opts.timescaleNs != *designNs)
+      refuse(SMLoc(), "--timescale " + formatDuration(*opts.timescaleNs) +
+                          " differs from the timescale " +
+                          design.timescale->str() +
+                          " of a model read with the program");
     if (opts.timescaleNs) {
       tickNs = *opts.timescaleNs;
+    } else if (designNs) {
+      tickNs = *designNs;
     } else {
       int64_t g = 0;
       for (int64_t v : ns)
         g = std::gcd(g, v);
       tickNs = g ? g : 1000000; // no time at all: 1 ms, unused
     }
-    if (!ns.empty() || opts.timescaleNs) {
+    if (!design.timescale && (!ns.empty() || opts.timescaleNs)) {
       static const struct {
         const char *unit;
         int64_t ns;

@@ -210,3 +210,17 @@ netlift::net::placeEffects(const Transition &t) {
     of(a.place).post += a.weight;
   return out;
 }
+
+uint64_t netlift::net::Timescale::nanoseconds() const {
+  static const std::pair<llvm::StringRef, uint64_t> units[] = {
+      {"ns", 1},
+      {"us", 1000},
+      {"ms", 1000000},
+      {"s", 1000000000ULL},
+      {"min", 60000000000ULL},
+      {"h", 3600000000000ULL}};
+  for (auto &[u, f] : units)
+    if (unit == u)
+      return amount * f;
+  return 0;
+}

@@ -283,6 +283,9 @@ struct Timescale {
   uint64_t amount = 1;
   llvm::StringRef unit; // ns, us, ms, s, min, h
   llvm::SMLoc loc;
+  /// The length of one tick in nanoseconds.
+  uint64_t nanoseconds() const;
+  std::string str() const { return std::to_string(amount) + unit.str(); }
 };
 
 /// Everything one .net file holds; owns all memory of its modules.
@@ -310,6 +313,17 @@ public:
     auto it = moduleIndex.find(n);
     return it == moduleIndex.end() ? nullptr : it->second;
   }
+  /// Records the timescale an input file declares. The files of one design
+  /// must agree on the length of a tick (however it is spelled): false, and
+  /// nothing changed, when `ts` differs from the one already recorded.
+  bool mergeTimescale(const Timescale &ts) {
+    if (timescale && timescale->nanoseconds() != ts.nanoseconds())
+      return false;
+    if (!timescale)
+      timescale = ts;
+    return true;
+  }
+
   /// Creates a module; null if the name is taken.
   Module *createModule(llvm::StringRef name, llvm::SMLoc loc, bool isSystem);
   /// Removes a module (e.g. after flatten replaced the hierarchy).

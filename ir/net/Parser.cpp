@@ -183,6 +183,7 @@ private:
   Design &design;
   Builder b;
   bool failed = false;
+  bool sawTimescale = false; // per file: two in one file is an error
   unsigned depth = 0;
   const char *bufferStart, *bufferEnd;
   bool reservedForModule = false;
@@ -307,8 +308,9 @@ bool Parser::parseFile() {
 bool Parser::parseTimescale() {
   SMLoc loc = tok.loc();
   consume();
-  if (design.timescale)
+  if (sawTimescale)
     return error(loc, "timescale given twice");
+  sawTimescale = true;
   int64_t amount;
   if (!parseInt(amount, "a time amount"))
     return false;
@@ -324,7 +326,15 @@ bool Parser::parseTimescale() {
     return errorHere("unknown time unit '" + unit +
                      "' (expected ns, us, ms, s, min or h)");
   consume();
-  design.timescale = Timescale{uint64_t(amount), design.save(unit), loc};
+  Timescale ts{uint64_t(amount), design.save(unit), loc};
+  if (!design.mergeTimescale(ts)) {
+    error(loc, "timescale " + ts.str() + " differs from the timescale " +
+                   design.timescale->str() +
+                   " of an earlier file; the models of one design must "
+                   "agree on the length of a tick");
+    diag.note(design.timescale->loc, "the earlier timescale");
+    return false;
+  }
   return expect(Tok::Semi, "';'");
 }
 

@@ -31,6 +31,7 @@
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
 #include "ir/semantics/Semantics.h"
+#include "passes/Compose.h"
 #include "passes/Pass.h"
 
 #include "llvm/Support/CommandLine.h"
@@ -84,6 +85,10 @@ static cl::SubCommand
 static cl::SubCommand checkCmd("check",
                                "Check CTL properties on a model's state space "
                                "(docs/check.md)");
+static cl::SubCommand
+    composeCmd("compose",
+               "Compose a controller and plant models (any input formats) "
+               "into one closed-loop system (docs/compose.md)");
 static cl::SubCommand emitCmd("emit",
                               "Write a model in another format (net, dot)");
 
@@ -94,6 +99,32 @@ static cl::list<std::string> translateInputs(cl::Positional,
 // Optional so that `opt --list-passes` needs no input; checked in runOpt.
 static cl::opt<std::string> optInput(cl::Positional, cl::desc("<input>"),
                                      cl::sub(optCmd));
+static cl::list<std::string> composeInputs(cl::Positional,
+                                           cl::desc("<controller> <plant>..."),
+                                           cl::OneOrMore, cl::sub(composeCmd));
+static cl::opt<std::string> composeConnect(
+    "connect", cl::desc("Connections 'a.out -> b.in', one per line"),
+    cl::value_desc("FILE"), cl::sub(composeCmd), cl::cat(category));
+static cl::opt<std::string> composeMatch(
+    "match",
+    cl::desc("names: wire inputs still undriven to outputs of the same name "
+             "(default without --connect); none: do not"),
+    cl::value_desc("names|none"), cl::sub(composeCmd), cl::cat(category));
+static cl::list<std::string>
+    composeInst("inst",
+                cl::desc("A component NAME:MODULE (repeatable; default: every "
+                         "module no other instantiates, named in lower case)"),
+                cl::value_desc("NAME:MODULE"), cl::sub(composeCmd),
+                cl::cat(category));
+static cl::opt<std::string>
+    composeName("name", cl::desc("Name of the system (default Closed)"),
+                cl::value_desc("NAME"), cl::init("Closed"), cl::sub(composeCmd),
+                cl::cat(category));
+static cl::opt<bool>
+    composeQuiet("q",
+                 cl::desc("Do not list the wiring, free inputs and unused "
+                          "outputs on stderr"),
+                 cl::sub(composeCmd), cl::cat(category));
 static cl::opt<std::string> emitInput(cl::Positional, cl::desc("<input>"),
                                       cl::Required, cl::sub(emitCmd));
 static cl::opt<std::string> mealyInput(cl::Positional, cl::desc("<input>"),
@@ -190,15 +221,16 @@ static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
 static cl::opt<std::string>
     outputFile("o", cl::desc("Output file ('-' = stdout)"),
                cl::value_desc("file"), cl::init("-"), cl::sub(translateCmd),
-               cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
-               cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
-               cl::sub(srCmd), cl::cat(category));
+               cl::sub(composeCmd), cl::sub(optCmd), cl::sub(emitCmd),
+               cl::sub(reachCmd), cl::sub(mealyCmd), cl::sub(eaCmd),
+               cl::sub(enforceCmd), cl::sub(srCmd), cl::cat(category));
 static cl::opt<std::string>
     inputFormat("from", cl::desc("Input format (default: by file extension)"),
                 cl::value_desc("format"), cl::sub(translateCmd),
-                cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
-                cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
-                cl::sub(srCmd), cl::sub(checkCmd), cl::cat(category));
+                cl::sub(composeCmd), cl::sub(optCmd), cl::sub(emitCmd),
+                cl::sub(reachCmd), cl::sub(mealyCmd), cl::sub(eaCmd),
+                cl::sub(enforceCmd), cl::sub(srCmd), cl::sub(checkCmd),
+                cl::cat(category));
 
 // Options of the PLC frontends (ST, TwinCAT), for every command that reads
 // a model.
@@ -206,8 +238,8 @@ static cl::opt<std::string>
     plcTop("top",
            cl::desc("The module to explore; for PLC input also the program, "
                     "program instance or function block to translate"),
-           cl::value_desc("NAME"), cl::sub(translateCmd), cl::sub(optCmd),
-           cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+           cl::value_desc("NAME"), cl::sub(translateCmd), cl::sub(composeCmd),
+           cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
            cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
            cl::sub(checkCmd), cl::cat(category));
 static cl::alias plcModule("module", cl::desc("Alias for --top"),
@@ -216,23 +248,23 @@ static cl::opt<std::string> plcTimescale(
     "timescale",
     cl::desc("PLC input: the length of one tick, e.g. 10ms (default: the "
              "greatest common divisor of the program's TIME values)"),
-    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
-    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
+    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(composeCmd),
+    cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+    cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 static cl::opt<std::string> plcScanPeriod(
     "scan-period",
     cl::desc("PLC input: the scan period (default: the task INTERVAL, else "
              "one tick)"),
-    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
-    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
+    cl::value_desc("DURATION"), cl::sub(translateCmd), cl::sub(composeCmd),
+    cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+    cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 static cl::opt<std::string> plcRanges(
     "ranges",
     cl::desc("PLC input: value ranges of integer inputs, one 'NAME LO..HI' "
              "a line"),
-    cl::value_desc("FILE"), cl::sub(translateCmd), cl::sub(optCmd),
-    cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd), cl::sub(mealyCmd),
-    cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
+    cl::value_desc("FILE"), cl::sub(translateCmd), cl::sub(composeCmd),
+    cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+    cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 
 /// Hands the PLC options to the frontends; false after an error message.
 static bool setFrontendOptions() {
@@ -463,6 +495,30 @@ static int runTranslate() {
   net::Design design;
   if (!topUsable(translateInputs, "translate") ||
       !loadInputs(translateInputs, inputFormat, diag, design))
+    return 1;
+  return writeDesign(design);
+}
+
+static int runCompose() {
+  llvm::SourceMgr sm;
+  DiagEngine diag(sm);
+  ComposeOptions co;
+  co.instances = composeInst;
+  co.connectFile = composeConnect;
+  co.systemName = composeName;
+  if (composeMatch == "names")
+    co.matchNames = true;
+  else if (composeMatch == "none")
+    co.matchNames = false;
+  else if (!composeMatch.empty()) {
+    llvm::errs() << "netlift: error: --match takes names or none\n";
+    return 1;
+  }
+  net::Design design;
+  Statistics stats;
+  if (!loadInputs(composeInputs, inputFormat, diag, design) ||
+      !composeSystem(design, diag, co, composeQuiet ? nullptr : &llvm::errs(),
+                     stats))
     return 1;
   return writeDesign(design);
 }
@@ -1285,6 +1341,8 @@ int main(int argc, char **argv) {
           "[--timescale 10ms] [--ranges FILE]\n"
           "  netlift opt IN -p PIPELINE [-o OUT] [--verify-each] "
           "[--print-after-all] [--stats]\n"
+          "  netlift compose CTRL PLANT... [--connect FILE] [--match "
+          "names|none] [--inst NAME:MODULE]... [-o OUT]\n"
           "  netlift emit IN --to net|dot [-o OUT]\n"
           "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] "
           "[--summary "
@@ -1307,6 +1365,8 @@ int main(int argc, char **argv) {
     return runTranslate();
   if (optCmd)
     return runOpt();
+  if (composeCmd)
+    return runCompose();
   if (emitCmd)
     return runEmit();
   if (reachCmd)
@@ -1323,7 +1383,7 @@ int main(int argc, char **argv) {
     return runCheck();
   llvm::errs()
       << "netlift: error: no subcommand given (translate, opt, "
-         "emit, reach, sr, mealy, edit-automaton, enforce); see netlift "
-         "--help\n";
+         "compose, emit, reach, check, sr, mealy, edit-automaton, enforce); "
+         "see netlift --help\n";
   return 1;
 }
