@@ -65,8 +65,14 @@ private:
     ++folded;
     if (t && t->isBool())
       return b.boolLit(v != 0, loc);
-    if (t && t->kind == TypeKind::Enum)
-      return b.ref((t->name + "#" + t->enumerators[v]).str(), loc);
+    if (t && t->kind == TypeKind::Enum) {
+      // Resolved at once, so that folding can compare it right away.
+      auto *r =
+          cast<Ref>(b.ref((t->name + "#" + t->enumerators[v]).str(), loc));
+      r->sym = {SymKind::EnumLit, uint32_t(v)};
+      r->type = t;
+      return r;
+    }
     return b.intLit(v, loc);
   }
   Design &d;
