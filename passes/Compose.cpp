@@ -16,6 +16,7 @@
 #include "passes/Compose.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Parser.h"
 #include "ir/net/Types.h"
 #include "ir/net/Verifier.h"
 
@@ -112,14 +113,11 @@ bool Composer::chooseComponents() {
                                  "' is a system and cannot be a component");
       return false;
     }
-    bool ident = !c.name.empty() && !llvm::isDigit(c.name[0]) &&
-                 llvm::all_of(c.name, [](char ch) {
-                   return llvm::isAlnum(ch) || ch == '_';
-                 });
-    if (!ident) {
+    if (!isIdentifier(c.name)) {
       diag.error(SMLoc(), "compose: '" + c.name +
                               "' is not a valid instance name (letters, "
-                              "digits and '_'; give one with inst=NAME:" +
+                              "digits and '_', not a reserved word; give one "
+                              "with inst=NAME:" +
                               c.mod->name + ")");
       return false;
     }

@@ -30,8 +30,6 @@
 
 #include "ir/net/Builder.h"
 
-#include <functional>
-
 using namespace netlift;
 using namespace netlift::net;
 using llvm::cast;
@@ -107,24 +105,8 @@ public:
   }
   bool writesRelevant(const Transition &t) const {
     bool any = false;
-    std::function<void(Block)> walk = [&](Block b) {
-      for (const Stmt *s : b) {
-        if (auto *a = dyn_cast<AssignStmt>(s))
-          any |= targetRelevant(a);
-        else if (auto *i = dyn_cast<IfStmt>(s)) {
-          for (const IfArm &arm : i->arms)
-            walk(arm.body);
-          walk(i->elseBody);
-        } else if (auto *c = dyn_cast<CaseStmt>(s)) {
-          for (const CaseArm &arm : c->arms)
-            walk(arm.body);
-          walk(c->elseBody);
-        } else if (auto *f = dyn_cast<ForStmt>(s)) {
-          walk(f->body);
-        }
-      }
-    };
-    walk(t.action());
+    reduce::forEachAssign(
+        t.action(), [&](const AssignStmt *a) { any |= targetRelevant(a); });
     return any;
   }
 
@@ -164,35 +146,6 @@ public:
     } while (changed);
   }
 };
-
-/// The block without assignments to what `keep` rejects.
-Block pruneAssignments(Builder &b, Block blk,
-                       llvm::function_ref<bool(const AssignStmt *)> keep) {
-  std::vector<Stmt *> out;
-  Design &d = b.getDesign();
-  for (Stmt *s : blk) {
-    if (auto *a = dyn_cast<AssignStmt>(s)) {
-      if (keep(a))
-        out.push_back(s);
-    } else if (auto *i = dyn_cast<IfStmt>(s)) {
-      std::vector<IfArm> arms;
-      for (const IfArm &arm : i->arms)
-        arms.push_back({arm.cond, pruneAssignments(b, arm.body, keep)});
-      out.push_back(b.ifStmt(arms, i->hasElse,
-                             pruneAssignments(b, i->elseBody, keep), s->loc));
-    } else if (auto *c = dyn_cast<CaseStmt>(s)) {
-      std::vector<CaseArm> arms;
-      for (const CaseArm &arm : c->arms)
-        arms.push_back({arm.labels, pruneAssignments(b, arm.body, keep)});
-      out.push_back(b.caseStmt(c->selector, arms, c->hasElse,
-                               pruneAssignments(b, c->elseBody, keep), s->loc));
-    } else if (auto *f = dyn_cast<ForStmt>(s)) {
-      out.push_back(b.forStmt(f->var, f->lo, f->hi,
-                              pruneAssignments(b, f->body, keep), s->loc));
-    }
-  }
-  return d.copy(llvm::ArrayRef<Stmt *>(out));
-}
 
 class ReduceCoiPass : public Pass {
 public:
@@ -258,10 +211,9 @@ public:
     b.setModule(m);
     for (Transition &t : m->transitions)
       if (t.extras && t.extras->hasAction)
-        t.extras->action =
-            pruneAssignments(b, t.extras->action, [&](const AssignStmt *a) {
-              return cone.targetRelevant(a);
-            });
+        t.extras->action = reduce::dropAssignments(
+            b, t.extras->action,
+            [&](const AssignStmt *a) { return cone.targetRelevant(a); });
     // Outputs go last: ports are not renumbered by compactModule.
     std::vector<Port> ports;
     for (uint32_t p = 0; p < m->ports.size(); ++p)

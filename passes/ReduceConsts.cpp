@@ -42,8 +42,6 @@ public:
 
   /// Values of the variables found constant (scalars only).
   llvm::DenseMap<uint32_t, int64_t> constVars;
-  /// Variables whose assignments are dropped.
-  std::vector<bool> dropWrites;
   unsigned folded = 0;
 
   Expr *fold(Expr *e);
@@ -209,11 +207,6 @@ Block ConstFolder::foldBlock(Block blk) {
     switch (s->getKind()) {
     case StmtKind::Assign: {
       auto *a = cast<AssignStmt>(s);
-      Symbol root = reduce::targetRoot(a->target);
-      if (root.kind == SymKind::Var && dropWrites[root.index]) {
-        ++folded;
-        continue;
-      }
       a->value = fold(a->value);
       if (auto *ix = dyn_cast<IndexExpr>(a->target))
         ix->index = fold(ix->index);
@@ -302,23 +295,6 @@ Block ConstFolder::foldBlock(Block blk) {
   return d.copy(llvm::ArrayRef<Stmt *>(out));
 }
 
-/// The initial value of a scalar variable, or nullopt if it is not a
-/// plain constant.
-std::optional<int64_t> initialValue(const Var &v) {
-  const Type *t = v.type;
-  if (!v.init)
-    return t->kind == TypeKind::Range ? t->lo : 0;
-  if (auto *bl = dyn_cast<BoolLit>(v.init))
-    return bl->value;
-  if (auto *r = dyn_cast<Ref>(v.init))
-    if (r->sym.kind == SymKind::EnumLit)
-      return r->sym.index;
-  int64_t x;
-  if (evalConstInt(v.init, x))
-    return x;
-  return std::nullopt;
-}
-
 class ReduceConstsPass : public Pass {
 public:
   explicit ReduceConstsPass(const PassOptions &opts) : opts(opts) {}
@@ -329,7 +305,7 @@ public:
     reduce::Uses uses(*m);
     ConstFolder cf(d, *m);
     size_t nv = m->vars.size();
-    cf.dropWrites.assign(nv, false);
+    std::vector<bool> dropWrites(nv);
     std::vector<bool> keepVar(nv, true);
     unsigned consts = 0, unused = 0;
     // Assignments whose value is a constant within the range.
@@ -350,7 +326,7 @@ public:
       if (!t->isScalar() || t->isClock() || t->isReal())
         continue;
       if (uses.writers[v].empty()) {
-        if (auto x = initialValue(var)) {
+        if (auto x = reduce::initialValue(var)) {
           cf.constVars[v] = *x;
           keepVar[v] = false;
           ++consts;
@@ -362,7 +338,7 @@ public:
           (t->kind == TypeKind::Int && t->overflow == Overflow::Wrap) ||
           safeWrites[v];
       if (!uses.varRead[v] && uses.writers[v].size() == 1 && noErrors) {
-        cf.dropWrites[v] = true;
+        dropWrites[v] = true;
         keepVar[v] = false;
         ++unused;
       }
@@ -398,7 +374,11 @@ public:
         tr.extras->guard = g;
       }
       if (tr.extras->hasAction)
-        tr.extras->action = cf.foldBlock(tr.extras->action);
+        tr.extras->action = cf.foldBlock(reduce::dropAssignments(
+            b, tr.extras->action, [&](const AssignStmt *a) {
+              Symbol s = reduce::targetRoot(a->target);
+              return !(s.kind == SymKind::Var && dropWrites[s.index]);
+            }));
     }
     stats.add("reduce-consts", "constants", consts,
               "variables never written replaced by their value");

@@ -154,11 +154,11 @@ public:
       const Var &var = m->vars[v];
       if (!candidate(var))
         continue;
-      int64_t init = var.type->kind == TypeKind::Range ? var.type->lo : 0;
-      if (var.init && !evalConstInt(var.init, init))
+      std::optional<int64_t> init = reduce::initialValue(var);
+      if (!init)
         continue;
       usable[v] = true;
-      ra.iv[v] = Interval{init, init};
+      ra.iv[v] = Interval{*init, *init};
     }
     // Writes through an index or field (arrays, records) are not analysed;
     // scalars only are candidates, so a whole-variable Ref is the target.
@@ -218,11 +218,9 @@ public:
       if (got.lo == decl.lo && got.hi == decl.hi)
         continue;
       bitsSaved += bits(decl.lo, decl.hi) - bits(got.lo, got.hi);
-      int64_t init = var.type->kind == TypeKind::Range ? var.type->lo : 0;
-      if (var.init)
-        evalConstInt(var.init, init);
+      int64_t init = *reduce::initialValue(var);
       var.type = d.types.getRange(got.lo, got.hi);
-      var.init = b.intLit(init, var.loc);
+      var.init = b.intLit(init, var.loc); // the new type's default may differ
       ++narrowed;
     }
     stats.add("reduce-ranges", "variables", narrowed,

@@ -164,6 +164,54 @@ void reduce::forEachAssign(
     walkBlock(m.transitions[t].action(), int(t), nullptr, f);
 }
 
+Block reduce::dropAssignments(
+    Builder &b, Block blk, llvm::function_ref<bool(const AssignStmt *)> keep) {
+  std::vector<Stmt *> out;
+  Design &d = b.getDesign();
+  for (Stmt *s : blk) {
+    if (auto *a = dyn_cast<AssignStmt>(s)) {
+      if (keep(a))
+        out.push_back(s);
+    } else if (auto *i = dyn_cast<IfStmt>(s)) {
+      std::vector<IfArm> arms;
+      for (const IfArm &arm : i->arms)
+        arms.push_back({arm.cond, dropAssignments(b, arm.body, keep)});
+      out.push_back(b.ifStmt(arms, i->hasElse,
+                             dropAssignments(b, i->elseBody, keep), s->loc));
+    } else if (auto *c = dyn_cast<CaseStmt>(s)) {
+      std::vector<CaseArm> arms;
+      for (const CaseArm &arm : c->arms)
+        arms.push_back({arm.labels, dropAssignments(b, arm.body, keep)});
+      out.push_back(b.caseStmt(c->selector, arms, c->hasElse,
+                               dropAssignments(b, c->elseBody, keep), s->loc));
+    } else if (auto *f = dyn_cast<ForStmt>(s)) {
+      out.push_back(b.forStmt(f->var, f->lo, f->hi,
+                              dropAssignments(b, f->body, keep), s->loc));
+    }
+  }
+  return d.copy(llvm::ArrayRef<Stmt *>(out));
+}
+
+void reduce::forEachAssign(Block block,
+                           llvm::function_ref<void(const AssignStmt *)> f) {
+  walkBlock(block, -1, nullptr, [&](const AssignStmt *a, int) { f(a); });
+}
+
+std::optional<int64_t> reduce::initialValue(const Var &v) {
+  const Type *t = v.type;
+  if (!v.init)
+    return t->kind == TypeKind::Range ? t->lo : 0;
+  if (auto *bl = dyn_cast<BoolLit>(v.init))
+    return bl->value;
+  if (auto *r = dyn_cast<Ref>(v.init))
+    if (r->sym.kind == SymKind::EnumLit)
+      return r->sym.index;
+  int64_t x;
+  if (evalConstInt(v.init, x))
+    return x;
+  return std::nullopt;
+}
+
 Symbol reduce::targetRoot(const Expr *target) {
   for (const Expr *x = target; x;) {
     if (auto *r = dyn_cast<Ref>(x))
@@ -241,9 +289,7 @@ void reduce::compactModule(Module &m, const std::vector<bool> &keepPlace,
         if (i < t.extras->eventLocs.size())
           locs.push_back(t.extras->eventLocs[i]);
       }
-      // Arrays live in the design's arena: the new ones are copied there by
-      // the caller's design when it owns them; here they are rewritten in
-      // place, which never needs more room.
+      // Only sources are dropped, so the arena arrays are rewritten in place.
       auto *dst = const_cast<EventSource *>(t.extras->events.data());
       std::copy(evs.begin(), evs.end(), dst);
       t.extras->events = llvm::ArrayRef<EventSource>(dst, evs.size());

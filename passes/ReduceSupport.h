@@ -11,10 +11,12 @@
 #ifndef NETLIFT_PASSES_REDUCESUPPORT_H
 #define NETLIFT_PASSES_REDUCESUPPORT_H
 
+#include "ir/net/Builder.h"
 #include "passes/Pass.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 
+#include <optional>
 #include <vector>
 
 namespace netlift::reduce {
@@ -39,6 +41,20 @@ void forEachRead(const net::Module &m,
 /// Every assignment in every action, with its transition.
 void forEachAssign(const net::Module &m,
                    llvm::function_ref<void(const net::AssignStmt *, int)> f);
+
+/// Every assignment in `block`, nested ones included.
+void forEachAssign(net::Block block,
+                   llvm::function_ref<void(const net::AssignStmt *)> f);
+
+/// `block` without the assignments `keep` rejects (nested ones included).
+net::Block
+dropAssignments(net::Builder &b, net::Block block,
+                llvm::function_ref<bool(const net::AssignStmt *)> keep);
+
+/// The initial value of a scalar variable (its `init` or the type's
+/// default: false, the low bound of a range, 0), or nullopt if the
+/// initialiser is not a constant.
+std::optional<int64_t> initialValue(const net::Var &v);
 
 /// The variable or port an assignment target writes (through indices and
 /// fields).

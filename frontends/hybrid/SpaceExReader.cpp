@@ -24,6 +24,7 @@
 #include "frontends/XmlSupport.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Parser.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringSet.h"
@@ -538,12 +539,7 @@ bool SpaceExReader::run() {
     if (StringRef(n.name()) != "component")
       return error(n, "unsupported element <" + llvm::Twine(n.name()) +
                           "> in <sspaceex>");
-  std::string modName = top.attribute("id").value();
-  for (char &c : modName)
-    if (!isalnum((unsigned char)c) && c != '_')
-      c = '_';
-  if (modName.empty() || isdigit((unsigned char)modName[0]))
-    modName = "c_" + modName;
+  std::string modName = toIdentifier(top.attribute("id").value());
   mod = b.createModule(d.save(modName), false, xml.locOf(top));
   if (!mod)
     return error(top, "a module named '" + modName + "' exists");
@@ -572,11 +568,9 @@ bool SpaceExReader::run() {
       guards.insert(guards.end(), p->guards.begin(), p->guards.end());
       resets.insert(resets.end(), p->resets.begin(), p->resets.end());
     }
-    std::string name =
-        (label.empty() ? "t" : label.str() + "_") + std::to_string(counter++);
-    for (char &c : name)
-      if (!isalnum((unsigned char)c) && c != '_' && c != '.')
-        c = '_';
+    std::string name = toIdentifier((label.empty() ? "t" : label.str() + "_") +
+                                        std::to_string(counter++),
+                                    /*keepDots=*/true);
     uint32_t t = b.addTransition(d.save(name), pre, post,
                                  xml.locOf(parts.front()->node));
     Expr *g = nullptr;

@@ -257,17 +257,11 @@ int64_t Lowering::ticks(int64_t ns, SMLoc at) {
 //===----------------------------------------------------------------------===//
 
 std::string Lowering::sanitize(StringRef name) {
-  std::string out;
-  for (char c : name) {
-    if (c == '%')
-      continue;
-    out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
-  }
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0])))
-    out = "_" + out;
-  if (net::isReservedWord(out))
-    out += "_";
-  return out;
+  std::string bare;
+  for (char c : name)
+    if (c != '%')
+      bare += c;
+  return net::toIdentifier(bare);
 }
 
 std::string Lowering::unique(std::string name) {

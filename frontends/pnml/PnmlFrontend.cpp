@@ -71,13 +71,7 @@ private:
 };
 
 std::string PnmlReader::netliftName(StringRef id) {
-  std::string n;
-  for (char c : id)
-    n += (isalnum((unsigned char)c) || c == '_') ? c : '_';
-  if (n.empty() || isdigit((unsigned char)n[0]))
-    n = "_" + n;
-  if (isReservedWord(n))
-    n += "_";
+  std::string n = toIdentifier(id);
   std::string unique = n;
   for (unsigned k = 2; !usedNames.insert(unique).second; ++k)
     unique = n + "_" + std::to_string(k);

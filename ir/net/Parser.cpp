@@ -24,6 +24,21 @@ bool netlift::net::isReservedWord(StringRef n) {
       .Default(false);
 }
 
+bool netlift::net::isIdentifier(StringRef n) { return toIdentifier(n) == n; }
+
+std::string netlift::net::toIdentifier(StringRef name, bool keepDots) {
+  std::string out;
+  for (char c : name)
+    out += (isalnum((unsigned char)c) || c == '_' || (keepDots && c == '.'))
+               ? c
+               : '_';
+  if (out.empty() || isdigit((unsigned char)out[0]))
+    out = "_" + out;
+  if (isReservedWord(out))
+    out += "_";
+  return out;
+}
+
 namespace netlift::net::detail {
 
 /// Expressions and blocks nest at most this deep; deeper input is refused
