@@ -614,6 +614,30 @@ void IlLowering::lower(IP::IlBodyContext *body) {
   pou->body.insert(pou->body.begin(), init.begin(), init.end());
 }
 
+/// Moves the tokens of the line holding token `at` (not its line end) off
+/// the parser's channel; false when there were none.
+static bool hideLine(antlr4::BufferedTokenStream &tokens, size_t at) {
+  auto isLineEnd = [&](size_t i) {
+    size_t type = tokens.get(i)->getType();
+    return type == SP::EOL || type == antlr4::Token::EOF;
+  };
+  size_t n = tokens.size();
+  if (at >= n)
+    return false;
+  size_t begin = at;
+  while (begin > 0 && !isLineEnd(begin - 1))
+    --begin;
+  bool hidden = false;
+  for (size_t i = begin; i < n && !isLineEnd(i); ++i) {
+    auto *t = dynamic_cast<antlr4::WritableToken *>(tokens.get(i));
+    if (t && t->getChannel() == antlr4::Token::DEFAULT_CHANNEL) {
+      t->setChannel(antlr4::Token::HIDDEN_CHANNEL);
+      hidden = true;
+    }
+  }
+  return hidden;
+}
+
 bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
@@ -646,7 +670,9 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
     antlr4::CommonTokenStream tokens(&lexer);
     IP parser(&tokens);
     parser.removeErrorListeners();
-    // One error per file: the first mistake.
+    // One error per instruction: after an error its line is taken out of
+    // the parse (off the parser's channel) and the body parsed again, so
+    // that the next report is the next mistake, not ANTLR's recovery.
     struct Listener : antlr4::BaseErrorListener {
       void syntaxError(antlr4::Recognizer *, antlr4::Token *t, size_t, size_t,
                        const std::string &msg, std::exception_ptr) override {
@@ -654,6 +680,7 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
           return;
         seen = true;
         offset = t ? t->getStartIndex() : 0;
+        tokenIndex = t ? t->getTokenIndex() : 0;
         text =
             t && t->getType() != antlr4::Token::EOF
                 ? "syntax error in instruction list at '" + t->getText() + "'"
@@ -662,17 +689,29 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
           text = "syntax error in instruction list: unexpected end of line";
       }
       bool seen = false;
-      size_t offset = 0;
+      size_t offset = 0, tokenIndex = 0;
       std::string text;
     } listener;
-    parser.addErrorListener(&listener);
-    IP::IlBodyContext *tree = parser.ilBody();
-    if (lexer.hadError())
-      return false;
-    if (listener.seen) {
+    IP::IlBodyContext *tree = nullptr;
+    unsigned reported = 0;
+    for (;;) {
+      listener = Listener();
+      parser.addErrorListener(&listener);
+      tree = parser.ilBody();
+      parser.removeErrorListeners();
+      if (lexer.hadError())
+        return false;
+      if (!listener.seen)
+        break;
       diag.error(lexer.locAt(listener.offset), listener.text);
-      return false;
+      if (++reported >= st::kMaxSyntaxErrors ||
+          !hideLine(tokens, listener.tokenIndex))
+        break;
+      tokens.seek(0);
+      parser.reset();
     }
+    if (reported)
+      return false;
     try {
       IlLowering lowering(body, diag, unit, pou);
       lowering.lower(tree);

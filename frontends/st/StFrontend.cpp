@@ -3,8 +3,8 @@
 // Parsing runs in two stages, the usual way to make ANTLR fast: SLL
 // prediction with a bailing error strategy first (almost every real file
 // parses in this mode), and only if it fails a second parse in full LL mode
-// whose first syntax error is reported. The parse tree is then walked once
-// into the PLC model and dropped.
+// whose syntax errors are reported, one per statement. The parse tree is then
+// walked once into the PLC model and dropped.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StFrontend.h"
@@ -229,7 +229,8 @@ std::string describeTokenType(const antlr4::dfa::Vocabulary &vocab, size_t type,
   return name.empty() ? "a token" : name;
 }
 
-/// Records the first syntax error only: one error per real mistake.
+/// Records the first syntax error of a parse (the ones after it are
+/// ANTLR's recovery talking).
 class FirstErrorListener : public antlr4::BaseErrorListener {
 public:
   void syntaxError(antlr4::Recognizer *recognizer,
@@ -239,6 +240,9 @@ public:
       return;
     seen = true;
     offset = offendingSymbol ? offendingSymbol->getStartIndex() : 0;
+    tokenIndex = offendingSymbol ? offendingSymbol->getTokenIndex() : 0;
+    atEof =
+        !offendingSymbol || offendingSymbol->getType() == antlr4::Token::EOF;
     std::string found =
         !offendingSymbol || offendingSymbol->getType() == antlr4::Token::EOF
             ? eofName
@@ -269,11 +273,67 @@ public:
       message = "syntax error: unexpected " + found;
     }
   }
-  bool seen = false;
-  size_t offset = 0;
+  bool seen = false, atEof = false;
+  size_t offset = 0, tokenIndex = 0;
   std::string message;
   std::string eofName = "end of file";
 };
+
+/// Takes the statement (or declaration) holding token `at` out of the
+/// parse by moving its tokens off the parser's channel, so that a new
+/// parse goes on to the next real mistake instead of reporting follow-ups
+/// of this one. A statement runs from the token after the last `;`,
+/// THEN, ELSE, DO, OF, section keyword or END_ keyword before `at` through
+/// the first `;` at or after it (an END_ keyword there ends it too, but
+/// stays: it closes the enclosing construct; only an END_ keyword that is
+/// itself the whole mistake is hidden). False when nothing could be
+/// hidden.
+bool hideStatement(antlr4::BufferedTokenStream &tokens,
+                   const antlr4::dfa::Vocabulary &vocab, size_t at) {
+  auto isEnd = [&](size_t type) {
+    return StringRef(vocab.getSymbolicName(type)).startswith("END_");
+  };
+  auto onChannel = [&](size_t i) {
+    return tokens.get(i)->getChannel() == antlr4::Token::DEFAULT_CHANNEL;
+  };
+  size_t n = tokens.size();
+  if (at >= n)
+    return false;
+  size_t begin = at;
+  while (begin > 0) {
+    size_t i = begin - 1;
+    if (onChannel(i)) {
+      size_t type = tokens.get(i)->getType();
+      StringRef name = vocab.getSymbolicName(type);
+      if (type == P::SEMI || type == P::THEN || type == P::ELSE ||
+          type == P::DO || type == P::OF || isEnd(type) ||
+          name.startswith("VAR"))
+        break;
+    }
+    begin = i;
+  }
+  size_t end = at; // exclusive
+  for (; end < n; ++end) {
+    size_t type = tokens.get(end)->getType();
+    if (!onChannel(end))
+      continue;
+    if (type == antlr4::Token::EOF || (isEnd(type) && (end > at || begin < at)))
+      break;
+    if (type == P::SEMI) {
+      ++end;
+      break;
+    }
+  }
+  bool hidden = false;
+  for (size_t i = begin; i < end; ++i) {
+    auto *t = dynamic_cast<antlr4::WritableToken *>(tokens.get(i));
+    if (t && t->getType() != antlr4::Token::EOF && onChannel(i)) {
+      t->setChannel(antlr4::Token::HIDDEN_CHANNEL);
+      hidden = true;
+    }
+  }
+  return hidden;
+}
 
 //===----------------------------------------------------------------------===//
 // Parse tree to PLC model
@@ -994,11 +1054,11 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
 namespace {
 
 /// Runs `rule` on a parser over `text`, SLL first, full LL on failure,
-/// reporting the first syntax error. Returns null on error.
+/// reporting one syntax error per statement. Returns null on error.
 template <typename Ctx>
 Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
                antlr4::CommonTokenStream &tokens, P &parser, Ctx *(P::*rule)(),
-               const char *eofName = "end of file") {
+               unsigned maxErrors, const char *eofName = "end of file") {
   parser.removeErrorListeners();
   parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
       antlr4::atn::PredictionMode::SLL);
@@ -1012,28 +1072,39 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
   }
   if (lexer.hadError())
     return nullptr;
-  tokens.seek(0);
-  parser.reset();
-  parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
-      antlr4::atn::PredictionMode::LL);
-  parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
+  // Full LL, one syntax error per statement: after each error the broken
+  // statement is hidden and the text parsed again (files with syntax
+  // errors are rare and small; correct files never come here twice).
   FirstErrorListener listener;
   listener.eofName = eofName;
-  parser.addErrorListener(&listener);
+  unsigned reported = 0;
   Ctx *tree = nullptr;
-  try {
-    tree = (parser.*rule)();
-  } catch (antlr4::RecognitionException &) {
-  } catch (antlr4::ParseCancellationException &) {
-  }
-  parser.removeErrorListeners();
-  if (lexer.hadError())
-    return nullptr;
-  if (listener.seen) {
+  for (;;) {
+    tokens.seek(0);
+    parser.reset();
+    parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
+        antlr4::atn::PredictionMode::LL);
+    parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
+    listener = FirstErrorListener();
+    listener.eofName = eofName;
+    parser.addErrorListener(&listener);
+    tree = nullptr;
+    try {
+      tree = (parser.*rule)();
+    } catch (antlr4::RecognitionException &) {
+    } catch (antlr4::ParseCancellationException &) {
+    }
+    parser.removeErrorListeners();
+    if (lexer.hadError())
+      return nullptr;
+    if (!listener.seen)
+      break;
     diag.error(lexer.locAt(listener.offset), listener.message);
-    return nullptr;
+    if (++reported >= maxErrors || listener.atEof ||
+        !hideStatement(tokens, parser.getVocabulary(), listener.tokenIndex))
+      break;
   }
-  return tree;
+  return reported ? nullptr : tree;
 }
 
 } // namespace
@@ -1042,8 +1113,8 @@ bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit) {
   StLexer lexer(text, diag);
   antlr4::CommonTokenStream tokens(&lexer);
   P parser(&tokens);
-  P::CompilationUnitContext *tree =
-      parseWith(text, diag, lexer, tokens, parser, &P::compilationUnit);
+  P::CompilationUnitContext *tree = parseWith(
+      text, diag, lexer, tokens, parser, &P::compilationUnit, kMaxSyntaxErrors);
   if (!tree)
     return false;
   AstBuilder builder(text, diag, unit, tokens);
@@ -1056,7 +1127,7 @@ Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
   P parser(&tokens);
   P::ExpressionOnlyContext *tree =
       parseWith(text, diag, lexer, tokens, parser, &P::expressionOnly,
-                "end of the expression");
+                /*maxErrors=*/1, "end of the expression");
   if (!tree)
     return nullptr;
   AstBuilder builder(text, diag, unit, tokens);

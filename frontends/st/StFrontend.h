@@ -16,6 +16,10 @@
 
 namespace netlift::st {
 
+/// Syntax errors are reported one per statement; after this many in one
+/// file the rest are not worth reading.
+inline constexpr unsigned kMaxSyntaxErrors = 20;
+
 /// Parses `text` (inside a buffer of diag's SourceMgr) and appends what it
 /// declares to `unit`. Returns false after reporting an error.
 bool parseStructuredText(llvm::StringRef text, DiagEngine &diag,
