@@ -228,6 +228,9 @@ public:
     case ExprKind::RealLit:
       diag.error(e->loc, "real numbers are not values of a state file");
       return false;
+    case ExprKind::Aggregate:
+      diag.error(e->loc, "aggregates are not values of a state file");
+      return false;
     case ExprKind::Ref:
     case ExprKind::Field:
     case ExprKind::Index: {
@@ -271,6 +274,7 @@ public:
     case ExprKind::BoolLit:
       return llvm::cast<BoolLit>(e)->value;
     case ExprKind::RealLit: // refused by resolve()
+    case ExprKind::Aggregate:
       return 0;
     case ExprKind::Ref:
     case ExprKind::Field:

@@ -105,7 +105,13 @@ private:
 
   // Types and declarations.
   const net::Type *netType(const PType *t, SMLoc at, StringRef what);
-  NExpr *initialValue(VarDecl *v, Initializer *init, const PType *t);
+  /// `v`'s initial value (`init`, else its type's); inside an aggregate
+  /// (`at` given) every element is spelt out, defaults included.
+  NExpr *initialValue(VarDecl *v, Initializer *init, const PType *t,
+                      std::optional<SMLoc> at = std::nullopt);
+  /// An array (from dimension `dim` on) or structure initial value.
+  NExpr *aggregateValue(VarDecl *v, Initializer *init, const PType *t,
+                        size_t dim, SMLoc at);
   NExpr *defaultValue(const PType *t, SMLoc at);
   std::string unique(std::string name);
   static std::string sanitize(StringRef name);
@@ -362,13 +368,76 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
   }
 }
 
-NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t) {
+/// Whether a value of type `t` starts anywhere else than at IEC's default
+/// (a structure field with its own initial value).
+static bool hasDeclaredInitial(const PType *t) {
+  if (t->kind == PTypeKind::Array)
+    return hasDeclaredInitial(t->elem);
+  if (t->kind == PTypeKind::Struct)
+    for (VarDecl *f : t->fields)
+      if ((f->typeSyntax && f->typeSyntax->init) || hasDeclaredInitial(f->type))
+        return true;
+  return false;
+}
+
+NExpr *Lowering::aggregateValue(VarDecl *v, Initializer *init, const PType *t,
+                                size_t dim, SMLoc at) {
+  if (init && init->kind == Initializer::Value)
+    refuse(init->loc, "a single value cannot initialise '" + v->name + "'");
+  std::vector<NExpr *> elems;
+  std::vector<StringRef> names;
+  if (t->kind == PTypeKind::Array) {
+    auto [lo, hi] = t->dims[dim];
+    size_t n = size_t(hi - lo + 1);
+    auto element = [&](Initializer *e) {
+      return dim + 1 < t->dims.size() ? aggregateValue(v, e, t, dim + 1, at)
+                                      : initialValue(v, e, t->elem, at);
+    };
+    if (init) {
+      if (init->kind != Initializer::Array)
+        refuse(init->loc,
+               "an array initialiser is needed for '" + v->name + "'");
+      for (auto &[count, inner] : init->elems)
+        for (int64_t k = 0; k < count; ++k) {
+          if (elems.size() == n)
+            refuse(init->loc, "the initialiser of '" + v->name +
+                                  "' has more than the " + Twine(n) +
+                                  " elements of its array");
+          elems.push_back(element(inner));
+        }
+    }
+    // IEC 61131-3: elements the list does not reach keep their default.
+    while (elems.size() < n)
+      elems.push_back(element(nullptr));
+  } else {
+    for (VarDecl *f : t->fields) {
+      Initializer *given = f->typeSyntax ? f->typeSyntax->init : nullptr;
+      if (init)
+        for (auto &[name, inner] : init->fields)
+          if (sameName(name, f->name))
+            given = inner;
+      elems.push_back(initialValue(f, given, f->type, at));
+      names.push_back(design.save(sanitize(f->name)));
+    }
+  }
+  return b.aggregate(elems, names, init ? init->loc : at);
+}
+
+NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
+                              std::optional<SMLoc> at) {
+  SMLoc loc = at ? *at : v->loc;
+  if (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct) {
+    // Aggregates start at IEC's defaults unless something says otherwise,
+    // and NetIR's defaults are the same: no initial value needed then.
+    if (!init && !at && !hasDeclaredInitial(t))
+      return nullptr;
+    return aggregateValue(v, init, t, 0, loc);
+  }
   if (!init)
-    return defaultValue(t, v->loc);
+    return defaultValue(t, loc);
   if (init->kind != Initializer::Value)
-    refuse(init->loc, "initial values of arrays and structures are not "
-                      "supported yet (variable '" +
-                          v->name + "')");
+    refuse(init->loc, "an array or structure initialiser for '" + v->name +
+                          "' of type " + t->str());
   Frame none;
   Expr *e = init->value;
   if (t->kind == PTypeKind::Enum) {

@@ -33,8 +33,13 @@ std::string PType::str() const {
   switch (kind) {
   case PTypeKind::AnyInt:
     return "ANY_INT";
-  case PTypeKind::Array:
-    return "ARRAY OF " + (elem ? elem->str() : "?");
+  case PTypeKind::Array: {
+    std::string r = "ARRAY[";
+    for (size_t d = 0; d < dims.size(); ++d)
+      r += (d ? "," : "") + std::to_string(dims[d].first) + ".." +
+           std::to_string(dims[d].second);
+    return r + "] OF " + (elem ? elem->str() : "?");
+  }
   case PTypeKind::Enum:
     return "enumeration";
   case PTypeKind::Struct:
@@ -475,7 +480,8 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
     if (t->kind == PTypeKind::FunctionBlock || t->kind == PTypeKind::Array ||
         t->kind == PTypeKind::Struct) {
       // `arr : ARRAY[1..3] OF INT := 0`? Not IEC; refuse.
-      error(init->loc, "a single value cannot initialise a " + t->str());
+      error(init->loc,
+            "a single value cannot initialise a value of type " + t->str());
       return;
     }
     expr(init->value);

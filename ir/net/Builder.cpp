@@ -152,6 +152,14 @@ Expr *Builder::field(Expr *base, StringRef f, SMLoc loc) {
 Expr *Builder::call(Builtin fn, ArrayRef<Expr *> args, SMLoc loc) {
   return design.create<CallExpr>(loc, fn, design.copy(args));
 }
+Expr *Builder::aggregate(ArrayRef<Expr *> elems, ArrayRef<StringRef> names,
+                         SMLoc loc) {
+  llvm::SmallVector<StringRef, 8> kept;
+  for (StringRef n : names)
+    kept.push_back(design.save(n));
+  return design.create<AggregateLit>(loc, design.copy(elems),
+                                     design.copy(ArrayRef<StringRef>(kept)));
+}
 Stmt *Builder::assign(Expr *target, Expr *value, SMLoc loc) {
   return design.create<AssignStmt>(loc, target, value);
 }

@@ -61,6 +61,11 @@ public:
   Expr *index(Expr *base, Expr *idx, llvm::SMLoc loc = {});
   Expr *field(Expr *base, llvm::StringRef f, llvm::SMLoc loc = {});
   Expr *call(Builtin fn, llvm::ArrayRef<Expr *> args, llvm::SMLoc loc = {});
+  /// An array's (no names) or a record's (one name per field) initial
+  /// value.
+  Expr *aggregate(llvm::ArrayRef<Expr *> elems,
+                  llvm::ArrayRef<llvm::StringRef> fieldNames,
+                  llvm::SMLoc loc = {});
   Stmt *assign(Expr *target, Expr *value, llvm::SMLoc loc = {});
   Stmt *ifStmt(llvm::ArrayRef<IfArm> arms, bool hasElse,
                llvm::ArrayRef<Stmt *> elseBody, llvm::SMLoc loc = {});

@@ -65,6 +65,13 @@ Expr *netlift::net::cloneExpr(Builder &b, const Module &src, const Expr *e,
       args.push_back(rec(a));
     return b.call(c->fn, args, e->loc);
   }
+  case ExprKind::Aggregate: {
+    auto *a = cast<AggregateLit>(e);
+    llvm::SmallVector<Expr *, 8> elems;
+    for (const Expr *x : a->elems)
+      elems.push_back(rec(x));
+    return b.aggregate(elems, a->fieldNames, e->loc);
+  }
   }
   return nullptr;
 }

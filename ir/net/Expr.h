@@ -55,6 +55,7 @@ enum class ExprKind : uint8_t {
   Binary,
   Cond,
   Call,
+  Aggregate,
 };
 
 enum class UnaryOp : uint8_t { Not, Neg, BitNot };
@@ -199,6 +200,24 @@ public:
   Builtin fn;
   llvm::ArrayRef<Expr *> args;
   static bool classof(const Expr *e) { return e->getKind() == ExprKind::Call; }
+};
+
+/// The initial value of an array or record variable, and nothing else:
+/// `[1, 2, 3]` lists an array's elements from its low index up,
+/// `{x: 1, y: [0, 0]}` a record's fields in declaration order (every
+/// element and field given, each a constant).
+class AggregateLit : public Expr {
+public:
+  AggregateLit(llvm::SMLoc l, llvm::ArrayRef<Expr *> e,
+               llvm::ArrayRef<llvm::StringRef> names)
+      : Expr(ExprKind::Aggregate, l), elems(e), fieldNames(names) {}
+  llvm::ArrayRef<Expr *> elems;
+  /// A record's field names, one per element; empty for an array.
+  llvm::ArrayRef<llvm::StringRef> fieldNames;
+  bool isRecord() const { return !fieldNames.empty(); }
+  static bool classof(const Expr *e) {
+    return e->getKind() == ExprKind::Aggregate;
+  }
 };
 
 //===----------------------------------------------------------------------===//

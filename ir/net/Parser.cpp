@@ -1334,6 +1334,36 @@ Expr *Parser::parsePrimary() {
       return nullptr;
     return e;
   }
+  case Tok::LBrack:
+  case Tok::LBrace: {
+    // An aggregate initial value: `[e, ...]` or `{field: e, ...}`.
+    bool record = tok.is(Tok::LBrace);
+    consume();
+    llvm::SmallVector<Expr *, 8> elems;
+    llvm::SmallVector<StringRef, 8> names;
+    Tok close = record ? Tok::RBrace : Tok::RBrack;
+    if (!tok.is(close)) {
+      do {
+        if (record) {
+          if (!tok.is(Tok::Ident)) {
+            errorHere("expected a field name, found " + describe());
+            return nullptr;
+          }
+          names.push_back(tok.text);
+          consume();
+          if (!expect(Tok::Colon, "':'"))
+            return nullptr;
+        }
+        Expr *e = parseExpr();
+        if (!e)
+          return nullptr;
+        elems.push_back(e);
+      } while (tok.is(Tok::Comma) && (consume(), true));
+    }
+    if (!expect(close, record ? "'}'" : "']'"))
+      return nullptr;
+    return b.aggregate(elems, names, loc);
+  }
   case Tok::Ident: {
     StringRef n = tok.text;
     if (n == "true" || n == "false") {

@@ -107,6 +107,19 @@ void print(const Expr *e, raw_ostream &os, int ctx) {
     os << ')';
     return;
   }
+  case ExprKind::Aggregate: {
+    auto *a = llvm::cast<AggregateLit>(e);
+    os << (a->isRecord() ? '{' : '[');
+    for (size_t i = 0; i < a->elems.size(); ++i) {
+      if (i)
+        os << ", ";
+      if (a->isRecord())
+        os << a->fieldNames[i] << ": ";
+      print(a->elems[i], os, 0);
+    }
+    os << (a->isRecord() ? '}' : ']');
+    return;
+  }
   }
 }
 

@@ -118,6 +118,50 @@ void ModuleVerifier::checkNames() {
 bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
   if (!init)
     return true;
+  if (auto *agg = llvm::dyn_cast<AggregateLit>(init)) {
+    if (type->isScalar()) {
+      error(init->loc, "initial value of " + what + " is an aggregate, but '" +
+                           typeName(type) + "' is not an array or record");
+      return false;
+    }
+    if (type->kind == TypeKind::Array) {
+      uint64_t n = uint64_t(type->indexHi - type->indexLo + 1);
+      if (agg->isRecord() || agg->elems.size() != n) {
+        error(init->loc, "initial value of " + what + " must list the " +
+                             Twine(n) + " elements of '" + typeName(type) +
+                             "' as [e, ...]");
+        return false;
+      }
+      bool ok = true;
+      for (size_t i = 0; i < n; ++i)
+        ok &= checkInit(
+            agg->elems[i], type->elem,
+            ("element [" + Twine(type->indexLo + int64_t(i)) + "] of " + what)
+                .str());
+      agg->type = type;
+      return ok;
+    }
+    bool sameFields =
+        agg->isRecord() && agg->fieldNames.size() == type->fields.size();
+    for (size_t i = 0; sameFields && i < type->fields.size(); ++i)
+      sameFields = agg->fieldNames[i] == type->fields[i].name;
+    if (!sameFields) {
+      std::string names;
+      for (const Field &f : type->fields)
+        names += (names.empty() ? "" : ", ") + f.name.str() + ": ...";
+      error(init->loc, "initial value of " + what +
+                           " must give the fields of '" + typeName(type) +
+                           "' in order, as {" + names + "}");
+      return false;
+    }
+    bool ok = true;
+    for (size_t i = 0; i < type->fields.size(); ++i)
+      ok &=
+          checkInit(agg->elems[i], type->fields[i].type,
+                    ("field '" + type->fields[i].name + "' of " + what).str());
+    agg->type = type;
+    return ok;
+  }
   const Type *t = check(init, Ctx::Constant);
   if (!t)
     return false;
@@ -444,6 +488,10 @@ const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
 
 const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
   switch (e->getKind()) {
+  case ExprKind::Aggregate:
+    error(e->loc, "an aggregate ([...] or {...}) is allowed only as the "
+                  "initial value of an array or record variable");
+    return nullptr;
   case ExprKind::IntLit:
     return e->type = types.getInteger();
   case ExprKind::BoolLit:

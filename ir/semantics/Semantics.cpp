@@ -175,6 +175,8 @@ struct Semantics::Impl {
       return cast<BoolLit>(e)->value;
     case ExprKind::RealLit:
       fail(e, "real arithmetic is not part of the discrete semantics");
+    case ExprKind::Aggregate: // only initial values, flattened there
+      fail(e, "an aggregate is not a scalar value");
     case ExprKind::Ref: {
       auto *r = cast<Ref>(e);
       switch (r->sym.kind) {
@@ -708,17 +710,28 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
       v[s] = m.places[p].tokens;
     }
     std::vector<uint32_t> written;
-    auto init = [&](int32_t first, const Type *t, const Expr *e) {
-      if (!e || first < 0)
-        return;
-      if (!t->isScalar()) {
-        int64_t src = I.slotOf(e, v);
-        if (src < 0)
-          I.fail(e, "aggregate initial values are not supported");
-        return;
-      }
-      I.store(e, uint32_t(first), I.eval(e, v), v, written);
-    };
+    std::function<void(int32_t, const Type *, const Expr *)> init =
+        [&](int32_t first, const Type *t, const Expr *e) {
+          if (!e || first < 0)
+            return;
+          if (auto *agg = llvm::dyn_cast<AggregateLit>(e)) {
+            // Elements and fields lie one after another in the layout.
+            for (size_t i = 0; i < agg->elems.size(); ++i) {
+              const Type *et =
+                  t->kind == TypeKind::Array ? t->elem : t->fields[i].type;
+              init(first, et, agg->elems[i]);
+              first += int32_t(StateLayout::slotsOf(et));
+            }
+            return;
+          }
+          if (!t->isScalar()) {
+            int64_t src = I.slotOf(e, v);
+            if (src < 0)
+              I.fail(e, "aggregate initial values are not supported");
+            return;
+          }
+          I.store(e, uint32_t(first), I.eval(e, v), v, written);
+        };
     for (uint32_t x = 0; x < m.vars.size(); ++x)
       init(L.varSlot(x), m.vars[x].type, m.vars[x].init);
     for (uint32_t p = 0; p < m.ports.size(); ++p)
