@@ -170,6 +170,10 @@ private:
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
   std::map<VarDecl *, std::set<std::string>> globalUsers;
+  /// The instance whose arguments bind a program's inputs and outputs.
+  std::map<Pou *, ProgramInstance *> argumentsOf;
+  /// Inputs of the program being lowered that an argument feeds.
+  std::set<VarDecl *> boundInputs;
   Pou *currentProgram = nullptr;
 };
 
@@ -513,7 +517,9 @@ void Lowering::declareProgramVar(VarDecl *v) {
     refuse(v->loc, "VAR_IN_OUT of the translated program '" +
                        currentProgram->name + "' has nothing to refer to");
   std::string name = sanitize(v->name);
-  bool isInput = v->area() == 'I' || v->section == VarSection::Input;
+  // An input bound to a global by a program argument is fed from it.
+  bool isInput = (v->area() == 'I' || v->section == VarSection::Input) &&
+                 !boundInputs.count(v);
   bool isOutput = v->area() == 'Q' || v->section == VarSection::Output;
   varTypes[name] = t;
   if (isInput) {
@@ -1910,6 +1916,19 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
     scanStmts(p->body);
   };
   scanPou(program);
+  // Program arguments: inputs read their global at the start of the scan,
+  // outputs write theirs at the end (IEC 61131-3 2.7.1).
+  boundInputs.clear();
+  std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
+  if (auto it = argumentsOf.find(program); it != argumentsOf.end())
+    for (CallArg &a : it->second->args) {
+      VarDecl *v = program->find(a.name), *g = a.value->var;
+      globalsUsed.insert(g);
+      globalUsers[g].insert(program->name);
+      (a.isOutput ? argOut : argIn).push_back({v, g});
+      if (!a.isOutput)
+        boundInputs.insert(v);
+    }
   for (VarDecl *g : globalsUsed)
     declareProgramVar(g);
   for (VarDecl *v : program->vars)
@@ -1923,7 +1942,13 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
     top.returnFlag = unique("_return");
     declareTemp(top.returnFlag, elementaryType("BOOL"), program->loc);
   }
+  for (auto &[v, g] : argIn)
+    action.push_back(b.assign(b.ref(sanitize(v->name), v->loc),
+                              b.ref(sanitize(g->name), v->loc), v->loc));
   body(program->body, top, action, {});
+  for (auto &[v, g] : argOut)
+    action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
+                              b.ref(sanitize(v->name), v->loc), v->loc));
 
   // Clock caps, and the TIME members they bound.
   auto varIndex = [&](StringRef name) -> int32_t {
@@ -2039,13 +2064,26 @@ bool Lowering::run() {
       return false;
     }
   }
+  // Program instance arguments bind the program's inputs and outputs to
+  // globals; netlift writes one module per program, so a program can have
+  // its arguments from one instance only.
   for (Configuration *c : unit.configs)
-    for (ProgramInstance &pi : c->programs)
-      if (!pi.args.empty()) {
-        diag.error(pi.loc, "arguments of program instance '" + pi.name +
-                               "' are not supported");
+    for (ProgramInstance &pi : c->programs) {
+      Pou *p = unit.findPou(pi.typeName);
+      bool translated = false;
+      for (auto &[q, t] : tops)
+        translated |= q == p;
+      if (!translated || pi.args.empty())
+        continue;
+      auto [it, fresh] = argumentsOf.try_emplace(p, &pi);
+      if (!fresh) {
+        diag.error(pi.loc, "program '" + p->name +
+                               "' has arguments in two instances ('" +
+                               it->second->name + "' and '" + pi.name +
+                               "'), but netlift writes one module per program");
         return false;
       }
+    }
 
   try {
     // Variables written anywhere are not constants.

@@ -244,6 +244,7 @@ private:
   const PType *call(Expr *e, bool asStatement);
   void functionArgs(Expr *e, Pou *fn);
   bool assignable(const PType *to, Expr *from, SMLoc at, const Twine &what);
+  void checkProgramArgs(ProgramInstance &pi, Pou *p);
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
   VarDecl *lookupVar(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
@@ -623,6 +624,55 @@ VarDecl *Checker::enEno(Pou *p, StringRef name) {
   return v;
 }
 
+/// `PROGRAM inst WITH task : Prog(IN := g, OUT => h)`: each argument names
+/// an input (`:=`) or output (`=>`) of the program and binds it to a global
+/// variable of matching type (IEC 61131-3 2.7.1).
+void Checker::checkProgramArgs(ProgramInstance &pi, Pou *p) {
+  for (CallArg &a : pi.args) {
+    if (a.name.empty()) {
+      error(a.loc, "arguments of program instance '" + pi.name +
+                       "' must be named ('IN := g' or 'OUT => g')");
+      continue;
+    }
+    VarDecl *v = p->find(a.name);
+    VarSection want = a.isOutput ? VarSection::Output : VarSection::Input;
+    if (!v || v->section != want) {
+      error(a.loc, "program '" + p->name + "' has no " +
+                       (a.isOutput ? "output '" : "input '") + a.name + "'");
+      continue;
+    }
+    if (a.negated)
+      error(a.loc, "a negated program argument is not supported");
+    if (a.value && a.value->kind == ExprKind::Name &&
+        StringRef(a.value->name).startswith("%")) {
+      error(a.value->loc, "binding '" + a.name + "' to the direct address " +
+                              a.value->name +
+                              " is not supported: declare the variable AT " +
+                              a.value->name + " in the program");
+      continue;
+    }
+    unsigned errorsBefore = diag.numErrors();
+    if (!a.value || a.value->kind != ExprKind::Name || !expr(a.value) ||
+        !a.value->var || a.value->var->owner) {
+      if (diag.numErrors() == errorsBefore) // not already explained
+        error(a.value ? a.value->loc : a.loc,
+              "the argument of '" + a.name +
+                  "' must be a global variable of the configuration");
+      continue;
+    }
+    if (a.value->var->constant && a.isOutput) {
+      error(a.value->loc, "output '" + a.name + "' is bound to constant '" +
+                              a.value->var->name + "'");
+      continue;
+    }
+    if (v->type && a.value->type && v->type->str() != a.value->type->str())
+      error(a.value->loc, "'" + a.name + "' of program '" + p->name + "' is " +
+                              v->type->str() + ", global '" +
+                              a.value->var->name + "' is " +
+                              a.value->type->str());
+  }
+}
+
 bool Checker::run() {
   for (Configuration *c : unit.configs)
     for (VarDecl *g : c->globals)
@@ -682,8 +732,11 @@ bool Checker::run() {
     current = nullptr;
     for (ProgramInstance &pi : c->programs) {
       Pou *p = unit.findPou(pi.typeName);
-      if (!p || p->kind != PouKind::Program)
+      if (!p || p->kind != PouKind::Program) {
         error(pi.typeLoc, "'" + pi.typeName + "' is not a program");
+        continue;
+      }
+      checkProgramArgs(pi, p);
       bool found = pi.task.empty();
       for (Task &t : c->tasks)
         found |= sameName(t.name, pi.task);
