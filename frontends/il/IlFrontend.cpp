@@ -627,15 +627,10 @@ static bool hideLine(antlr4::BufferedTokenStream &tokens, size_t at) {
   size_t begin = at;
   while (begin > 0 && !isLineEnd(begin - 1))
     --begin;
-  bool hidden = false;
-  for (size_t i = begin; i < n && !isLineEnd(i); ++i) {
-    auto *t = dynamic_cast<antlr4::WritableToken *>(tokens.get(i));
-    if (t && t->getChannel() == antlr4::Token::DEFAULT_CHANNEL) {
-      t->setChannel(antlr4::Token::HIDDEN_CHANNEL);
-      hidden = true;
-    }
-  }
-  return hidden;
+  size_t end = at;
+  while (end < n && !isLineEnd(end))
+    ++end;
+  return st::hideTokens(tokens, begin, end);
 }
 
 bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {

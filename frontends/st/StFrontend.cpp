@@ -324,15 +324,7 @@ bool hideStatement(antlr4::BufferedTokenStream &tokens,
       break;
     }
   }
-  bool hidden = false;
-  for (size_t i = begin; i < end; ++i) {
-    auto *t = dynamic_cast<antlr4::WritableToken *>(tokens.get(i));
-    if (t && t->getType() != antlr4::Token::EOF && onChannel(i)) {
-      t->setChannel(antlr4::Token::HIDDEN_CHANNEL);
-      hidden = true;
-    }
-  }
-  return hidden;
+  return st::hideTokens(tokens, begin, end);
 }
 
 //===----------------------------------------------------------------------===//
@@ -1075,8 +1067,6 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
   // Full LL, one syntax error per statement: after each error the broken
   // statement is hidden and the text parsed again (files with syntax
   // errors are rare and small; correct files never come here twice).
-  FirstErrorListener listener;
-  listener.eofName = eofName;
   unsigned reported = 0;
   Ctx *tree = nullptr;
   for (;;) {
@@ -1085,7 +1075,7 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
     parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(
         antlr4::atn::PredictionMode::LL);
     parser.setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
-    listener = FirstErrorListener();
+    FirstErrorListener listener;
     listener.eofName = eofName;
     parser.addErrorListener(&listener);
     tree = nullptr;

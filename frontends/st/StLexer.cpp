@@ -468,3 +468,17 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
   return fail(start,
               llvm::Twine("unexpected character '") + llvm::Twine(c) + "'");
 }
+
+bool st::hideTokens(antlr4::BufferedTokenStream &tokens, size_t begin,
+                    size_t end) {
+  bool hidden = false;
+  for (size_t i = begin; i < end && i < tokens.size(); ++i) {
+    auto *t = dynamic_cast<antlr4::WritableToken *>(tokens.get(i));
+    if (t && t->getType() != antlr4::Token::EOF &&
+        t->getChannel() == antlr4::Token::DEFAULT_CHANNEL) {
+      t->setChannel(antlr4::Token::HIDDEN_CHANNEL);
+      hidden = true;
+    }
+  }
+  return hidden;
+}

@@ -72,6 +72,12 @@ private:
   bool silent = false;
 };
 
+/// Moves the default-channel tokens in [begin, end) (never EOF) off the
+/// parser's channel, so that a new parse skips them: how the ST and IL
+/// frontends take a broken statement out to reach the next mistake. False
+/// when there was nothing to move.
+bool hideTokens(antlr4::BufferedTokenStream &tokens, size_t begin, size_t end);
+
 } // namespace netlift::st
 
 #endif

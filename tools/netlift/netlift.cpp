@@ -570,6 +570,23 @@ static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
                                   llvm::StringRef topName,
                                   llvm::StringRef command);
 
+/// Reports the runtime error an exploration stopped at, at its place in the
+/// model and with the path that leads there (when the initial state could
+/// be built). Every command that explores says it the same way.
+static void reportRuntimeError(const statespace::ExploreResult &r, bool started,
+                               statespace::Explorer &explorer,
+                               sem::Semantics &semantics, DiagEngine &diag) {
+  if (r.error->loc.isValid())
+    diag.error(r.error->loc, "runtime error: " + r.error->message);
+  else
+    llvm::errs() << "netlift: error: " << r.error->message << "\n";
+  if (started) {
+    llvm::errs() << "trace to the state where it happens (the next step "
+                    "fails):\n";
+    statespace::writeTrace(explorer, semantics, r.errorState, llvm::errs());
+  }
+}
+
 static int runEmit() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
@@ -1011,10 +1028,9 @@ static int runSr() {
     eo.recordEdges = true;
     statespace::Explorer explorer(semantics, eo);
     statespace::ExploreResult r;
-    explorer.run(r);
+    bool started = explorer.run(r);
     if (r.error) {
-      llvm::errs() << "netlift: error: runtime error: " << r.error->message
-                   << "\n";
+      reportRuntimeError(r, started, explorer, semantics, diag);
       return 1;
     }
     complete = r.complete;
@@ -1131,10 +1147,9 @@ static int runCheck() {
   eo.maxStates = reachMaxStates;
   statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  explorer.run(r);
+  bool started = explorer.run(r);
   if (r.error) {
-    llvm::errs() << "netlift: error: runtime error: " << r.error->message
-                 << "\n";
+    reportRuntimeError(r, started, explorer, semantics, diag);
     return 1;
   }
   if (!r.complete) {
@@ -1249,15 +1264,7 @@ static int runReach() {
   statespace::ExploreResult r;
   bool started = explorer.run(r);
   if (r.error) {
-    if (r.error->loc.isValid())
-      diag.error(r.error->loc, "runtime error: " + r.error->message);
-    else
-      llvm::errs() << "netlift: error: " << r.error->message << "\n";
-    if (started) {
-      llvm::errs() << "trace to the state where it happens (the next step "
-                      "fails):\n";
-      statespace::writeTrace(explorer, semantics, r.errorState, llvm::errs());
-    }
+    reportRuntimeError(r, started, explorer, semantics, diag);
     return 1;
   }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {
