@@ -386,8 +386,9 @@ static bool hasDeclaredInitial(const PType *t) {
 
 NExpr *Lowering::aggregateValue(VarDecl *v, Initializer *init, const PType *t,
                                 size_t dim, SMLoc at) {
-  if (init && init->kind == Initializer::Value)
-    refuse(init->loc, "a single value cannot initialise '" + v->name + "'");
+  // Sema has checked the initialiser's shape against the type (array list
+  // for an array, field list for a structure, one dimension); the count is
+  // checked here.
   std::vector<NExpr *> elems;
   std::vector<StringRef> names;
   if (t->kind == PTypeKind::Array) {
@@ -398,9 +399,6 @@ NExpr *Lowering::aggregateValue(VarDecl *v, Initializer *init, const PType *t,
                                       : initialValue(v, e, t->elem, at);
     };
     if (init) {
-      if (init->kind != Initializer::Array)
-        refuse(init->loc,
-               "an array initialiser is needed for '" + v->name + "'");
       for (auto &[count, inner] : init->elems)
         for (int64_t k = 0; k < count; ++k) {
           if (elems.size() == n)

@@ -716,18 +716,13 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
             return;
           if (auto *agg = llvm::dyn_cast<AggregateLit>(e)) {
             // Elements and fields lie one after another in the layout.
+            // (The verifier admits only aggregates for arrays and records.)
             for (size_t i = 0; i < agg->elems.size(); ++i) {
               const Type *et =
                   t->kind == TypeKind::Array ? t->elem : t->fields[i].type;
               init(first, et, agg->elems[i]);
               first += int32_t(StateLayout::slotsOf(et));
             }
-            return;
-          }
-          if (!t->isScalar()) {
-            int64_t src = I.slotOf(e, v);
-            if (src < 0)
-              I.fail(e, "aggregate initial values are not supported");
             return;
           }
           I.store(e, uint32_t(first), I.eval(e, v), v, written);
