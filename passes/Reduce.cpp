@@ -1,14 +1,15 @@
 //===- Reduce.cpp - every reduction to a fixpoint -------------------------===//
 //
 // `reduce` runs reduce-consts, reduce-dead, reduce-ranges and reduce-clocks
-// (and reduce-coi when `observe=` is given) in turn until a round changes
+// (and reduce-coi and reduce-chains when `observe=` is given: both keep only
+// what is observed) in turn until a round changes
 // nothing (at most 10 rounds): folding a constant guard to `false` lets
 // reduce-dead remove the transition, whose removal may leave a variable
 // unread, and so on. Each pass's counters add up in --stats; `report=`
 // writes the module's size before and after.
 //
 // Preserved: what each pass preserves (docs/passes.md); with `observe=`,
-// what reduce-coi preserves.
+// what reduce-coi and reduce-chains preserve.
 //
 //===----------------------------------------------------------------------===//
 #include "passes/ReduceSupport.h"
@@ -43,10 +44,12 @@ public:
     if (opts.count("top"))
       sub["top"] = opts.at("top");
     std::vector<std::unique_ptr<Pass>> passes;
-    for (const char *name : {"reduce-coi", "reduce-consts", "reduce-dead",
-                             "reduce-ranges", "reduce-clocks"}) {
+    for (const char *name :
+         {"reduce-coi", "reduce-consts", "reduce-dead", "reduce-ranges",
+          "reduce-clocks", "reduce-chains"}) {
       PassOptions o = sub;
-      if (llvm::StringRef(name) == "reduce-coi") {
+      if (llvm::StringRef(name) == "reduce-coi" ||
+          llvm::StringRef(name) == "reduce-chains") {
         if (!opts.count("observe"))
           continue;
         o["observe"] = opts.at("observe");

@@ -155,33 +155,13 @@ public:
     if (!m)
       return false;
     Cone cone(*m);
-    if (auto it = opts.find("observe"); it != opts.end()) {
-      llvm::SmallVector<StringRef, 8> names;
-      StringRef(it->second).split(names, ',', -1, false);
-      for (StringRef n : names) {
-        n = n.trim();
-        Symbol s = m->lookup(n);
-        if (s.kind == SymKind::Place)
-          cone.place[s.index] = true;
-        else if (s.kind == SymKind::Var)
-          cone.var[s.index] = true;
-        else if (s.kind == SymKind::Port)
-          cone.port[s.index] = true;
-        else if (s.kind == SymKind::Transition)
-          cone.trans[s.index] = true;
-        else {
-          llvm::errs() << "netlift: error: reduce-coi: '" << n
-                       << "' in observe= is not a place, variable, port or "
-                          "transition of '"
-                       << m->name << "'\n";
-          return false;
-        }
-      }
-    } else {
-      for (uint32_t p = 0; p < m->ports.size(); ++p)
-        if (m->ports[p].isOutput())
-          cone.port[p] = true;
-    }
+    auto observed = reduce::observedElements(*m, opts, "reduce-coi");
+    if (!observed)
+      return false;
+    cone.place = observed->place;
+    cone.var = observed->var;
+    cone.port = observed->port;
+    cone.trans = observed->trans;
     // Inputs are the environment: they stay whatever happens.
     for (uint32_t p = 0; p < m->ports.size(); ++p)
       if (m->ports[p].isInput())

@@ -317,3 +317,41 @@ bool reduce::reverify(Design &d, DiagEngine &diag, StringRef pass) {
                << " produced invalid IR (a bug in netlift)\n";
   return false;
 }
+
+std::optional<reduce::Observed>
+reduce::observedElements(const Module &m, const PassOptions &opts,
+                         StringRef pass) {
+  Observed o;
+  o.place.assign(m.places.size(), false);
+  o.var.assign(m.vars.size(), false);
+  o.port.assign(m.ports.size(), false);
+  o.trans.assign(m.transitions.size(), false);
+  auto it = opts.find("observe");
+  if (it == opts.end()) {
+    for (uint32_t p = 0; p < m.ports.size(); ++p)
+      o.port[p] = m.ports[p].isOutput();
+    return o;
+  }
+  llvm::SmallVector<StringRef, 8> names;
+  StringRef(it->second).split(names, ',', -1, false);
+  for (StringRef n : names) {
+    n = n.trim();
+    Symbol s = m.lookup(n);
+    if (s.kind == SymKind::Place)
+      o.place[s.index] = true;
+    else if (s.kind == SymKind::Var)
+      o.var[s.index] = true;
+    else if (s.kind == SymKind::Port)
+      o.port[s.index] = true;
+    else if (s.kind == SymKind::Transition)
+      o.trans[s.index] = true;
+    else {
+      llvm::errs() << "netlift: error: " << pass << ": '" << n
+                   << "' in observe= is not a place, variable, port or "
+                      "transition of '"
+                   << m.name << "'\n";
+      return std::nullopt;
+    }
+  }
+  return o;
+}

@@ -76,6 +76,16 @@ void compactModule(net::Module &m, const std::vector<bool> &keepPlace,
                    const std::vector<bool> &keepTrans,
                    const std::vector<bool> &keepVar);
 
+/// What a reduction must keep observable: the elements `observe=` names
+/// (places, variables, ports, transitions), or every output without it.
+struct Observed {
+  std::vector<bool> place, var, port, trans;
+};
+/// Null after reporting a name in `observe=` that is none of those.
+std::optional<Observed> observedElements(const net::Module &m,
+                                         const PassOptions &opts,
+                                         llvm::StringRef pass);
+
 /// Resolves the design again after a rewrite. False after reporting.
 bool reverify(net::Design &d, DiagEngine &diag, llvm::StringRef pass);
 

@@ -50,10 +50,9 @@ bool combine(const Row &a, int64_t fa, const Row &b, int64_t fb, Row &out) {
 }
 } // namespace
 
-std::vector<uint64_t> netlift::sem::structuralBounds(const Module &m,
-                                                     size_t maxRows) {
+std::vector<std::vector<int64_t>> netlift::sem::placeSemiflows(const Module &m,
+                                                               size_t maxRows) {
   size_t P = m.places.size(), T = m.transitions.size();
-  std::vector<uint64_t> bounds(P, kNoBound);
   std::vector<Row> rows(P);
   for (size_t p = 0; p < P; ++p) {
     rows[p].c.assign(T, 0);
@@ -75,12 +74,12 @@ std::vector<uint64_t> netlift::sem::structuralBounds(const Module &m,
       continue;
     }
     if (zero.size() + pos.size() * neg.size() > maxRows)
-      return bounds; // too expensive: no structural bounds
+      return {}; // too expensive: no semiflows
     for (const Row &a : pos)
       for (const Row &b : neg) {
         Row r;
         if (!combine(a, -b.c[t], b, a.c[t], r))
-          return bounds;
+          return {};
         zero.push_back(std::move(r));
       }
     // Drop duplicates to keep the tableau small.
@@ -91,20 +90,30 @@ std::vector<uint64_t> netlift::sem::structuralBounds(const Module &m,
         zero.end());
     rows = std::move(zero);
   }
-  for (const Row &r : rows) {
+  std::vector<std::vector<int64_t>> flows;
+  for (Row &r : rows)
+    flows.push_back(std::move(r.y));
+  return flows;
+}
+
+std::vector<uint64_t> netlift::sem::structuralBounds(const Module &m,
+                                                     size_t maxRows) {
+  size_t P = m.places.size();
+  std::vector<uint64_t> bounds(P, kNoBound);
+  for (const std::vector<int64_t> &y : placeSemiflows(m, maxRows)) {
     uint64_t weighted = 0;
     bool overflow = false;
     for (size_t p = 0; p < P && !overflow; ++p) {
       uint64_t term;
-      overflow |= __builtin_mul_overflow(uint64_t(r.y[p]),
+      overflow |= __builtin_mul_overflow(uint64_t(y[p]),
                                          uint64_t(m.places[p].tokens), &term) ||
                   __builtin_add_overflow(weighted, term, &weighted);
     }
     if (overflow)
       continue;
     for (size_t p = 0; p < P; ++p)
-      if (r.y[p] > 0)
-        bounds[p] = std::min(bounds[p], weighted / uint64_t(r.y[p]));
+      if (y[p] > 0)
+        bounds[p] = std::min(bounds[p], weighted / uint64_t(y[p]));
   }
   return bounds;
 }

@@ -22,6 +22,11 @@ namespace netlift::sem {
 
 constexpr uint64_t kNoBound = UINT64_MAX;
 
+/// P-semiflows of `m` (one weight per place each), or none when the Farkas
+/// tableau would grow beyond `maxRows` or overflow.
+std::vector<std::vector<int64_t>> placeSemiflows(const net::Module &m,
+                                                 size_t maxRows = 4096);
+
 /// For each place, a bound on its tokens from P-semiflows, or kNoBound.
 std::vector<uint64_t> structuralBounds(const net::Module &m,
                                        size_t maxRows = 4096);
