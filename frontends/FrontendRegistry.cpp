@@ -93,9 +93,10 @@ static const FrontendInfo *sniffXml(StringRef text) {
     StringRef root = rest.take_while([](char c) {
       return !isspace((unsigned char)c) && c != '>' && c != '/';
     });
-    StringRef id = root == "sspaceex" ? "spaceex"
-                   : root == "pnml"   ? "pnml"
-                                      : "";
+    StringRef id = root == "sspaceex"  ? "spaceex"
+                   : root == "pnml"    ? "pnml"
+                   : root == "project" ? "plcopen"
+                                       : "";
     for (const FrontendInfo &f : registry)
       if (!id.empty() && f.id == id)
         return &f;
@@ -137,7 +138,8 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
       if (!fe) {
         llvm::errs() << "netlift: error: '" << path
                      << "': XML input not recognised (known by their root "
-                        "element: SpaceEx <sspaceex>); name the format with "
+                        "element: PLCopen <project>, SpaceEx <sspaceex>, PNML "
+                        "<pnml>); name the format with "
                         "--from\n";
         return false;
       }

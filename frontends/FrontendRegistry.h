@@ -56,6 +56,7 @@ bool loadStructuredText(unsigned bufferID, DiagEngine &diag,
 bool loadInstructionList(unsigned bufferID, DiagEngine &diag,
                          net::Design &design);
 bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadPlcOpen(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadHybridChart(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadSpaceEx(unsigned bufferID, DiagEngine &diag, net::Design &design);
 

@@ -1,8 +1,8 @@
 //===- PlcInputs.cpp - reading PLC sources into one translation -----------===//
 //
-// The ST and TwinCAT loaders of the registry append what they read to one
-// PLC unit; finishPlcInputs adds the standard function blocks, checks the
-// unit and lowers it to NetIR once every input file is read, so that a
+// The ST, IL, TwinCAT and PLCopen loaders of the registry append what they read
+// to one PLC unit; finishPlcInputs adds the standard function blocks, checks
+// the unit and lowers it to NetIR once every input file is read, so that a
 // program and the function blocks it uses may come from different files.
 //
 //===----------------------------------------------------------------------===//
@@ -10,6 +10,7 @@
 #include "frontends/il/IlFrontend.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
+#include "frontends/plcopen/PlcOpen.h"
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StLexer.h"
 #include "frontends/st/StdLib.h"
@@ -50,6 +51,10 @@ bool netlift::loadStructuredText(unsigned bufferID, DiagEngine &diag,
 bool netlift::loadInstructionList(unsigned bufferID, DiagEngine &diag,
                                   net::Design &) {
   return il::parseInstructionList(bufferID, diag, unitForLoading());
+}
+
+bool netlift::loadPlcOpen(unsigned bufferID, DiagEngine &diag, net::Design &) {
+  return plcopen::readPlcOpen(bufferID, diag, unitForLoading());
 }
 
 /// `--ranges FILE`: one `NAME LO..HI` per line; `#` or `//` start comments.

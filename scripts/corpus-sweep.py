@@ -24,6 +24,7 @@ FORMATS = {
     "kiss2": ((".kiss2",), None, (), "mealy"),
     "dot": ((".dot",), None, (), "mealy"),
     "spaceex": ((".xml",), None, (), "translate"),
+    "plcopen_xml": ((".xml",), None, (), "translate"),
 }
 
 

@@ -661,58 +661,64 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
   for (size_t k = 0; k < spans.size(); ++k) {
     Pou *pou = unit.pous[firstPou + k];
     StringRef body = text.substr(spans[k].begin, spans[k].end - spans[k].begin);
-    st::StLexer lexer(body, diag, /*lineEnds=*/true);
-    antlr4::CommonTokenStream tokens(&lexer);
-    IP parser(&tokens);
+    if (!il::parseInstructionListBody(body, diag, unit, pou))
+      return false;
+  }
+  return true;
+}
+
+bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
+                                  Pou *pou) {
+  st::StLexer lexer(body, diag, /*lineEnds=*/true);
+  antlr4::CommonTokenStream tokens(&lexer);
+  IP parser(&tokens);
+  parser.removeErrorListeners();
+  // One error per instruction: after an error its line is taken out of
+  // the parse (off the parser's channel) and the body parsed again, so
+  // that the next report is the next mistake, not ANTLR's recovery.
+  struct Listener : antlr4::BaseErrorListener {
+    void syntaxError(antlr4::Recognizer *, antlr4::Token *t, size_t, size_t,
+                     const std::string &msg, std::exception_ptr) override {
+      if (seen)
+        return;
+      seen = true;
+      offset = t ? t->getStartIndex() : 0;
+      tokenIndex = t ? t->getTokenIndex() : 0;
+      text = t && t->getType() != antlr4::Token::EOF
+                 ? "syntax error in instruction list at '" + t->getText() + "'"
+                 : "syntax error in instruction list: " + msg;
+      if (t && t->getType() == SP::EOL)
+        text = "syntax error in instruction list: unexpected end of line";
+    }
+    bool seen = false;
+    size_t offset = 0, tokenIndex = 0;
+    std::string text;
+  } listener;
+  IP::IlBodyContext *tree = nullptr;
+  unsigned reported = 0;
+  for (;;) {
+    listener = Listener();
+    parser.addErrorListener(&listener);
+    tree = parser.ilBody();
     parser.removeErrorListeners();
-    // One error per instruction: after an error its line is taken out of
-    // the parse (off the parser's channel) and the body parsed again, so
-    // that the next report is the next mistake, not ANTLR's recovery.
-    struct Listener : antlr4::BaseErrorListener {
-      void syntaxError(antlr4::Recognizer *, antlr4::Token *t, size_t, size_t,
-                       const std::string &msg, std::exception_ptr) override {
-        if (seen)
-          return;
-        seen = true;
-        offset = t ? t->getStartIndex() : 0;
-        tokenIndex = t ? t->getTokenIndex() : 0;
-        text =
-            t && t->getType() != antlr4::Token::EOF
-                ? "syntax error in instruction list at '" + t->getText() + "'"
-                : "syntax error in instruction list: " + msg;
-        if (t && t->getType() == SP::EOL)
-          text = "syntax error in instruction list: unexpected end of line";
-      }
-      bool seen = false;
-      size_t offset = 0, tokenIndex = 0;
-      std::string text;
-    } listener;
-    IP::IlBodyContext *tree = nullptr;
-    unsigned reported = 0;
-    for (;;) {
-      listener = Listener();
-      parser.addErrorListener(&listener);
-      tree = parser.ilBody();
-      parser.removeErrorListeners();
-      if (lexer.hadError())
-        return false;
-      if (!listener.seen)
-        break;
-      diag.error(lexer.locAt(listener.offset), listener.text);
-      if (++reported >= st::kMaxSyntaxErrors ||
-          !hideLine(tokens, listener.tokenIndex))
-        break;
-      tokens.seek(0);
-      parser.reset();
-    }
-    if (reported)
+    if (lexer.hadError())
       return false;
-    try {
-      IlLowering lowering(body, diag, unit, pou);
-      lowering.lower(tree);
-    } catch (Refusal &) {
-      return false;
-    }
+    if (!listener.seen)
+      break;
+    diag.error(lexer.locAt(listener.offset), listener.text);
+    if (++reported >= st::kMaxSyntaxErrors ||
+        !hideLine(tokens, listener.tokenIndex))
+      break;
+    tokens.seek(0);
+    parser.reset();
+  }
+  if (reported)
+    return false;
+  try {
+    IlLowering lowering(body, diag, unit, pou);
+    lowering.lower(tree);
+  } catch (Refusal &) {
+    return false;
   }
   return true;
 }

@@ -20,6 +20,12 @@ namespace netlift::il {
 /// false after reporting an error.
 bool parseInstructionList(unsigned bufferID, DiagEngine &diag, plc::Unit &unit);
 
+/// Parses one POU's instruction list (`body`, a slice of a SourceMgr
+/// buffer) and appends its statements to `pou`, whose declarations are
+/// already read (PLCopen XML keeps the two apart).
+bool parseInstructionListBody(llvm::StringRef body, DiagEngine &diag,
+                              plc::Unit &unit, plc::Pou *pou);
+
 } // namespace netlift::il
 
 #endif

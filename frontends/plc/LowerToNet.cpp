@@ -2051,7 +2051,7 @@ bool Lowering::run() {
         if (p->kind == PouKind::Program)
           tops.push_back({p, nullptr});
     if (tops.empty()) {
-      SMLoc at = unit.pous.empty() ? SMLoc() : unit.pous.front()->loc;
+      SMLoc at; // not in netlift's own library
       for (Pou *p : unit.pous)
         if (!p->isLibrary) {
           at = p->loc;

@@ -45,6 +45,9 @@ compilationUnit : libraryElement* EOF ;
 // One expression alone (IL operands, --ranges values).
 expressionOnly : expression EOF ;
 
+// A POU body alone (the ST bodies of PLCopen XML).
+statementsOnly : statementList EOF ;
+
 libraryElement
   : programDecl
   | functionBlockDecl

@@ -341,6 +341,7 @@ public:
 
   bool build(P::CompilationUnitContext *cu);
   Expr *expr(P::ExpressionContext *ctx);
+  void statements(P::StatementListContext *c, StmtList &out);
 
   bool failed = false;
 
@@ -378,7 +379,6 @@ private:
   TypeSyntax *typeSpec(P::TypeSpecContext *c);
   TypeSyntax *typeSpec0(P::TypeSpec0Context *c);
   Initializer *initializer(P::InitializerContext *c);
-  void statements(P::StatementListContext *c, StmtList &out);
   Stmt *statement(P::StatementContext *c);
   Expr *primary(P::PrimaryContext *c);
   Expr *variable(P::VariableContext *c);
@@ -1122,4 +1122,19 @@ Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
     return nullptr;
   AstBuilder builder(text, diag, unit, tokens);
   return builder.expr(tree->expression());
+}
+
+bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,
+                         StmtList &out) {
+  StLexer lexer(text, diag);
+  antlr4::CommonTokenStream tokens(&lexer);
+  P parser(&tokens);
+  P::StatementsOnlyContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::statementsOnly,
+                kMaxSyntaxErrors, "end of the body");
+  if (!tree)
+    return false;
+  AstBuilder builder(text, diag, unit, tokens);
+  builder.statements(tree->statementList(), out);
+  return !builder.failed;
 }

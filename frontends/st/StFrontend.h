@@ -25,6 +25,11 @@ inline constexpr unsigned kMaxSyntaxErrors = 20;
 bool parseStructuredText(llvm::StringRef text, DiagEngine &diag,
                          plc::Unit &unit);
 
+/// Parses a statement list alone (a POU body kept apart from its
+/// declarations, as in PLCopen XML) and appends it to `out`.
+bool parseStatements(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
+                     plc::StmtList &out);
+
 /// Parses one ST expression (used for pragma values and --ranges files).
 plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
                              plc::Unit &unit);

@@ -1,0 +1,584 @@
+//===- PlcOpenReader.cpp - PLCopen TC6 XML declarations and bodies --------===//
+//
+// Reads a PLCopen project into the PLC model: data types, POUs and their
+// interfaces, configurations; ST and IL bodies through their frontends,
+// LD and FBD bodies through GraphicalBody.cpp. SFC bodies, POU actions and
+// transitions are refused by name.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plcopen/PlcOpen.h"
+
+#include "frontends/il/IlFrontend.h"
+#include "frontends/st/StFrontend.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+
+#include <cstring>
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plcopen;
+using llvm::SMLoc;
+using llvm::StringRef;
+
+//===----------------------------------------------------------------------===//
+// The file and its blank copy
+//===----------------------------------------------------------------------===//
+
+XmlSource::XmlSource(unsigned bufferID, DiagEngine &diag) {
+  llvm::SourceMgr &sm = diag.sourceMgr();
+  const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
+  rawText = buf->getBuffer();
+  auto blank = llvm::WritableMemoryBuffer::getNewUninitMemBuffer(
+      rawText.size(), buf->getBufferIdentifier());
+  copy = blank->getBufferStart();
+  for (size_t i = 0; i < rawText.size(); ++i)
+    copy[i] = rawText[i] == '\n' ? '\n' : ' ';
+  sm.AddNewSourceBuffer(std::move(blank), SMLoc());
+}
+
+SMLoc XmlSource::locOf(pugi::xml_node n) const {
+  ptrdiff_t off = n.offset_debug();
+  if (off < 0 || size_t(off) > rawText.size())
+    return SMLoc::getFromPointer(rawText.data());
+  if (off > 0 && rawText[off - 1] == '<')
+    --off;
+  return SMLoc::getFromPointer(rawText.data() + off);
+}
+
+/// Decoding entities only shortens text, so the decoded text fits where the
+/// raw text stood; each line is put at its raw line's start so that line
+/// numbers stay exact (columns after an entity shift by what it saved).
+StringRef XmlSource::place(size_t offset, size_t rawLength, StringRef decoded) {
+  rawLength = std::min(rawLength, rawText.size() - offset);
+  StringRef rawSpan = rawText.substr(offset, rawLength);
+  if (decoded.size() > rawLength)
+    decoded = decoded.take_front(rawLength);
+  llvm::SmallVector<StringRef, 16> rawLines, lines;
+  rawSpan.split(rawLines, '\n');
+  decoded.split(lines, '\n');
+  if (rawLines.size() == lines.size()) {
+    for (size_t i = 0; i < lines.size(); ++i) {
+      size_t at = rawLines[i].data() - rawText.data();
+      std::memcpy(copy + at, lines[i].data(), lines[i].size());
+    }
+  } else {
+    std::memcpy(copy + offset, decoded.data(), decoded.size());
+  }
+  return StringRef(copy + offset, rawLength);
+}
+
+StringRef plcopen::localName(pugi::xml_node n) {
+  StringRef name = n.name();
+  size_t colon = name.find(':');
+  return colon == StringRef::npos ? name : name.drop_front(colon + 1);
+}
+
+pugi::xml_node plcopen::child(pugi::xml_node n, StringRef name) {
+  for (pugi::xml_node c : n.children())
+    if (c.type() == pugi::node_element && localName(c) == name)
+      return c;
+  return {};
+}
+
+StringRef XmlSource::placeText(pugi::xml_node element) {
+  for (pugi::xml_node c : element.children()) {
+    if (c.type() == pugi::node_cdata) {
+      // Verbatim but for line ends (pugixml turns CR LF into LF).
+      size_t off = c.offset_debug();
+      size_t end = rawText.find("]]>", off);
+      if (end == StringRef::npos)
+        end = rawText.size();
+      return place(off, end - off, c.value());
+    }
+    if (c.type() == pugi::node_pcdata) {
+      size_t off = c.offset_debug();
+      size_t end = rawText.find('<', off);
+      if (end == StringRef::npos)
+        end = rawText.size();
+      return place(off, end - off, c.value());
+    }
+    if (c.type() == pugi::node_element && localName(c) == "p")
+      return placeText(c);
+  }
+  return {};
+}
+
+StringRef XmlSource::placeAttribute(pugi::xml_node element, const char *name,
+                                    bool *found) {
+  pugi::xml_attribute a = element.attribute(name);
+  if (found)
+    *found = bool(a);
+  if (!a)
+    return {};
+  // pugixml keeps no offsets of attributes: find it in the start tag.
+  size_t from = locOf(element).getPointer() - rawText.data();
+  size_t tagEnd = rawText.find('>', from);
+  StringRef tag = rawText.substr(from, tagEnd - from);
+  size_t pos = 0;
+  while ((pos = tag.find(name, pos)) != StringRef::npos) {
+    bool wordStart = pos > 0 && isspace((unsigned char)tag[pos - 1]);
+    size_t p = pos + strlen(name);
+    while (p < tag.size() && isspace((unsigned char)tag[p]))
+      ++p;
+    if (wordStart && p < tag.size() && tag[p] == '=') {
+      ++p;
+      while (p < tag.size() && isspace((unsigned char)tag[p]))
+        ++p;
+      if (p < tag.size() && (tag[p] == '"' || tag[p] == '\'')) {
+        size_t close = tag.find(tag[p], p + 1);
+        size_t off = from + p + 1;
+        return place(off, close - p - 1, a.value());
+      }
+    }
+    pos = p;
+  }
+  return {};
+}
+
+//===----------------------------------------------------------------------===//
+// Declarations
+//===----------------------------------------------------------------------===//
+
+namespace {
+
+class Reader {
+public:
+  Reader(XmlSource &src, DiagEngine &diag, Unit &unit)
+      : src(src), diag(diag), unit(unit) {}
+
+  bool project(pugi::xml_node root);
+
+private:
+  bool fail(pugi::xml_node at, const llvm::Twine &msg) {
+    diag.error(src.locOf(at), msg);
+    return false;
+  }
+  TypeSyntax *type(pugi::xml_node holder);
+  Expr *bound(pugi::xml_node element, const char *attr);
+  Initializer *initializer(pugi::xml_node value);
+  bool variables(pugi::xml_node section, VarSection kind,
+                 std::vector<VarDecl *> &out);
+  bool interface(pugi::xml_node iface, Pou *pou);
+  bool pou(pugi::xml_node p);
+  bool body(pugi::xml_node b, Pou *pou);
+  bool configuration(pugi::xml_node c);
+  Expr *interval(pugi::xml_node task);
+
+  XmlSource &src;
+  DiagEngine &diag;
+  Unit &unit;
+};
+
+} // namespace
+
+static const char *const elementaryTypes[] = {
+    "BOOL",  "SINT",  "INT",  "DINT", "LINT",  "USINT", "UINT",
+    "UDINT", "ULINT", "BYTE", "WORD", "DWORD", "LWORD", "REAL",
+    "LREAL", "TIME",  "DATE", "DT",   "TOD",   "LTIME"};
+
+/// The type held by a <type> or <baseType> element.
+TypeSyntax *Reader::type(pugi::xml_node holder) {
+  pugi::xml_node t;
+  for (pugi::xml_node c : holder.children())
+    if (c.type() == pugi::node_element) {
+      t = c;
+      break;
+    }
+  if (!t) {
+    fail(holder, "<" + std::string(holder.name()) + "> names no type");
+    return nullptr;
+  }
+  StringRef kind = localName(t);
+  SMLoc at = src.locOf(t);
+  for (const char *e : elementaryTypes)
+    if (kind == e) {
+      auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+      ts->name = e;
+      return ts;
+    }
+  if (kind == "derived") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+    ts->name = t.attribute("name").value();
+    return ts;
+  }
+  if (kind == "string" || kind == "wstring") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::String, at);
+    ts->name = kind == "string" ? "STRING" : "WSTRING";
+    return ts;
+  }
+  if (kind == "array") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
+    for (pugi::xml_node d : t.children())
+      if (localName(d) == "dimension") {
+        Expr *lo = bound(d, "lower"), *hi = bound(d, "upper");
+        if (!lo || !hi)
+          return nullptr;
+        ts->dims.push_back({lo, hi});
+      }
+    ts->elem = type(child(t, "baseType"));
+    return ts->elem ? ts : nullptr;
+  }
+  if (kind == "subrangeSigned" || kind == "subrangeUnsigned") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
+    pugi::xml_node range = child(t, "range");
+    TypeSyntax *base = type(child(t, "baseType"));
+    if (!base)
+      return nullptr;
+    if (base->kind != TypeSyntaxKind::Named) {
+      fail(t, "a subrange needs an elementary integer base type");
+      return nullptr;
+    }
+    ts->name = base->name;
+    ts->lo = bound(range, "lower");
+    ts->hi = bound(range, "upper");
+    return ts->lo && ts->hi ? ts : nullptr;
+  }
+  if (kind == "enum") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, at);
+    for (pugi::xml_node v : child(t, "values").children())
+      if (localName(v) == "value") {
+        EnumValueSyntax ev;
+        ev.name = v.attribute("name").value();
+        ev.loc = src.locOf(v);
+        if (v.attribute("value")) {
+          ev.value = bound(v, "value");
+          if (!ev.value)
+            return nullptr;
+        }
+        ts->enumerators.push_back(ev);
+      }
+    return ts;
+  }
+  if (kind == "struct") {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, at);
+    return variables(t, VarSection::Var, ts->fields) ? ts : nullptr;
+  }
+  auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Refused, at);
+  ts->refused = kind == "pointer" ? "POINTER TO (<pointer>)"
+                                  : "the PLCopen type <" + kind.str() + ">";
+  return ts;
+}
+
+/// An expression written in an attribute (array bounds, enumerator values).
+Expr *Reader::bound(pugi::xml_node element, const char *attr) {
+  bool found = false;
+  StringRef text = src.placeAttribute(element, attr, &found);
+  if (!found) {
+    fail(element, "<" + std::string(element.name()) +
+                      "> needs the attribute '" + attr + "'");
+    return nullptr;
+  }
+  return st::parseStExpression(text, diag, unit);
+}
+
+Initializer *Reader::initializer(pugi::xml_node value) {
+  pugi::xml_node v;
+  for (pugi::xml_node c : value.children())
+    if (c.type() == pugi::node_element && localName(c) != "documentation") {
+      v = c;
+      break;
+    }
+  if (!v) {
+    fail(value, "empty initial value");
+    return nullptr;
+  }
+  StringRef kind = localName(v);
+  if (kind == "simpleValue") {
+    auto *i = unit.make<Initializer>(Initializer::Value, src.locOf(v));
+    i->value = bound(v, "value");
+    return i->value ? i : nullptr;
+  }
+  if (kind == "arrayValue") {
+    auto *i = unit.make<Initializer>(Initializer::Array, src.locOf(v));
+    for (pugi::xml_node e : v.children())
+      if (localName(e) == "value") {
+        int64_t count = 1;
+        if (e.attribute("repetitionValue") &&
+            !st::parseIntegerLiteral(e.attribute("repetitionValue").value(),
+                                     count)) {
+          fail(e, "malformed repetitionValue");
+          return nullptr;
+        }
+        Initializer *inner = initializer(e);
+        if (!inner)
+          return nullptr;
+        i->elems.push_back({count, inner});
+      }
+    return i;
+  }
+  if (kind == "structValue") {
+    auto *i = unit.make<Initializer>(Initializer::Struct, src.locOf(v));
+    for (pugi::xml_node e : v.children())
+      if (localName(e) == "value") {
+        Initializer *inner = initializer(e);
+        if (!inner)
+          return nullptr;
+        i->fields.push_back({e.attribute("member").value(), inner});
+      }
+    return i;
+  }
+  fail(v, "unknown initial value <" + kind.str() + ">");
+  return nullptr;
+}
+
+static bool isTrue(pugi::xml_attribute a) {
+  StringRef v = a.value();
+  return v == "true" || v == "1";
+}
+
+bool Reader::variables(pugi::xml_node section, VarSection kind,
+                       std::vector<VarDecl *> &out) {
+  for (pugi::xml_node v : section.children()) {
+    if (localName(v) != "variable")
+      continue;
+    auto *d = unit.make<VarDecl>();
+    d->name = v.attribute("name").value();
+    d->loc = src.locOf(v);
+    d->section = kind;
+    d->constant = isTrue(section.attribute("constant"));
+    d->retain = isTrue(section.attribute("retain")) ||
+                isTrue(section.attribute("persistent"));
+    d->location = v.attribute("address").value();
+    if (d->name.empty())
+      return fail(v, "<variable> without a name");
+    d->typeSyntax = type(child(v, "type"));
+    if (!d->typeSyntax)
+      return false;
+    if (pugi::xml_node init = child(v, "initialValue")) {
+      // tc6_0200 files write string initial values without quotes.
+      pugi::xml_node simple = child(init, "simpleValue");
+      StringRef text = simple.attribute("value").value();
+      if (d->typeSyntax->kind == TypeSyntaxKind::String && simple &&
+          !text.startswith("'") && !text.startswith("\"")) {
+        auto *i = unit.make<Initializer>(Initializer::Value, src.locOf(simple));
+        i->value = unit.make<Expr>(ExprKind::StringLit, i->loc);
+        i->value->name = "'" + text.str() + "'";
+        d->typeSyntax->init = i;
+        out.push_back(d);
+        continue;
+      }
+      d->typeSyntax->init = initializer(init);
+      if (!d->typeSyntax->init)
+        return false;
+    }
+    out.push_back(d);
+  }
+  return true;
+}
+
+bool Reader::interface(pugi::xml_node iface, Pou *pou) {
+  static const std::pair<const char *, VarSection> sections[] = {
+      {"localVars", VarSection::Var},
+      {"tempVars", VarSection::Temp},
+      {"inputVars", VarSection::Input},
+      {"outputVars", VarSection::Output},
+      {"inOutVars", VarSection::InOut},
+      {"externalVars", VarSection::External},
+      {"globalVars", VarSection::Global},
+      {"accessVars", VarSection::Access}};
+  for (pugi::xml_node s : iface.children()) {
+    if (s.type() != pugi::node_element)
+      continue;
+    StringRef name = localName(s);
+    if (name == "returnType") {
+      pou->resultSyntax = type(s);
+      if (!pou->resultSyntax)
+        return false;
+      continue;
+    }
+    if (name == "documentation" || name == "addData")
+      continue;
+    bool known = false;
+    for (auto &[tag, kind] : sections)
+      if (name == tag) {
+        known = true;
+        if (!variables(s, kind, pou->vars))
+          return false;
+      }
+    if (!known)
+      return fail(s, "unknown interface section <" + name.str() + ">");
+  }
+  return true;
+}
+
+bool Reader::body(pugi::xml_node b, Pou *pou) {
+  pugi::xml_node lang;
+  for (pugi::xml_node c : b.children())
+    if (c.type() == pugi::node_element && localName(c) != "documentation" &&
+        localName(c) != "addData") {
+      lang = c;
+      break;
+    }
+  if (!lang)
+    return fail(b, "the body of POU '" + pou->name + "' is empty");
+  StringRef kind = localName(lang);
+  if (kind == "ST")
+    return st::parseStatements(src.placeText(lang), diag, unit, pou->body);
+  if (kind == "IL")
+    return il::parseInstructionListBody(src.placeText(lang), diag, unit, pou);
+  if (kind == "LD" || kind == "FBD")
+    return readGraphicalBody(lang, src, diag, unit, pou);
+  if (kind == "SFC")
+    return fail(lang, "Sequential Function Chart body of POU '" + pou->name +
+                          "' is not supported");
+  return fail(lang, "unknown body language <" + kind.str() + "> in POU '" +
+                        pou->name + "'");
+}
+
+bool Reader::pou(pugi::xml_node p) {
+  StringRef kind = p.attribute("pouType").value();
+  PouKind k;
+  if (kind == "program")
+    k = PouKind::Program;
+  else if (kind == "functionBlock")
+    k = PouKind::FunctionBlock;
+  else if (kind == "function")
+    k = PouKind::Function;
+  else
+    return fail(p, "unknown pouType '" + kind.str() + "'");
+  Pou *pou = unit.make<Pou>();
+  pou->kind = k;
+  pou->name = p.attribute("name").value();
+  pou->loc = src.locOf(p);
+  for (const char *part : {"actions", "transitions"})
+    if (pugi::xml_node n = child(p, part))
+      for (pugi::xml_node a : n.children())
+        if (a.type() == pugi::node_element)
+          return fail(
+              a, "POU " + std::string(part).substr(0, strlen(part) - 1) + " '" +
+                     a.attribute("name").value() + "' of '" + pou->name +
+                     "' is not supported (an SFC or OOP construct)");
+  if (pugi::xml_node iface = child(p, "interface"))
+    if (!interface(iface, pou))
+      return false;
+  if (k == PouKind::Function && !pou->resultSyntax)
+    return fail(p, "function '" + pou->name + "' has no <returnType>");
+  pugi::xml_node b = child(p, "body");
+  if (!b)
+    return fail(p, "POU '" + pou->name + "' has no <body>");
+  unit.pous.push_back(pou);
+  return body(b, pou);
+}
+
+/// A task's interval: an IEC duration (`T#20ms`), or in tc6_0200 files an
+/// xsd:time (`00:00:00.100000`).
+Expr *Reader::interval(pugi::xml_node task) {
+  StringRef v = StringRef(task.attribute("interval").value()).trim();
+  llvm::SmallVector<StringRef, 3> parts;
+  v.split(parts, ':');
+  if (parts.size() != 3)
+    return bound(task, "interval");
+  auto [secs, frac] = parts[2].split('.');
+  int64_t h, m, sec, f = 0;
+  if (parts[0].getAsInteger(10, h) || parts[1].getAsInteger(10, m) ||
+      secs.getAsInteger(10, sec) || frac.size() > 9 ||
+      (!frac.empty() && frac.getAsInteger(10, f))) {
+    fail(task, "malformed task interval '" + v.str() + "'");
+    return nullptr;
+  }
+  for (size_t i = frac.size(); i < 9; ++i)
+    f *= 10;
+  auto *e = unit.make<Expr>(ExprKind::TimeLit, src.locOf(task));
+  e->intValue = ((h * 60 + m) * 60 + sec) * 1'000'000'000 + f;
+  return e;
+}
+
+bool Reader::configuration(pugi::xml_node c) {
+  Configuration *cfg = unit.make<Configuration>();
+  cfg->name = c.attribute("name").value();
+  cfg->loc = src.locOf(c);
+  auto instance = [&](pugi::xml_node pi, StringRef task) {
+    ProgramInstance inst;
+    inst.name = pi.attribute("name").value();
+    inst.loc = src.locOf(pi);
+    inst.task = task.str();
+    // tc6_0200 called it `type`.
+    inst.typeName =
+        pi.attribute(pi.attribute("typeName") ? "typeName" : "type").value();
+    inst.typeLoc = inst.loc;
+    cfg->programs.push_back(inst);
+  };
+  auto items = [&](pugi::xml_node holder) {
+    for (pugi::xml_node n : holder.children()) {
+      StringRef name = localName(n);
+      if (name == "globalVars") {
+        if (!variables(n, VarSection::Global, cfg->globals))
+          return false;
+      } else if (name == "pouInstance") {
+        instance(n, "");
+      } else if (name == "task") {
+        Task task;
+        task.name = n.attribute("name").value();
+        task.loc = src.locOf(n);
+        if (n.attribute("interval") && !(task.interval = interval(n)))
+          return false;
+        if (n.attribute("single") && !(task.single = bound(n, "single")))
+          return false;
+        if (n.attribute("priority") && !(task.priority = bound(n, "priority")))
+          return false;
+        cfg->tasks.push_back(task);
+        for (pugi::xml_node pi : n.children())
+          if (localName(pi) == "pouInstance")
+            instance(pi, task.name);
+      }
+    }
+    return true;
+  };
+  if (!items(c))
+    return false;
+  for (pugi::xml_node r : c.children())
+    if (localName(r) == "resource" && !items(r))
+      return false;
+  unit.configs.push_back(cfg);
+  return true;
+}
+
+bool Reader::project(pugi::xml_node root) {
+  pugi::xml_node types = child(root, "types");
+  for (pugi::xml_node dt : child(types, "dataTypes").children()) {
+    if (localName(dt) != "dataType")
+      continue;
+    auto *td = unit.make<TypeDecl>();
+    td->name = dt.attribute("name").value();
+    td->loc = src.locOf(dt);
+    td->type = type(child(dt, "baseType"));
+    if (!td->type)
+      return false;
+    if (pugi::xml_node init = child(dt, "initialValue"))
+      if (!(td->type->init = initializer(init)))
+        return false;
+    unit.types.push_back(td);
+  }
+  for (pugi::xml_node p : child(types, "pous").children())
+    if (localName(p) == "pou" && !pou(p))
+      return false;
+  pugi::xml_node configs = child(child(root, "instances"), "configurations");
+  for (pugi::xml_node c : configs.children())
+    if (localName(c) == "configuration" && !configuration(c))
+      return false;
+  return true;
+}
+
+bool plcopen::readPlcOpen(unsigned bufferID, DiagEngine &diag, Unit &unit) {
+  XmlSource src(bufferID, diag);
+  pugi::xml_document doc;
+  pugi::xml_parse_result r =
+      doc.load_buffer(src.raw().data(), src.raw().size(), pugi::parse_default,
+                      pugi::encoding_utf8);
+  if (!r) {
+    size_t off = std::min<size_t>(r.offset, src.raw().size());
+    diag.error(SMLoc::getFromPointer(src.raw().data() + off),
+               llvm::Twine("malformed XML: ") + r.description());
+    return false;
+  }
+  pugi::xml_node root = doc.document_element();
+  if (localName(root) != "project") {
+    diag.error(src.locOf(root), "not a PLCopen TC6 project (the root element "
+                                "is <" +
+                                    std::string(root.name()) + ">)");
+    return false;
+  }
+  Reader reader(src, diag, unit);
+  return reader.project(root);
+}
