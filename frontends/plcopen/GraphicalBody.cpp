@@ -340,8 +340,25 @@ std::vector<const Element *> Network::order() {
   std::vector<const Element *> sorted;
   while (!left.empty()) {
     if (ready.empty()) {
+      // Break a loop at its first statement (not at one that merely waits
+      // for a loop's result).
+      auto onLoop = [&](const Element *s) {
+        std::set<int> seen;
+        std::vector<int> todo(soft[s->id].begin(), soft[s->id].end());
+        while (!todo.empty()) {
+          int d = todo.back();
+          todo.pop_back();
+          if (d == s->id)
+            return true;
+          if (!left.count(&elements.at(d)) || !seen.insert(d).second)
+            continue;
+          todo.insert(todo.end(), hard[d].begin(), hard[d].end());
+          todo.insert(todo.end(), soft[d].begin(), soft[d].end());
+        }
+        return false;
+      };
       for (const Element *s : left)
-        if (!waitHard[s->id]) {
+        if (!waitHard[s->id] && onLoop(s)) {
           ready.insert(s);
           break;
         }
@@ -634,9 +651,11 @@ void Network::block(const Element &e) {
     s = unit.make<Stmt>(StmtKind::Call, at);
     s->value = call;
   } else {
-    // A function's result and other outputs land in temporaries, kept
-    // across scans when EN may skip the call (the outputs hold).
-    VarSection keep = en ? VarSection::Var : VarSection::Temp;
+    // A function's result and other outputs land in temporaries (VAR_TEMP:
+    // back to their initial value at every scan). A call that EN skips
+    // leaves them there, so what reads them gets 0 / FALSE, as in runtimes
+    // built with matiec (IEC 61131-3 leaves the value open).
+    VarSection keep = VarSection::Temp;
     for (pugi::xml_node v : child(e.node, "outputVariables").children()) {
       std::string formal = upper(v.attribute("formalParameter").value());
       if (localName(v) != "variable" || formal == "ENO" || formal == "OUT")
