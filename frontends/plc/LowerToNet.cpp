@@ -449,6 +449,10 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
                      sanitize(t->enumerators[e->enumValue]),
                  e->loc);
   }
+  if (e->kind == ExprKind::StringLit)
+    refuse(e->loc, "STRING variable '" + v->name +
+                       "' is not supported (string operations beyond "
+                       "constants are refused)");
   std::optional<int64_t> c = constValue(e, none);
   if (!c)
     refuse(e->loc, "initial value of '" + v->name + "' must be a constant");

@@ -7,7 +7,7 @@
 // turned into statements by GraphicalBody.cpp following the evaluation
 // rules of docs/plcopen.md. Every location is the XML file's own line and
 // column: text the frontends parse (bodies, expressions, initial values) is
-// placed, decoded, at its own offset in a blank copy of the file.
+// placed, decoded, at its own offset in a copy of the file.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_FRONTENDS_PLCOPEN_PLCOPEN_H
@@ -23,7 +23,8 @@
 
 namespace netlift::plcopen {
 
-/// The XML file and its blank copy into which text is placed for parsing.
+/// The XML file and its copy into which text is placed, decoded, for
+/// parsing.
 class XmlSource {
 public:
   XmlSource(unsigned bufferID, DiagEngine &diag);

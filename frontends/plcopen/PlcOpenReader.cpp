@@ -22,19 +22,20 @@ using llvm::SMLoc;
 using llvm::StringRef;
 
 //===----------------------------------------------------------------------===//
-// The file and its blank copy
+// The file and its copy
 //===----------------------------------------------------------------------===//
 
 XmlSource::XmlSource(unsigned bufferID, DiagEngine &diag) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   rawText = buf->getBuffer();
-  auto blank = llvm::WritableMemoryBuffer::getNewUninitMemBuffer(
+  auto buffer = llvm::WritableMemoryBuffer::getNewUninitMemBuffer(
       rawText.size(), buf->getBufferIdentifier());
-  copy = blank->getBufferStart();
-  for (size_t i = 0; i < rawText.size(); ++i)
-    copy[i] = rawText[i] == '\n' ? '\n' : ' ';
-  sm.AddNewSourceBuffer(std::move(blank), SMLoc());
+  // A copy of the file (so that a diagnostic shows the XML line) in which
+  // each piece of text handed to a parser is replaced by its decoded form.
+  copy = buffer->getBufferStart();
+  std::memcpy(copy, rawText.data(), rawText.size());
+  sm.AddNewSourceBuffer(std::move(buffer), SMLoc());
 }
 
 SMLoc XmlSource::locOf(pugi::xml_node n) const {
@@ -54,6 +55,9 @@ StringRef XmlSource::place(size_t offset, size_t rawLength, StringRef decoded) {
   StringRef rawSpan = rawText.substr(offset, rawLength);
   if (decoded.size() > rawLength)
     decoded = decoded.take_front(rawLength);
+  for (size_t i = offset; i < offset + rawLength; ++i)
+    if (copy[i] != '\n')
+      copy[i] = ' ';
   llvm::SmallVector<StringRef, 16> rawLines, lines;
   rawSpan.split(rawLines, '\n');
   decoded.split(lines, '\n');
