@@ -28,7 +28,13 @@ WORDS = [b" IF ", b" THEN ", b" END_IF;", b" ELSE ", b" := ", b" VAR ", b" END_V
          b" CAL ", b" %IX0.1 ", b" 16#FF ", b" -32768 ", b" trans ", b" place ",
          b" module ", b"{range 0..3}", b" FUNCTION_BLOCK ", b" END_PROGRAM ",
          b" -> ", b' [label="a/b"]', b" digraph ", b"<br/>", b" subgraph { ",
-         b"\n.i 2\n", b"\n# symbol input 0 = a\n"]
+         b"\n.i 2\n", b"\n# symbol input 0 = a\n",
+         # PLCopen XML: wiring and element attributes.
+         b' refLocalId="2"', b'<connection refLocalId="1"/>',
+         b' formalParameter="OUT"', b' negated="true"', b' edge="rising"',
+         b' storage="reset"', b' executionOrderId="1"', b' localId="3"',
+         b'<jump localId="77" label="x"/>', b'<label localId="78" label="x"/>',
+         b'<continuation localId="79" name="c"/>', b' instanceName="t"']
 
 # Automata are read by `mealy` and `edit-automaton`, models by the rest.
 AUTOMATA = (".kiss2", ".dot")

@@ -4,9 +4,9 @@
 // POUs (programs, function blocks, functions), their variables, user types,
 // configurations with tasks, and bodies as statements and expressions. The
 // ST frontend builds it from the parse tree, the IL frontend lowers its
-// accumulator code into the same statements, and the LD frontend (PLCopen)
-// will build rungs into it. Sema (Sema.h) resolves names and types in place;
-// LowerToNet.h turns a checked program into a NetIR controller module.
+// accumulator code into the same statements, and the PLCopen reader
+// builds LD and FBD networks into it. Sema (Sema.h) resolves names and types in
+// place; LowerToNet.h turns a checked program into a NetIR controller module.
 //
 // Nodes are owned by the Unit that created them; locations are SMLocs into
 // buffers of the DiagEngine's SourceMgr, so every later error points into

@@ -460,7 +460,9 @@ bool Reader::pou(pugi::xml_node p) {
     return fail(p, "function '" + pou->name + "' has no <returnType>");
   pugi::xml_node b = child(p, "body");
   if (!b)
-    return fail(p, "POU '" + pou->name + "' has no <body>");
+    return fail(p, "POU '" + pou->name +
+                       "' has no <body> (a block implemented outside IEC "
+                       "61131-3, e.g. in C, cannot be modelled)");
   unit.pous.push_back(pou);
   return body(b, pou);
 }
