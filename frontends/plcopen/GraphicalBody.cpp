@@ -592,12 +592,13 @@ void Network::coil(const Element &e) {
   bool stores = storage == "set" || storage == "reset";
   bool rising;
   if (isEdge(e.node.attribute("edge").value(), rising)) {
-    if (stores || negated)
-      fail(e.node, describe(e) + ": an edge coil that is also negated, set "
-                                 "or reset is not supported");
+    // A negated edge coil has no agreed meaning (pulse on every scan but
+    // one?), so it is refused rather than guessed.
+    if (negated)
+      fail(e.node, describe(e) + ": an edge coil that is also negated is "
+                                 "not supported");
     std::string t = trigger(e, "", rising, in);
-    emit(assign(target, field(nameRef(t, at), "Q", at), at));
-    return;
+    in = field(nameRef(t, at), "Q", at);
   }
   if (stores) {
     if (negated)
