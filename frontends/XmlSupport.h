@@ -1,9 +1,12 @@
 //===- XmlSupport.h - XML inputs read with pugixml --------------*- C++ -*-===//
 //
-// What every XML frontend (PNML, SpaceEx, later PLCopen and IEC 61499)
-// needs from its buffer: parsing it with pugixml, malformed XML reported at
-// its offset, and an element's position as an SMLoc so that diagnostics
-// read `file:line:col: error:` pointing at the element's '<'.
+// What every XML frontend (PNML, SpaceEx, PLCopen, IEC 61499) needs from
+// its buffer: parsing it with pugixml, malformed XML reported at its
+// offset, and an element's position as an SMLoc so that diagnostics read
+// `file:line:col: error:` pointing at the element's '<'. Frontends that
+// hand text inside the XML (ST bodies, expressions) to another parser use
+// XmlSource, which places that text, decoded, at its own offset in a copy
+// of the file, so the other parser's errors point into the XML too.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_FRONTENDS_XMLSUPPORT_H
@@ -50,6 +53,38 @@ public:
 private:
   llvm::StringRef buffer;
 };
+
+/// The XML file of a SourceMgr buffer and its copy into which text is
+/// placed, decoded, for parsing.
+class XmlSource : public XmlBuffer {
+public:
+  XmlSource(unsigned bufferID, DiagEngine &diag);
+
+  llvm::StringRef raw() const { return rawText; }
+  /// The text content of `element` (CDATA or character data, directly or in
+  /// an xhtml <p>), placed at its offset in the copy; empty if none.
+  llvm::StringRef placeText(pugi::xml_node element);
+  /// The value of attribute `name` of `element`, placed likewise; `found`
+  /// says whether the attribute exists.
+  llvm::StringRef placeAttribute(pugi::xml_node element, const char *name,
+                                 bool *found = nullptr);
+
+private:
+  llvm::StringRef place(size_t offset, size_t rawLength,
+                        llvm::StringRef decoded);
+
+  llvm::StringRef rawText;
+  char *copy = nullptr; // owned by the SourceMgr
+};
+
+/// An element's name without its namespace prefix.
+llvm::StringRef localName(pugi::xml_node n);
+
+/// The first child element called `name` (prefix ignored).
+pugi::xml_node child(pugi::xml_node n, llvm::StringRef name);
+
+/// An XML Boolean attribute: "true" or "1".
+bool isTrue(pugi::xml_attribute a);
 
 } // namespace netlift
 

@@ -158,11 +158,6 @@ private:
 
 } // namespace
 
-static bool isTrue(pugi::xml_attribute a) {
-  StringRef v = a.value();
-  return v == "true" || v == "1";
-}
-
 static const char *const statementKinds[] = {"coil", "outVariable", "block",
                                              "jump", "return",      "label"};
 static const char *const expressionKinds[] = {

@@ -11,134 +11,11 @@
 #include "frontends/il/IlFrontend.h"
 #include "frontends/st/StFrontend.h"
 
-#include "llvm/Support/MemoryBuffer.h"
-
-#include <cstring>
-
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plcopen;
 using llvm::SMLoc;
 using llvm::StringRef;
-
-//===----------------------------------------------------------------------===//
-// The file and its copy
-//===----------------------------------------------------------------------===//
-
-XmlSource::XmlSource(unsigned bufferID, DiagEngine &diag) {
-  llvm::SourceMgr &sm = diag.sourceMgr();
-  const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
-  rawText = buf->getBuffer();
-  auto buffer = llvm::WritableMemoryBuffer::getNewUninitMemBuffer(
-      rawText.size(), buf->getBufferIdentifier());
-  // A copy of the file (so that a diagnostic shows the XML line) in which
-  // each piece of text handed to a parser is replaced by its decoded form.
-  copy = buffer->getBufferStart();
-  std::memcpy(copy, rawText.data(), rawText.size());
-  sm.AddNewSourceBuffer(std::move(buffer), SMLoc());
-}
-
-SMLoc XmlSource::locOf(pugi::xml_node n) const {
-  ptrdiff_t off = n.offset_debug();
-  if (off < 0 || size_t(off) > rawText.size())
-    return SMLoc::getFromPointer(rawText.data());
-  if (off > 0 && rawText[off - 1] == '<')
-    --off;
-  return SMLoc::getFromPointer(rawText.data() + off);
-}
-
-/// Decoding entities only shortens text, so the decoded text fits where the
-/// raw text stood; each line is put at its raw line's start so that line
-/// numbers stay exact (columns after an entity shift by what it saved).
-StringRef XmlSource::place(size_t offset, size_t rawLength, StringRef decoded) {
-  rawLength = std::min(rawLength, rawText.size() - offset);
-  StringRef rawSpan = rawText.substr(offset, rawLength);
-  if (decoded.size() > rawLength)
-    decoded = decoded.take_front(rawLength);
-  for (size_t i = offset; i < offset + rawLength; ++i)
-    if (copy[i] != '\n')
-      copy[i] = ' ';
-  llvm::SmallVector<StringRef, 16> rawLines, lines;
-  rawSpan.split(rawLines, '\n');
-  decoded.split(lines, '\n');
-  if (rawLines.size() == lines.size()) {
-    for (size_t i = 0; i < lines.size(); ++i) {
-      size_t at = rawLines[i].data() - rawText.data();
-      std::memcpy(copy + at, lines[i].data(), lines[i].size());
-    }
-  } else {
-    std::memcpy(copy + offset, decoded.data(), decoded.size());
-  }
-  return StringRef(copy + offset, rawLength);
-}
-
-StringRef plcopen::localName(pugi::xml_node n) {
-  StringRef name = n.name();
-  size_t colon = name.find(':');
-  return colon == StringRef::npos ? name : name.drop_front(colon + 1);
-}
-
-pugi::xml_node plcopen::child(pugi::xml_node n, StringRef name) {
-  for (pugi::xml_node c : n.children())
-    if (c.type() == pugi::node_element && localName(c) == name)
-      return c;
-  return {};
-}
-
-StringRef XmlSource::placeText(pugi::xml_node element) {
-  for (pugi::xml_node c : element.children()) {
-    if (c.type() == pugi::node_cdata) {
-      // Verbatim but for line ends (pugixml turns CR LF into LF).
-      size_t off = c.offset_debug();
-      size_t end = rawText.find("]]>", off);
-      if (end == StringRef::npos)
-        end = rawText.size();
-      return place(off, end - off, c.value());
-    }
-    if (c.type() == pugi::node_pcdata) {
-      size_t off = c.offset_debug();
-      size_t end = rawText.find('<', off);
-      if (end == StringRef::npos)
-        end = rawText.size();
-      return place(off, end - off, c.value());
-    }
-    if (c.type() == pugi::node_element && localName(c) == "p")
-      return placeText(c);
-  }
-  return {};
-}
-
-StringRef XmlSource::placeAttribute(pugi::xml_node element, const char *name,
-                                    bool *found) {
-  pugi::xml_attribute a = element.attribute(name);
-  if (found)
-    *found = bool(a);
-  if (!a)
-    return {};
-  // pugixml keeps no offsets of attributes: find it in the start tag.
-  size_t from = locOf(element).getPointer() - rawText.data();
-  size_t tagEnd = rawText.find('>', from);
-  StringRef tag = rawText.substr(from, tagEnd - from);
-  size_t pos = 0;
-  while ((pos = tag.find(name, pos)) != StringRef::npos) {
-    bool wordStart = pos > 0 && isspace((unsigned char)tag[pos - 1]);
-    size_t p = pos + strlen(name);
-    while (p < tag.size() && isspace((unsigned char)tag[p]))
-      ++p;
-    if (wordStart && p < tag.size() && tag[p] == '=') {
-      ++p;
-      while (p < tag.size() && isspace((unsigned char)tag[p]))
-        ++p;
-      if (p < tag.size() && (tag[p] == '"' || tag[p] == '\'')) {
-        size_t close = tag.find(tag[p], p + 1);
-        size_t off = from + p + 1;
-        return place(off, close - p - 1, a.value());
-      }
-    }
-    pos = p;
-  }
-  return {};
-}
 
 //===----------------------------------------------------------------------===//
 // Declarations
@@ -324,11 +201,6 @@ Initializer *Reader::initializer(pugi::xml_node value) {
   }
   fail(v, "unknown initial value <" + kind.str() + ">");
   return nullptr;
-}
-
-static bool isTrue(pugi::xml_attribute a) {
-  StringRef v = a.value();
-  return v == "true" || v == "1";
 }
 
 bool Reader::variables(pugi::xml_node section, VarSection kind,
