@@ -93,10 +93,13 @@ static const FrontendInfo *sniffXml(StringRef text) {
     StringRef root = rest.take_while([](char c) {
       return !isspace((unsigned char)c) && c != '>' && c != '/';
     });
-    StringRef id = root == "sspaceex"  ? "spaceex"
-                   : root == "pnml"    ? "pnml"
-                   : root == "project" ? "plcopen"
-                                       : "";
+    StringRef id =
+        root == "sspaceex"  ? "spaceex"
+        : root == "pnml"    ? "pnml"
+        : root == "project" ? "plcopen"
+        : root == "FBType" || root == "System" || root == "SubAppType"
+            ? "iec61499"
+            : "";
     for (const FrontendInfo &f : registry)
       if (!id.empty() && f.id == id)
         return &f;
@@ -139,7 +142,8 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
         llvm::errs() << "netlift: error: '" << path
                      << "': XML input not recognised (known by their root "
                         "element: PLCopen <project>, SpaceEx <sspaceex>, PNML "
-                        "<pnml>); name the format with "
+                        "<pnml>, IEC 61499 <FBType>/<System>/<SubAppType>); "
+                        "name the format with "
                         "--from\n";
         return false;
       }
@@ -148,7 +152,7 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
     if (!fe->load(id, diag, design))
       return false;
   }
-  if (!finishPlcInputs(diag, design))
+  if (!finishPlcInputs(diag, design) || !finishIec61499Inputs(diag, design))
     return false;
   if (!net::verifyDesign(design, diag))
     return false;

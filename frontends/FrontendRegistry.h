@@ -28,6 +28,8 @@ struct FrontendOptions {
   std::optional<int64_t> timescaleNs;
   std::optional<int64_t> scanPeriodNs;
   std::string rangesFile;
+  /// -I: directories holding IEC 61499 types.
+  std::vector<std::string> typeLibraries;
 };
 FrontendOptions &frontendOptions();
 
@@ -59,11 +61,16 @@ bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadPlcOpen(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadHybridChart(unsigned bufferID, DiagEngine &diag, net::Design &design);
 bool loadSpaceEx(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadIec61499(unsigned bufferID, DiagEngine &diag, net::Design &design);
 
 /// PLC sources are collected across all input files (a program and the
 /// function blocks it uses may live in different files) and translated
 /// together once every file is read. Returns false after reporting.
 bool finishPlcInputs(DiagEngine &diag, net::Design &design);
+
+/// IEC 61499 files likewise: a network and the types it uses are read
+/// together. Returns false after reporting.
+bool finishIec61499Inputs(DiagEngine &diag, net::Design &design);
 
 } // namespace netlift
 

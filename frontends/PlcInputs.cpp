@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
+#include "frontends/iec61499/Iec61499.h"
 #include "frontends/il/IlFrontend.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
@@ -236,4 +237,28 @@ bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
                             SMLoc());
   return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
                                  unitForLoading());
+}
+
+//===----------------------------------------------------------------------===//
+// IEC 61499
+//===----------------------------------------------------------------------===//
+
+static std::vector<unsigned> &pendingIec61499() {
+  static std::vector<unsigned> ids;
+  return ids;
+}
+
+bool netlift::loadIec61499(unsigned bufferID, DiagEngine &, net::Design &) {
+  pendingIec61499().push_back(bufferID);
+  return true;
+}
+
+bool netlift::finishIec61499Inputs(DiagEngine &diag, net::Design &design) {
+  std::vector<unsigned> ids = std::move(pendingIec61499());
+  pendingIec61499().clear();
+  if (ids.empty())
+    return true;
+  const FrontendOptions &fo = frontendOptions();
+  return iec61499::translate(ids, fo.typeLibraries, fo.timescaleNs, diag,
+                             design);
 }

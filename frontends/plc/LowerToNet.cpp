@@ -88,6 +88,7 @@ public:
   Lowering(Unit &u, const LowerOptions &o, DiagEngine &d, net::Design &des)
       : unit(u), opts(o), diag(d), design(des), b(des) {}
   bool run();
+  bool runEventDriven(const std::vector<EventDrivenBlock> &blocks);
 
 private:
   [[noreturn]] void refuse(SMLoc at, const Twine &msg) {
@@ -120,8 +121,15 @@ private:
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
 
+  /// Picks the tick from the durations `ns` (and the options, or a model
+  /// read before) and sets the design's timescale.
+  void chooseTick(std::vector<int64_t> ns);
+
   // Bodies.
+  void beginModule(Pou *program);
+  void capClocks();
   void lowerModule(Pou *program, int64_t periodTicks);
+  void lowerEventBlock(const EventDrivenBlock &block);
   void body(StmtList &list, Frame &f, Sink &out,
             const std::vector<LoopCtx> &loops);
   void stmt(Stmt *s, Frame &f, Sink &out, const std::vector<LoopCtx> &loops);
@@ -175,6 +183,8 @@ private:
   /// Inputs of the program being lowered that an argument feeds.
   std::set<VarDecl *> boundInputs;
   Pou *currentProgram = nullptr;
+  /// Lowering an event-driven block: inputs take their full types.
+  bool eventDriven = false;
 };
 
 } // namespace
@@ -289,23 +299,15 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
   const net::Type *r = nullptr;
   switch (t->kind) {
   case PTypeKind::Bool:
-    r = tt.getBool();
+  case PTypeKind::AnyInt:
+  case PTypeKind::Time:
+    r = scalarNetType(t, tt);
     break;
   case PTypeKind::Int:
-    if (t->isSubrange) {
-      r = tt.getRange(t->lo, t->hi);
-      break;
-    }
-    if (t->width == 64 && !t->isSigned)
+    if (t->width == 64 && !t->isSigned && !t->isSubrange)
       refuse(at, "64-bit unsigned type " + t->str() + " of " + what +
                      " is not supported (values are held in 64 signed bits)");
-    r = tt.getInt(t->width, t->isSigned, net::Overflow::Wrap);
-    break;
-  case PTypeKind::AnyInt:
-    r = tt.getInt(64, true, net::Overflow::Wrap);
-    break;
-  case PTypeKind::Time:
-    r = tt.getInt(64, true, net::Overflow::Error);
+    r = scalarNetType(t, tt);
     break;
   case PTypeKind::Real:
     refuse(at, t->str() + " " + what +
@@ -354,6 +356,25 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
   }
   typeCache[t] = r;
   return r;
+}
+
+const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
+  switch (t->kind) {
+  case PTypeKind::Bool:
+    return tt.getBool();
+  case PTypeKind::Int:
+    if (t->isSubrange)
+      return tt.getRange(t->lo, t->hi);
+    if (t->width == 64 && !t->isSigned)
+      return nullptr;
+    return tt.getInt(t->width, t->isSigned, net::Overflow::Wrap);
+  case PTypeKind::AnyInt:
+    return tt.getInt(64, true, net::Overflow::Wrap);
+  case PTypeKind::Time:
+    return tt.getInt(64, true, net::Overflow::Error);
+  default:
+    return nullptr;
+  }
 }
 
 NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
@@ -540,7 +561,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
                              " of input '" + v->name + "' exceeds " + t->str());
       nt = design.types.getRange(r->first, r->second);
       inputRanges[v] = *r;
-    } else if (t->kind == PTypeKind::Enum ||
+    } else if (eventDriven || t->kind == PTypeKind::Enum ||
                (t->kind == PTypeKind::Int && t->isSubrange)) {
       nt = netType(t, v->loc, "input " + v->name);
     } else if (t->kind == PTypeKind::Int || t->kind == PTypeKind::Time) {
@@ -1863,7 +1884,7 @@ static void readNames(llvm::ArrayRef<NStmt *> body, llvm::StringSet<> &out) {
   }
 }
 
-void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
+void Lowering::beginModule(Pou *program) {
   currentProgram = program;
   mod = b.createModule(sanitize(program->name), false, program->loc);
   if (!mod)
@@ -1921,13 +1942,11 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   // Program arguments: inputs read their global at the start of the scan,
   // outputs write theirs at the end (IEC 61131-3 2.7.1).
   boundInputs.clear();
-  std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
     for (CallArg &a : it->second->args) {
       VarDecl *v = program->find(a.name), *g = a.value->var;
       globalsUsed.insert(g);
       globalUsers[g].insert(program->name);
-      (a.isOutput ? argOut : argIn).push_back({v, g});
       if (!a.isOutput)
         boundInputs.insert(v);
     }
@@ -1935,24 +1954,10 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
     declareProgramVar(g);
   for (VarDecl *v : program->vars)
     declareProgramVar(v);
+}
 
-  Frame top;
-  top.pou = program;
-  top.external = true;
-  Sink action;
-  if (mayJump(program->body, false)) {
-    top.returnFlag = unique("_return");
-    declareTemp(top.returnFlag, elementaryType("BOOL"), program->loc);
-  }
-  for (auto &[v, g] : argIn)
-    action.push_back(b.assign(b.ref(sanitize(v->name), v->loc),
-                              b.ref(sanitize(g->name), v->loc), v->loc));
-  body(program->body, top, action, {});
-  for (auto &[v, g] : argOut)
-    action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
-                              b.ref(sanitize(v->name), v->loc), v->loc));
-
-  // Clock caps, and the TIME members they bound.
+/// Clock caps, and the TIME members they bound.
+void Lowering::capClocks() {
   auto varIndex = [&](StringRef name) -> int32_t {
     net::Symbol sym = mod->lookup(name);
     return sym.kind == net::SymKind::Var ? int32_t(sym.index) : -1;
@@ -1973,7 +1978,39 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
       if (int32_t i = varIndex(tm); i >= 0)
         mod->vars[i].type = design.types.getRange(0, cap);
   }
+}
 
+void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
+  beginModule(program);
+  std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
+  if (auto it = argumentsOf.find(program); it != argumentsOf.end())
+    for (CallArg &a : it->second->args)
+      (a.isOutput ? argOut : argIn)
+          .push_back({program->find(a.name), a.value->var});
+
+  Frame top;
+  top.pou = program;
+  top.external = true;
+  Sink action;
+  if (mayJump(program->body, false)) {
+    top.returnFlag = unique("_return");
+    declareTemp(top.returnFlag, elementaryType("BOOL"), program->loc);
+  }
+  for (auto &[v, g] : argIn)
+    action.push_back(b.assign(b.ref(sanitize(v->name), v->loc),
+                              b.ref(sanitize(g->name), v->loc), v->loc));
+  body(program->body, top, action, {});
+  for (auto &[v, g] : argOut)
+    action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
+                              b.ref(sanitize(v->name), v->loc), v->loc));
+
+  capClocks();
+
+  // Dead values reset at the end of the scan.
+  auto varIndex = [&](StringRef name) -> int32_t {
+    net::Symbol sym = mod->lookup(name);
+    return sym.kind == net::SymKind::Var ? int32_t(sym.index) : -1;
+  };
   // Dead values reset at the end of the scan.
   llvm::StringSet<> read;
   readNames(action, read);
@@ -2013,6 +2050,47 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   uint32_t scan = b.addTransition("scan", {pre}, {post}, program->loc);
   b.setUrgent(scan);
   b.setAction(scan, action);
+}
+
+void Lowering::chooseTick(std::vector<int64_t> ns) {
+  ns.insert(ns.end(), opts.extraTimesNs.begin(), opts.extraTimesNs.end());
+  if (opts.scanPeriodNs)
+    ns.push_back(*opts.scanPeriodNs);
+  // A NetIR or hybrid file read with the program (a plant model) fixes
+  // the tick already: the program's times are counted in it.
+  std::optional<int64_t> designNs;
+  if (design.timescale)
+    designNs = int64_t(design.timescale->nanoseconds());
+  if (opts.timescaleNs && designNs && *opts.timescaleNs != *designNs)
+    refuse(SMLoc(), "--timescale " + formatDuration(*opts.timescaleNs) +
+                        " differs from the timescale " +
+                        design.timescale->str() +
+                        " of a model read with the program");
+  if (opts.timescaleNs) {
+    tickNs = *opts.timescaleNs;
+  } else if (designNs) {
+    tickNs = *designNs;
+  } else {
+    int64_t g = 0;
+    for (int64_t v : ns)
+      g = std::gcd(g, v);
+    tickNs = g ? g : 1000000; // no time at all: 1 ms, unused
+  }
+  if (!design.timescale && (!ns.empty() || opts.timescaleNs)) {
+    static const struct {
+      const char *unit;
+      int64_t ns;
+    } units[] = {{"h", 3600000000000}, {"min", 60000000000}, {"s", 1000000000},
+                 {"ms", 1000000},      {"us", 1000},         {"ns", 1}};
+    for (auto &u : units)
+      if (tickNs % u.ns == 0) {
+        net::Timescale ts;
+        ts.amount = uint64_t(tickNs / u.ns);
+        ts.unit = u.unit;
+        design.timescale = ts;
+        break;
+      }
+  }
 }
 
 bool Lowering::run() {
@@ -2103,44 +2181,7 @@ bool Lowering::run() {
     for (VarDecl *g : unit.globals)
       if (g->typeSyntax)
         initTimes(g->typeSyntax->init, ns);
-    if (opts.scanPeriodNs)
-      ns.push_back(*opts.scanPeriodNs);
-    // A NetIR or hybrid file read with the program (a plant model) fixes
-    // the tick already: the program's times are counted in it.
-    std::optional<int64_t> designNs;
-    if (design.timescale)
-      designNs = int64_t(design.timescale->nanoseconds());
-    if (opts.timescaleNs && designNs && *opts.timescaleNs != *designNs)
-      refuse(SMLoc(), "--timescale " + formatDuration(*opts.timescaleNs) +
-                          " differs from the timescale " +
-                          design.timescale->str() +
-                          " of a model read with the program");
-    if (opts.timescaleNs) {
-      tickNs = *opts.timescaleNs;
-    } else if (designNs) {
-      tickNs = *designNs;
-    } else {
-      int64_t g = 0;
-      for (int64_t v : ns)
-        g = std::gcd(g, v);
-      tickNs = g ? g : 1000000; // no time at all: 1 ms, unused
-    }
-    if (!design.timescale && (!ns.empty() || opts.timescaleNs)) {
-      static const struct {
-        const char *unit;
-        int64_t ns;
-      } units[] = {{"h", 3600000000000}, {"min", 60000000000},
-                   {"s", 1000000000},    {"ms", 1000000},
-                   {"us", 1000},         {"ns", 1}};
-      for (auto &u : units)
-        if (tickNs % u.ns == 0) {
-          net::Timescale ts;
-          ts.amount = uint64_t(tickNs / u.ns);
-          ts.unit = u.unit;
-          design.timescale = ts;
-          break;
-        }
-    }
+    chooseTick(std::move(ns));
 
     for (auto &[p, task] : tops) {
       int64_t period = 1;
@@ -2169,6 +2210,85 @@ bool Lowering::run() {
     return false;
   }
   return !diag.hadError();
+}
+
+void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
+  eventDriven = true;
+  Pou *pou = block.pou;
+  beginModule(pou);
+  std::map<std::string, uint32_t> eventPorts;
+  for (auto &[name, loc] : block.eventInputs)
+    eventPorts[name] =
+        b.addPort(name, net::PortKind::Event, net::PortDir::In, nullptr, loc);
+  for (auto &[name, loc] : block.eventOutputs)
+    eventPorts[name] =
+        b.addPort(name, net::PortKind::Event, net::PortDir::Out, nullptr, loc);
+  // One event at a time: reactions and sends share this token, so events
+  // that arrive together are taken one per successor, never two in one
+  // step, and a block never sends while it reacts.
+  uint32_t ready = b.addPlace("ready", 1, 1, pou->loc);
+  for (const EventHandler &h : block.handlers) {
+    Frame top;
+    top.pou = pou;
+    top.external = true;
+    Sink action;
+    if (mayJump(h.body, false))
+      refuse(h.loc, "RETURN or a jump out of an algorithm is not supported "
+                    "in an IEC 61499 function block");
+    body(const_cast<StmtList &>(h.body), top, action, {});
+    // Temporaries are back at their initial values after every reaction.
+    for (auto &[name, init] : resets)
+      action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
+    uint32_t t = b.addTransition("recv_" + h.event, {net::PreArc{ready, 1, {}}},
+                                 {net::PostArc{ready, 1}}, h.loc);
+    b.setEvents(t, {net::EventSource{eventPorts.at(h.event), true}});
+    b.setAction(t, action);
+  }
+  for (const EventSend &send : block.sends) {
+    NExpr *counter = b.ref(send.counter, send.loc);
+    uint32_t t =
+        b.addTransition("send_" + send.event, {net::PreArc{ready, 1, {}}},
+                        {net::PostArc{ready, 1}}, send.loc);
+    b.setGuard(t, b.binary(net::BinaryOp::Gt, counter, b.intLit(0, send.loc),
+                           send.loc));
+    b.setEmits(t, {eventPorts.at(send.event)});
+    b.setUrgent(t);
+    b.setAction(
+        t, {b.assign(b.ref(send.counter, send.loc),
+                     b.binary(net::BinaryOp::Sub, b.ref(send.counter, send.loc),
+                              b.intLit(1, send.loc), send.loc),
+                     send.loc)});
+  }
+  capClocks();
+  eventDriven = false;
+}
+
+bool Lowering::runEventDriven(const std::vector<EventDrivenBlock> &blocks) {
+  try {
+    for (Pou *p : unit.pous)
+      collectWritten(p->body, written);
+    std::vector<int64_t> ns;
+    std::set<Pou *> seen;
+    for (const EventDrivenBlock &block : blocks) {
+      collectTimes(block.pou, seen, ns);
+      for (const EventHandler &h : block.handlers)
+        collectTimesStmts(const_cast<StmtList &>(h.body), seen, ns);
+    }
+    chooseTick(std::move(ns));
+    for (const EventDrivenBlock &block : blocks)
+      lowerEventBlock(block);
+  } catch (Refusal &) {
+    return false;
+  }
+  return !diag.hadError();
+}
+
+bool plc::lowerEventDriven(Unit &unit,
+                           const std::vector<EventDrivenBlock> &blocks,
+                           const LowerOptions &opts, DiagEngine &diag,
+                           net::Design &design) {
+  Lowering l(unit, opts, diag, design);
+  return l.runEventDriven(blocks);
 }
 
 bool plc::lowerToNet(Unit &unit, const LowerOptions &opts, DiagEngine &diag,

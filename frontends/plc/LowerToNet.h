@@ -15,12 +15,14 @@
 #define NETLIFT_FRONTENDS_PLC_LOWERTONET_H
 
 #include "frontends/plc/PlcAst.h"
+#include "frontends/plc/Sema.h"
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace netlift::plc {
 
@@ -36,7 +38,47 @@ struct LowerOptions {
   /// Value ranges of integer inputs by (upper-case) variable name, from
   /// --ranges; pragmas `{range lo..hi}` on the declaration also work.
   std::map<std::string, std::pair<int64_t, int64_t>> ranges;
+  /// Durations used outside the PLC code (IEC 61499 parameters), counted
+  /// when the tick is chosen.
+  std::vector<int64_t> extraTimesNs;
 };
+
+/// An IEC 61499 function block's reaction to one event input: `body` runs
+/// in the step in which the event arrives (docs/iec61499.md).
+struct EventHandler {
+  std::string event;
+  StmtList body;
+  llvm::SMLoc loc;
+};
+
+/// An output event: handlers count it into `counter` (a variable of the
+/// POU), and an urgent transition sends one per step.
+struct EventSend {
+  std::string event;
+  std::string counter;
+  llvm::SMLoc loc;
+};
+
+/// A function block executed by events instead of a scan: its VAR_INPUT
+/// and VAR_OUTPUT become data ports (BOOL ones cond ports) of their full
+/// types, its other variables data variables, and each handler a forced
+/// transition `recv_<event>` on the event input.
+struct EventDrivenBlock {
+  Pou *pou = nullptr;
+  std::vector<std::pair<std::string, llvm::SMLoc>> eventInputs, eventOutputs;
+  std::vector<EventHandler> handlers;
+  std::vector<EventSend> sends;
+};
+
+/// Lowers event-driven blocks of the checked unit into `design`, one
+/// module each, named like the POU.
+bool lowerEventDriven(Unit &unit, const std::vector<EventDrivenBlock> &blocks,
+                      const LowerOptions &opts, DiagEngine &diag,
+                      net::Design &design);
+
+/// The NetIR type of a BOOL, integer or TIME value as the lowering declares
+/// it (TIME in ticks); null for other types.
+const net::Type *scalarNetType(const PType *t, net::TypeTable &types);
 
 /// Lowers the checked unit into `design`. Returns false after reporting.
 bool lowerToNet(Unit &unit, const LowerOptions &opts, DiagEngine &diag,

@@ -266,11 +266,21 @@ static cl::opt<std::string> plcRanges(
     cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
     cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::cat(category));
 
+static cl::list<std::string> typeLibraries(
+    "I",
+    cl::desc("IEC 61499 input: a directory searched (with its "
+             "subdirectories) for the .fbt/.sub types a network uses"),
+    cl::value_desc("DIR"), cl::Prefix, cl::sub(translateCmd),
+    cl::sub(composeCmd), cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd),
+    cl::sub(srCmd), cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
+    cl::sub(checkCmd), cl::cat(category));
+
 /// Hands the PLC options to the frontends; false after an error message.
 static bool setFrontendOptions() {
   FrontendOptions &fo = frontendOptions();
   fo.top = plcTop;
   fo.rangesFile = plcRanges;
+  fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   auto duration = [](const std::string &flag, const std::string &text,
                      std::optional<int64_t> &out) {
     if (text.empty())
