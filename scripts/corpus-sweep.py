@@ -25,6 +25,7 @@ FORMATS = {
     "dot": ((".dot",), None, (), "mealy"),
     "spaceex": ((".xml",), None, (), "translate"),
     "plcopen_xml": ((".xml",), None, (), "translate"),
+    "iec61499": ((".fbt", ".sub", ".sys"), None, (), "translate"),
 }
 
 

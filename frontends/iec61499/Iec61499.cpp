@@ -470,6 +470,9 @@ Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
   event.clear();
   if (trimmed.empty() || trimmed == "1" || trimmed.equals_insensitive("TRUE"))
     return boolLit(unit, true, at);
+  // 4diac writes a guard without an event in brackets: `[K = 0]`.
+  if (trimmed.startswith("[") && trimmed.endswith("]"))
+    trimmed = trimmed.drop_front().drop_back().trim();
   size_t id = 0;
   while (id < trimmed.size() &&
          (isalnum((unsigned char)trimmed[id]) || trimmed[id] == '_'))
