@@ -45,8 +45,8 @@ struct LibraryFile {
 /// How deep the ECC may run in one reaction before netlift calls it
 /// runaway (FORTE would loop for ever): a multiple of its transitions.
 constexpr int kRunawayFactor = 4;
-/// How many occurrences of one output event may wait to be sent.
-constexpr int kMaxQueued = 4;
+/// How many output events of one block may wait to be sent.
+constexpr int kMaxQueued = 8;
 
 struct Failure {};
 
@@ -106,6 +106,10 @@ private:
   FbType *findType(StringRef name, SMLoc use);
   FbType *searchLibraries(StringRef name);
   void collect(FbType &t);
+  void collectNetwork(XmlSource &src, pugi::xml_node net);
+  FbType &generatedType(const std::string &name, const std::string &text);
+  std::string fanOutType(size_t ways);
+  std::string inputQueueType(const FbType &t);
 
   // Basic FBs.
   void basicBlock(FbType &t);
@@ -135,6 +139,9 @@ private:
   std::map<std::string, std::unique_ptr<FbType>> types; // upper-case name
   std::vector<FbType *> order;                          // translation order
   std::vector<std::pair<File *, pugi::xml_node>> systems;
+  /// Types given on the command line: their event inputs are the
+  /// environment's, queued like a runtime's external events.
+  std::set<const FbType *> tops;
   std::map<std::string, std::string> libraryIndex; // upper stem -> path
   bool indexed = false;
 
@@ -319,18 +326,93 @@ void Translator::collect(FbType &t) {
   if (t.translated)
     return;
   t.translated = true;
-  if (t.kind == TypeKind::Composite || t.kind == TypeKind::SubApp)
-    for (pugi::xml_node fb : t.body.children()) {
-      StringRef kind = localName(fb);
-      if (kind == "SubApp" && !fb.attribute("Type"))
-        fail(t, fb,
-             "untyped subapplication '" + Twine(fb.attribute("Name").value()) +
-                 "' is not supported (save it as a subapplication type)");
-      if (kind != "FB" && kind != "SubApp")
-        continue;
-      collect(*findType(fb.attribute("Type").value(), t.src->locOf(fb)));
-    }
+  if (t.kind == TypeKind::Composite || t.kind == TypeKind::SubApp) {
+    if (tops.count(&t) && !t.eventInputs.empty())
+      collect(generatedType("_Inputs_" + t.name, inputQueueType(t)));
+    collectNetwork(*t.src, t.body);
+  }
   order.push_back(&t);
+}
+
+void Translator::collectNetwork(XmlSource &src, pugi::xml_node net) {
+  std::map<std::string, size_t> destinations; // event source -> count
+  for (pugi::xml_node fb : net.children()) {
+    StringRef kind = localName(fb);
+    if (kind == "SubApp" && !fb.attribute("Type"))
+      fail(src.locOf(fb),
+           "untyped subapplication '" + Twine(fb.attribute("Name").value()) +
+               "' is not supported (save it as a subapplication type)");
+    if (kind != "FB" && kind != "SubApp")
+      continue;
+    collect(*findType(fb.attribute("Type").value(), src.locOf(fb)));
+  }
+  for (pugi::xml_node c : child(net, "EventConnections").children("Connection"))
+    ++destinations[StringRef(c.attribute("Source").value()).upper()];
+  for (auto &[source, ways] : destinations)
+    if (ways > 1)
+      collect(generatedType(fanOutType(ways), ""));
+}
+
+/// A type netlift makes up (its text is kept in the SourceMgr so that its
+/// locations print).
+FbType &Translator::generatedType(const std::string &name,
+                                  const std::string &text) {
+  if (auto it = types.find(StringRef(name).upper()); it != types.end())
+    return *it->second;
+  std::string body = text;
+  if (body.empty()) {
+    // _FanOut<k>: EO1..EOk in order, one per step.
+    size_t ways = std::stoul(name.substr(strlen("_FanOut")));
+    body = "<FBType Name=\"" + name +
+           "\">\n<InterfaceList>\n<EventInputs><Event Name=\"EI\"/>"
+           "</EventInputs>\n<EventOutputs>";
+    for (size_t i = 1; i <= ways; ++i)
+      body += "<Event Name=\"EO" + std::to_string(i) + "\"/>";
+    body += "</EventOutputs>\n</InterfaceList>\n<BasicFB><ECC>\n<ECState "
+            "Name=\"START\"/>\n<ECState Name=\"FAN\">";
+    for (size_t i = 1; i <= ways; ++i)
+      body += "<ECAction Output=\"EO" + std::to_string(i) + "\"/>";
+    body += "</ECState>\n<ECTransition Source=\"START\" Destination=\"FAN\" "
+            "Condition=\"EI\"/>\n<ECTransition Source=\"FAN\" "
+            "Destination=\"START\" Condition=\"1\"/>\n</ECC></BasicFB>\n"
+            "</FBType>\n";
+  }
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(body, "<netlift generated>/" + name +
+                                                     ".fbt"),
+      SMLoc());
+  registerTypes(readFile(id), true);
+  return *types.at(StringRef(name).upper());
+}
+
+std::string Translator::fanOutType(size_t ways) {
+  return "_FanOut" + std::to_string(ways);
+}
+
+/// The queue of the environment's events for top type `t`: input E is
+/// passed on as E_o in a later step. An event arriving while one waits is
+/// not taken (the environment offers it again later), so the queue never
+/// overflows and no order of arrivals and deliveries is lost.
+std::string Translator::inputQueueType(const FbType &t) {
+  std::string body = "<FBType Name=\"_Inputs_" + t.name +
+                     "\">\n<InterfaceList>\n<EventInputs>";
+  for (const Event &e : t.eventInputs)
+    body += "<Event Name=\"" + e.name + "\"/>";
+  body += "</EventInputs>\n<EventOutputs>";
+  for (const Event &e : t.eventInputs)
+    body += "<Event Name=\"" + e.name + "_o\"/>";
+  body += "</EventOutputs>\n</InterfaceList>\n<BasicFB><ECC>\n<ECState "
+          "Name=\"START\"/>\n";
+  for (const Event &e : t.eventInputs)
+    body += "<ECState Name=\"S_" + e.name + "\"><ECAction Output=\"" + e.name +
+            "_o\"/></ECState>\n";
+  for (const Event &e : t.eventInputs)
+    body += "<ECTransition Source=\"START\" Destination=\"S_" + e.name +
+            "\" Condition=\"" + e.name + "[_queued = 0]" +
+            "\"/>\n<ECTransition Source=\"S_" + e.name +
+            "\" Destination=\"START\" Condition=\"1\"/>\n";
+  body += "</ECC></BasicFB>\n</FBType>\n";
+  return body;
 }
 
 //===----------------------------------------------------------------------===//
@@ -606,20 +688,31 @@ void Translator::basicBlock(FbType &t) {
   eccInit->init = unit.make<Initializer>(Initializer::Value, at);
   eccInit->init->value = stateLit(states.front().attribute("Name").value(), at);
   declare("ECC", eccInit, VarSection::Var, at);
-  auto *range = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
-  range->name = "INT";
-  range->lo = intLit(unit, 0, at);
-  range->hi = intLit(unit, kMaxQueued, at);
+  // Output events wait in a FIFO queue, by number (1 = the first output).
+  auto subrange = [&](int64_t lo, int64_t hi) {
+    auto *r = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
+    r->name = "INT";
+    r->lo = intLit(unit, lo, at);
+    r->hi = intLit(unit, hi, at);
+    return r;
+  };
   std::vector<std::pair<std::string, SMLoc>> eventOutputs;
-  for (const Event &e : t.eventOutputs) {
+  for (const Event &e : t.eventOutputs)
     eventOutputs.push_back({e.name, t.src->locOf(e.node)});
-    declare("_" + e.name + "_queued", range, VarSection::Var,
-            t.src->locOf(e.node));
+  if (!t.eventOutputs.empty()) {
+    auto *queue = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
+    queue->dims.push_back(
+        {intLit(unit, 0, at), intLit(unit, kMaxQueued - 1, at)});
+    queue->elem = subrange(0, int64_t(t.eventOutputs.size()));
+    declare("_queue", queue, VarSection::Var, at);
+    declare("_queued", subrange(0, kMaxQueued), VarSection::Var, at);
   }
   declare("_live", named("BOOL", at), VarSection::Temp, at);
   declare("_event", named("BOOL", at), VarSection::Temp, at);
   declare("_fired", named("BOOL", at), VarSection::Temp, at);
-  declare("_step", named("INT", at), VarSection::Temp, at);
+  int64_t limit = int64_t(transitions.size()) * kRunawayFactor + 1;
+  declare("_step", subrange(0, std::max<int64_t>(limit, kMaxQueued) + 1),
+          VarSection::Temp, at);
   auto *never = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
   never->name = "INT";
   never->lo = intLit(unit, 0, at);
@@ -633,6 +726,12 @@ void Translator::basicBlock(FbType &t) {
              "ECC transition " + StringRef(end).lower() + " '" +
                  tr.attribute(end).value() + "' is not a state of '" + t.name +
                  "'");
+
+  auto queueAt = [&](Expr *index, SMLoc loc) {
+    Expr *e = unit.make<Expr>(ExprKind::Index, loc);
+    e->operands = {nameRef(unit, "_queue", loc), index};
+    return e;
+  };
 
   // What entering a state does: its actions in order.
   auto enter = [&](pugi::xml_node state) {
@@ -656,25 +755,56 @@ void Translator::basicBlock(FbType &t) {
         for (const std::string &w : ev->with)
           out.push_back(assign(unit, nameRef(unit, w, loc),
                                nameRef(unit, internal(w), loc), loc));
-        std::string q = "_" + ev->name + "_queued";
-        out.push_back(assign(unit, nameRef(unit, q, loc),
-                             binary(unit, Op::Add, nameRef(unit, q, loc),
-                                    intLit(unit, 1, loc), loc),
-                             loc));
+        int64_t number = ev - &t.eventOutputs.front() + 1;
+        out.push_back(assign(unit, queueAt(nameRef(unit, "_queued", loc), loc),
+                             intLit(unit, number, loc), loc));
+        out.push_back(
+            assign(unit, nameRef(unit, "_queued", loc),
+                   binary(unit, Op::Add, nameRef(unit, "_queued", loc),
+                          intLit(unit, 1, loc), loc),
+                   loc));
       }
     }
     return out;
   };
 
-  int64_t limit = int64_t(transitions.size()) * kRunawayFactor + 1;
   EventDrivenBlock block;
   block.pou = pou;
   for (const Event &e : t.eventInputs)
     block.eventInputs.push_back({e.name, t.src->locOf(e.node)});
   block.eventOutputs = eventOutputs;
-  for (const Event &e : t.eventOutputs)
-    block.sends.push_back(
-        {e.name, "_" + e.name + "_queued", t.src->locOf(e.node)});
+  // Sending the queue's head: the rest moves up.
+  for (const Event &e : t.eventOutputs) {
+    SMLoc loc = t.src->locOf(e.node);
+    int64_t number = &e - &t.eventOutputs.front() + 1;
+    EventSend send;
+    send.event = e.name;
+    send.loc = loc;
+    send.guard = binary(unit, Op::Eq, queueAt(intLit(unit, 0, loc), loc),
+                        intLit(unit, number, loc), loc);
+    Stmt *shift = unit.make<Stmt>(StmtKind::For, loc);
+    shift->target = nameRef(unit, "_step", loc);
+    shift->from = intLit(unit, 0, loc);
+    shift->to = intLit(unit, kMaxQueued - 2, loc);
+    shift->body.push_back(
+        assign(unit, queueAt(nameRef(unit, "_step", loc), loc),
+               queueAt(binary(unit, Op::Add, nameRef(unit, "_step", loc),
+                              intLit(unit, 1, loc), loc),
+                       loc),
+               loc));
+    send.body.push_back(shift);
+    send.body.push_back(assign(unit,
+                               queueAt(intLit(unit, kMaxQueued - 1, loc), loc),
+                               intLit(unit, 0, loc), loc));
+    send.body.push_back(
+        assign(unit, nameRef(unit, "_queued", loc),
+               binary(unit, Op::Sub, nameRef(unit, "_queued", loc),
+                      intLit(unit, 1, loc), loc),
+               loc));
+    // Checked with the rest of the POU.
+    pou->body.push_back(when(unit, send.guard, send.body, loc));
+    block.sends.push_back(std::move(send));
+  }
 
   for (const Event &ei : t.eventInputs) {
     SMLoc loc = t.src->locOf(ei.node);
@@ -905,30 +1035,66 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     return net::Endpoint{design.save(a), design.save(p), loc};
   };
   std::set<std::pair<std::string, std::string>> driven; // (inst, port) upper
-  std::map<std::string, std::set<std::string>> fanOut;  // source -> insts
   for (pugi::xml_node fb : net.children())
     for (pugi::xml_node p : fb.children("Parameter"))
       driven.insert({StringRef(fb.attribute("Name").value()).upper(),
                      StringRef(p.attribute("Name").value()).upper()});
-  for (const char *list :
-       {"EventConnections", "DataConnections", "AdapterConnections"})
-    for (pugi::xml_node c : child(net, list).children("Connection")) {
-      if (StringRef(list) == "AdapterConnections")
-        fail(src.locOf(c), "adapter connections are not supported");
-      net::Endpoint from = endpoint(c, "Source"),
-                    to = endpoint(c, "Destination");
-      driven.insert({to.instance.upper(), to.port.upper()});
-      // One event into two inputs of one block would need two reactions in
-      // one step; netlift's blocks take one event at a time.
-      if (StringRef(list) == "EventConnections" && !to.instance.empty() &&
-          !fanOut[from.instance.str() + "." + from.port.str()]
-               .insert(to.instance.upper())
-               .second)
-        fail(src.locOf(c), "event '" + Twine(c.attribute("Source").value()) +
-                               "' drives two event inputs of '" + to.instance +
-                               "'; route it through E_SPLIT to order them");
-      b.addConnection(from, to, src.locOf(c));
+  if (pugi::xml_node adapters = child(net, "AdapterConnections"))
+    if (pugi::xml_node c = adapters.child("Connection"))
+      fail(src.locOf(c), "adapter connections are not supported");
+  for (pugi::xml_node c :
+       child(net, "DataConnections").children("Connection")) {
+    net::Endpoint from = endpoint(c, "Source"), to = endpoint(c, "Destination");
+    driven.insert({to.instance.upper(), to.port.upper()});
+    b.addConnection(from, to, src.locOf(c));
+  }
+  // The environment's events reach a top type's network through a queue,
+  // one per step (like a runtime's external events), not all at once.
+  bool queued = iface && tops.count(iface) && !iface->eventInputs.empty();
+  if (queued) {
+    b.addInstance("_inputs", "_Inputs_" + iface->name, at);
+    for (const Event &e : iface->eventInputs)
+      b.addConnection({"", design.save(e.name), at},
+                      {"_inputs", design.save(e.name), at}, at);
+  }
+  // Events by source in document order. A source with several destinations
+  // reaches them one per step, in the order the connections are written
+  // (as FORTE queues them), through a _FanOut block.
+  std::vector<std::string> sources;
+  std::map<std::string, std::vector<pugi::xml_node>> bySource;
+  for (pugi::xml_node c :
+       child(net, "EventConnections").children("Connection")) {
+    std::string key = StringRef(c.attribute("Source").value()).upper();
+    if (!bySource.count(key))
+      sources.push_back(key);
+    bySource[key].push_back(c);
+  }
+  for (const std::string &key : sources) {
+    const std::vector<pugi::xml_node> &conns = bySource[key];
+    net::Endpoint from = endpoint(conns.front(), "Source");
+    if (queued && from.instance.empty())
+      from = {"_inputs", design.save(from.port.str() + "_o"), from.loc};
+    if (conns.size() > 1) {
+      std::string fan =
+          "_fan_" +
+          net::toIdentifier((from.instance.empty() ? from.port.str()
+                                                   : from.instance.str() + "_" +
+                                                         from.port.str()));
+      b.addInstance(fan, fanOutType(conns.size()), from.loc);
+      b.addConnection(from, {design.save(fan), "EI", from.loc}, from.loc);
+      for (size_t i = 0; i < conns.size(); ++i) {
+        net::Endpoint to = endpoint(conns[i], "Destination");
+        driven.insert({to.instance.upper(), to.port.upper()});
+        b.addConnection({design.save(fan),
+                         design.save("EO" + std::to_string(i + 1)), to.loc},
+                        to, src.locOf(conns[i]));
+      }
+      continue;
     }
+    net::Endpoint to = endpoint(conns.front(), "Destination");
+    driven.insert({to.instance.upper(), to.port.upper()});
+    b.addConnection(from, to, src.locOf(conns.front()));
+  }
   // An unconnected input of a block inside a network never sees an event and
   // keeps its initial value (it is not the environment's).
   for (pugi::xml_node fb : net.children()) {
@@ -1024,16 +1190,18 @@ void Translator::serviceModule(FbType &t) {
 
 bool Translator::run(const std::vector<unsigned> &ids) {
   try {
-    std::vector<FbType *> tops;
+    std::vector<FbType *> topList;
     for (unsigned id : ids) {
       File &f = readFile(id);
       registerTypes(f, false);
       pugi::xml_node root = f.doc->document_element();
       if (localName(root) != "System")
-        tops.push_back(
+        topList.push_back(
             types[StringRef(root.attribute("Name").value()).upper()].get());
     }
-    for (FbType *t : tops)
+    for (FbType *t : topList)
+      tops.insert(t);
+    for (FbType *t : topList)
       collect(*t);
     std::vector<std::pair<std::string, pugi::xml_node>> apps;
     for (auto &[file, sys] : systems)
@@ -1041,12 +1209,7 @@ bool Translator::run(const std::vector<unsigned> &ids) {
         pugi::xml_node net = child(app, "SubAppNetwork");
         if (!net)
           net = child(app, "FBNetwork");
-        for (pugi::xml_node fb : net.children()) {
-          StringRef kind = localName(fb);
-          if (kind == "FB" || kind == "SubApp")
-            collect(
-                *findType(fb.attribute("Type").value(), file->src->locOf(fb)));
-        }
+        collectNetwork(*file->src, net);
       }
 
     // Basic FBs first: their lowering fixes the tick.
@@ -1120,7 +1283,13 @@ bool Translator::run(const std::vector<unsigned> &ids) {
     if (neverNeeded) {
       // An event output nothing emits: what unconnected inputs listen to.
       b.createModule("Never");
-      b.addPort("EO", net::PortKind::Event, net::PortDir::Out);
+      uint32_t eo = b.addPort("EO", net::PortKind::Event, net::PortDir::Out);
+      // Its emitter can never be enabled (no token), rather than missing,
+      // which flatten would report for every input it drives.
+      uint32_t off = b.addPlace("off");
+      uint32_t t = b.addTransition("silent", {net::PreArc{off, 1, {}}},
+                                   {net::PostArc{off, 1}});
+      b.setEmits(t, {eo});
     }
     for (auto &[name, c] : constants) {
       net::Module *m = b.createModule(name, false, c.loc);

@@ -2245,19 +2245,23 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
     b.setAction(t, action);
   }
   for (const EventSend &send : block.sends) {
-    NExpr *counter = b.ref(send.counter, send.loc);
+    Frame top;
+    top.pou = pou;
+    top.external = true;
+    Sink pre, action;
+    NExpr *guard = expr(send.guard, top, pre);
+    if (!pre.empty())
+      refuse(send.loc, "internal: a send guard needs statements");
+    body(const_cast<StmtList &>(send.body), top, action, {});
+    for (auto &[name, init] : resets)
+      action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
     uint32_t t =
         b.addTransition("send_" + send.event, {net::PreArc{ready, 1, {}}},
                         {net::PostArc{ready, 1}}, send.loc);
-    b.setGuard(t, b.binary(net::BinaryOp::Gt, counter, b.intLit(0, send.loc),
-                           send.loc));
+    b.setGuard(t, guard);
     b.setEmits(t, {eventPorts.at(send.event)});
     b.setUrgent(t);
-    b.setAction(
-        t, {b.assign(b.ref(send.counter, send.loc),
-                     b.binary(net::BinaryOp::Sub, b.ref(send.counter, send.loc),
-                              b.intLit(1, send.loc), send.loc),
-                     send.loc)});
+    b.setAction(t, action);
   }
   capClocks();
   eventDriven = false;

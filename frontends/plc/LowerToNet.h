@@ -51,18 +51,21 @@ struct EventHandler {
   llvm::SMLoc loc;
 };
 
-/// An output event: handlers count it into `counter` (a variable of the
-/// POU), and an urgent transition sends one per step.
+/// An output event: an urgent transition `send_<event>` emits it whenever
+/// `guard` holds, running `body` (which takes it off the block's queue).
 struct EventSend {
   std::string event;
-  std::string counter;
+  Expr *guard = nullptr;
+  StmtList body;
   llvm::SMLoc loc;
 };
 
 /// A function block executed by events instead of a scan: its VAR_INPUT
 /// and VAR_OUTPUT become data ports (BOOL ones cond ports) of their full
 /// types, its other variables data variables, and each handler a forced
-/// transition `recv_<event>` on the event input.
+/// transition `recv_<event>` on the event input. Handler bodies and send
+/// guards and bodies must have been checked with the POU (Sema), e.g. by
+/// being part of its body too.
 struct EventDrivenBlock {
   Pou *pou = nullptr;
   std::vector<std::pair<std::string, llvm::SMLoc>> eventInputs, eventOutputs;
