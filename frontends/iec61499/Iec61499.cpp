@@ -1169,9 +1169,7 @@ void Translator::serviceModule(FbType &t) {
       std::to_string(cap) + " = 0;\n  clock _t : 0.." + std::to_string(cap) +
       ";\n"
       "  place idle(1), running;\n"
-      "  trans start : idle -> running on START { _DT := DT / " +
-      std::to_string(1) +
-      "; _t := 0; }\n"
+      "  trans start : idle -> running on START { _DT := DT; _t := 0; }\n"
       "  trans stop : running -> idle on STOP;\n"
       "  trans expire : running -> " +
       (cyclic ? "running" : "idle") + " guard _t >= _DT emit EO urgent" +
