@@ -105,6 +105,7 @@ private:
   void readInterface(FbType &t, pugi::xml_node iface);
   FbType *findType(StringRef name, SMLoc use);
   FbType *searchLibraries(StringRef name);
+  FbType *libraryType(StringRef name);
   void collect(FbType &t);
   void collectNetwork(XmlSource &src, pugi::xml_node net);
   FbType &generatedType(const std::string &name, const std::string &text);
@@ -170,6 +171,11 @@ private:
 //===----------------------------------------------------------------------===//
 // Reading
 //===----------------------------------------------------------------------===//
+
+/// Service FBs netlift has a model of (whatever file declares them).
+static bool isShipped(StringRef name) {
+  return name == "E_DELAY" || name == "E_CYCLE" || name == "E_RESTART";
+}
 
 File &Translator::readFile(unsigned id) {
   auto f = std::make_unique<File>();
@@ -297,6 +303,10 @@ FbType *Translator::searchLibraries(StringRef name) {
     if (auto t = types.find(key); t != types.end())
       return t->second.get();
   }
+  return libraryType(name);
+}
+
+FbType *Translator::libraryType(StringRef name) {
   for (const LibraryFile &lf : kLibraryFiles)
     if (llvm::sys::path::stem(lf.name).equals_insensitive(name)) {
       unsigned id = diag.sourceMgr().AddNewSourceBuffer(
@@ -304,7 +314,7 @@ FbType *Translator::searchLibraries(StringRef name) {
               lf.text, ("<netlift library>/" + Twine(lf.name)).str()),
           SMLoc());
       registerTypes(readFile(id), true);
-      if (auto t = types.find(key); t != types.end())
+      if (auto t = types.find(name.upper()); t != types.end())
         return t->second.get();
     }
   return nullptr;
@@ -313,6 +323,10 @@ FbType *Translator::searchLibraries(StringRef name) {
 FbType *Translator::findType(StringRef name, SMLoc use) {
   if (auto it = types.find(name.upper()); it != types.end())
     return it->second.get();
+  // The timed and start-up FBs are always netlift's models (4diac's are
+  // service FBs, or composites taking DT from outside).
+  if (isShipped(name))
+    return libraryType(name);
   if (FbType *t = searchLibraries(name))
     return t;
   fail(use, "unknown function block type '" + name +
@@ -450,11 +464,6 @@ static Stmt *when(Unit &u, Expr *cond, StmtList body, SMLoc at) {
   Stmt *s = u.make<Stmt>(StmtKind::If, at);
   s->arms.push_back({cond, std::move(body)});
   return s;
-}
-
-/// Service FBs netlift has a model of (whatever file declares them).
-static bool isShipped(StringRef name) {
-  return name == "E_DELAY" || name == "E_CYCLE" || name == "E_RESTART";
 }
 
 /// The internal copy of interface variable `name`.
@@ -620,17 +629,21 @@ void Translator::basicBlock(FbType &t) {
       sampled.insert(StringRef(w).upper());
   for (const Var &v : t.inputs) {
     SMLoc loc = t.src->locOf(v.node);
-    declare(v.name, typeOf(t, v.node), VarSection::Input, loc);
+    // The port and its copy share one type (an array type written twice
+    // would be two types to the checker).
+    TypeSyntax *type = typeOf(t, v.node);
+    declare(v.name, type, VarSection::Input, loc);
     // An input no event samples is read where it stands (a parameter).
     if (sampled.count(StringRef(v.name).upper())) {
-      declare(internal(v.name), typeOf(t, v.node), VarSection::Var, loc);
+      declare(internal(v.name), type, VarSection::Var, loc);
       copied.insert(StringRef(v.name).upper());
     }
   }
   for (const Var &v : t.outputs) {
     SMLoc loc = t.src->locOf(v.node);
-    declare(v.name, typeOf(t, v.node), VarSection::Output, loc);
-    declare(internal(v.name), typeOf(t, v.node), VarSection::Var, loc);
+    TypeSyntax *type = typeOf(t, v.node);
+    declare(v.name, type, VarSection::Output, loc);
+    declare(internal(v.name), type, VarSection::Var, loc);
     copied.insert(StringRef(v.name).upper());
   }
   for (pugi::xml_node v :
