@@ -34,7 +34,14 @@ WORDS = [b" IF ", b" THEN ", b" END_IF;", b" ELSE ", b" := ", b" VAR ", b" END_V
          b' formalParameter="OUT"', b' negated="true"', b' edge="rising"',
          b' storage="reset"', b' executionOrderId="1"', b' localId="3"',
          b'<jump localId="77" label="x"/>', b'<label localId="78" label="x"/>',
-         b'<continuation localId="79" name="c"/>', b' instanceName="t"']
+         b'<continuation localId="79" name="c"/>', b' instanceName="t"',
+         # IEC 61499: interfaces, ECCs, networks.
+         b'<With Var="X"/>', b'<Event Name="REQ"/>', b'<ECState Name="S"/>',
+         b'<ECAction Algorithm="OUT" Output="CNF"/>', b' Condition="REQ[x]"',
+         b'<ECTransition Source="START" Destination="S" Condition="1"/>',
+         b'<Parameter Name="DT" Value="T#1s"/>', b'<FB Name="e" Type="E_SPLIT"/>',
+         b'<Connection Source="a.EO" Destination="b.EI"/>', b' ArraySize="2"',
+         b' Type="INT"', b'<Algorithm Name="A"><ST Text="x := 1;"/></Algorithm>']
 
 # Automata are read by `mealy` and `edit-automaton`, models by the rest.
 AUTOMATA = (".kiss2", ".dot")
