@@ -1172,21 +1172,25 @@ void Translator::serviceModule(FbType &t) {
     fail(t.src->locOf(t.root), "internal: delay not a whole number of ticks");
   int64_t cap = std::max<int64_t>(longest / tick, 1);
   bool cyclic = t.name == "E_CYCLE";
+  // An idle delay keeps its clock parked at the cap (where ticks leave
+  // it), so idle states do not differ by how long ago the delay ended.
+  std::string c = std::to_string(cap);
   std::string text =
       "module " + t.name +
       " {\n"
       "  event input START, STOP;\n"
       "  event output EO;\n"
       "  data input DT : int64;\n"
-      "  var _DT : 0.." +
-      std::to_string(cap) + " = 0;\n  clock _t : 0.." + std::to_string(cap) +
-      ";\n"
+      "  var _DT : 0.." + c + " = 0;\n"
+      "  clock _t : 0.." + c + " = " + c + ";\n"
       "  place idle(1), running;\n"
       "  trans start : idle -> running on START { _DT := DT; _t := 0; }\n"
-      "  trans stop : running -> idle on STOP;\n"
-      "  trans expire : running -> " +
-      (cyclic ? "running" : "idle") + " guard _t >= _DT emit EO urgent" +
-      (cyclic ? " { _t := 0; }\n" : ";\n") + "}\n";
+      "  trans stop : running -> idle on STOP { _t := " + c + "; }\n" +
+      (cyclic ? "  trans expire : running -> running guard _t >= _DT emit EO "
+                "urgent { _t := 0; }\n"
+              : "  trans expire : running -> idle guard _t >= _DT emit EO "
+                "urgent { _t := " + c + "; }\n") +
+      "}\n";
   unsigned id = diag.sourceMgr().AddNewSourceBuffer(
       llvm::MemoryBuffer::getMemBufferCopy(text, "<netlift library>/" + t.name +
                                                      ".net"),
