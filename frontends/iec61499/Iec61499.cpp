@@ -334,6 +334,15 @@ FbType *Translator::findType(StringRef name, SMLoc use) {
                 "library)");
 }
 
+/// The function blocks and subapplications of a network, in order.
+static std::vector<pugi::xml_node> blocksOf(pugi::xml_node net) {
+  std::vector<pugi::xml_node> out;
+  for (pugi::xml_node fb : net.children())
+    if (localName(fb) == "FB" || localName(fb) == "SubApp")
+      out.push_back(fb);
+  return out;
+}
+
 /// Finds every type `t` uses, depth first, so that a type is translated
 /// after those it instantiates.
 void Translator::collect(FbType &t) {
@@ -350,14 +359,11 @@ void Translator::collect(FbType &t) {
 
 void Translator::collectNetwork(XmlSource &src, pugi::xml_node net) {
   std::map<std::string, size_t> destinations; // event source -> count
-  for (pugi::xml_node fb : net.children()) {
-    StringRef kind = localName(fb);
-    if (kind == "SubApp" && !fb.attribute("Type"))
+  for (pugi::xml_node fb : blocksOf(net)) {
+    if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       fail(src.locOf(fb),
            "untyped subapplication '" + Twine(fb.attribute("Name").value()) +
                "' is not supported (save it as a subapplication type)");
-    if (kind != "FB" && kind != "SubApp")
-      continue;
     collect(*findType(fb.attribute("Type").value(), src.locOf(fb)));
   }
   for (pugi::xml_node c : child(net, "EventConnections").children("Connection"))
@@ -960,16 +966,8 @@ std::string Translator::constantModule(StringRef type, Expr *e, StringRef text,
       fail(at, "a duration '" + text.trim() + "' given for a value of type " +
                    type);
     parameterTimes.push_back(e->intValue);
-    int64_t ns = e->intValue;
-    static const std::pair<const char *, int64_t> units[] = {
-        {"h", 3600000000000}, {"min", 60000000000}, {"s", 1000000000},
-        {"ms", 1000000},      {"us", 1000},         {"ns", 1}};
-    for (auto &[unit, size] : units)
-      if (ns % size == 0) {
-        key = "TIME_" + std::string(negative ? "m" : "") +
-              std::to_string(ns / size) + unit;
-        break;
-      }
+    key = "TIME_" + std::string(negative ? "m" : "") +
+          formatDuration(e->intValue);
   } else if (e->kind == ExprKind::IntLit || e->kind == ExprKind::BoolLit) {
     key = StringRef(type).upper() + "_" + (negative ? "m" : "") +
           std::to_string(e->intValue);
@@ -995,10 +993,7 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
   if (iface)
     declarePorts(*iface);
   std::map<std::string, FbType *> instances; // upper-case name -> type
-  for (pugi::xml_node fb : net.children()) {
-    StringRef kind = localName(fb);
-    if (kind != "FB" && kind != "SubApp")
-      continue;
+  for (pugi::xml_node fb : blocksOf(net)) {
     std::string inst = fb.attribute("Name").value();
     SMLoc loc = src.locOf(fb);
     FbType *type = findType(fb.attribute("Type").value(), loc);
@@ -1048,7 +1043,7 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     return net::Endpoint{design.save(a), design.save(p), loc};
   };
   std::set<std::pair<std::string, std::string>> driven; // (inst, port) upper
-  for (pugi::xml_node fb : net.children())
+  for (pugi::xml_node fb : blocksOf(net))
     for (pugi::xml_node p : fb.children("Parameter"))
       driven.insert({StringRef(fb.attribute("Name").value()).upper(),
                      StringRef(p.attribute("Name").value()).upper()});
@@ -1110,10 +1105,7 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
   }
   // An unconnected input of a block inside a network never sees an event and
   // keeps its initial value (it is not the environment's).
-  for (pugi::xml_node fb : net.children()) {
-    StringRef kind = localName(fb);
-    if (kind != "FB" && kind != "SubApp")
-      continue;
+  for (pugi::xml_node fb : blocksOf(net)) {
     std::string inst = fb.attribute("Name").value();
     SMLoc loc = src.locOf(fb);
     FbType *type = instances[StringRef(inst).upper()];
@@ -1181,15 +1173,21 @@ void Translator::serviceModule(FbType &t) {
       "  event input START, STOP;\n"
       "  event output EO;\n"
       "  data input DT : int64;\n"
-      "  var _DT : 0.." + c + " = 0;\n"
-      "  clock _t : 0.." + c + " = " + c + ";\n"
+      "  var _DT : 0.." +
+      c +
+      " = 0;\n"
+      "  clock _t : 0.." +
+      c + " = " + c +
+      ";\n"
       "  place idle(1), running;\n"
       "  trans start : idle -> running on START { _DT := DT; _t := 0; }\n"
-      "  trans stop : running -> idle on STOP { _t := " + c + "; }\n" +
+      "  trans stop : running -> idle on STOP { _t := " +
+      c + "; }\n" +
       (cyclic ? "  trans expire : running -> running guard _t >= _DT emit EO "
                 "urgent { _t := 0; }\n"
               : "  trans expire : running -> idle guard _t >= _DT emit EO "
-                "urgent { _t := " + c + "; }\n") +
+                "urgent { _t := " +
+                    c + "; }\n") +
       "}\n";
   unsigned id = diag.sourceMgr().AddNewSourceBuffer(
       llvm::MemoryBuffer::getMemBufferCopy(text, "<netlift library>/" + t.name +

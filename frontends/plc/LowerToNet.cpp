@@ -251,8 +251,7 @@ void Lowering::collectTimes(Pou *p, std::set<Pou *> &seen,
   collectTimesStmts(p->body, seen, ns);
 }
 
-/// A duration in the largest unit that keeps it whole: 1s, 300ms, 1500us.
-static std::string formatDuration(int64_t ns) {
+std::string plc::formatDuration(int64_t ns) {
   static const struct {
     const char *unit;
     int64_t ns;

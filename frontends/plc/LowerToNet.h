@@ -79,6 +79,9 @@ bool lowerEventDriven(Unit &unit, const std::vector<EventDrivenBlock> &blocks,
                       const LowerOptions &opts, DiagEngine &diag,
                       net::Design &design);
 
+/// A duration in the largest unit that keeps it whole: 1s, 300ms, 1500us.
+std::string formatDuration(int64_t ns);
+
 /// The NetIR type of a BOOL, integer or TIME value as the lowering declares
 /// it (TIME in ticks); null for other types.
 const net::Type *scalarNetType(const PType *t, net::TypeTable &types);
