@@ -30,6 +30,8 @@ struct FrontendOptions {
   std::string rangesFile;
   /// -I: directories holding IEC 61499 types.
   std::vector<std::string> typeLibraries;
+  /// --fb-semantics: the IEC 61499 execution model (empty: the default).
+  std::string fbSemantics;
 };
 FrontendOptions &frontendOptions();
 

@@ -259,6 +259,10 @@ bool netlift::finishIec61499Inputs(DiagEngine &diag, net::Design &design) {
   if (ids.empty())
     return true;
   const FrontendOptions &fo = frontendOptions();
-  return iec61499::translate(ids, fo.typeLibraries, fo.timescaleNs, diag,
-                             design);
+  iec61499::Options options;
+  options.typeLibraries = fo.typeLibraries;
+  options.timescaleNs = fo.timescaleNs;
+  if (!fo.fbSemantics.empty())
+    options.semantics = fo.fbSemantics;
+  return iec61499::translate(ids, options, diag, design);
 }

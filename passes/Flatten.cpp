@@ -21,6 +21,7 @@
 // removed from the design.
 //
 //===----------------------------------------------------------------------===//
+#include "passes/Flatten.h"
 #include "passes/Pass.h"
 
 #include "ir/net/Builder.h"
@@ -356,6 +357,12 @@ private:
 } // namespace
 
 namespace netlift {
+net::Module *flattenModule(net::Design &design, net::Module *top,
+                           DiagEngine &diag) {
+  Flattener f(design, diag);
+  return f.run(top);
+}
+
 std::unique_ptr<Pass> createFlattenPass(const PassOptions &opts) {
   return std::make_unique<FlattenPass>(opts);
 }

@@ -10,12 +10,15 @@
 #include "frontends/iec61499/Iec61499.h"
 
 #include "frontends/XmlSupport.h"
+#include "frontends/iec61499/ForteOrder.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StdLib.h"
 #include "ir/net/Builder.h"
 #include "ir/net/Parser.h"
+#include "ir/net/Verifier.h"
+#include "passes/Flatten.h"
 
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -83,10 +86,9 @@ struct File {
 class Translator {
 public:
   Translator(DiagEngine &diag, net::Design &design,
-             const std::vector<std::string> &libs,
-             std::optional<int64_t> timescaleNs)
-      : diag(diag), design(design), b(design), libs(libs),
-        timescaleNs(timescaleNs) {}
+             const iec61499::Options &options)
+      : diag(diag), design(design), b(design), libs(options.typeLibraries),
+        timescaleNs(options.timescaleNs), semantics(options.semantics) {}
 
   bool run(const std::vector<unsigned> &ids);
 
@@ -136,6 +138,7 @@ private:
   net::Builder b;
   const std::vector<std::string> &libs;
   std::optional<int64_t> timescaleNs;
+  std::string semantics;
   std::vector<std::unique_ptr<File>> files;
   std::map<std::string, std::unique_ptr<FbType>> types; // upper-case name
   std::vector<FbType *> order;                          // translation order
@@ -1202,6 +1205,9 @@ void Translator::serviceModule(FbType &t) {
 //===----------------------------------------------------------------------===//
 
 bool Translator::run(const std::vector<unsigned> &ids) {
+  std::set<std::string> before;
+  for (auto &m : design.modules)
+    before.insert(m->name.str());
   try {
     std::vector<FbType *> topList;
     for (unsigned id : ids) {
@@ -1325,6 +1331,43 @@ bool Translator::run(const std::vector<unsigned> &ids) {
                              dataType(c.type, c.loc), c.loc);
       m->ports[p].definition = b.intLit(v, c.loc);
     }
+    if (semantics == "forte") {
+      // Each resource (a translated type or an application) becomes one
+      // flat module with one FIFO of events; the modules it was built from
+      // go.
+      std::vector<std::string> resources;
+      for (FbType *t : topList)
+        resources.push_back(net::toIdentifier(t->name));
+      for (auto &[file, sys] : systems)
+        for (pugi::xml_node app : sys.children("Application"))
+          resources.push_back(net::toIdentifier(app.attribute("Name").value()));
+      // flatten reads resolved names: verify first.
+      if (!net::verifyDesign(design, diag))
+        return false;
+      std::vector<net::Module *> flats;
+      for (const std::string &r : resources) {
+        net::Module *top = design.lookupModule(r);
+        if (!top)
+          continue;
+        net::Module *flat = flattenModule(design, top, diag);
+        if (!flat)
+          return false;
+        flats.push_back(flat);
+      }
+      std::vector<net::Module *> built;
+      for (auto &m : design.modules)
+        if (!before.count(m->name.str()) &&
+            std::find(flats.begin(), flats.end(), m.get()) == flats.end())
+          built.push_back(m.get());
+      for (net::Module *m : built)
+        design.eraseModule(m);
+      for (net::Module *flat : flats) {
+        StringRef name = StringRef(flat->name).drop_back(strlen(".flat"));
+        design.renameModule(flat, design.save(name));
+        if (!iec61499::orderLikeForte(design, *flat, diag))
+          return false;
+      }
+    }
   } catch (Failure &) {
     return false;
   }
@@ -1332,9 +1375,14 @@ bool Translator::run(const std::vector<unsigned> &ids) {
 }
 
 bool iec61499::translate(const std::vector<unsigned> &ids,
-                         const std::vector<std::string> &libs,
-                         std::optional<int64_t> timescaleNs, DiagEngine &diag,
+                         const Options &options, DiagEngine &diag,
                          net::Design &design) {
-  Translator t(diag, design, libs, timescaleNs);
+  if (options.semantics != "forte" && options.semantics != "sequential") {
+    diag.error(SMLoc(), "unknown IEC 61499 execution model '" +
+                            options.semantics +
+                            "' (--fb-semantics forte or sequential)");
+    return false;
+  }
+  Translator t(diag, design, options);
   return t.run(ids);
 }

@@ -25,12 +25,20 @@
 
 namespace netlift::iec61499 {
 
+struct Options {
+  /// -I directories.
+  std::vector<std::string> typeLibraries;
+  std::optional<int64_t> timescaleNs;
+  /// "forte" (one flat module per resource, events in one FIFO) or
+  /// "sequential" (modules mirroring the networks, events of different
+  /// blocks in any order).
+  std::string semantics = "forte";
+};
+
 /// Translates the IEC 61499 files `bufferIDs` (already in the SourceMgr)
 /// and every type they use into `design`. Returns false after reporting.
-bool translate(const std::vector<unsigned> &bufferIDs,
-               const std::vector<std::string> &typeLibraries,
-               std::optional<int64_t> timescaleNs, DiagEngine &diag,
-               net::Design &design);
+bool translate(const std::vector<unsigned> &bufferIDs, const Options &options,
+               DiagEngine &diag, net::Design &design);
 
 } // namespace netlift::iec61499
 

@@ -275,12 +275,24 @@ static cl::list<std::string> typeLibraries(
     cl::sub(srCmd), cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd),
     cl::sub(checkCmd), cl::cat(category));
 
+static cl::opt<std::string> fbSemantics(
+    "fb-semantics",
+    cl::desc("IEC 61499 input: the execution model, forte (default: one "
+             "flat module per resource, events in one FIFO as 4diac FORTE "
+             "runs them) or sequential (modules mirroring the networks, "
+             "events of different blocks in any order)"),
+    cl::value_desc("MODEL"), cl::sub(translateCmd), cl::sub(composeCmd),
+    cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
+    cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::sub(checkCmd),
+    cl::cat(category));
+
 /// Hands the PLC options to the frontends; false after an error message.
 static bool setFrontendOptions() {
   FrontendOptions &fo = frontendOptions();
   fo.top = plcTop;
   fo.rangesFile = plcRanges;
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
+  fo.fbSemantics = fbSemantics;
   auto duration = [](const std::string &flag, const std::string &text,
                      std::optional<int64_t> &out) {
     if (text.empty())
