@@ -59,6 +59,10 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
   std::map<std::string, EventBlock> blocks;
   for (const Var &v : m.vars) {
     StringRef name = v.name;
+    // The queue of the environment's events is not a block of the chain:
+    // its sends start chains, like timers.
+    if (name.startswith("_inputs."))
+      continue;
     if (name == "_queued" || name.endswith("._queued"))
       blocks[name.drop_back(strlen("_queued")).str()].prefix =
           name.drop_back(strlen("_queued")).str();
@@ -131,12 +135,19 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
         {}, at);
   };
 
-  // The transitions whose events some reaction listens to.
-  std::set<uint32_t> heard;
+  // The transitions whose events something listens to, and those a
+  // block's reaction listens to (a reaction always fires on its event; a
+  // timer's START or STOP may not, so their senders take themselves off).
+  std::set<uint32_t> heard, heardByReaction;
   for (const Transition &t : m.transitions)
     for (const EventSource &e : t.events())
       if (!e.fromPort)
         heard.insert(e.index);
+  for (auto &[prefix, blk] : blocks)
+    for (uint32_t r : blk.reactions)
+      for (const EventSource &e : m.transitions[r].events())
+        if (!e.fromPort)
+          heardByReaction.insert(e.index);
   std::set<uint32_t> touched;
 
   for (auto &[prefix, blk] : blocks) {
@@ -169,19 +180,16 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
           {b.ifStmt({IfArm{fresh, block(append)}}, false, {}, at)}, at));
       body.push_back(b.assign(ref("_fifo_k"), num(0), at));
       b.setAction(t, body);
-      // The environment's events start a chain only when none runs.
-      if (StringRef(prefix).startswith("_inputs."))
-        b.setGuard(t, conj(m.transitions[t].guard(), idle()));
       touched.insert(t);
     }
-    // A send goes when its event heads the ring; one nobody hears takes
-    // itself off.
+    // A send goes when its event heads the queue; one no reaction hears
+    // takes itself off.
     for (auto &[t, n] : blk.sends) {
       Expr *mine = bin(BinaryOp::And, bin(BinaryOp::Gt, ref("_fifo_n"), num(0)),
                        bin(BinaryOp::Eq, b.index(ref("_fifo"), num(0), at),
                            num(blk.base + n)));
       b.setGuard(t, conj(m.transitions[t].guard(), mine));
-      if (!heard.count(t)) {
+      if (!heardByReaction.count(t)) {
         std::vector<Stmt *> body;
         for (Stmt *s : m.transitions[t].action())
           body.push_back(s);
@@ -191,8 +199,8 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
       touched.insert(t);
     }
   }
-  // Other transitions that start events (timers, start-up) wait for the
-  // current chain to end.
+  // Other transitions that start events (the environment's queue, timers,
+  // start-up) wait for the current chain to end.
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
     const Transition &t = m.transitions[i];
     if (touched.count(i) || t.isForced())
