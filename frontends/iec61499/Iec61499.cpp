@@ -1005,7 +1005,6 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     b.addInstance(inst, net::toIdentifier(type->name), loc);
     bool timed = (type->name == "E_DELAY" || type->name == "E_CYCLE") &&
                  type->kind != TypeKind::Composite;
-    bool delayGiven = false;
     for (pugi::xml_node p : fb.children("Parameter")) {
       std::string pname = p.attribute("Name").value();
       const Var *var = nullptr;
@@ -1026,13 +1025,8 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
       if (timed && StringRef(pname).equals_insensitive("DT")) {
         int64_t &longest = longestDelay[type->name];
         longest = std::max(longest, constants[cm].value->intValue);
-        delayGiven = true;
       }
     }
-    if (timed && !delayGiven)
-      fail(loc, type->name + " '" + inst +
-                    "' needs its delay DT as a parameter (netlift bounds the "
-                    "delay's clock by the longest one given)");
   }
   auto endpoint = [&](pugi::xml_node c, const char *attr) {
     StringRef text = c.attribute(attr).value();
@@ -1141,9 +1135,6 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
         value = intLit(unit, 0, vloc);
         text = "0";
       }
-      if ((type->name == "E_DELAY" || type->name == "E_CYCLE") &&
-          type->kind != TypeKind::Composite)
-        continue; // refused above
       std::string cm = constantModule(v.type, value, text, vloc);
       std::string pinst = "_" + inst + "_" + v.name;
       b.addInstance(pinst, cm, loc);
@@ -1159,10 +1150,15 @@ void Translator::network(FbType &t) {
 }
 
 /// Timed service FBs: START begins a delay of DT (ignored while one runs),
-/// STOP cancels it; the clock is capped at the longest DT given.
+/// STOP cancels it. The clock is capped at the longest DT given to one of
+/// them, or, as a DT may also come from outside a composite, at the
+/// longest duration parameter of the translation; a longer DT at run time
+/// is a range error with its trace.
 void Translator::serviceModule(FbType &t) {
   int64_t tick = int64_t(design.timescale->nanoseconds());
   int64_t longest = longestDelay[t.name];
+  for (int64_t ns : parameterTimes)
+    longest = std::max(longest, ns);
   if (longest % tick)
     fail(t.src->locOf(t.root), "internal: delay not a whole number of ticks");
   int64_t cap = std::max<int64_t>(longest / tick, 1);
