@@ -128,8 +128,10 @@ private:
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
   const net::Type *dataType(StringRef type, SMLoc at);
-  std::string parameterModule(FbType &user, StringRef type,
+  std::string parameterModule(XmlSource &src, StringRef type,
                               pugi::xml_node param);
+  void driveWithConstant(StringRef inst, StringRef input,
+                         const std::string &module, SMLoc at);
   std::string constantModule(StringRef type, Expr *e, StringRef text, SMLoc at);
   void serviceModule(FbType &t);
 
@@ -164,9 +166,7 @@ private:
     SMLoc loc;
   };
   std::map<std::string, Constant> constants;
-  /// The longest DT given to each timed service FB type (in ns).
-  std::map<std::string, int64_t> longestDelay;
-  bool neverMade = false, neverNeeded = false;
+  bool neverNeeded = false; // some network uses the silent source
 };
 
 } // namespace
@@ -945,10 +945,10 @@ void Translator::declarePorts(const FbType &t) {
 }
 
 /// A module with one constant output standing for a parameter.
-std::string Translator::parameterModule(FbType &user, StringRef type,
+std::string Translator::parameterModule(XmlSource &src, StringRef type,
                                         pugi::xml_node param) {
-  SMLoc at = user.src->locOf(param);
-  StringRef text = user.src->placeAttribute(param, "Value");
+  SMLoc at = src.locOf(param);
+  StringRef text = src.placeAttribute(param, "Value");
   Expr *e = st::parseStExpression(text, diag, unit);
   if (!e)
     throw Failure();
@@ -1003,8 +1003,6 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     if (!instances.emplace(StringRef(inst).upper(), type).second)
       fail(loc, "two function blocks named '" + inst + "'");
     b.addInstance(inst, net::toIdentifier(type->name), loc);
-    bool timed = (type->name == "E_DELAY" || type->name == "E_CYCLE") &&
-                 type->kind != TypeKind::Composite;
     for (pugi::xml_node p : fb.children("Parameter")) {
       std::string pname = p.attribute("Name").value();
       const Var *var = nullptr;
@@ -1014,18 +1012,8 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
       if (!var)
         fail(src.locOf(p), "parameter '" + pname +
                                "' is not a data input of '" + type->name + "'");
-      FbType holder;
-      holder.src = &src;
-      std::string cm = parameterModule(holder, var->type, p);
-      std::string pinst = "_" + inst + "_" + var->name;
-      b.addInstance(pinst, cm, src.locOf(p));
-      b.addConnection({design.save(pinst), "OUT", src.locOf(p)},
-                      {design.save(inst), design.save(var->name), src.locOf(p)},
-                      src.locOf(p));
-      if (timed && StringRef(pname).equals_insensitive("DT")) {
-        int64_t &longest = longestDelay[type->name];
-        longest = std::max(longest, constants[cm].value->intValue);
-      }
+      driveWithConstant(inst, var->name, parameterModule(src, var->type, p),
+                        src.locOf(p));
     }
   }
   auto endpoint = [&](pugi::xml_node c, const char *attr) {
@@ -1040,6 +1028,7 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     return net::Endpoint{design.save(a), design.save(p), loc};
   };
   std::set<std::pair<std::string, std::string>> driven; // (inst, port) upper
+  bool neverMade = false;
   for (pugi::xml_node fb : blocksOf(net))
     for (pugi::xml_node p : fb.children("Parameter"))
       driven.insert({StringRef(fb.attribute("Name").value()).upper(),
@@ -1135,14 +1124,19 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
         value = intLit(unit, 0, vloc);
         text = "0";
       }
-      std::string cm = constantModule(v.type, value, text, vloc);
-      std::string pinst = "_" + inst + "_" + v.name;
-      b.addInstance(pinst, cm, loc);
-      b.addConnection({design.save(pinst), "OUT", loc},
-                      {design.save(inst), design.save(v.name), loc}, loc);
+      driveWithConstant(inst, v.name, constantModule(v.type, value, text, vloc),
+                        loc);
     }
   }
-  neverMade = false;
+}
+
+/// `_<inst>_<input> : module`, whose OUT drives `inst.input`.
+void Translator::driveWithConstant(StringRef inst, StringRef input,
+                                   const std::string &module, SMLoc at) {
+  std::string driver = "_" + inst.str() + "_" + input.str();
+  b.addInstance(driver, module, at);
+  b.addConnection({design.save(driver), "OUT", at},
+                  {design.save(inst), design.save(input), at}, at);
 }
 
 void Translator::network(FbType &t) {
@@ -1150,18 +1144,18 @@ void Translator::network(FbType &t) {
 }
 
 /// Timed service FBs: START begins a delay of DT (ignored while one runs),
-/// STOP cancels it. The clock is capped at the longest DT given to one of
-/// them, or, as a DT may also come from outside a composite, at the
-/// longest duration parameter of the translation; a longer DT at run time
-/// is a range error with its trace.
+/// STOP cancels it. The clock is capped at the longest duration parameter
+/// of the translation (a DT may come from outside a composite, so the
+/// parameters given to the delays themselves do not suffice); a longer DT
+/// at run time is a range error with its trace.
 void Translator::serviceModule(FbType &t) {
   int64_t tick = int64_t(design.timescale->nanoseconds());
-  int64_t longest = longestDelay[t.name];
+  int64_t longest = 0;
   for (int64_t ns : parameterTimes)
     longest = std::max(longest, ns);
-  if (longest % tick)
-    fail(t.src->locOf(t.root), "internal: delay not a whole number of ticks");
-  int64_t cap = std::max<int64_t>(longest / tick, 1);
+  // Rounded up: a duration that is no whole number of ticks is reported
+  // with its parameter.
+  int64_t cap = std::max<int64_t>((longest + tick - 1) / tick, 1);
   bool cyclic = t.name == "E_CYCLE";
   // An idle delay keeps its clock parked at the cap (where ticks leave
   // it), so idle states do not differ by how long ago the delay ended.
@@ -1218,7 +1212,6 @@ bool Translator::run(const std::vector<unsigned> &ids) {
       tops.insert(t);
     for (FbType *t : topList)
       collect(*t);
-    std::vector<std::pair<std::string, pugi::xml_node>> apps;
     for (auto &[file, sys] : systems)
       for (pugi::xml_node app : sys.children("Application")) {
         pugi::xml_node net = child(app, "SubAppNetwork");
@@ -1226,6 +1219,28 @@ bool Translator::run(const std::vector<unsigned> &ids) {
           net = child(app, "FBNetwork");
         collectNetwork(*file->src, net);
       }
+    // A resource's own FBs (not mapped from an application) would run
+    // besides the applications; netlift translates applications only, so
+    // they are refused rather than left out.
+    for (auto &[file, sys] : systems) {
+      std::set<std::string> mapped;
+      for (pugi::xml_node m : sys.children("Mapping"))
+        mapped.insert(StringRef(m.attribute("To").value()).upper());
+      for (pugi::xml_node dev : sys.children("Device"))
+        for (pugi::xml_node res : dev.children("Resource"))
+          for (pugi::xml_node fb : blocksOf(child(res, "FBNetwork"))) {
+            std::string path = std::string(dev.attribute("Name").value()) +
+                               "." + res.attribute("Name").value() + "." +
+                               fb.attribute("Name").value();
+            if (!mapped.count(StringRef(path).upper()))
+              fail(file->src->locOf(fb),
+                   "FB '" + Twine(fb.attribute("Name").value()) +
+                       "' of resource '" + dev.attribute("Name").value() + "." +
+                       res.attribute("Name").value() +
+                       "' is mapped from no application; netlift translates "
+                       "applications only (move it into one)");
+          }
+    }
 
     // Basic FBs first: their lowering fixes the tick.
     for (FbType *t : order) {

@@ -88,7 +88,7 @@ public:
   Lowering(Unit &u, const LowerOptions &o, DiagEngine &d, net::Design &des)
       : unit(u), opts(o), diag(d), design(des), b(des) {}
   bool run();
-  bool runEventDriven(const std::vector<EventDrivenBlock> &blocks);
+  bool runEventDriven(std::vector<EventDrivenBlock> &blocks);
 
 private:
   [[noreturn]] void refuse(SMLoc at, const Twine &msg) {
@@ -129,7 +129,7 @@ private:
   void beginModule(Pou *program);
   void capClocks();
   void lowerModule(Pou *program, int64_t periodTicks);
-  void lowerEventBlock(const EventDrivenBlock &block);
+  void lowerEventBlock(EventDrivenBlock &block);
   void body(StmtList &list, Frame &f, Sink &out,
             const std::vector<LoopCtx> &loops);
   void stmt(Stmt *s, Frame &f, Sink &out, const std::vector<LoopCtx> &loops);
@@ -2211,7 +2211,7 @@ bool Lowering::run() {
   return !diag.hadError();
 }
 
-void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
+void Lowering::lowerEventBlock(EventDrivenBlock &block) {
   eventDriven = true;
   Pou *pou = block.pou;
   beginModule(pou);
@@ -2226,7 +2226,7 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
   // that arrive together are taken one per successor, never two in one
   // step, and a block never sends while it reacts.
   uint32_t ready = b.addPlace("ready", 1, 1, pou->loc);
-  for (const EventHandler &h : block.handlers) {
+  for (EventHandler &h : block.handlers) {
     Frame top;
     top.pou = pou;
     top.external = true;
@@ -2234,7 +2234,7 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
     if (mayJump(h.body, false))
       refuse(h.loc, "RETURN or a jump out of an algorithm is not supported "
                     "in an IEC 61499 function block");
-    body(const_cast<StmtList &>(h.body), top, action, {});
+    body(h.body, top, action, {});
     // Temporaries are back at their initial values after every reaction.
     for (auto &[name, init] : resets)
       action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
@@ -2243,7 +2243,7 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
     b.setEvents(t, {net::EventSource{eventPorts.at(h.event), true}});
     b.setAction(t, action);
   }
-  for (const EventSend &send : block.sends) {
+  for (EventSend &send : block.sends) {
     Frame top;
     top.pou = pou;
     top.external = true;
@@ -2251,7 +2251,7 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
     NExpr *guard = expr(send.guard, top, pre);
     if (!pre.empty())
       refuse(send.loc, "internal: a send guard needs statements");
-    body(const_cast<StmtList &>(send.body), top, action, {});
+    body(send.body, top, action, {});
     for (auto &[name, init] : resets)
       action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
     uint32_t t =
@@ -2266,19 +2266,19 @@ void Lowering::lowerEventBlock(const EventDrivenBlock &block) {
   eventDriven = false;
 }
 
-bool Lowering::runEventDriven(const std::vector<EventDrivenBlock> &blocks) {
+bool Lowering::runEventDriven(std::vector<EventDrivenBlock> &blocks) {
   try {
     for (Pou *p : unit.pous)
       collectWritten(p->body, written);
     std::vector<int64_t> ns;
     std::set<Pou *> seen;
-    for (const EventDrivenBlock &block : blocks) {
+    for (EventDrivenBlock &block : blocks) {
       collectTimes(block.pou, seen, ns);
-      for (const EventHandler &h : block.handlers)
-        collectTimesStmts(const_cast<StmtList &>(h.body), seen, ns);
+      for (EventHandler &h : block.handlers)
+        collectTimesStmts(h.body, seen, ns);
     }
     chooseTick(std::move(ns));
-    for (const EventDrivenBlock &block : blocks)
+    for (EventDrivenBlock &block : blocks)
       lowerEventBlock(block);
   } catch (Refusal &) {
     return false;
@@ -2286,8 +2286,7 @@ bool Lowering::runEventDriven(const std::vector<EventDrivenBlock> &blocks) {
   return !diag.hadError();
 }
 
-bool plc::lowerEventDriven(Unit &unit,
-                           const std::vector<EventDrivenBlock> &blocks,
+bool plc::lowerEventDriven(Unit &unit, std::vector<EventDrivenBlock> &blocks,
                            const LowerOptions &opts, DiagEngine &diag,
                            net::Design &design) {
   Lowering l(unit, opts, diag, design);

@@ -75,7 +75,7 @@ struct EventDrivenBlock {
 
 /// Lowers event-driven blocks of the checked unit into `design`, one
 /// module each, named like the POU.
-bool lowerEventDriven(Unit &unit, const std::vector<EventDrivenBlock> &blocks,
+bool lowerEventDriven(Unit &unit, std::vector<EventDrivenBlock> &blocks,
                       const LowerOptions &opts, DiagEngine &diag,
                       net::Design &design);
 
