@@ -1,46 +1,57 @@
 //===- Promela.cpp - flat modules as Promela models for spin --------------===//
 #include "backends/checkers/Promela.h"
 #include "backends/checkers/PtSubset.h"
+#include "ir/net/Printer.h"
+#include "ir/semantics/Semantics.h"
 
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/Support/Casting.h"
+
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::checkers;
+using llvm::cast;
 
 namespace {
-/// A Promela identifier for place `i`: its index keeps names unique, the
+/// A Promela identifier: a prefix and index keep names unique, the NetIR
 /// name (non-identifier characters replaced) keeps them readable.
-std::string placeName(const Module &m, uint32_t i) {
-  std::string out = "P" + std::to_string(i) + "_";
-  for (char c : m.places[i].name)
+std::string identifier(const char *prefix, uint32_t i, llvm::StringRef name) {
+  std::string out = prefix + std::to_string(i) + "_";
+  for (char c : name)
     out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   return out;
 }
 
-const char *typeFor(int64_t hi) {
-  if (hi <= 1)
+const char *typeFor(int64_t lo, int64_t hi) {
+  if (lo >= 0 && hi <= 1)
     return "bit";
-  if (hi <= 255)
+  if (lo >= 0 && hi <= 255)
     return "byte";
-  if (hi <= 32767)
+  if (lo >= -32768 && hi <= 32767)
     return "short";
   return "int";
 }
 
-} // namespace
+std::string num(int64_t v) { return std::to_string(v); }
 
-bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
-                            DiagEngine &diag, llvm::raw_ostream &os) {
-  if (!refuseBeyondPt(m, "Promela", diag))
-    return false;
+//===----------------------------------------------------------------------===//
+// Place/transition nets: one d_step per transition
+//===----------------------------------------------------------------------===//
+
+/// Plain nets keep the direct encoding: spin's transitions are then
+/// netlift's edges too, and no intermediate state is stored.
+void writePlainNet(const Module &m, const sem::StateLayout &L,
+                   llvm::raw_ostream &os) {
   std::vector<std::string> names;
   for (uint32_t p = 0; p < m.places.size(); ++p)
-    names.push_back(placeName(m, p));
+    names.push_back(identifier("P", p, m.places[p].name));
   auto hiOf = [&](uint32_t p) { return L.slotMax(L.markingSlot(p)); };
 
-  // Enabling of each transition as a Promela expression.
   std::vector<std::string> enabling;
   bool anyUrgent = false;
   for (const Transition &t : m.transitions) {
@@ -51,25 +62,26 @@ bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
     for (const PlaceEffect &e : placeEffects(t)) {
       const std::string &n = names[e.place];
       if (e.pre > 0)
-        conj(n + " >= " + std::to_string(e.pre));
+        conj(n + " >= " + num(e.pre));
       uint32_t cap = m.places[e.place].capacity;
       if (e.post > e.pre && cap != kInf && !L.isStructurallyBounded(e.place))
-        conj(n + " + " + std::to_string(e.post - e.pre) +
-             " <= " + std::to_string(cap));
+        conj(n + " + " + num(e.post - e.pre) + " <= " + num(cap));
     }
     enabling.push_back(cond.empty() ? "true" : "(" + cond + ")");
     anyUrgent |= t.urgent;
   }
 
   os << "/* Module '" << m.name
-     << "' as Promela (netlift emit --to promela).\n"
+     << "' as Promela (netlift emit --to promela), encoding: transitions.\n"
         "   One d_step per transition, interleaving: spin's reachable "
         "states are\n"
-        "   netlift's. Check: spin -a FILE && cc -O2 -DBFS -DNOREDUCE "
-        "-DSAFETY -o pan pan.c\n"
+        "   netlift's, its transitions (stored + matched) netlift's edges + "
+        "1.\n"
+        "   Check: spin -a FILE && cc -O2 -DBFS -DNOREDUCE -DSAFETY -o pan "
+        "pan.c\n"
         "   && ./pan   (deadlocks are valid end states: label `end`). */\n";
   for (uint32_t p = 0; p < m.places.size(); ++p)
-    os << typeFor(hiOf(p)) << " " << names[p] << " = " << m.places[p].tokens
+    os << typeFor(0, hiOf(p)) << " " << names[p] << " = " << m.places[p].tokens
        << ";\n";
   os << "\nactive proctype net() {\nend:\n  do\n";
   for (uint32_t ti = 0; ti < m.transitions.size(); ++ti) {
@@ -100,5 +112,928 @@ bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
     os << "     } /* " << t.name << " */\n";
   }
   os << "  od\n}\n";
+}
+
+//===----------------------------------------------------------------------===//
+// The general encoding: one step per atomic sequence
+//===----------------------------------------------------------------------===//
+
+/// Storage of the state or of the inputs as Promela sees it: a scalar slot,
+/// or an array of scalar slots (indexed at run time).
+struct Unit {
+  std::string name;
+  uint32_t firstSlot = 0;
+  uint32_t count = 1; // > 1 or `isArray`: a Promela array
+  bool isArray = false;
+  int64_t indexLo = 0;
+  int64_t lo = 0, hi = 0; // of each element
+  bool wrap = false;
+  bool isInput = false;
+};
+
+/// Where an expression's storage is: a unit and either a static element or
+/// an index expression (arrays).
+struct Access {
+  uint32_t unit = 0;
+  const Expr *index = nullptr;
+};
+
+class StepWriter {
+public:
+  StepWriter(const Module &m, const sem::StateLayout &L, DiagEngine &diag,
+             llvm::raw_ostream &os)
+      : m(m), L(L), diag(diag), os(os) {}
+
+  bool write();
+
+private:
+  const Module &m;
+  const sem::StateLayout &L;
+  DiagEngine &diag;
+  llvm::raw_ostream &os;
+
+  std::vector<Unit> units;
+  std::vector<int32_t> unitOfSlot; // first slot of a unit -> unit
+  std::vector<int32_t> varUnitBase, portUnitBase;
+  std::vector<std::string> placeNames, clockNames, eventNames;
+  std::vector<uint32_t> forced, spontaneous;
+  /// Units each action writes, in unit order.
+  std::vector<std::vector<uint32_t>> writesOf;
+  std::vector<uint32_t> writerCount;
+  /// While translating transition `actionOf`'s action, units it writes are
+  /// read from its shadow copies.
+  int64_t actionOf = -1;
+  int loopDepth = 0;
+  bool failed = false;
+
+  bool refuse(llvm::SMLoc loc, const std::string &what) {
+    if (!failed)
+      diag.error(loc, what + ": the Promela export does not cover it");
+    failed = true;
+    return false;
+  }
+
+  bool buildUnits();
+  bool addUnits(const std::string &name, const Type *t, uint32_t &slot,
+                bool isInput, llvm::SMLoc loc);
+  std::optional<Access> access(const Expr *e);
+  std::string unitRef(const Access &a, bool shadow);
+  std::string expr(const Expr *e);
+  void collectWrites(Block b, std::set<uint32_t> &out);
+  void stmts(Block b, const std::string &indent);
+  std::string enabling(uint32_t t);
+  std::string eventEnabling(uint32_t t);
+  std::string jointEnabling();
+  /// `after` follows the closing brace (a separator, or nothing).
+  void writeFiring(const std::string &indent, const char *after);
+  void writeTick(const std::string &indent);
+  void writeReset(const std::string &indent);
+  std::string shadow(uint32_t t, uint32_t u) const {
+    return "A" + std::to_string(t) + "_" + units[u].name;
+  }
+  std::string written(uint32_t t, uint32_t u) const {
+    return "W" + std::to_string(t) + "_" + units[u].name;
+  }
+};
+
+bool StepWriter::addUnits(const std::string &name, const Type *t,
+                          uint32_t &slot, bool isInput, llvm::SMLoc loc) {
+  switch (t->kind) {
+  case TypeKind::Record:
+    for (const Field &f : t->fields)
+      if (!addUnits(name + "_" + f.name.str(), f.type, slot, isInput, loc))
+        return false;
+    return true;
+  case TypeKind::Array:
+    if (!t->elem->isScalar())
+      return refuse(loc, "an array of arrays or records ('" + name + "')");
+    [[fallthrough]];
+  default: {
+    Unit u;
+    u.name = name;
+    u.firstSlot = slot;
+    u.isArray = t->kind == TypeKind::Array;
+    u.count = u.isArray ? uint32_t(t->indexHi - t->indexLo + 1) : 1;
+    u.indexLo = u.isArray ? t->indexLo : 0;
+    const sem::Slot &s = L.slots()[slot];
+    u.lo = s.lo;
+    u.hi = s.hi;
+    u.wrap = s.wrap;
+    u.isInput = isInput;
+    if (s.lo < INT32_MIN || s.hi > INT32_MAX)
+      return refuse(loc, "'" + s.name + "' ranges over " + num(s.lo) + ".." +
+                             num(s.hi) + ", beyond Promela's 32-bit int");
+    unitOfSlot[slot] = int32_t(units.size());
+    units.push_back(u);
+    slot += u.count;
+    return true;
+  }
+  }
+}
+
+bool StepWriter::buildUnits() {
+  unitOfSlot.assign(L.numSlots(), -1);
+  varUnitBase.assign(m.vars.size(), -1);
+  portUnitBase.assign(m.ports.size(), -1);
+  for (uint32_t v = 0; v < m.vars.size(); ++v) {
+    if (m.vars[v].type->isReal())
+      return refuse(m.vars[v].loc, "real variable '" + m.vars[v].name.str() +
+                                       "' (discretise first)");
+    uint32_t slot = uint32_t(L.varSlot(v));
+    if (!addUnits(identifier("V", v, m.vars[v].name), m.vars[v].type, slot,
+                  false, m.vars[v].loc))
+      return false;
+  }
+  for (uint32_t p = 0; p < m.ports.size(); ++p) {
+    const Port &port = m.ports[p];
+    if (port.kind == PortKind::Event) {
+      if (port.isInput())
+        eventNames.push_back(identifier("E", p, port.name));
+      continue;
+    }
+    if (!port.isInput() && !port.isStored())
+      continue;
+    uint32_t slot = uint32_t(L.portSlot(p));
+    if (!addUnits(identifier(port.isInput() ? "I" : "O", p, port.name),
+                  port.type, slot, port.isInput(), port.loc))
+      return false;
+  }
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    placeNames.push_back(identifier("P", p, m.places[p].name));
+    clockNames.push_back(identifier("K", p, m.places[p].name));
+  }
   return true;
+}
+
+static uint32_t fieldOffset(const Type *t, uint32_t field) {
+  uint32_t off = 0;
+  for (uint32_t i = 0; i < field; ++i)
+    off += sem::StateLayout::slotsOf(t->fields[i].type);
+  return off;
+}
+
+/// The slot an expression statically designates (-1: none or not static).
+static int64_t staticSlot(const Module &m, const sem::StateLayout &L,
+                          const Expr *e) {
+  if (auto *r = llvm::dyn_cast<Ref>(e)) {
+    int64_t base = -1;
+    const Type *t = nullptr;
+    if (r->sym.kind == SymKind::Var) {
+      base = L.varSlot(r->sym.index);
+      t = m.vars[r->sym.index].type;
+    } else if (r->sym.kind == SymKind::Port &&
+               !m.ports[r->sym.index].definition &&
+               m.ports[r->sym.index].kind != PortKind::Event) {
+      base = L.portSlot(r->sym.index);
+      t = m.ports[r->sym.index].type;
+    }
+    if (base < 0)
+      return -1;
+    for (uint32_t f : r->fields) {
+      base += fieldOffset(t, f);
+      t = t->fields[f].type;
+    }
+    return base;
+  }
+  if (auto *f = llvm::dyn_cast<FieldExpr>(e)) {
+    int64_t base = staticSlot(m, L, f->base);
+    return base < 0 ? -1 : base + fieldOffset(f->base->type, f->fieldIndex);
+  }
+  return -1;
+}
+
+std::optional<Access> StepWriter::access(const Expr *e) {
+  if (auto *x = llvm::dyn_cast<IndexExpr>(e)) {
+    int64_t base = staticSlot(m, L, x->base);
+    if (base < 0 || unitOfSlot[base] < 0 || !units[unitOfSlot[base]].isArray) {
+      refuse(e->loc, "indexing '" + exprToString(x->base) + "'");
+      return std::nullopt;
+    }
+    return Access{uint32_t(unitOfSlot[base]), x->index};
+  }
+  int64_t slot = staticSlot(m, L, e);
+  if (slot < 0)
+    return std::nullopt;
+  if (unitOfSlot[slot] < 0 || units[unitOfSlot[slot]].isArray) {
+    refuse(e->loc, "the aggregate value '" + exprToString(e) + "'");
+    return std::nullopt;
+  }
+  return Access{uint32_t(unitOfSlot[slot]), nullptr};
+}
+
+std::string StepWriter::unitRef(const Access &a, bool useShadow) {
+  const Unit &u = units[a.unit];
+  std::string name = useShadow ? shadow(uint32_t(actionOf), a.unit) : u.name;
+  if (!a.index)
+    return name;
+  return name + "[(" + expr(a.index) + ") - " + num(u.indexLo) + "]";
+}
+
+std::string StepWriter::expr(const Expr *e) {
+  switch (e->getKind()) {
+  case ExprKind::IntLit:
+    return num(cast<IntLit>(e)->value);
+  case ExprKind::BoolLit:
+    return cast<BoolLit>(e)->value ? "1" : "0";
+  case ExprKind::RealLit:
+  case ExprKind::Aggregate:
+    refuse(e->loc, "the value '" + exprToString(e) + "'");
+    return "0";
+  case ExprKind::Ref: {
+    auto *r = cast<Ref>(e);
+    switch (r->sym.kind) {
+    case SymKind::Place:
+      return "(" + placeNames[r->sym.index] + " > 0)";
+    case SymKind::EnumLit:
+      return num(r->sym.index);
+    case SymKind::LoopVar:
+      return "LV" + num(r->sym.index);
+    case SymKind::Port: {
+      const Port &p = m.ports[r->sym.index];
+      if (p.definition && r->fields.empty())
+        return "(" + expr(p.definition) + ")";
+      break;
+    }
+    default:
+      break;
+    }
+    [[fallthrough]];
+  }
+  case ExprKind::Index:
+  case ExprKind::Field: {
+    std::optional<Access> a = access(e);
+    if (!a) {
+      refuse(e->loc, "the value '" + exprToString(e) + "'");
+      return "0";
+    }
+    bool own = actionOf >= 0 && std::count(writesOf[actionOf].begin(),
+                                           writesOf[actionOf].end(), a->unit);
+    return unitRef(*a, own);
+  }
+  case ExprKind::Unary: {
+    auto *u = cast<UnaryExpr>(e);
+    const char *op = u->op == UnaryOp::Not   ? "!"
+                     : u->op == UnaryOp::Neg ? "-"
+                                             : "~";
+    return std::string("(") + op + expr(u->operand) + ")";
+  }
+  case ExprKind::Binary: {
+    auto *b = cast<BinaryExpr>(e);
+    if ((b->op == BinaryOp::Eq || b->op == BinaryOp::Ne) && b->lhs->type &&
+        !b->lhs->type->isScalar()) {
+      refuse(e->loc, "comparing aggregates ('" + exprToString(e) + "')");
+      return "0";
+    }
+    std::string x = expr(b->lhs), y = expr(b->rhs);
+    const char *op = nullptr;
+    switch (b->op) {
+    case BinaryOp::Or:
+      op = "||";
+      break;
+    case BinaryOp::And:
+      op = "&&";
+      break;
+    case BinaryOp::Xor:
+      return "((" + x + " != 0) != (" + y + " != 0))";
+    case BinaryOp::Eq:
+      op = "==";
+      break;
+    case BinaryOp::Ne:
+      op = "!=";
+      break;
+    case BinaryOp::Lt:
+      op = "<";
+      break;
+    case BinaryOp::Le:
+      op = "<=";
+      break;
+    case BinaryOp::Gt:
+      op = ">";
+      break;
+    case BinaryOp::Ge:
+      op = ">=";
+      break;
+    case BinaryOp::BitOr:
+      op = "|";
+      break;
+    case BinaryOp::BitXor:
+      op = "^";
+      break;
+    case BinaryOp::BitAnd:
+      op = "&";
+      break;
+    case BinaryOp::Shl:
+      op = "<<";
+      break;
+    case BinaryOp::Shr:
+      op = ">>";
+      break;
+    case BinaryOp::Add:
+      op = "+";
+      break;
+    case BinaryOp::Sub:
+      op = "-";
+      break;
+    case BinaryOp::Mul:
+      op = "*";
+      break;
+    case BinaryOp::Div:
+      op = "/";
+      break;
+    case BinaryOp::Mod:
+      op = "%";
+      break;
+    }
+    return "(" + x + " " + op + " " + y + ")";
+  }
+  case ExprKind::Cond: {
+    auto *c = cast<CondExpr>(e);
+    return "(" + expr(c->cond) + " -> " + expr(c->thenExpr) + " : " +
+           expr(c->elseExpr) + ")";
+  }
+  case ExprKind::Call: {
+    auto *c = cast<CallExpr>(e);
+    std::string a = expr(c->args[0]);
+    if (c->fn == Builtin::Abs)
+      return "(" + a + " < 0 -> -" + a + " : " + a + ")";
+    std::string b = expr(c->args[1]);
+    const char *cmp = c->fn == Builtin::Min ? " < " : " > ";
+    return "(" + a + cmp + b + " -> " + a + " : " + b + ")";
+  }
+  }
+  return "0";
+}
+
+void StepWriter::collectWrites(Block b, std::set<uint32_t> &out) {
+  for (const Stmt *s : b) {
+    switch (s->getKind()) {
+    case StmtKind::Assign: {
+      auto *a = cast<AssignStmt>(s);
+      if (!a->target->type->isScalar()) {
+        refuse(a->loc,
+               "assigning the aggregate '" + exprToString(a->target) + "'");
+        return;
+      }
+      if (std::optional<Access> acc = access(a->target))
+        out.insert(acc->unit);
+      else
+        refuse(a->loc, "assigning '" + exprToString(a->target) + "'");
+      break;
+    }
+    case StmtKind::If: {
+      auto *i = cast<IfStmt>(s);
+      for (const IfArm &arm : i->arms)
+        collectWrites(arm.body, out);
+      collectWrites(i->elseBody, out);
+      break;
+    }
+    case StmtKind::Case: {
+      auto *c = cast<CaseStmt>(s);
+      for (const CaseArm &arm : c->arms)
+        collectWrites(arm.body, out);
+      collectWrites(c->elseBody, out);
+      break;
+    }
+    case StmtKind::For:
+      collectWrites(cast<ForStmt>(s)->body, out);
+      break;
+    }
+  }
+}
+
+/// An action's statements on the shadow copies of what it writes: stores
+/// are range-checked (or wrapped) as netlift's are, and flagged written.
+void StepWriter::stmts(Block b, const std::string &in) {
+  for (const Stmt *s : b) {
+    switch (s->getKind()) {
+    case StmtKind::Assign: {
+      auto *a = cast<AssignStmt>(s);
+      std::optional<Access> acc = access(a->target);
+      if (!acc)
+        return;
+      const Unit &u = units[acc->unit];
+      std::string elem;
+      if (acc->index) {
+        os << in << "IX = (" << expr(acc->index) << ") - " << u.indexLo
+           << ";\n";
+        elem = "[IX]";
+      }
+      os << in << "TMP = " << expr(a->value) << ";\n";
+      uint64_t span = uint64_t(u.hi - u.lo) + 1;
+      if (u.wrap && span < (uint64_t(1) << 31))
+        os << in << "TMP = " << u.lo << " + ((TMP - " << u.lo << ") % " << span
+           << " + " << span << ") % " << span << ";\n";
+      else if (!u.wrap)
+        os << in << "assert(TMP >= " << u.lo << " && TMP <= " << u.hi << ");\n";
+      os << in << shadow(uint32_t(actionOf), acc->unit) << elem << " = TMP;\n";
+      os << in << written(uint32_t(actionOf), acc->unit) << elem << " = 1;\n";
+      break;
+    }
+    case StmtKind::If: {
+      // Exclusive guards: Promela picks among true guards, netlift the
+      // first.
+      auto *i = cast<IfStmt>(s);
+      std::string earlier;
+      os << in << "if\n";
+      for (const IfArm &arm : i->arms) {
+        std::string c = expr(arm.cond);
+        os << in << ":: " << (earlier.empty() ? "" : "!(" + earlier + ") && ")
+           << "(" << c << ") ->\n";
+        stmts(arm.body, in + "   ");
+        os << in << "   skip\n";
+        earlier += (earlier.empty() ? "" : " || ") + ("(" + c + ")");
+      }
+      os << in << ":: else ->\n";
+      stmts(i->elseBody, in + "   ");
+      os << in << "   skip\n" << in << "fi;\n";
+      break;
+    }
+    case StmtKind::Case: {
+      auto *c = cast<CaseStmt>(s);
+      std::string sel = expr(c->selector), earlier;
+      os << in << "if\n";
+      for (const CaseArm &arm : c->arms) {
+        std::string match;
+        for (const CaseLabel &l : arm.labels) {
+          std::string one = l.hi ? "(" + sel + " >= " + expr(l.lo) + " && " +
+                                       sel + " <= " + expr(l.hi) + ")"
+                                 : "(" + sel + " == " + expr(l.lo) + ")";
+          match += (match.empty() ? "" : " || ") + one;
+        }
+        os << in << ":: " << (earlier.empty() ? "" : "!(" + earlier + ") && ")
+           << "(" << match << ") ->\n";
+        stmts(arm.body, in + "   ");
+        os << in << "   skip\n";
+        earlier += (earlier.empty() ? "" : " || ") + ("(" + match + ")");
+      }
+      os << in << ":: else ->\n";
+      stmts(c->elseBody, in + "   ");
+      os << in << "   skip\n" << in << "fi;\n";
+      break;
+    }
+    case StmtKind::For: {
+      auto *f = cast<ForStmt>(s);
+      std::string v = "LV" + num(loopDepth);
+      ++loopDepth;
+      os << in << v << " = " << expr(f->lo) << ";\n"
+         << in << "do\n"
+         << in << ":: " << v << " <= " << expr(f->hi) << " ->\n";
+      stmts(f->body, in + "   ");
+      os << in << "   " << v << "++\n"
+         << in << ":: else -> break\n"
+         << in << "od;\n";
+      --loopDepth;
+      break;
+    }
+    }
+  }
+}
+
+std::string StepWriter::enabling(uint32_t ti) {
+  const Transition &t = m.transitions[ti];
+  std::string c;
+  auto conj = [&](const std::string &x) { c += (c.empty() ? "" : " && ") + x; };
+  for (const PlaceEffect &e : placeEffects(t)) {
+    if (e.pre > 0)
+      conj(placeNames[e.place] + " >= " + num(e.pre));
+    uint32_t cap = m.places[e.place].capacity;
+    if (e.post > e.pre && cap != kInf)
+      conj(placeNames[e.place] + " + " + num(e.post - e.pre) +
+           " <= " + num(cap));
+  }
+  for (const PreArc &a : t.pre())
+    if (!a.time.isTrivial()) {
+      const std::string &k = clockNames[a.place];
+      if (a.time.lo > 0)
+        conj(k + " >= " + num(a.time.lo));
+      if (a.time.hi != kInf)
+        conj(k + " <= " + num(a.time.hi));
+    }
+  for (const Expr *x : t.conds())
+    conj(expr(x));
+  if (const Expr *g = t.guard())
+    conj(expr(g));
+  return c.empty() ? "1" : "(" + c + ")";
+}
+
+std::string StepWriter::eventEnabling(uint32_t ti) {
+  const Transition &t = m.transitions[ti];
+  std::string c;
+  const char *join = t.mode == EventMode::And ? " && " : " || ";
+  for (const EventSource &s : t.events()) {
+    std::string one;
+    if (s.fromPort) {
+      uint32_t k = 0;
+      for (uint32_t p = 0; p < s.index; ++p)
+        k += m.ports[p].kind == PortKind::Event && m.ports[p].isInput();
+      one = eventNames[k];
+    } else {
+      one = "ST[" + num(s.index) + "]";
+    }
+    c += (c.empty() ? "" : join) + one;
+  }
+  return "(" + c + ")";
+}
+
+/// Are the transitions marked in SEL enabled together (summed token demand
+/// and production)? Only places a forced transition touches can make a
+/// candidate conflict, so only they are checked.
+std::string StepWriter::jointEnabling() {
+  std::vector<std::vector<std::pair<uint32_t, PlaceEffect>>> byPlace(
+      m.places.size());
+  std::vector<char> forcedTouches(m.places.size(), 0);
+  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti)
+    for (const PlaceEffect &e : placeEffects(m.transitions[ti])) {
+      byPlace[e.place].push_back({ti, e});
+      if (m.transitions[ti].isForced())
+        forcedTouches[e.place] = 1;
+    }
+  std::string c;
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    if (!forcedTouches[p])
+      continue;
+    std::string demand, delta;
+    for (auto &[ti, e] : byPlace[p]) {
+      if (e.pre > 0)
+        demand += (demand.empty() ? "" : " + ") +
+                  ("SEL[" + num(ti) + "]*" + num(e.pre));
+      int64_t d = int64_t(e.post) - int64_t(e.pre);
+      if (d != 0)
+        delta += " + SEL[" + num(ti) + "]*(" + num(d) + ")";
+    }
+    if (!demand.empty())
+      c += (c.empty() ? "" : " && ") + placeNames[p] + " >= " + demand;
+    if (m.places[p].capacity != kInf && !delta.empty())
+      c += (c.empty() ? "" : " && ") + placeNames[p] + delta +
+           " <= " + num(m.places[p].capacity);
+  }
+  return c.empty() ? "1" : "(" + c + ")";
+}
+
+/// Fires the step in ST (or drops it: empty, or without an urgent
+/// transition while one is enabled): actions on shadows first, as they
+/// read the pre-state, then markings and place clocks, then the writes.
+void StepWriter::writeFiring(const std::string &in, const char *after) {
+  std::string any, urgent;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+    any += (any.empty() ? "" : " || ") + ("ST[" + num(t) + "]");
+    if (m.transitions[t].urgent)
+      urgent += (urgent.empty() ? "" : " || ") + ("ST[" + num(t) + "]");
+  }
+  os << in << "d_step {\n" << in << "  if\n";
+  os << in << "  :: (" << (any.empty() ? "0" : any) << ") && (!URGENT"
+     << (urgent.empty() ? "" : " || " + urgent) << ") ->\n";
+  std::string body = in + "     ";
+  for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+    const Transition &tr = m.transitions[t];
+    if (!tr.hasAction() || tr.action().empty())
+      continue;
+    os << body << "if\n"
+       << body << ":: ST[" << t << "] -> /* " << tr.name << " */\n";
+    actionOf = t;
+    for (uint32_t u : writesOf[t]) {
+      for (uint32_t k = 0; k < units[u].count; ++k) {
+        std::string el = units[u].isArray ? "[" + num(k) + "]" : "";
+        os << body << "   " << shadow(t, u) << el << " = " << units[u].name
+           << el << ";\n";
+      }
+    }
+    stmts(tr.action(), body + "   ");
+    actionOf = -1;
+    os << body << "   skip\n" << body << ":: else -> skip\n" << body << "fi;\n";
+  }
+  // Markings and the clocks of every place the step touches.
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    std::string delta, touched;
+    for (uint32_t t = 0; t < m.transitions.size(); ++t)
+      for (const PlaceEffect &e : placeEffects(m.transitions[t])) {
+        if (e.place != p)
+          continue;
+        int64_t d = int64_t(e.post) - int64_t(e.pre);
+        if (d != 0)
+          delta += " + ST[" + num(t) + "]*(" + num(d) + ")";
+        touched += (touched.empty() ? "" : " || ") + ("ST[" + num(t) + "]");
+      }
+    if (touched.empty())
+      continue;
+    const std::string &n = placeNames[p];
+    if (!delta.empty()) {
+      if (m.places[p].capacity == kInf)
+        os << body << "assert(" << n << delta
+           << " <= " << L.slotMax(L.markingSlot(p)) << ");\n";
+      os << body << n << " = " << n << delta << ";\n";
+    }
+    if (L.clockSlot(p) >= 0)
+      os << body << "if :: " << touched << " -> " << clockNames[p]
+         << " = 0 :: else -> skip fi;\n";
+  }
+  // The actions' writes land together; two in one slot are an error.
+  for (uint32_t u = 0; u < units.size(); ++u) {
+    if (!writerCount[u])
+      continue;
+    for (uint32_t k = 0; k < units[u].count; ++k) {
+      std::string el = units[u].isArray ? "[" + num(k) + "]" : "";
+      bool conflicts = writerCount[u] > 1;
+      for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+        if (!std::count(writesOf[t].begin(), writesOf[t].end(), u))
+          continue;
+        os << body << "if :: ST[" << t << "] && " << written(t, u) << el
+           << " -> ";
+        if (conflicts)
+          os << "assert(!CW); CW = 1; ";
+        os << units[u].name << el << " = " << shadow(t, u) << el << "; "
+           << written(t, u) << el << " = 0 :: else -> skip fi;\n";
+      }
+      if (conflicts)
+        os << body << "CW = 0;\n";
+    }
+  }
+  os << body << "skip\n" << in << "  :: else -> skip\n" << in << "  fi;\n";
+  writeReset(in + "  ");
+  os << in << "}" << after << "\n";
+}
+
+void StepWriter::writeTick(const std::string &in) {
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    if (L.clockSlot(p) >= 0)
+      os << in << "if :: " << placeNames[p] << " > 0 && " << clockNames[p]
+         << " < " << L.clockCap(p) << " -> " << clockNames[p] << "++"
+         << " :: else -> skip fi;\n";
+  for (uint32_t v = 0; v < m.vars.size(); ++v)
+    if (m.vars[v].type->isClock()) {
+      const Unit &u = units[unitOfSlot[L.varSlot(v)]];
+      os << in << "if :: " << u.name << " < " << u.hi << " -> " << u.name
+         << "++ :: else -> skip fi;\n";
+    }
+}
+
+void StepWriter::writeReset(const std::string &in) {
+  os << in << "TK = 0;\n";
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    os << in << "ST[" << t << "] = 0;\n";
+  for (const Unit &u : units)
+    if (u.isInput)
+      for (uint32_t k = 0; k < u.count; ++k)
+        os << in << u.name << (u.isArray ? "[" + num(k) + "]" : "") << " = "
+           << u.lo << ";\n";
+  for (const std::string &e : eventNames)
+    os << in << e << " = 0;\n";
+}
+
+bool StepWriter::write() {
+  if (!buildUnits())
+    return false;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    (m.transitions[t].isForced() ? forced : spontaneous).push_back(t);
+  writesOf.resize(m.transitions.size());
+  writerCount.assign(units.size(), 0);
+  for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+    std::set<uint32_t> w;
+    collectWrites(m.transitions[t].action(), w);
+    writesOf[t].assign(w.begin(), w.end());
+    for (uint32_t u : w)
+      ++writerCount[u];
+  }
+  if (failed)
+    return false;
+
+  sem::Semantics semantics(m, L, sem::Options());
+  std::vector<uint64_t> init(L.numWords());
+  sem::RuntimeError err;
+  if (!semantics.initialState(init.data(), err)) {
+    diag.error(err.loc, err.message);
+    return false;
+  }
+  bool hasInputs = !eventNames.empty();
+  for (const Unit &u : units)
+    hasInputs |= u.isInput;
+  bool timed = semantics.isTimed();
+
+  // The macros first: they also find what the export refuses.
+  std::string defs;
+  llvm::raw_string_ostream d(defs);
+  std::string urgentAny;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t) {
+    d << "#define EN" << t << " " << enabling(t) << " /* "
+      << m.transitions[t].name << " */\n";
+    if (m.transitions[t].urgent)
+      urgentAny += (urgentAny.empty() ? "" : " || ") + ("EN" + num(t));
+  }
+  for (uint32_t f : forced)
+    d << "#define EV" << f << " " << eventEnabling(f) << "\n";
+  d << "#define URGENT (" << (urgentAny.empty() ? "0" : urgentAny) << ")\n";
+  if (!forced.empty())
+    d << "#define JOINT " << jointEnabling() << "\n";
+  if (timed) {
+    std::string ticks;
+    for (uint32_t p = 0; p < m.places.size(); ++p)
+      if (L.clockSlot(p) >= 0)
+        ticks += (ticks.empty() ? "" : " || ") +
+                 ("(" + placeNames[p] + " > 0 && " + clockNames[p] + " < " +
+                  num(L.clockCap(p)) + ")");
+    for (uint32_t v = 0; v < m.vars.size(); ++v)
+      if (m.vars[v].type->isClock()) {
+        const Unit &u = units[unitOfSlot[L.varSlot(v)]];
+        ticks += (ticks.empty() ? "" : " || ") +
+                 ("(" + u.name + " < " + num(u.hi) + ")");
+      }
+    d << "#define TICKS (" << (ticks.empty() ? "0" : ticks) << ")\n";
+  }
+  if (failed)
+    return false;
+
+  // Arrays whose elements start alike are initialised where declared;
+  // others in a first d_step, which adds one state before netlift's
+  // initial one (the offset the header states).
+  auto uniformInit = [&](const Unit &u) {
+    if (u.isInput)
+      return true;
+    for (uint32_t k = 1; k < u.count; ++k)
+      if (L.get(init.data(), u.firstSlot + k) !=
+          L.get(init.data(), u.firstSlot))
+        return false;
+    return true;
+  };
+  bool initStep = false;
+  for (const Unit &u : units)
+    initStep |= u.isArray && !uniformInit(u);
+
+  os << "/* netlift-promela: encoding=steps state-offset=" << (initStep ? 1 : 0)
+     << " deadlocks=" << (hasInputs ? "self-loops" : "end-states") << " */\n";
+  os << "/* Module '" << m.name
+     << "' as Promela (netlift emit --to promela).\n"
+        "   Each netlift step (or tick) is one atomic sequence: the free "
+        "inputs,\n"
+        "   the transition that starts the step, the choices among "
+        "conflicting\n"
+        "   forced transitions, then one d_step that fires it. spin's "
+        "\"nominal\n"
+        "   states\" are netlift's states (the states stored inside the "
+        "atomic\n"
+        "   sequences are counted apart as stored-atomic); see "
+        "docs/check.md.\n"
+        "   Check: spin -a FILE && cc -O2 -fwrapv -DBFS -DNOREDUCE -DSAFETY "
+        "-o pan\n"
+        "   pan.c && ./pan */\n\n";
+  // State.
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    uint32_t s = L.markingSlot(p);
+    os << typeFor(0, L.slotMax(s)) << " " << placeNames[p] << " = "
+       << L.get(init.data(), s) << ";\n";
+    if (L.clockSlot(p) >= 0)
+      os << typeFor(0, L.clockCap(p)) << " " << clockNames[p] << " = "
+         << L.get(init.data(), uint32_t(L.clockSlot(p))) << ";\n";
+  }
+  for (const Unit &u : units) {
+    int64_t first = u.isInput ? u.lo : L.get(init.data(), u.firstSlot);
+    os << typeFor(u.lo, u.hi) << " " << u.name;
+    if (u.isArray)
+      os << "[" << u.count << "]";
+    if (!u.isArray || uniformInit(u))
+      os << " = " << first;
+    os << ";\n";
+  }
+  for (const std::string &e : eventNames)
+    os << "bit " << e << " = 0;\n";
+  // Scratch: the step being built (part of the states inside the atomic
+  // sequences, always 0 outside them), and d_step-only temporaries.
+  size_t nt = std::max<size_t>(m.transitions.size(), 1);
+  os << "bit ST[" << nt << "];\nbit TK;\n";
+  if (!forced.empty())
+    os << "bit CAND[" << nt << "];\nbit CHO[" << nt << "];\nbit NC;\nbit FIT;\n"
+       << "bit ALL;\nhidden byte SEL[" << nt << "];\n";
+  // (spin hides no `bit`: hidden scratch is `byte` or wider.)
+  os << "hidden int TMP;\nhidden int IX;\nhidden byte CW;\n";
+  for (int i = 0; i < 8; ++i)
+    os << "hidden int LV" << i << ";\n";
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    for (uint32_t u : writesOf[t]) {
+      const Unit &un = units[u];
+      std::string dim = un.isArray ? "[" + num(un.count) + "]" : "";
+      llvm::StringRef type = typeFor(un.lo, un.hi);
+      os << "hidden " << (type == "bit" ? "byte" : type) << " " << shadow(t, u)
+         << dim << ";\nhidden byte " << written(t, u) << dim << ";\n";
+    }
+  os << "\n" << d.str() << "\n";
+
+  os << "active proctype net() {\n";
+  if (initStep) {
+    os << "  d_step {\n";
+    for (const Unit &u : units)
+      if (u.isArray && !uniformInit(u))
+        for (uint32_t k = 0; k < u.count; ++k)
+          os << "    " << u.name << "[" << k
+             << "] = " << L.get(init.data(), u.firstSlot + k) << ";\n";
+    os << "    skip\n  };\n";
+  }
+  os << "end:\n  do\n  :: atomic {\n";
+  std::string in = "       ";
+  // The free inputs of this step.
+  for (const std::string &e : eventNames)
+    os << in << "if :: " << e << " = 1 :: " << e << " = 0 fi;\n";
+  for (const Unit &u : units) {
+    if (!u.isInput)
+      continue;
+    for (uint32_t k = 0; k < u.count; ++k) {
+      std::string n = u.name + (u.isArray ? "[" + num(k) + "]" : "");
+      if (u.hi - u.lo == 1)
+        os << in << "if :: " << n << " = " << u.lo << " :: " << n << " = "
+           << u.hi << " fi;\n";
+      else
+        os << in << "select(" << n << " : " << u.lo << " .. " << u.hi << ");\n";
+    }
+  }
+  // What starts it.
+  os << in << "if\n";
+  for (uint32_t t : spontaneous)
+    os << in << ":: EN" << t << " -> ST[" << t << "] = 1 /* "
+       << m.transitions[t].name << " */\n";
+  if (!eventNames.empty()) {
+    std::string anyEvent;
+    for (const std::string &e : eventNames)
+      anyEvent += (anyEvent.empty() ? "" : " || ") + e;
+    os << in << ":: (" << anyEvent << ") -> skip /* input events alone */\n";
+  }
+  if (timed)
+    os << in << ":: !URGENT && TICKS -> TK = 1 /* tick */\n";
+  if (hasInputs)
+    os << in << ":: else -> skip /* nothing under these inputs */\n";
+  if (spontaneous.empty() && eventNames.empty() && !timed && !hasInputs)
+    os << in << ":: 0 -> skip\n";
+  os << in << "fi;\n";
+  os << in << "if\n" << in << ":: TK ->\n" << in << "   d_step {\n";
+  writeTick(in + "     ");
+  writeReset(in + "     ");
+  os << in << "   }\n" << in << ":: else ->\n";
+  std::string in2 = in + "   ";
+  if (!forced.empty()) {
+    // Rounds of the closure under forced transitions, as the engine does
+    // them: the candidates of a round are the enabled, event-enabled forced
+    // transitions that fit with the step one by one; all of them join
+    // when they fit together, else each maximal subset is a choice.
+    os << in2 << "do\n" << in2 << ":: d_step {\n";
+    std::string r = in2 + "     ";
+    os << r << "NC = 0;\n";
+    for (uint32_t t = 0; t < m.transitions.size(); ++t)
+      os << r << "SEL[" << t << "] = ST[" << t << "];\n";
+    for (uint32_t f : forced)
+      os << r << "if :: !ST[" << f << "] && EN" << f << " && EV" << f
+         << " -> SEL[" << f << "] = 1; if :: JOINT -> CAND[" << f
+         << "] = 1; NC = 1 :: else -> skip fi; SEL[" << f
+         << "] = 0 :: else -> skip fi;\n";
+    for (uint32_t f : forced)
+      os << r << "SEL[" << f << "] = ST[" << f << "] || CAND[" << f << "];\n";
+    os << r << "ALL = JOINT\n" << in2 << "   };\n";
+    // The round that finds no candidate fires the step and leaves (a
+    // `break` may not lead into a d_step).
+    os << in2 << "   if\n" << in2 << "   :: !NC -> ALL = 0;\n";
+    writeFiring(in2 + "      ", ";");
+    os << in2 << "      break\n";
+    os << in2 << "   :: NC && ALL -> d_step {\n";
+    for (uint32_t f : forced)
+      os << in2 << "        if :: CAND[" << f << "] -> ST[" << f
+         << "] = 1; CAND[" << f << "] = 0 :: else -> skip fi;\n";
+    os << in2 << "        NC = 0; ALL = 0\n" << in2 << "      }\n";
+    os << in2 << "   :: NC && !ALL ->\n";
+    std::string c = in2 + "      ";
+    for (uint32_t f : forced) {
+      os << c << "d_step { FIT = 0; if :: CAND[" << f << "] -> ";
+      for (uint32_t t = 0; t < m.transitions.size(); ++t)
+        os << "SEL[" << t << "] = ST[" << t << "] || CHO[" << t << "]; ";
+      os << "SEL[" << f << "] = 1; FIT = JOINT :: else -> skip fi };\n";
+      os << c << "if :: FIT -> CHO[" << f << "] = 1; FIT = 0 :: true -> FIT = 0"
+         << " fi;\n";
+    }
+    // A choice that is not maximal is completed in candidate order, so
+    // every path ends in a maximal subset and every maximal subset is one.
+    os << c << "d_step {\n";
+    for (uint32_t f : forced) {
+      os << c << "  if :: CAND[" << f << "] && !CHO[" << f << "] -> ";
+      for (uint32_t t = 0; t < m.transitions.size(); ++t)
+        os << "SEL[" << t << "] = ST[" << t << "] || CHO[" << t << "]; ";
+      os << "SEL[" << f << "] = 1; if :: JOINT -> CHO[" << f
+         << "] = 1 :: else -> skip fi :: else -> skip fi;\n";
+    }
+    for (uint32_t f : forced)
+      os << c << "  ST[" << f << "] = ST[" << f << "] || CHO[" << f << "]; CHO["
+         << f << "] = 0; CAND[" << f << "] = 0;\n";
+    os << c << "  NC = 0; ALL = 0\n" << c << "}\n";
+    os << in2 << "   fi\n" << in2 << "od\n";
+  } else {
+    writeFiring(in2, "");
+  }
+  os << in << "fi\n";
+  os << "     }\n  od\n}\n";
+  return !failed;
+}
+
+} // namespace
+
+bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
+                            DiagEngine &diag, llvm::raw_ostream &os) {
+  if (!firstBeyondPt(m)) {
+    writePlainNet(m, L, os);
+    return true;
+  }
+  return StepWriter(m, L, diag, os).write();
 }

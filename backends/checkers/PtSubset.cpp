@@ -5,27 +5,14 @@ using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::checkers;
 
-bool checkers::refuseBeyondPt(const Module &m, llvm::StringRef format,
-                              DiagEngine &diag) {
-  std::string why = ("the " + format +
-                     " export covers place/transition nets (weights, "
-                     "capacities, urgency) so far")
-                        .str();
+std::optional<BeyondPt> checkers::firstBeyondPt(const Module &m) {
   for (const Port &p : m.ports)
-    if (p.isInput()) {
-      diag.error(p.loc, "free input '" + p.name + "' cannot be exported to " +
-                            format + ": " + why);
-      return false;
-    } else if (p.isStored()) {
-      diag.error(p.loc, "stored output '" + p.name +
-                            "' cannot be exported to " + format + ": " + why);
-      return false;
-    }
-  for (const Var &v : m.vars) {
-    diag.error(v.loc, "variable '" + v.name + "' cannot be exported to " +
-                          format + ": " + why);
-    return false;
-  }
+    if (p.isInput())
+      return BeyondPt{p.loc, "free input '" + p.name.str() + "'"};
+    else if (p.isStored())
+      return BeyondPt{p.loc, "stored output '" + p.name.str() + "'"};
+  for (const Var &v : m.vars)
+    return BeyondPt{v.loc, "variable '" + v.name.str() + "'"};
   for (const Transition &t : m.transitions) {
     const char *what = t.isForced()         ? "an event arc"
                        : !t.conds().empty() ? "a condition arc"
@@ -35,12 +22,20 @@ bool checkers::refuseBeyondPt(const Module &m, llvm::StringRef format,
     for (const PreArc &a : t.pre())
       if (!what && !a.time.isTrivial())
         what = "a timed arc";
-    if (what) {
-      diag.error(t.loc, "transition '" + t.name + "' has " + what +
-                            ", which the " + format +
-                            " export does not cover: " + why);
-      return false;
-    }
+    if (what)
+      return BeyondPt{t.loc, "transition '" + t.name.str() + "' has " + what};
   }
-  return true;
+  return std::nullopt;
+}
+
+bool checkers::refuseBeyondPt(const Module &m, llvm::StringRef format,
+                              DiagEngine &diag) {
+  std::optional<BeyondPt> beyond = firstBeyondPt(m);
+  if (!beyond)
+    return true;
+  diag.error(beyond->loc, beyond->what + ", which the " + format.str() +
+                              " export does not cover: it covers "
+                              "place/transition nets (weights, capacities, "
+                              "urgency) so far");
+  return false;
 }

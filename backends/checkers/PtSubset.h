@@ -13,7 +13,20 @@
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
+#include <optional>
+#include <string>
+
 namespace netlift::checkers {
+
+/// A construct outside the place/transition part, and where it is.
+struct BeyondPt {
+  llvm::SMLoc loc;
+  std::string what; // "variable 'x'", "transition 't' has a guard"
+};
+
+/// The first construct of flat module `m` outside the place/transition
+/// part, if any.
+std::optional<BeyondPt> firstBeyondPt(const net::Module &m);
 
 /// False after an error at the first construct of flat module `m` that a
 /// P/T export to `format` cannot carry.
