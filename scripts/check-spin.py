@@ -25,6 +25,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 
 def header(pml):
@@ -37,25 +38,40 @@ def header(pml):
             "deadlocks": fields.get("deadlocks", "end-states")}
 
 
-def spin_run(pml, work, head):
+def spin_run(pml, work, head, states):
     if head["deadlocks"] == "end-states":
         with open(pml) as f:
             text = f.read()
         with open(pml, "w") as f:
             f.write(re.sub(r"(?m)^end:\n", "", text))
-    subprocess.run(["spin", "-a", pml], cwd=work, check=True,
-                   capture_output=True, text=True)
+    r = subprocess.run(["spin", "-a", pml], cwd=work, capture_output=True,
+                       text=True)
+    if r.returncode != 0:
+        raise RuntimeError("spin -a: " + (r.stdout + r.stderr).strip()[:300])
     # Enough hash-table slots (-w) for the benchmark's larger models, and no
     # memory cap; compile time is not part of the figures. The step encoding
     # keeps scratch variables `hidden`, which pan explores depth-first only.
     order = ["-DBFS"] if head["encoding"] == "transitions" else []
-    subprocess.run(["cc", "-O2", "-fwrapv", *order, "-DNOREDUCE", "-DSAFETY",
-                    "-DMEMLIM=20000", "-o", "pan", "pan.c"], cwd=work,
-                   check=True, capture_output=True, text=True)
+    r = subprocess.run(["cc", "-O2", "-fwrapv", *order, "-DNOREDUCE",
+                        "-DSAFETY", "-DMEMLIM=20000", "-o", "pan", "pan.c"],
+                       cwd=work, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("cc: " + r.stderr.strip()[:300])
     # -c0: go on after an invalid end state (a deadlock) to count them all.
-    r = subprocess.run(["./pan", "-w24", "-m100000000", "-c0"], cwd=work,
-                       capture_output=True, text=True, timeout=3600)
-    out = r.stdout
+    # The search depth (-m) is a preallocated stack: start from what the
+    # states and a few statements per atomic step need, grow when short.
+    depth = 10000 + 50 * states
+    for _ in range(3):
+        start = time.monotonic()
+        r = subprocess.run(["./pan", "-w24", f"-m{depth}", "-c0"], cwd=work,
+                           capture_output=True, text=True, timeout=3600)
+        elapsed = time.monotonic() - start
+        out = r.stdout
+        if "max search depth too small" not in out:
+            break
+        depth *= 8
+    else:
+        raise RuntimeError(f"pan: search depth {depth} too small")
     stored = re.search(r"(\d+) states, stored", out)
     trans = re.search(r"(\d+) transitions \(= stored\+matched\)", out)
     errors = re.search(r"errors: (\d+)", out)
@@ -64,10 +80,12 @@ def spin_run(pml, work, head):
     if not stored or not trans or not errors:
         raise RuntimeError("unexpected pan output:\n" + out[-2000:])
     asserts = "assertion violated" in out
+    bound = "index out of range" in out or "out of range" in out
     return {"states": int(stored.group(1)) - head["offset"],
             "transitions": int(trans.group(1)),
             "errors": int(errors.group(1)),
-            "assertion": asserts,
+            "assertion": asserts, "bound": bound,
+            "seconds": elapsed,
             "rate": float(rate.group(1)) if rate else float("nan"),
             "state_mbytes": float(states_mb.group(1)) if states_mb
             else float("nan")}
@@ -92,9 +110,25 @@ def main():
                 continue
             r = subprocess.run([netlift, "reach", model, "--summary", "json",
                                 "-q"], capture_output=True, text=True)
-            ours = json.loads(r.stdout)
+            # A runtime error of the model (write conflict, range...) stops
+            # netlift; spin must fail an assertion or a bound check.
+            runtime_error = r.returncode == 1 and "runtime error" in r.stderr
+            ours = None if runtime_error else json.loads(r.stdout)
             head = header(pml)
-            theirs = spin_run(pml, work, head)
+            try:
+                theirs = spin_run(pml, work, head,
+                                  ours["states"] if ours else 100000)
+            except RuntimeError as err:
+                print(f"FAIL {name}: {err}")
+                failed += 1
+                continue
+        if runtime_error:
+            ok = theirs["assertion"] or theirs["bound"]
+            print(("ok   " if ok else "FAIL ") + f"{name}: runtime error:"
+                  f" netlift stops, spin {'fails' if ok else 'does not'}")
+            passed += ok
+            failed += not ok
+            continue
         steps = head["encoding"] == "steps"
         ok = (not theirs["assertion"] and ours["complete"]
               and theirs["states"] == ours["states"])
@@ -118,7 +152,8 @@ def main():
             line += (f"; netlift {ours['states_per_second']:.0f} states/s"
                      f" {ours['bytes_per_state']:.1f} B/state,"
                      f" spin {theirs['rate']:.0f} states/s"
-                     f" {spin_bps:.1f} B/state")
+                     f" {spin_bps:.1f} B/state; time netlift/spin"
+                     f" {ours['seconds'] / max(theirs['seconds'], 1e-6):.2f}")
         print(("ok   " if ok else "FAIL ") + line)
         passed += ok
         failed += not ok

@@ -111,6 +111,8 @@ void writePlainNet(const Module &m, const sem::StateLayout &L,
       os << "       skip;\n";
     os << "     } /* " << t.name << " */\n";
   }
+  if (m.transitions.empty())
+    os << "  :: false /* no transition: the initial state is a deadlock */\n";
   os << "  od\n}\n";
 }
 
@@ -163,7 +165,7 @@ private:
   /// While translating transition `actionOf`'s action, units it writes are
   /// read from its shadow copies.
   int64_t actionOf = -1;
-  int loopDepth = 0;
+  int loopDepth = 0, maxLoopDepth = 0;
   bool failed = false;
 
   bool refuse(llvm::SMLoc loc, const std::string &what) {
@@ -206,7 +208,8 @@ bool StepWriter::addUnits(const std::string &name, const Type *t,
     return true;
   case TypeKind::Array:
     if (!t->elem->isScalar())
-      return refuse(loc, "an array of arrays or records ('" + name + "')");
+      return refuse(loc, "an array of arrays or records ('" +
+                             L.slots()[slot].name + "')");
     [[fallthrough]];
   default: {
     Unit u;
@@ -495,7 +498,9 @@ void StepWriter::collectWrites(Block b, std::set<uint32_t> &out) {
       break;
     }
     case StmtKind::For:
+      maxLoopDepth = std::max(maxLoopDepth, ++loopDepth);
       collectWrites(cast<ForStmt>(s)->body, out);
+      --loopDepth;
       break;
     }
   }
@@ -671,8 +676,12 @@ std::string StepWriter::jointEnabling() {
 }
 
 /// Fires the step in ST (or drops it: empty, or without an urgent
-/// transition while one is enabled): actions on shadows first, as they
-/// read the pre-state, then markings and place clocks, then the writes.
+/// transition while one is enabled). Each action runs in a d_step of its
+/// own on shadow copies, as actions read the pre-state; the last d_step
+/// moves the tokens, restarts the clocks of the places the step touches
+/// and lands the writes. spin bounds the jumps in one d_step, so
+/// everything but the actions' own control flow is written without
+/// branches (conditional expressions).
 void StepWriter::writeFiring(const std::string &in, const char *after) {
   std::string any, urgent;
   for (uint32_t t = 0; t < m.transitions.size(); ++t) {
@@ -680,28 +689,32 @@ void StepWriter::writeFiring(const std::string &in, const char *after) {
     if (m.transitions[t].urgent)
       urgent += (urgent.empty() ? "" : " || ") + ("ST[" + num(t) + "]");
   }
-  os << in << "d_step {\n" << in << "  if\n";
-  os << in << "  :: (" << (any.empty() ? "0" : any) << ") && (!URGENT"
-     << (urgent.empty() ? "" : " || " + urgent) << ") ->\n";
-  std::string body = in + "     ";
+  os << in << "d_step { DO = (" << (any.empty() ? "0" : any) << ") && (!URGENT"
+     << (urgent.empty() ? "" : " || " + urgent) << ") };\n";
   for (uint32_t t = 0; t < m.transitions.size(); ++t) {
     const Transition &tr = m.transitions[t];
     if (!tr.hasAction() || tr.action().empty())
       continue;
-    os << body << "if\n"
-       << body << ":: ST[" << t << "] -> /* " << tr.name << " */\n";
+    os << in << "if\n"
+       << in << ":: DO && ST[" << t << "] -> d_step { /* " << tr.name
+       << " */\n";
+    std::string body = in + "     ";
     actionOf = t;
-    for (uint32_t u : writesOf[t]) {
+    for (uint32_t u : writesOf[t])
       for (uint32_t k = 0; k < units[u].count; ++k) {
         std::string el = units[u].isArray ? "[" + num(k) + "]" : "";
-        os << body << "   " << shadow(t, u) << el << " = " << units[u].name
-           << el << ";\n";
+        os << body << shadow(t, u) << el << " = " << units[u].name << el
+           << ";\n";
       }
-    }
-    stmts(tr.action(), body + "   ");
+    stmts(tr.action(), body);
     actionOf = -1;
-    os << body << "   skip\n" << body << ":: else -> skip\n" << body << "fi;\n";
+    os << body << "skip\n"
+       << in << "   }\n"
+       << in << ":: else -> skip\n"
+       << in << "fi;\n";
   }
+  os << in << "d_step {\n";
+  std::string body = in + "  ";
   // Markings and the clocks of every place the step touches.
   for (uint32_t p = 0; p < m.places.size(); ++p) {
     std::string delta, touched;
@@ -719,56 +732,58 @@ void StepWriter::writeFiring(const std::string &in, const char *after) {
     const std::string &n = placeNames[p];
     if (!delta.empty()) {
       if (m.places[p].capacity == kInf)
-        os << body << "assert(" << n << delta
+        os << body << "assert(!DO || " << n << delta
            << " <= " << L.slotMax(L.markingSlot(p)) << ");\n";
-      os << body << n << " = " << n << delta << ";\n";
+      os << body << n << " = (DO -> " << n << delta << " : " << n << ");\n";
     }
     if (L.clockSlot(p) >= 0)
-      os << body << "if :: " << touched << " -> " << clockNames[p]
-         << " = 0 :: else -> skip fi;\n";
+      os << body << clockNames[p] << " = (DO && (" << touched
+         << ") -> 0 : " << clockNames[p] << ");\n";
   }
-  // The actions' writes land together; two in one slot are an error.
+  // The actions' writes land together; two in one slot are an error. A
+  // write flag is set only by an action that ran, so only when DO.
   for (uint32_t u = 0; u < units.size(); ++u) {
     if (!writerCount[u])
       continue;
     for (uint32_t k = 0; k < units[u].count; ++k) {
       std::string el = units[u].isArray ? "[" + num(k) + "]" : "";
+      std::string v = units[u].name + el;
       bool conflicts = writerCount[u] > 1;
       for (uint32_t t = 0; t < m.transitions.size(); ++t) {
         if (!std::count(writesOf[t].begin(), writesOf[t].end(), u))
           continue;
-        os << body << "if :: ST[" << t << "] && " << written(t, u) << el
-           << " -> ";
+        std::string w = written(t, u) + el, a = shadow(t, u) + el;
         if (conflicts)
-          os << "assert(!CW); CW = 1; ";
-        os << units[u].name << el << " = " << shadow(t, u) << el << "; "
-           << written(t, u) << el << " = 0 :: else -> skip fi;\n";
+          os << body << "assert(!(" << w << " && CW)); CW = CW || " << w
+             << ";\n";
+        os << body << v << " = (" << w << " -> " << a << " : " << v << "); "
+           << w << " = 0; " << a << " = 0;\n";
       }
       if (conflicts)
         os << body << "CW = 0;\n";
     }
   }
-  os << body << "skip\n" << in << "  :: else -> skip\n" << in << "  fi;\n";
-  writeReset(in + "  ");
+  writeReset(body);
   os << in << "}" << after << "\n";
 }
 
 void StepWriter::writeTick(const std::string &in) {
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (L.clockSlot(p) >= 0)
-      os << in << "if :: " << placeNames[p] << " > 0 && " << clockNames[p]
-         << " < " << L.clockCap(p) << " -> " << clockNames[p] << "++"
-         << " :: else -> skip fi;\n";
+      os << in << clockNames[p] << " = (" << placeNames[p] << " > 0 && "
+         << clockNames[p] << " < " << L.clockCap(p) << " -> " << clockNames[p]
+         << " + 1 : " << clockNames[p] << ");\n";
   for (uint32_t v = 0; v < m.vars.size(); ++v)
     if (m.vars[v].type->isClock()) {
       const Unit &u = units[unitOfSlot[L.varSlot(v)]];
-      os << in << "if :: " << u.name << " < " << u.hi << " -> " << u.name
-         << "++ :: else -> skip fi;\n";
+      os << in << u.name << " = (" << u.name << " < " << u.hi << " -> "
+         << u.name << " + 1 : " << u.name << ");\n";
     }
 }
 
+/// Back to a state netlift has: scratch zero, inputs at their low values.
 void StepWriter::writeReset(const std::string &in) {
-  os << in << "TK = 0;\n";
+  os << in << "DO = 0;\n";
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
     os << in << "ST[" << t << "] = 0;\n";
   for (const Unit &u : units)
@@ -778,6 +793,9 @@ void StepWriter::writeReset(const std::string &in) {
            << u.lo << ";\n";
   for (const std::string &e : eventNames)
     os << in << e << " = 0;\n";
+  if (!forced.empty())
+    for (uint32_t t = 0; t < m.transitions.size(); ++t)
+      os << in << "SEL[" << t << "] = 0;\n";
 }
 
 bool StepWriter::write() {
@@ -895,25 +913,27 @@ bool StepWriter::write() {
   }
   for (const std::string &e : eventNames)
     os << "bit " << e << " = 0;\n";
-  // Scratch: the step being built (part of the states inside the atomic
-  // sequences, always 0 outside them), and d_step-only temporaries.
+  // Scratch: the step being built and the actions' shadow copies are part
+  // of the states inside an atomic sequence and always 0 outside them;
+  // `hidden` temporaries live inside one d_step.
   size_t nt = std::max<size_t>(m.transitions.size(), 1);
-  os << "bit ST[" << nt << "];\nbit TK;\n";
+  os << "bit ST[" << nt << "];\nbit DO;\n";
+  if (timed)
+    os << "bit TK;\n";
   if (!forced.empty())
-    os << "bit CAND[" << nt << "];\nbit CHO[" << nt << "];\nbit NC;\nbit FIT;\n"
-       << "bit ALL;\nhidden byte SEL[" << nt << "];\n";
-  // (spin hides no `bit`: hidden scratch is `byte` or wider.)
-  os << "hidden int TMP;\nhidden int IX;\nhidden byte CW;\n";
-  for (int i = 0; i < 8; ++i)
-    os << "hidden int LV" << i << ";\n";
+    os << "bit SEL[" << nt << "];\nbit CAND[" << nt << "];\nbit CHO[" << nt
+       << "];\nbit NC;\nbit ALL;\nbit FIT;\n";
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
     for (uint32_t u : writesOf[t]) {
       const Unit &un = units[u];
       std::string dim = un.isArray ? "[" + num(un.count) + "]" : "";
-      llvm::StringRef type = typeFor(un.lo, un.hi);
-      os << "hidden " << (type == "bit" ? "byte" : type) << " " << shadow(t, u)
-         << dim << ";\nhidden byte " << written(t, u) << dim << ";\n";
+      os << typeFor(std::min<int64_t>(un.lo, 0), std::max<int64_t>(un.hi, 0))
+         << " " << shadow(t, u) << dim << ";\nbit " << written(t, u) << dim
+         << ";\n";
     }
+  os << "hidden int TMP;\nhidden int IX;\nhidden byte CW;\n";
+  for (int i = 0; i < maxLoopDepth; ++i)
+    os << "hidden int LV" << i << ";\n";
   os << "\n" << d.str() << "\n";
 
   os << "active proctype net() {\n";
@@ -959,31 +979,38 @@ bool StepWriter::write() {
   if (hasInputs)
     os << in << ":: else -> skip /* nothing under these inputs */\n";
   if (spontaneous.empty() && eventNames.empty() && !timed && !hasInputs)
-    os << in << ":: 0 -> skip\n";
+    os << in << ":: false\n";
   os << in << "fi;\n";
-  os << in << "if\n" << in << ":: TK ->\n" << in << "   d_step {\n";
-  writeTick(in + "     ");
-  writeReset(in + "     ");
-  os << in << "   }\n" << in << ":: else ->\n";
-  std::string in2 = in + "   ";
+  std::string in2 = in;
+  if (timed) {
+    os << in << "if\n" << in << ":: TK ->\n" << in << "   d_step {\n";
+    writeTick(in + "     ");
+    os << in << "     TK = 0;\n";
+    writeReset(in + "     ");
+    os << in << "   }\n" << in << ":: else ->\n";
+    in2 = in + "   ";
+  }
   if (!forced.empty()) {
     // Rounds of the closure under forced transitions, as the engine does
     // them: the candidates of a round are the enabled, event-enabled forced
     // transitions that fit with the step one by one; all of them join
-    // when they fit together, else each maximal subset is a choice.
+    // when they fit together, else each maximal subset is a choice. SEL
+    // is the set JOINT judges: the step, plus what is being tried.
     os << in2 << "do\n" << in2 << ":: d_step {\n";
     std::string r = in2 + "     ";
     os << r << "NC = 0;\n";
     for (uint32_t t = 0; t < m.transitions.size(); ++t)
       os << r << "SEL[" << t << "] = ST[" << t << "];\n";
     for (uint32_t f : forced)
-      os << r << "if :: !ST[" << f << "] && EN" << f << " && EV" << f
-         << " -> SEL[" << f << "] = 1; if :: JOINT -> CAND[" << f
-         << "] = 1; NC = 1 :: else -> skip fi; SEL[" << f
-         << "] = 0 :: else -> skip fi;\n";
+      os << r << "SEL[" << f << "] = 1; CAND[" << f << "] = !ST[" << f
+         << "] && EN" << f << " && EV" << f << " && JOINT; SEL[" << f
+         << "] = ST[" << f << "]; NC = NC || CAND[" << f << "];\n";
     for (uint32_t f : forced)
       os << r << "SEL[" << f << "] = ST[" << f << "] || CAND[" << f << "];\n";
-    os << r << "ALL = JOINT\n" << in2 << "   };\n";
+    os << r << "ALL = JOINT;\n";
+    for (uint32_t f : forced)
+      os << r << "SEL[" << f << "] = ST[" << f << "];\n";
+    os << in2 << "   };\n";
     // The round that finds no candidate fires the step and leaves (a
     // `break` may not lead into a d_step).
     os << in2 << "   if\n" << in2 << "   :: !NC -> ALL = 0;\n";
@@ -991,29 +1018,24 @@ bool StepWriter::write() {
     os << in2 << "      break\n";
     os << in2 << "   :: NC && ALL -> d_step {\n";
     for (uint32_t f : forced)
-      os << in2 << "        if :: CAND[" << f << "] -> ST[" << f
-         << "] = 1; CAND[" << f << "] = 0 :: else -> skip fi;\n";
+      os << in2 << "        ST[" << f << "] = ST[" << f << "] || CAND[" << f
+         << "]; CAND[" << f << "] = 0;\n";
     os << in2 << "        NC = 0; ALL = 0\n" << in2 << "      }\n";
     os << in2 << "   :: NC && !ALL ->\n";
     std::string c = in2 + "      ";
     for (uint32_t f : forced) {
-      os << c << "d_step { FIT = 0; if :: CAND[" << f << "] -> ";
-      for (uint32_t t = 0; t < m.transitions.size(); ++t)
-        os << "SEL[" << t << "] = ST[" << t << "] || CHO[" << t << "]; ";
-      os << "SEL[" << f << "] = 1; FIT = JOINT :: else -> skip fi };\n";
-      os << c << "if :: FIT -> CHO[" << f << "] = 1; FIT = 0 :: true -> FIT = 0"
-         << " fi;\n";
+      os << c << "d_step { SEL[" << f << "] = 1; FIT = CAND[" << f
+         << "] && JOINT; SEL[" << f << "] = 0 };\n";
+      os << c << "if :: FIT -> CHO[" << f << "] = 1; SEL[" << f
+         << "] = 1; FIT = 0 :: true -> FIT = 0 fi;\n";
     }
     // A choice that is not maximal is completed in candidate order, so
     // every path ends in a maximal subset and every maximal subset is one.
     os << c << "d_step {\n";
-    for (uint32_t f : forced) {
-      os << c << "  if :: CAND[" << f << "] && !CHO[" << f << "] -> ";
-      for (uint32_t t = 0; t < m.transitions.size(); ++t)
-        os << "SEL[" << t << "] = ST[" << t << "] || CHO[" << t << "]; ";
-      os << "SEL[" << f << "] = 1; if :: JOINT -> CHO[" << f
-         << "] = 1 :: else -> skip fi :: else -> skip fi;\n";
-    }
+    for (uint32_t f : forced)
+      os << c << "  SEL[" << f << "] = 1; CHO[" << f << "] = CHO[" << f
+         << "] || (CAND[" << f << "] && JOINT); SEL[" << f << "] = ST[" << f
+         << "] || CHO[" << f << "];\n";
     for (uint32_t f : forced)
       os << c << "  ST[" << f << "] = ST[" << f << "] || CHO[" << f << "]; CHO["
          << f << "] = 0; CAND[" << f << "] = 0;\n";
@@ -1022,7 +1044,8 @@ bool StepWriter::write() {
   } else {
     writeFiring(in2, "");
   }
-  os << in << "fi\n";
+  if (timed)
+    os << in << "fi\n";
   os << "     }\n  od\n}\n";
   return !failed;
 }
