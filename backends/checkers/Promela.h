@@ -1,16 +1,16 @@
 //===- Promela.h - flat modules as Promela models for spin ------*- C++ -*-===//
 //
 // Writes a flat module as a Promela model whose reachable global states are
-// exactly netlift's reachable states, so that spin's state count is an
-// independent check of the semantics engine (and spin's speed a yardstick
-// for it). One process loops over one `d_step` per transition: the step is
-// atomic, so spin stores no intermediate states; its guard is the
-// transition's enabling (pre-places hold the weights, capacities are kept,
-// urgency) and its body the firing. A firing that would overflow the
-// encoding of an unbounded place fails an assertion, as it is a runtime
-// error in netlift. Covered so far: place/transition nets (weights,
-// capacities, urgency) under the interleaving policy; data, clocks,
-// conditions, events and free inputs are refused by name.
+// exactly netlift's reachable states (interleaving, weak timing), so that
+// spin's state count and verdicts are an independent check of the
+// semantics engine, and spin's speed a yardstick for it. Place/transition
+// nets loop over one `d_step` per transition (spin's transitions are then
+// netlift's edges too); every other model loops over one atomic sequence
+// per step: free inputs, the starting transition or tick, the rounds of
+// forced closure with every maximal choice, actions on shadow copies, and
+// one d_step that lands the step. Runtime errors of netlift (write
+// conflicts, range errors, token overflow) are assertions. docs/check.md
+// states the encoding and what it refuses.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_BACKENDS_CHECKERS_PROMELA_H
