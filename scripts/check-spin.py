@@ -12,10 +12,13 @@ no partial-order reduction) and explored in full.
 - Deadlocks (when the header says `deadlocks=end-states`): the `end` label
   is taken out, so a deadlock is an invalid end state for spin; spin finds
   one exactly when netlift counts deadlocks.
+- Properties (each `--ctl FORMULA`, in the fragment of CTL the export
+  writes as LTL): `netlift check` and spin's search for a violation of the
+  `ltl` claim (acceptance cycles included) must give the same verdict.
 With --bench, also prints both tools' speed and memory side by side, each
 as the tool reports it (spin: pan's rate and its actual memory for states).
 
-usage: check-spin.py [--bench] NETLIFT MODEL...
+usage: check-spin.py [--bench] [--ctl FORMULA]... NETLIFT MODEL...
 Prints one line per model and a closing 'N passed, M failed' line; exit 1
 when some failed.
 """
@@ -35,7 +38,8 @@ def header(pml):
     fields = dict(re.findall(r"(\w[\w-]*)=(\S+)", first))
     return {"encoding": fields.get("encoding", "transitions"),
             "offset": int(fields.get("state-offset", "0")),
-            "deadlocks": fields.get("deadlocks", "end-states")}
+            "deadlocks": fields.get("deadlocks", "end-states"),
+            "stutter": fields.get("stutter", "none")}
 
 
 def spin_run(pml, work, head, states, optimise):
@@ -94,10 +98,72 @@ def spin_run(pml, work, head, states, optimise):
             else float("nan")}
 
 
+def spin_properties(pml, work, count):
+    """spin's verdict on each ltl claim p1..pN: True when it holds."""
+    r = subprocess.run(["spin", "-a", pml], cwd=work, capture_output=True,
+                       text=True)
+    if r.returncode != 0:
+        raise RuntimeError("spin -a: " + (r.stdout + r.stderr).strip()[:300])
+    r = subprocess.run(["cc", "-O0", "-fwrapv", "-DNOREDUCE", "-o", "pan",
+                        "pan.c"], cwd=work, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("cc: " + r.stderr.strip()[:300])
+    verdicts = []
+    for i in range(1, count + 1):
+        # -a: acceptance cycles (liveness); -E: a deadlock is no violation
+        # (the run stays there, as netlift's CTL takes it).
+        r = subprocess.run(["./pan", "-a", "-E", "-m10000000", "-N",
+                            f"p{i}"], cwd=work, capture_output=True,
+                           text=True, timeout=3600)
+        errors = re.search(r"errors: (\d+)", r.stdout)
+        if not errors or "max search depth too small" in r.stdout:
+            raise RuntimeError("unexpected pan output:\n" + r.stdout[-1000:])
+        verdicts.append(int(errors.group(1)) == 0)
+    return verdicts
+
+
+def check_properties(netlift, model, name, ctl):
+    """Compares netlift check's verdicts with spin's; returns ok."""
+    with tempfile.TemporaryDirectory() as work:
+        pml = os.path.join(work, "model.pml")
+        flags = [a for f in ctl for a in ("--ctl", f)]
+        e = subprocess.run([netlift, "emit", "--to", "promela", model, "-o",
+                            pml, *flags], capture_output=True, text=True)
+        if e.returncode != 0:
+            print(f"FAIL {name}: emit: {e.stderr.strip()[:300]}")
+            return False
+        c = subprocess.run([netlift, "check", model, *flags],
+                           capture_output=True, text=True)
+        ours = re.findall(r"^(.*): (holds|fails)$", c.stdout, re.M)
+        theirs = spin_properties(pml, work, len(ctl))
+        stutter = header(pml)["stutter"] == "some"
+    ok = len(ours) == len(ctl)
+    for i, f in enumerate(ctl):
+        mine = ours[i][1] == "holds" if i < len(ours) else None
+        agree = mine == theirs[i]
+        # Dropped steps are stutters netlift does not have: spin may find
+        # a run that stays put forever, which only matters for liveness.
+        if stutter and not agree and mine:
+            print(f"skip {name}: {f}: netlift holds, spin fails on a"
+                  " stutter of dropped steps (free inputs or urgent forced"
+                  " transitions)")
+            continue
+        ok = ok and agree
+        print(("ok   " if agree else "FAIL ") + f"{name}: {f}: netlift"
+              f" {'holds' if mine else 'fails'}, spin"
+              f" {'holds' if theirs[i] else 'fails'}")
+    return ok
+
+
 def main():
     args = sys.argv[1:]
     bench = "--bench" in args
     args = [a for a in args if a != "--bench"]
+    ctl = []
+    while "--ctl" in args:
+        i = args.index("--ctl")
+        ctl.append(args[i + 1])
+        del args[i:i + 2]
     netlift, models = args[0], args[1:]
     passed = failed = 0
     for model in models:
@@ -125,6 +191,11 @@ def main():
                 print(f"FAIL {name}: {err}")
                 failed += 1
                 continue
+        if ctl and not runtime_error:
+            if check_properties(netlift, model, name, ctl):
+                passed += 1
+            else:
+                failed += 1
         if runtime_error:
             ok = theirs["assertion"] or theirs["bound"]
             print(("ok   " if ok else "FAIL ") + f"{name}: runtime error:"

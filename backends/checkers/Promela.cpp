@@ -7,6 +7,7 @@
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/Support/Casting.h"
 
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -147,6 +148,10 @@ public:
       : m(m), L(L), diag(diag), os(os) {}
 
   bool write();
+  /// The properties as `ltl` claims (buildUnits() first when write() was
+  /// not called).
+  bool writeLtl(llvm::ArrayRef<const CtlFormula *> properties);
+  bool buildUnits();
 
 private:
   const Module &m;
@@ -175,7 +180,6 @@ private:
     return false;
   }
 
-  bool buildUnits();
   bool addUnits(const std::string &name, const Type *t, uint32_t &slot,
                 bool isInput, llvm::SMLoc loc);
   std::optional<Access> access(const Expr *e);
@@ -799,8 +803,6 @@ void StepWriter::writeReset(const std::string &in) {
 }
 
 bool StepWriter::write() {
-  if (!buildUnits())
-    return false;
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
     (m.transitions[t].isForced() ? forced : spontaneous).push_back(t);
   writesOf.resize(m.transitions.size());
@@ -876,21 +878,29 @@ bool StepWriter::write() {
   for (const Unit &u : units)
     initStep |= u.isArray && !uniformInit(u);
 
+  // A step is dropped (back to the same state, a stutter netlift does not
+  // have) when it is empty or lacks an urgent transition while one is
+  // enabled. With no urgent forced transition, a non-urgent seed is not
+  // offered while one is enabled; only free inputs then leave drops.
+  bool urgentForced = false;
+  for (uint32_t f : forced)
+    urgentForced |= m.transitions[f].urgent;
+  bool drops = hasInputs || urgentForced;
   os << "/* netlift-promela: encoding=steps state-offset=" << (initStep ? 1 : 0)
-     << " deadlocks=" << (hasInputs ? "self-loops" : "end-states") << " */\n";
+     << " deadlocks=" << (hasInputs ? "self-loops" : "end-states")
+     << " stutter=" << (drops ? "some" : "none") << " */\n";
   os << "/* Module '" << m.name
      << "' as Promela (netlift emit --to promela).\n"
         "   Each netlift step (or tick) is one atomic sequence: the free "
         "inputs,\n"
         "   the transition that starts the step, the choices among "
         "conflicting\n"
-        "   forced transitions, then one d_step that fires it. spin's "
-        "\"nominal\n"
-        "   states\" are netlift's states (the states stored inside the "
-        "atomic\n"
-        "   sequences are counted apart as stored-atomic); see "
-        "docs/check.md.\n"
-        "   Check: spin -a FILE && cc -O2 -fwrapv -DBFS -DNOREDUCE -DSAFETY "
+        "   forced transitions, the actions, then one d_step that lands "
+        "the step.\n"
+        "   pan's stored states (depth-first; the states inside atomic "
+        "sequences\n"
+        "   are not stored) are netlift's states, plus state-offset; see\n"
+        "   docs/check.md. Check: spin -a FILE && cc -O2 -fwrapv -DNOREDUCE "
         "-o pan\n"
         "   pan.c && ./pan */\n\n";
   // State.
@@ -966,8 +976,11 @@ bool StepWriter::write() {
   // What starts it.
   os << in << "if\n";
   for (uint32_t t : spontaneous)
-    os << in << ":: EN" << t << " -> ST[" << t << "] = 1 /* "
-       << m.transitions[t].name << " */\n";
+    os << in << ":: EN" << t
+       << (urgentAny.empty() || m.transitions[t].urgent || urgentForced
+               ? ""
+               : " && !URGENT")
+       << " -> ST[" << t << "] = 1 /* " << m.transitions[t].name << " */\n";
   if (!eventNames.empty()) {
     std::string anyEvent;
     for (const std::string &e : eventNames)
@@ -1050,13 +1063,127 @@ bool StepWriter::write() {
   return !failed;
 }
 
+/// Is `f` a state proposition (no temporal operator, no `deadlock`)?
+static bool isProposition(const CtlFormula &f) {
+  switch (f.kind) {
+  case CtlFormula::True:
+  case CtlFormula::False:
+  case CtlFormula::Atom:
+    return true;
+  case CtlFormula::Not:
+    return isProposition(*f.lhs);
+  case CtlFormula::And:
+  case CtlFormula::Or:
+  case CtlFormula::Implies:
+    return isProposition(*f.lhs) && isProposition(*f.rhs);
+  default:
+    return false;
+  }
+}
+
+/// The LTL of a CTL formula in the fragment where dropping the path
+/// quantifiers keeps the meaning; empty outside it.
+class LtlWriter {
+public:
+  explicit LtlWriter(std::function<std::string(const net::Expr *)> atom)
+      : atom(std::move(atom)) {}
+
+  std::string top(const CtlFormula &f) {
+    switch (f.kind) {
+    case CtlFormula::And: {
+      std::string a = top(*f.lhs), b = top(*f.rhs);
+      return a.empty() || b.empty() ? "" : "(" + a + " && " + b + ")";
+    }
+    case CtlFormula::AG: {
+      std::string b = always(*f.lhs);
+      return b.empty() ? "" : "[] " + b;
+    }
+    case CtlFormula::AF:
+      return isProposition(*f.lhs) ? "<> " + prop(*f.lhs) : "";
+    case CtlFormula::AU:
+      return isProposition(*f.lhs) && isProposition(*f.rhs)
+                 ? "(" + prop(*f.lhs) + " U " + prop(*f.rhs) + ")"
+                 : "";
+    default:
+      return isProposition(f) ? prop(f) : "";
+    }
+  }
+
+private:
+  std::function<std::string(const net::Expr *)> atom;
+
+  /// What may stand under AG: propositions, AF p, p -> AF q, and
+  /// conjunctions (G distributes over them).
+  std::string always(const CtlFormula &f) {
+    if (isProposition(f))
+      return prop(f);
+    if (f.kind == CtlFormula::AF && isProposition(*f.lhs))
+      return "(<> " + prop(*f.lhs) + ")";
+    if (f.kind == CtlFormula::Implies && isProposition(*f.lhs) &&
+        f.rhs->kind == CtlFormula::AF && isProposition(*f.rhs->lhs))
+      return "(" + prop(*f.lhs) + " -> <> " + prop(*f.rhs->lhs) + ")";
+    if (f.kind == CtlFormula::And) {
+      std::string a = always(*f.lhs), b = always(*f.rhs);
+      return a.empty() || b.empty() ? "" : "(" + a + " && " + b + ")";
+    }
+    return "";
+  }
+
+  std::string prop(const CtlFormula &f) {
+    switch (f.kind) {
+    case CtlFormula::True:
+      return "true";
+    case CtlFormula::False:
+      return "false";
+    case CtlFormula::Atom:
+      return "(" + atom(f.atom) + ")";
+    case CtlFormula::Not:
+      return "!" + prop(*f.lhs);
+    case CtlFormula::And:
+      return "(" + prop(*f.lhs) + " && " + prop(*f.rhs) + ")";
+    case CtlFormula::Or:
+      return "(" + prop(*f.lhs) + " || " + prop(*f.rhs) + ")";
+    case CtlFormula::Implies:
+      return "(" + prop(*f.lhs) + " -> " + prop(*f.rhs) + ")";
+    default:
+      return "";
+    }
+  }
+};
+
+bool StepWriter::writeLtl(llvm::ArrayRef<const CtlFormula *> properties) {
+  LtlWriter ltl([&](const net::Expr *e) { return expr(e); });
+  for (size_t i = 0; i < properties.size(); ++i) {
+    std::string text = ltl.top(*properties[i]);
+    if (failed)
+      return false;
+    if (text.empty()) {
+      diag.error(llvm::SMLoc(),
+                 "property " + std::to_string(i + 1) + " '" +
+                     ctlToString(*properties[i]) +
+                     "' is not in the fragment of CTL that netlift writes "
+                     "as LTL for spin (AG p, AF p, A[p U q], AG AF p, "
+                     "AG (p -> AF q) and conjunctions, over state "
+                     "propositions); check it with `netlift check`");
+      return false;
+    }
+    os << "\n/* " << ctlToString(*properties[i]) << " */\nltl p" << i + 1
+       << " { " << text << " }\n";
+  }
+  return true;
+}
+
 } // namespace
 
 bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
-                            DiagEngine &diag, llvm::raw_ostream &os) {
-  if (!firstBeyondPt(m)) {
+                            DiagEngine &diag, llvm::raw_ostream &os,
+                            llvm::ArrayRef<const CtlFormula *> properties) {
+  StepWriter steps(m, L, diag, os);
+  if (!steps.buildUnits())
+    return false;
+  if (!firstBeyondPt(m))
     writePlainNet(m, L, os);
-    return true;
-  }
-  return StepWriter(m, L, diag, os).write();
+  else if (!steps.write())
+    return false;
+  return steps.writeLtl(properties);
 }

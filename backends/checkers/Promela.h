@@ -16,6 +16,7 @@
 #ifndef NETLIFT_BACKENDS_CHECKERS_PROMELA_H
 #define NETLIFT_BACKENDS_CHECKERS_PROMELA_H
 
+#include "backends/checkers/Ctl.h"
 #include "ir/semantics/StateLayout.h"
 #include "ir/support/Diagnostics.h"
 
@@ -23,10 +24,14 @@
 
 namespace netlift::checkers {
 
-/// Writes `m` (flat) as Promela. False, with an error at the first
-/// construct the encoding does not cover, when it cannot.
+/// Writes `m` (flat) as Promela, with one `ltl` claim `p1`, `p2`... per
+/// property. False, with an error at the first construct the encoding does
+/// not cover, or at a property outside the fragment of CTL that netlift
+/// writes as LTL (invariants `AG p`, `AF p`, `A[p U q]`, `AG AF p`,
+/// `AG (p -> AF q)`, conjunctions of these, over state propositions).
 bool writePromela(const net::Module &m, const sem::StateLayout &layout,
-                  DiagEngine &diag, llvm::raw_ostream &os);
+                  DiagEngine &diag, llvm::raw_ostream &os,
+                  llvm::ArrayRef<const CtlFormula *> properties = {});
 
 } // namespace netlift::checkers
 

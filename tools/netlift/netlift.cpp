@@ -346,7 +346,7 @@ static cl::opt<EmitFormat>
                                      "net"),
                           clEnumValN(EmitFormat::Promela, "promela",
                                      "Promela for spin (the flattened top; "
-                                     "place/transition nets)"),
+                                     "--ctl properties as ltl claims)"),
                           clEnumValN(EmitFormat::Pnml, "pnml",
                                      "PNML P/T net (the flattened top; "
                                      "capacities as complementary places)")),
@@ -404,9 +404,11 @@ static cl::opt<uint64_t> reachMaxStates("max-states",
 static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
                                        cl::Required, cl::sub(checkCmd));
 static cl::list<std::string>
-    checkFormulas("ctl", cl::desc("A CTL property (repeatable)"),
+    checkFormulas("ctl",
+                  cl::desc("A CTL property (repeatable; with emit --to "
+                           "promela, written as an ltl claim)"),
                   cl::value_desc("FORMULA"), cl::sub(checkCmd),
-                  cl::cat(category));
+                  cl::sub(emitCmd), cl::cat(category));
 static cl::opt<std::string>
     reachMaxMemory("max-memory",
                    cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
@@ -609,6 +611,23 @@ static void reportRuntimeError(const statespace::ExploreResult &r, bool started,
   }
 }
 
+/// Parses the --ctl properties over the flat top (errors point into them).
+static bool
+parseProperties(DiagEngine &diag, net::Design &design, net::Module &top,
+                std::vector<std::unique_ptr<checkers::CtlFormula>> &out) {
+  for (size_t i = 0; i < checkFormulas.size(); ++i) {
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(
+            checkFormulas[i], "<ctl " + std::to_string(i + 1) + ">"),
+        llvm::SMLoc());
+    auto f = checkers::parseCtl(id, diag, design, top);
+    if (!f)
+      return false;
+    out.push_back(std::move(f));
+  }
+  return true;
+}
+
 static int runEmit() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
@@ -616,6 +635,11 @@ static int runEmit() {
   std::vector<std::string> inputs{emitInput};
   bool flatTop =
       emitFormat == EmitFormat::Promela || emitFormat == EmitFormat::Pnml;
+  if (!checkFormulas.empty() && emitFormat != EmitFormat::Promela) {
+    llvm::errs() << "netlift: error: --ctl goes with emit --to promela (or "
+                    "netlift check)\n";
+    return 1;
+  }
   if ((!flatTop && !topUsable(inputs, "emit")) ||
       !loadInputs(inputs, inputFormat, diag, design))
     return 1;
@@ -630,8 +654,14 @@ static int runEmit() {
       if (!checkers::writePnml(*top, diag, buf))
         return 1;
     } else {
+      std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
+      if (!parseProperties(diag, design, *top, formulas))
+        return 1;
+      std::vector<const checkers::CtlFormula *> properties;
+      for (const auto &f : formulas)
+        properties.push_back(f.get());
       sem::StateLayout layout(*top, sem::Options().unboundedBits);
-      if (!checkers::writePromela(*top, layout, diag, buf))
+      if (!checkers::writePromela(*top, layout, diag, buf, properties))
         return 1;
     }
     return writeOutput(outputFile, [&](llvm::raw_ostream &os) { os << text; })
@@ -1151,16 +1181,8 @@ static int runCheck() {
   if (!top)
     return 1;
   std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
-  for (size_t i = 0; i < checkFormulas.size(); ++i) {
-    unsigned id = sm.AddNewSourceBuffer(
-        llvm::MemoryBuffer::getMemBufferCopy(
-            checkFormulas[i], "<ctl " + std::to_string(i + 1) + ">"),
-        llvm::SMLoc());
-    auto f = checkers::parseCtl(id, diag, design, *top);
-    if (!f)
-      return 1;
-    formulas.push_back(std::move(f));
-  }
+  if (!parseProperties(diag, design, *top, formulas))
+    return 1;
   sem::Options so;
   sem::StateLayout layout(*top, so.unboundedBits);
   sem::Semantics semantics(*top, layout, so);
