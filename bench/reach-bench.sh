@@ -36,7 +36,7 @@ fi
 if command -v spin >/dev/null && command -v cc >/dev/null; then
   echo "-- netlift vs spin 6.5.2 (same state graphs checked) --"
   models=()
-  for spec in "philosophers 10" "philosophers 16"; do
+  for spec in "philosophers 10" "philosophers 16" "ring 7" "prodcons 10" "closedloop 3" "closedloop 4"; do
     f="$tmp/${spec// /}.net"
     python3 "$here/gen-models.py" $spec > "$f"
     models+=("$f")
