@@ -350,6 +350,8 @@ std::string StepWriter::expr(const Expr *e) {
     auto *r = cast<Ref>(e);
     switch (r->sym.kind) {
     case SymKind::Place:
+      if (r->type && !r->type->isBool()) // a token count (properties)
+        return placeNames[r->sym.index];
       return "(" + placeNames[r->sym.index] + " > 0)";
     case SymKind::EnumLit:
       return num(r->sym.index);

@@ -571,6 +571,42 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     const Type *b = check(bin->rhs, ctx);
     if (!a || !b)
       return nullptr;
+    // In a property (`buf >= 2`, `a + b == 3`), a place compared or
+    // counted with numbers stands for its token count; next to a Boolean
+    // it still means "is marked".
+    bool countsPlaces = false;
+    switch (bin->op) {
+    case BinaryOp::Eq:
+    case BinaryOp::Ne:
+    case BinaryOp::Lt:
+    case BinaryOp::Le:
+    case BinaryOp::Gt:
+    case BinaryOp::Ge:
+    case BinaryOp::Add:
+    case BinaryOp::Sub:
+    case BinaryOp::Mul:
+    case BinaryOp::Div:
+    case BinaryOp::Mod:
+      countsPlaces = ctx == Ctx::State;
+      break;
+    default:
+      break;
+    }
+    if (countsPlaces) {
+      auto isPlace = [](const Expr *x) {
+        auto *r = llvm::dyn_cast<Ref>(x);
+        return r && r->sym.kind == SymKind::Place && r->fields.empty();
+      };
+      auto count = [&](Expr *x, const Type *&t) {
+        uint32_t cap = m.places[llvm::cast<Ref>(x)->sym.index].capacity;
+        t = x->type = cap == kInf ? types.getInteger() : types.getRange(0, cap);
+      };
+      bool lp = isPlace(bin->lhs), rp = isPlace(bin->rhs);
+      if (lp && (rp || !b->isBool()))
+        count(bin->lhs, a);
+      if (rp && (lp || !a->isBool()))
+        count(bin->rhs, b);
+    }
     StringRef op = spelling(bin->op);
     auto mismatch = [&](StringRef need) -> const Type * {
       error(e->loc, "'" + op + "' needs " + need +

@@ -180,8 +180,12 @@ struct Semantics::Impl {
     case ExprKind::Ref: {
       auto *r = cast<Ref>(e);
       switch (r->sym.kind) {
-      case SymKind::Place:
-        return v[L.markingSlot(r->sym.index)] > 0;
+      case SymKind::Place: {
+        // A place is "marked", or its token count where a property
+        // compares it with numbers (the verifier typed it so).
+        int64_t tokens = v[L.markingSlot(r->sym.index)];
+        return r->type && !r->type->isBool() ? tokens : tokens > 0;
+      }
       case SymKind::EnumLit:
         return r->sym.index;
       case SymKind::LoopVar:
