@@ -513,3 +513,151 @@ std::vector<uint8_t> checkers::evaluateCtl(
   e.buildPredecessors();
   return e.eval(f);
 }
+
+namespace {
+/// Shortest path from state 0 through states in `through` to a state in
+/// `goal` (breadth-first, deadlocks looping on themselves).
+std::vector<uint32_t> shortestPath(const Evaluator &e, const Set &through,
+                                   const Set &goal) {
+  size_t n = e.g.size();
+  std::vector<uint32_t> parent(n, UINT32_MAX);
+  std::deque<uint32_t> work{0};
+  parent[0] = 0;
+  while (!work.empty()) {
+    uint32_t s = work.front();
+    work.pop_front();
+    if (goal[s]) {
+      std::vector<uint32_t> path{s};
+      while (path.back() != 0)
+        path.push_back(parent[path.back()]);
+      return {path.rbegin(), path.rend()};
+    }
+    if (!through[s])
+      continue;
+    e.forSucc(s, [&](uint32_t t) {
+      if (parent[t] == UINT32_MAX) {
+        parent[t] = s;
+        work.push_back(t);
+      }
+    });
+  }
+  return {};
+}
+
+/// A run from state 0 that stays in `inside` (where EG holds, so every
+/// state there keeps a successor inside): followed until it comes back to
+/// a state of its own (a lasso) or reaches a deadlock.
+CtlTrace lasso(const Evaluator &e, const Set &inside) {
+  CtlTrace t;
+  std::vector<int64_t> index(e.g.size(), -1);
+  uint32_t s = 0;
+  for (;;) {
+    index[s] = int64_t(t.states.size());
+    t.states.push_back(s);
+    if (e.g.deadlock[s])
+      return t;
+    uint32_t next = UINT32_MAX;
+    e.forSucc(s, [&](uint32_t x) {
+      if (next == UINT32_MAX && inside[x])
+        next = x;
+    });
+    if (index[next] >= 0) {
+      t.loopTo = index[next];
+      return t;
+    }
+    s = next;
+  }
+}
+} // namespace
+
+std::optional<CtlTrace> checkers::ctlTrace(
+    const CtlFormula &f, const CtlGraph &g,
+    const std::function<bool(const net::Expr *, uint32_t)> &atomValue) {
+  Evaluator e{g, atomValue, {}, {}};
+  e.buildPredecessors();
+  size_t n = g.size();
+  Set all(n, 1);
+  auto path = [&](bool witness, std::string claim, std::vector<uint32_t> p) {
+    CtlTrace t;
+    t.witness = witness;
+    t.claim = std::move(claim);
+    t.states = std::move(p);
+    return std::optional<CtlTrace>(std::move(t));
+  };
+  auto run = [&](bool witness, std::string claim, const Set &inside) {
+    CtlTrace t = lasso(e, inside);
+    t.witness = witness;
+    t.claim = std::move(claim);
+    return std::optional<CtlTrace>(std::move(t));
+  };
+  bool holds = e.eval(f)[0];
+  std::string a = f.lhs ? ctlToString(*f.lhs) : "";
+  std::string b = f.rhs ? ctlToString(*f.rhs) : "";
+  switch (f.kind) {
+  case CtlFormula::EX:
+  case CtlFormula::AX: {
+    bool exists = f.kind == CtlFormula::EX;
+    if (holds != exists)
+      return std::nullopt;
+    Set goal = e.eval(*f.lhs);
+    if (!exists)
+      goal = e.negate(goal);
+    uint32_t next = UINT32_MAX;
+    e.forSucc(0, [&](uint32_t t) {
+      if (next == UINT32_MAX && goal[t])
+        next = t;
+    });
+    return path(
+        exists, "a next state where " + a + (exists ? " holds" : " fails"),
+        next == 0 ? std::vector<uint32_t>{0} : std::vector<uint32_t>{0, next});
+  }
+  case CtlFormula::EF:
+  case CtlFormula::AG: {
+    bool exists = f.kind == CtlFormula::EF;
+    if (holds != exists)
+      return std::nullopt;
+    Set goal = e.eval(*f.lhs);
+    if (!exists)
+      goal = e.negate(goal);
+    return path(exists,
+                "a shortest path to a state where " + a +
+                    (exists ? " holds" : " does not hold"),
+                shortestPath(e, all, goal));
+  }
+  case CtlFormula::EG:
+    if (!holds)
+      return std::nullopt;
+    return run(true, "a run where " + a + " holds forever", e.eval(f));
+  case CtlFormula::AF: {
+    if (holds)
+      return std::nullopt;
+    Set never = e.eg(e.negate(e.eval(*f.lhs)));
+    return run(false, "a run where " + a + " never holds", never);
+  }
+  case CtlFormula::EU: {
+    if (!holds)
+      return std::nullopt;
+    return path(true,
+                "a shortest path where " + a + " holds until " + b + " does",
+                shortestPath(e, e.eval(*f.lhs), e.eval(*f.rhs)));
+  }
+  case CtlFormula::AU: {
+    if (holds)
+      return std::nullopt;
+    // A[a U b] fails: a path through !b to a state with !a & !b, or a run
+    // where b never holds.
+    Set sa = e.eval(*f.lhs), sb = e.eval(*f.rhs);
+    Set nb = e.negate(sb), both(n, 0);
+    for (size_t s = 0; s < n; ++s)
+      both[s] = !sa[s] && !sb[s];
+    if (e.eu(nb, both)[0])
+      return path(false,
+                  "a shortest path to a state where neither " + a + " nor " +
+                      b + " holds, " + b + " not before",
+                  shortestPath(e, nb, both));
+    return run(false, "a run where " + b + " never holds", e.eg(nb));
+  }
+  default:
+    return std::nullopt;
+  }
+}

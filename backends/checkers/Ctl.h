@@ -20,6 +20,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,7 @@ std::string ctlToString(const CtlFormula &f);
 /// deadlocked states, and the atoms' truth per state.
 struct CtlGraph {
   std::vector<uint32_t> succStart, succ; // CSR
+  std::vector<uint32_t> succLabel;       // per edge, for traces
   std::vector<uint8_t> deadlock;
   size_t size() const { return deadlock.size(); }
 };
@@ -70,6 +72,26 @@ struct CtlGraph {
 std::vector<uint8_t>
 evaluateCtl(const CtlFormula &f, const CtlGraph &g,
             const std::function<bool(const net::Expr *, uint32_t)> &atomValue);
+
+/// A path from the initial state (0) that shows a verdict: a witness of a
+/// holding existential property, a counterexample to a failing universal
+/// one. `loopTo` >= 0: the last state has an edge back to
+/// `states[loopTo]` (a lasso, the run goes round forever); a path that ends
+/// in a deadlock stays there.
+struct CtlTrace {
+  bool witness = false; // else a counterexample
+  std::string claim;    // what the path shows, in words
+  std::vector<uint32_t> states;
+  int64_t loopTo = -1;
+};
+
+/// The trace of `f`'s verdict at the initial state, where one exists: EX,
+/// EF (shortest), EG and E[U] (shortest to the goal) when they hold; AX,
+/// AG (shortest), AF and A[U] when they fail. Other verdicts and
+/// operators (Boolean combinations at the top) have none.
+std::optional<CtlTrace>
+ctlTrace(const CtlFormula &f, const CtlGraph &g,
+         const std::function<bool(const net::Expr *, uint32_t)> &atomValue);
 
 } // namespace netlift::checkers
 

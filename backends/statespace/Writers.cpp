@@ -243,10 +243,16 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
 
 void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
                                      uint32_t target, llvm::raw_ostream &os) {
+  writePath(x, sem, x.pathTo(target), os);
+}
+
+void netlift::statespace::writePath(
+    const Explorer &x, sem::Semantics &sem,
+    llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
+    int64_t loopTo, uint32_t loopLabel) {
   std::vector<Attribute> attrs = attributes(sem);
-  auto path = x.pathTo(target);
   std::vector<int64_t> prev;
-  size_t width = 4;
+  size_t width = 9; // "(initial)"
   for (auto &[label, s] : path)
     if (label != Explorer::kNone)
       width = std::max(width, x.label(label).size());
@@ -274,4 +280,8 @@ void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
                       changes);
     prev = std::move(cur);
   }
+  if (loopTo >= 0)
+    os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
+                      loopLabel == Explorer::kNone ? "" : x.label(loopLabel),
+                      width, loopTo);
 }

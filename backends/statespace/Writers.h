@@ -40,6 +40,13 @@ void writeSummaryJson(const Explorer &x, const ExploreResult &r,
 /// its label and the values it changed.
 void writeTrace(const Explorer &x, sem::Semantics &sem, uint32_t target,
                 llvm::raw_ostream &os);
+/// The same table for any path: (label of the step into it, state) pairs,
+/// the first label unused. `loopTo` >= 0 adds a closing line: the step
+/// `loopLabel` leads back to that step and the run goes round forever.
+void writePath(const Explorer &x, sem::Semantics &sem,
+               llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+               llvm::raw_ostream &os, int64_t loopTo = -1,
+               uint32_t loopLabel = Explorer::kNone);
 
 } // namespace netlift::statespace
 

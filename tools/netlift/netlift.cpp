@@ -410,6 +410,11 @@ static cl::list<std::string>
                   cl::value_desc("FORMULA"), cl::sub(checkCmd),
                   cl::sub(emitCmd), cl::cat(category));
 static cl::opt<std::string>
+    checkTraceDir("trace-dir",
+                  cl::desc("Also write each property's trace as "
+                           "DIR/p<N>.json and DIR/p<N>.aut"),
+                  cl::value_desc("DIR"), cl::sub(checkCmd), cl::cat(category));
+static cl::opt<std::string>
     reachMaxMemory("max-memory",
                    cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
                    cl::sub(reachCmd), cl::cat(category));
@@ -1163,6 +1168,56 @@ static int runSr() {
   return complete ? 0 : 2;
 }
 
+/// Writes a property's trace as `BASE.json` (formula, verdict, the states
+/// by id as `reach` numbers them, the step labels, the loop) and
+/// `BASE.aut` (the path as an Aldebaran graph, the loop as an edge back).
+static bool writeTraceFiles(const std::string &base,
+                            const checkers::CtlFormula &f, bool holds,
+                            const checkers::CtlTrace &t,
+                            llvm::ArrayRef<std::pair<uint32_t, uint32_t>> steps,
+                            uint32_t loopLabel, const statespace::Explorer &x) {
+  auto label = [&](uint32_t l) {
+    return l == statespace::Explorer::kNone ? std::string("tau") : x.label(l);
+  };
+  auto quoted = [](const std::string &text) {
+    std::string out = "\"";
+    for (char c : text) {
+      if (c == '"' || c == '\\')
+        out += '\\';
+      out += c;
+    }
+    return out + "\"";
+  };
+  bool ok = writeOutput(base + ".json", [&](llvm::raw_ostream &os) {
+    os << "{\"formula\": " << quoted(checkers::ctlToString(f))
+       << ", \"holds\": " << (holds ? "true" : "false")
+       << ", \"trace\": " << quoted(t.witness ? "witness" : "counterexample")
+       << ", \"claim\": " << quoted(t.claim) << ",\n \"states\": [";
+    for (size_t i = 0; i < steps.size(); ++i)
+      os << (i ? ", " : "") << steps[i].second;
+    os << "],\n \"labels\": [";
+    for (size_t i = 1; i < steps.size(); ++i)
+      os << (i > 1 ? ", " : "") << quoted(label(steps[i].first));
+    os << "],\n \"loop_to\": ";
+    if (t.loopTo >= 0)
+      os << t.loopTo << ", \"loop_label\": " << quoted(label(loopLabel));
+    else
+      os << "null";
+    os << "}\n";
+  });
+  ok = ok && writeOutput(base + ".aut", [&](llvm::raw_ostream &os) {
+         size_t edges = steps.size() - 1 + (t.loopTo >= 0);
+         os << "des (0, " << edges << ", " << steps.size() << ")\n";
+         for (size_t i = 1; i < steps.size(); ++i)
+           os << "(" << i - 1 << "," << quoted(label(steps[i].first)) << ","
+              << i << ")\n";
+         if (t.loopTo >= 0)
+           os << "(" << steps.size() - 1 << "," << quoted(label(loopLabel))
+              << "," << t.loopTo << ")\n";
+       });
+  return ok;
+}
+
 /// `netlift check`: explores the model, then checks each CTL property on
 /// the state space (docs/check.md). Exit 0 all hold, 3 some fail, 2 the
 /// exploration was stopped by a limit, 1 an error.
@@ -1213,35 +1268,59 @@ static int runCheck() {
   for (size_t i = 0; i < n; ++i)
     g.succStart[i + 1] += g.succStart[i];
   g.succ.resize(explorer.edges().size());
+  g.succLabel.resize(explorer.edges().size());
   std::vector<uint32_t> fill(g.succStart.begin(), g.succStart.end() - 1);
-  for (const statespace::Edge &e : explorer.edges())
+  for (const statespace::Edge &e : explorer.edges()) {
+    g.succLabel[fill[e.from]] = e.label;
     g.succ[fill[e.from]++] = e.to;
+  }
   sem::RuntimeError err;
   auto atomValue = [&](const net::Expr *e, uint32_t s) {
     return semantics.evalPredicate(e, explorer.store().state(s), err);
   };
   bool allHold = true;
+  if (!checkTraceDir.empty())
+    if (std::error_code ec = llvm::sys::fs::create_directories(checkTraceDir)) {
+      llvm::errs() << "netlift: error: cannot create '" << checkTraceDir
+                   << "': " << ec.message() << "\n";
+      return 1;
+    }
+  unsigned index = 0;
   for (const auto &f : formulas) {
+    ++index;
     std::vector<uint8_t> sat = checkers::evaluateCtl(*f, g, atomValue);
     bool holds = sat[0];
     allHold = allHold && holds;
     llvm::outs() << checkers::ctlToString(*f) << ": "
                  << (holds ? "holds" : "fails") << "\n";
-    // Shortest traces (states are numbered in breadth-first order): a
-    // counterexample to AG p, a witness of EF p.
-    using K = checkers::CtlFormula;
-    if ((f->kind == K::AG && !holds) || (f->kind == K::EF && holds)) {
-      std::vector<uint8_t> inner = checkers::evaluateCtl(*f->lhs, g, atomValue);
-      bool want = f->kind == K::EF;
-      for (uint32_t s = 0; s < n; ++s)
-        if (bool(inner[s]) == want) {
-          llvm::outs() << (want ? "witness" : "counterexample")
-                       << ": a shortest path to a state where "
-                       << checkers::ctlToString(*f->lhs)
-                       << (want ? " holds" : " does not hold") << "\n";
-          statespace::writeTrace(explorer, semantics, s, llvm::outs());
-          break;
-        }
+    std::optional<checkers::CtlTrace> trace =
+        checkers::ctlTrace(*f, g, atomValue);
+    if (!trace)
+      continue;
+    // The label of each step: the first edge between the two states.
+    auto labelOf = [&](uint32_t from, uint32_t to) {
+      for (uint32_t k = g.succStart[from]; k < g.succStart[from + 1]; ++k)
+        if (g.succ[k] == to)
+          return g.succLabel[k];
+      return statespace::Explorer::kNone;
+    };
+    std::vector<std::pair<uint32_t, uint32_t>> steps;
+    for (size_t i = 0; i < trace->states.size(); ++i)
+      steps.push_back({i ? labelOf(trace->states[i - 1], trace->states[i])
+                         : statespace::Explorer::kNone,
+                       trace->states[i]});
+    llvm::outs() << (trace->witness ? "witness: " : "counterexample: ")
+                 << trace->claim << "\n";
+    uint32_t loopLabel =
+        trace->loopTo >= 0
+            ? labelOf(trace->states.back(), trace->states[trace->loopTo])
+            : statespace::Explorer::kNone;
+    statespace::writePath(explorer, semantics, steps, llvm::outs(),
+                          trace->loopTo, loopLabel);
+    if (!checkTraceDir.empty()) {
+      std::string base = checkTraceDir + "/p" + std::to_string(index);
+      if (!writeTraceFiles(base, *f, holds, *trace, steps, loopLabel, explorer))
+        return 1;
     }
   }
   if (!err.message.empty()) {
