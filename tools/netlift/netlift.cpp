@@ -13,6 +13,7 @@
 #include "backends/enforce/Enforce.h"
 #include "backends/mealy/ExtractMealy.h"
 #include "backends/mealy/MealyWriters.h"
+#include "backends/nces/NcesXml.h"
 #include "backends/nces/NetDot.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
@@ -337,7 +338,7 @@ static cl::opt<bool> showStats("stats",
                                         "stderr"),
                                cl::sub(optCmd), cl::cat(category));
 
-enum class EmitFormat { Net, Dot, Promela, Pnml };
+enum class EmitFormat { Net, Dot, Promela, Pnml, NcesXml, Pnt };
 static cl::opt<EmitFormat>
     emitFormat("to", cl::desc("Output format"), cl::Required,
                cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
@@ -349,7 +350,13 @@ static cl::opt<EmitFormat>
                                      "--ctl properties as ltl claims)"),
                           clEnumValN(EmitFormat::Pnml, "pnml",
                                      "PNML P/T net (the flattened top; "
-                                     "capacities as complementary places)")),
+                                     "capacities as complementary places)"),
+                          clEnumValN(EmitFormat::NcesXml, "nces-xml",
+                                     "ViVe NCES XML (the flattened top; no "
+                                     "data: lower-data first)"),
+                          clEnumValN(EmitFormat::Pnt, "pnt",
+                                     "INA/SESA .pnt table (the flattened top; "
+                                     "place/transition nets)")),
                cl::sub(emitCmd), cl::cat(category));
 
 enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
@@ -638,8 +645,7 @@ static int runEmit() {
   DiagEngine diag(sm);
   net::Design design;
   std::vector<std::string> inputs{emitInput};
-  bool flatTop =
-      emitFormat == EmitFormat::Promela || emitFormat == EmitFormat::Pnml;
+  bool flatTop = emitFormat != EmitFormat::Net && emitFormat != EmitFormat::Dot;
   if (!checkFormulas.empty() && emitFormat != EmitFormat::Promela) {
     llvm::errs() << "netlift: error: --ctl goes with emit --to promela (or "
                     "netlift check)\n";
@@ -657,6 +663,12 @@ static int runEmit() {
     llvm::raw_string_ostream buf(text);
     if (emitFormat == EmitFormat::Pnml) {
       if (!checkers::writePnml(*top, diag, buf))
+        return 1;
+    } else if (emitFormat == EmitFormat::NcesXml) {
+      if (!nces::writeNcesXml(*top, diag, buf))
+        return 1;
+    } else if (emitFormat == EmitFormat::Pnt) {
+      if (!nces::writePnt(*top, diag, buf))
         return 1;
     } else {
       std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
@@ -684,6 +696,8 @@ static int runEmit() {
                          break;
                        case EmitFormat::Promela:
                        case EmitFormat::Pnml:
+                       case EmitFormat::NcesXml:
+                       case EmitFormat::Pnt:
                          break; // above
                        }
                      })

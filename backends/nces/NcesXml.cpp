@@ -1,0 +1,199 @@
+//===- NcesXml.cpp - flat modules for NCES tools (ViVe XML, .pnt) ---------===//
+#include "backends/nces/NcesXml.h"
+#include "backends/checkers/PtSubset.h"
+#include "ir/net/Printer.h"
+
+#include "llvm/Support/Casting.h"
+
+#include <string>
+#include <vector>
+
+using namespace netlift;
+using namespace netlift::net;
+
+namespace {
+std::string xmlEscape(llvm::StringRef text) {
+  std::string out;
+  for (char c : text)
+    switch (c) {
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    default:
+      out += c;
+    }
+  return out;
+}
+
+/// The place or condition port a signal expression names, as the NCES
+/// element an arc starts from; empty when it is an expression.
+std::string signalSource(const Module &m, const Expr *e) {
+  auto *r = llvm::dyn_cast<Ref>(e);
+  if (!r || !r->fields.empty())
+    return "";
+  if (r->sym.kind == SymKind::Place)
+    return m.places[r->sym.index].name.str();
+  if (r->sym.kind == SymKind::Port &&
+      m.ports[r->sym.index].kind == PortKind::Cond &&
+      m.ports[r->sym.index].isInput())
+    return m.ports[r->sym.index].name.str();
+  return "";
+}
+
+bool refuse(DiagEngine &diag, llvm::SMLoc loc, const std::string &what,
+            const char *hint) {
+  diag.error(loc, what + " cannot be written as NCES: " + hint);
+  return false;
+}
+
+const char *kNoData = "NCES has no data; run the lower-data pass first "
+                      "(netlift opt -p 'flatten,lower-data')";
+const char *kSignal = "an NCES condition arc starts at a place or a "
+                      "condition input, not at an expression";
+} // namespace
+
+bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
+                        llvm::raw_ostream &os) {
+  for (const Var &v : m.vars)
+    return refuse(diag, v.loc, "variable '" + v.name.str() + "'", kNoData);
+  for (const Port &p : m.ports) {
+    if (p.kind == PortKind::Data)
+      return refuse(diag, p.loc, "data port '" + p.name.str() + "'", kNoData);
+    if (p.isStored())
+      return refuse(diag, p.loc, "stored output '" + p.name.str() + "'",
+                    kNoData);
+    if (p.definition && signalSource(m, p.definition).empty())
+      return refuse(diag, p.definitionLoc,
+                    "output '" + p.name.str() +
+                        "' = " + exprToString(p.definition),
+                    kSignal);
+  }
+  for (const Transition &t : m.transitions) {
+    if (t.guard() || t.hasAction())
+      return refuse(diag, t.loc,
+                    "transition '" + t.name.str() + "' with " +
+                        (t.guard() ? "a guard" : "an action"),
+                    kNoData);
+    for (const Expr *c : t.conds())
+      if (signalSource(m, c).empty())
+        return refuse(diag, c->loc,
+                      "condition '" + exprToString(c) + "' of transition '" +
+                          t.name.str() + "'",
+                      kSignal);
+  }
+
+  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+     << "<!-- Module '" << xmlEscape(m.name)
+     << "' as ViVe NCES XML (netlift emit --to nces-xml) -->\n"
+     << "<FBType Name=\"" << xmlEscape(m.name) << "\">\n"
+     << "  <InterfaceList>\n";
+  auto section = [&](const char *tag, const char *item, PortKind kind,
+                     bool input) {
+    bool any = false;
+    for (const Port &p : m.ports)
+      if (p.kind == kind && p.isInput() == input) {
+        if (!any)
+          os << "    <" << tag << ">\n";
+        any = true;
+        os << "      <" << item << " Name=\"" << xmlEscape(p.name) << "\""
+           << (kind == PortKind::Cond ? " Type=\"BOOL\"" : "") << "/>\n";
+      }
+    if (any)
+      os << "    </" << tag << ">\n";
+  };
+  section("EventInputs", "Event", PortKind::Event, true);
+  section("EventOutputs", "Event", PortKind::Event, false);
+  section("InputVars", "VarDeclaration", PortKind::Cond, true);
+  section("OutputVars", "VarDeclaration", PortKind::Cond, false);
+  os << "  </InterfaceList>\n  <SNS>\n";
+  // Layout: places in a row, transitions in the row below, so that a
+  // drawing tool shows something legible before the user arranges it.
+  for (uint32_t p = 0; p < m.places.size(); ++p) {
+    const Place &pl = m.places[p];
+    os << "    <place Name=\"" << xmlEscape(pl.name) << "\" Num=\"" << p
+       << "\" Mark=\"" << pl.tokens << "\" Clock=\"0\" Capacity=\""
+       << (pl.capacity == kInf ? std::string("-1")
+                               : std::to_string(pl.capacity))
+       << "\" X=\"" << 100 * p << "\" Y=\"0\"/>\n";
+  }
+  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti) {
+    const Transition &t = m.transitions[ti];
+    os << "    <trans Name=\"" << xmlEscape(t.name) << "\" Type=\""
+       << (t.mode == EventMode::And ? "AND" : "OR") << "\" SwitchMode=\""
+       << (t.urgent ? "urgent" : "normal") << "\" X=\"" << 100 * ti
+       << "\" Y=\"100\"/>\n";
+  }
+  auto arc = [&](const char *tag, llvm::StringRef from, llvm::StringRef to,
+                 uint32_t weight, const std::string &extra) {
+    os << "    <" << tag << " StartPoint=\"" << xmlEscape(from)
+       << "\" EndPoint=\"" << xmlEscape(to) << "\" ArcWeight=\"" << weight
+       << "\"" << extra << "/>\n";
+  };
+  for (const Transition &t : m.transitions) {
+    for (const PreArc &a : t.pre())
+      arc("arc", m.places[a.place].name, t.name, a.weight,
+          a.time.isTrivial()
+              ? std::string()
+              : " TimeValue=\"" + std::to_string(a.time.lo) + ";" +
+                    (a.time.hi == kInf ? std::string("-2")
+                                       : std::to_string(a.time.hi)) +
+                    "\"");
+    for (const PostArc &a : t.post())
+      arc("arc", t.name, m.places[a.place].name, a.weight, "");
+    for (const Expr *c : t.conds())
+      arc("condarc", signalSource(m, c), t.name, 1, "");
+    for (const EventSource &e : t.events())
+      arc("evarc",
+          e.fromPort ? m.ports[e.index].name : m.transitions[e.index].name,
+          t.name, 1, "");
+    for (uint32_t port : t.emits())
+      arc("evarc", t.name, m.ports[port].name, 1, "");
+  }
+  for (const Port &p : m.ports)
+    if (p.definition)
+      arc("condarc", signalSource(m, p.definition), p.name, 1, "");
+  os << "  </SNS>\n</FBType>\n";
+  return true;
+}
+
+bool nces::writePnt(const Module &m, DiagEngine &diag, llvm::raw_ostream &os) {
+  if (!checkers::refuseBeyondPt(m, ".pnt", diag))
+    return false;
+  // Per place: the transitions that put tokens in (PRE) and take them out
+  // (POST), `t:w` where the weight is not 1.
+  std::vector<std::string> pre(m.places.size()), post(m.places.size());
+  auto add = [](std::string &list, uint32_t t, uint32_t w) {
+    list += " " + std::to_string(t) + (w == 1 ? "" : ":" + std::to_string(w));
+  };
+  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti) {
+    for (const PostArc &a : m.transitions[ti].post())
+      add(pre[a.place], ti, a.weight);
+    for (const PreArc &a : m.transitions[ti].pre())
+      add(post[a.place], ti, a.weight);
+  }
+  os << "P   M   PRE,POST  NETZ 0:" << m.name << "\n";
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    os << p << " " << m.places[p].tokens << "  " << pre[p] << "," << post[p]
+       << "\n";
+  os << "@\nplace nr.             name capacity time\n";
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    os << "     " << p << ": " << m.places[p].name << "   "
+       << (m.places[p].capacity == kInf ? std::string("oo")
+                                        : std::to_string(m.places[p].capacity))
+       << "    0\n";
+  os << "@\ntrans nr.             name priority time\n";
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    os << "     " << t << ": " << m.transitions[t].name << "   "
+       << (m.transitions[t].urgent ? 1 : 0) << "    0\n";
+  os << "@\n";
+  return true;
+}
