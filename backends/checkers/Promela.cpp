@@ -272,53 +272,29 @@ bool StepWriter::buildUnits() {
   return true;
 }
 
-static uint32_t fieldOffset(const Type *t, uint32_t field) {
-  uint32_t off = 0;
-  for (uint32_t i = 0; i < field; ++i)
-    off += sem::StateLayout::slotsOf(t->fields[i].type);
-  return off;
-}
-
 /// The slot an expression statically designates (-1: none or not static).
-static int64_t staticSlot(const Module &m, const sem::StateLayout &L,
-                          const Expr *e) {
-  if (auto *r = llvm::dyn_cast<Ref>(e)) {
-    int64_t base = -1;
-    const Type *t = nullptr;
-    if (r->sym.kind == SymKind::Var) {
-      base = L.varSlot(r->sym.index);
-      t = m.vars[r->sym.index].type;
-    } else if (r->sym.kind == SymKind::Port &&
-               !m.ports[r->sym.index].definition &&
-               m.ports[r->sym.index].kind != PortKind::Event) {
-      base = L.portSlot(r->sym.index);
-      t = m.ports[r->sym.index].type;
-    }
-    if (base < 0)
-      return -1;
-    for (uint32_t f : r->fields) {
-      base += fieldOffset(t, f);
-      t = t->fields[f].type;
-    }
-    return base;
-  }
+static int64_t staticSlot(const sem::StateLayout &L, const Expr *e) {
+  if (auto *r = llvm::dyn_cast<Ref>(e))
+    return L.refSlot(r);
   if (auto *f = llvm::dyn_cast<FieldExpr>(e)) {
-    int64_t base = staticSlot(m, L, f->base);
-    return base < 0 ? -1 : base + fieldOffset(f->base->type, f->fieldIndex);
+    int64_t base = staticSlot(L, f->base);
+    return base < 0 ? -1
+                    : base + sem::StateLayout::fieldOffset(f->base->type,
+                                                           f->fieldIndex);
   }
   return -1;
 }
 
 std::optional<Access> StepWriter::access(const Expr *e) {
   if (auto *x = llvm::dyn_cast<IndexExpr>(e)) {
-    int64_t base = staticSlot(m, L, x->base);
+    int64_t base = staticSlot(L, x->base);
     if (base < 0 || unitOfSlot[base] < 0 || !units[unitOfSlot[base]].isArray) {
       refuse(e->loc, "indexing '" + exprToString(x->base) + "'");
       return std::nullopt;
     }
     return Access{uint32_t(unitOfSlot[base]), x->index};
   }
-  int64_t slot = staticSlot(m, L, e);
+  int64_t slot = staticSlot(L, e);
   if (slot < 0)
     return std::nullopt;
   if (unitOfSlot[slot] < 0 || units[unitOfSlot[slot]].isArray) {

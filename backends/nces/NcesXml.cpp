@@ -2,6 +2,7 @@
 #include "backends/nces/NcesXml.h"
 #include "backends/checkers/PtSubset.h"
 #include "ir/net/Printer.h"
+#include "ir/support/XmlEscape.h"
 
 #include "llvm/Support/Casting.h"
 
@@ -12,28 +13,6 @@ using namespace netlift;
 using namespace netlift::net;
 
 namespace {
-std::string xmlEscape(llvm::StringRef text) {
-  std::string out;
-  for (char c : text)
-    switch (c) {
-    case '&':
-      out += "&amp;";
-      break;
-    case '<':
-      out += "&lt;";
-      break;
-    case '>':
-      out += "&gt;";
-      break;
-    case '"':
-      out += "&quot;";
-      break;
-    default:
-      out += c;
-    }
-  return out;
-}
-
 /// The place or condition port a signal expression names, as the NCES
 /// element an arc starts from; empty when it is an expression.
 std::string signalSource(const Module &m, const Expr *e) {

@@ -110,37 +110,12 @@ struct Semantics::Impl {
   [[noreturn]] void fail(const Expr *e, const std::string &msg) const {
     throw EvalError{msg, e ? e->loc : llvm::SMLoc()};
   }
-  static uint32_t fieldOffset(const Type *t, uint32_t field) {
-    uint32_t off = 0;
-    for (uint32_t i = 0; i < field; ++i)
-      off += StateLayout::slotsOf(t->fields[i].type);
-    return off;
-  }
   /// First slot of the storage an expression designates; -1 when it
   /// designates none (a defined output, a literal...).
   int64_t slotOf(const Expr *e, const std::vector<int64_t> &v) {
     switch (e->getKind()) {
-    case ExprKind::Ref: {
-      auto *r = cast<Ref>(e);
-      int64_t base = -1;
-      const Type *t = nullptr;
-      if (r->sym.kind == SymKind::Var) {
-        base = L.varSlot(r->sym.index);
-        t = m.vars[r->sym.index].type;
-      } else if (r->sym.kind == SymKind::Port &&
-                 !m.ports[r->sym.index].definition &&
-                 m.ports[r->sym.index].kind != PortKind::Event) {
-        base = L.portSlot(r->sym.index);
-        t = m.ports[r->sym.index].type;
-      }
-      if (base < 0)
-        return -1;
-      for (uint32_t f : r->fields) {
-        base += fieldOffset(t, f);
-        t = t->fields[f].type;
-      }
-      return base;
-    }
+    case ExprKind::Ref:
+      return L.refSlot(cast<Ref>(e));
     case ExprKind::Index: {
       auto *x = cast<IndexExpr>(e);
       int64_t base = slotOf(x->base, v);
@@ -160,7 +135,7 @@ struct Semantics::Impl {
       int64_t base = slotOf(f->base, v);
       if (base < 0)
         fail(e, "cannot select a field of '" + exprToString(f->base) + "'");
-      return base + fieldOffset(f->base->type, f->fieldIndex);
+      return base + StateLayout::fieldOffset(f->base->type, f->fieldIndex);
     }
     default:
       return -1;

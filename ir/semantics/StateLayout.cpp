@@ -109,3 +109,31 @@ StateLayout::StateLayout(const Module &mod, unsigned unboundedBits) : m(mod) {
 bool StateLayout::isUnbounded(uint32_t place) const {
   return m.places[place].capacity == kInf;
 }
+
+uint32_t StateLayout::fieldOffset(const Type *t, uint32_t field) {
+  uint32_t off = 0;
+  for (uint32_t i = 0; i < field; ++i)
+    off += slotsOf(t->fields[i].type);
+  return off;
+}
+
+int64_t StateLayout::refSlot(const Ref *r) const {
+  int64_t base = -1;
+  const Type *t = nullptr;
+  if (r->sym.kind == SymKind::Var) {
+    base = varSlot(r->sym.index);
+    t = m.vars[r->sym.index].type;
+  } else if (r->sym.kind == SymKind::Port &&
+             !m.ports[r->sym.index].definition &&
+             m.ports[r->sym.index].kind != PortKind::Event) {
+    base = portSlot(r->sym.index);
+    t = m.ports[r->sym.index].type;
+  }
+  if (base < 0)
+    return -1;
+  for (uint32_t f : r->fields) {
+    base += fieldOffset(t, f);
+    t = t->fields[f].type;
+  }
+  return base;
+}

@@ -14,6 +14,7 @@
 #ifndef NETLIFT_IR_SEMANTICS_STATELAYOUT_H
 #define NETLIFT_IR_SEMANTICS_STATELAYOUT_H
 
+#include "ir/net/Expr.h"
 #include "ir/net/Module.h"
 
 #include <algorithm>
@@ -96,6 +97,12 @@ public:
   }
   /// Largest value a slot can hold.
   int64_t slotMax(uint32_t slot) const { return slotVec[slot].hi; }
+  /// First slot of what a name designates (a variable, a stored output or
+  /// an input, down its record field path); -1 when it has no storage (a
+  /// place, a defined output, an enumerator...).
+  int64_t refSlot(const net::Ref *r) const;
+  /// Slots before field `field` in a value of record type `t`.
+  static uint32_t fieldOffset(const net::Type *t, uint32_t field);
   /// Number of slots of a value of type `t` (arrays, records flattened).
   static uint32_t slotsOf(const net::Type *t) {
     return uint32_t(t->numSlots());
