@@ -290,6 +290,7 @@ public:
 /// hidden.
 bool hideStatement(antlr4::BufferedTokenStream &tokens,
                    const antlr4::dfa::Vocabulary &vocab, size_t at) {
+  // getSymbolicName returns a temporary string: test it before it goes.
   auto isEnd = [&](size_t type) {
     return StringRef(vocab.getSymbolicName(type)).startswith("END_");
   };
@@ -304,10 +305,10 @@ bool hideStatement(antlr4::BufferedTokenStream &tokens,
     size_t i = begin - 1;
     if (onChannel(i)) {
       size_t type = tokens.get(i)->getType();
-      StringRef name = vocab.getSymbolicName(type);
+      std::string name = vocab.getSymbolicName(type);
       if (type == P::SEMI || type == P::THEN || type == P::ELSE ||
           type == P::DO || type == P::OF || isEnd(type) ||
-          name.startswith("VAR"))
+          StringRef(name).startswith("VAR"))
         break;
     }
     begin = i;
