@@ -190,6 +190,7 @@ private:
   std::string enabling(uint32_t t);
   std::string eventEnabling(uint32_t t);
   std::string jointEnabling();
+  void writeClosure(const std::string &indent);
   /// `after` follows the closing brace (a separator, or nothing).
   void writeFiring(const std::string &indent, const char *after);
   void writeTick(const std::string &indent);
@@ -780,6 +781,61 @@ void StepWriter::writeReset(const std::string &in) {
       os << in << "SEL[" << t << "] = 0;\n";
 }
 
+/// The rounds of the closure under forced transitions, then the firing
+/// (forced transitions exist).
+void StepWriter::writeClosure(const std::string &in2) {
+  // Rounds of the closure under forced transitions, as the engine does
+  // them: the candidates of a round are the enabled, event-enabled forced
+  // transitions that fit with the step one by one; all of them join
+  // when they fit together, else each maximal subset is a choice. SEL
+  // is the set JOINT judges: the step, plus what is being tried.
+  os << in2 << "do\n" << in2 << ":: d_step {\n";
+  std::string r = in2 + "     ";
+  os << r << "NC = 0;\n";
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    os << r << "SEL[" << t << "] = ST[" << t << "];\n";
+  for (uint32_t f : forced)
+    os << r << "SEL[" << f << "] = 1; CAND[" << f << "] = !ST[" << f
+       << "] && EN" << f << " && EV" << f << " && JOINT; SEL[" << f << "] = ST["
+       << f << "]; NC = NC || CAND[" << f << "];\n";
+  for (uint32_t f : forced)
+    os << r << "SEL[" << f << "] = ST[" << f << "] || CAND[" << f << "];\n";
+  os << r << "ALL = JOINT;\n";
+  for (uint32_t f : forced)
+    os << r << "SEL[" << f << "] = ST[" << f << "];\n";
+  os << in2 << "   };\n";
+  // The round that finds no candidate fires the step and leaves (a
+  // `break` may not lead into a d_step).
+  os << in2 << "   if\n" << in2 << "   :: !NC -> ALL = 0;\n";
+  writeFiring(in2 + "      ", ";");
+  os << in2 << "      break\n";
+  os << in2 << "   :: NC && ALL -> d_step {\n";
+  for (uint32_t f : forced)
+    os << in2 << "        ST[" << f << "] = ST[" << f << "] || CAND[" << f
+       << "]; CAND[" << f << "] = 0;\n";
+  os << in2 << "        NC = 0; ALL = 0\n" << in2 << "      }\n";
+  os << in2 << "   :: NC && !ALL ->\n";
+  std::string c = in2 + "      ";
+  for (uint32_t f : forced) {
+    os << c << "d_step { SEL[" << f << "] = 1; FIT = CAND[" << f
+       << "] && JOINT; SEL[" << f << "] = 0 };\n";
+    os << c << "if :: FIT -> CHO[" << f << "] = 1; SEL[" << f
+       << "] = 1; FIT = 0 :: true -> FIT = 0 fi;\n";
+  }
+  // A choice that is not maximal is completed in candidate order, so
+  // every path ends in a maximal subset and every maximal subset is one.
+  os << c << "d_step {\n";
+  for (uint32_t f : forced)
+    os << c << "  SEL[" << f << "] = 1; CHO[" << f << "] = CHO[" << f
+       << "] || (CAND[" << f << "] && JOINT); SEL[" << f << "] = ST[" << f
+       << "] || CHO[" << f << "];\n";
+  for (uint32_t f : forced)
+    os << c << "  ST[" << f << "] = ST[" << f << "] || CHO[" << f << "]; CHO["
+       << f << "] = 0; CAND[" << f << "] = 0;\n";
+  os << c << "  NC = 0; ALL = 0\n" << c << "}\n";
+  os << in2 << "   fi\n" << in2 << "od\n";
+}
+
 bool StepWriter::write() {
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
     (m.transitions[t].isForced() ? forced : spontaneous).push_back(t);
@@ -981,60 +1037,10 @@ bool StepWriter::write() {
     os << in << "   }\n" << in << ":: else ->\n";
     in2 = in + "   ";
   }
-  if (!forced.empty()) {
-    // Rounds of the closure under forced transitions, as the engine does
-    // them: the candidates of a round are the enabled, event-enabled forced
-    // transitions that fit with the step one by one; all of them join
-    // when they fit together, else each maximal subset is a choice. SEL
-    // is the set JOINT judges: the step, plus what is being tried.
-    os << in2 << "do\n" << in2 << ":: d_step {\n";
-    std::string r = in2 + "     ";
-    os << r << "NC = 0;\n";
-    for (uint32_t t = 0; t < m.transitions.size(); ++t)
-      os << r << "SEL[" << t << "] = ST[" << t << "];\n";
-    for (uint32_t f : forced)
-      os << r << "SEL[" << f << "] = 1; CAND[" << f << "] = !ST[" << f
-         << "] && EN" << f << " && EV" << f << " && JOINT; SEL[" << f
-         << "] = ST[" << f << "]; NC = NC || CAND[" << f << "];\n";
-    for (uint32_t f : forced)
-      os << r << "SEL[" << f << "] = ST[" << f << "] || CAND[" << f << "];\n";
-    os << r << "ALL = JOINT;\n";
-    for (uint32_t f : forced)
-      os << r << "SEL[" << f << "] = ST[" << f << "];\n";
-    os << in2 << "   };\n";
-    // The round that finds no candidate fires the step and leaves (a
-    // `break` may not lead into a d_step).
-    os << in2 << "   if\n" << in2 << "   :: !NC -> ALL = 0;\n";
-    writeFiring(in2 + "      ", ";");
-    os << in2 << "      break\n";
-    os << in2 << "   :: NC && ALL -> d_step {\n";
-    for (uint32_t f : forced)
-      os << in2 << "        ST[" << f << "] = ST[" << f << "] || CAND[" << f
-         << "]; CAND[" << f << "] = 0;\n";
-    os << in2 << "        NC = 0; ALL = 0\n" << in2 << "      }\n";
-    os << in2 << "   :: NC && !ALL ->\n";
-    std::string c = in2 + "      ";
-    for (uint32_t f : forced) {
-      os << c << "d_step { SEL[" << f << "] = 1; FIT = CAND[" << f
-         << "] && JOINT; SEL[" << f << "] = 0 };\n";
-      os << c << "if :: FIT -> CHO[" << f << "] = 1; SEL[" << f
-         << "] = 1; FIT = 0 :: true -> FIT = 0 fi;\n";
-    }
-    // A choice that is not maximal is completed in candidate order, so
-    // every path ends in a maximal subset and every maximal subset is one.
-    os << c << "d_step {\n";
-    for (uint32_t f : forced)
-      os << c << "  SEL[" << f << "] = 1; CHO[" << f << "] = CHO[" << f
-         << "] || (CAND[" << f << "] && JOINT); SEL[" << f << "] = ST[" << f
-         << "] || CHO[" << f << "];\n";
-    for (uint32_t f : forced)
-      os << c << "  ST[" << f << "] = ST[" << f << "] || CHO[" << f << "]; CHO["
-         << f << "] = 0; CAND[" << f << "] = 0;\n";
-    os << c << "  NC = 0; ALL = 0\n" << c << "}\n";
-    os << in2 << "   fi\n" << in2 << "od\n";
-  } else {
+  if (!forced.empty())
+    writeClosure(in2);
+  else
     writeFiring(in2, "");
-  }
   if (timed)
     os << in << "fi\n";
   os << "     }\n  od\n}\n";
