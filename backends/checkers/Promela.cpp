@@ -187,6 +187,8 @@ private:
   std::string expr(const Expr *e);
   void collectWrites(Block b, std::set<uint32_t> &out);
   void stmts(Block b, const std::string &indent);
+  void firstTrueArm(llvm::ArrayRef<std::pair<std::string, Block>> arms,
+                    Block elseBody, const std::string &indent);
   std::string enabling(uint32_t t);
   std::string eventEnabling(uint32_t t);
   std::string jointEnabling();
@@ -489,6 +491,25 @@ void StepWriter::collectWrites(Block b, std::set<uint32_t> &out) {
   }
 }
 
+/// `if`/`case` of an action: Promela picks among true guards, netlift the
+/// first arm that holds, so each guard excludes those before it.
+void StepWriter::firstTrueArm(
+    llvm::ArrayRef<std::pair<std::string, Block>> arms, Block elseBody,
+    const std::string &in) {
+  std::string earlier;
+  os << in << "if\n";
+  for (const auto &[cond, body] : arms) {
+    os << in << ":: " << (earlier.empty() ? "" : "!(" + earlier + ") && ")
+       << "(" << cond << ") ->\n";
+    stmts(body, in + "   ");
+    os << in << "   skip\n";
+    earlier += (earlier.empty() ? "" : " || ") + ("(" + cond + ")");
+  }
+  os << in << ":: else ->\n";
+  stmts(elseBody, in + "   ");
+  os << in << "   skip\n" << in << "fi;\n";
+}
+
 /// An action's statements on the shadow copies of what it writes: stores
 /// are range-checked (or wrapped) as netlift's are, and flagged written.
 void StepWriter::stmts(Block b, const std::string &in) {
@@ -518,45 +539,27 @@ void StepWriter::stmts(Block b, const std::string &in) {
       break;
     }
     case StmtKind::If: {
-      // Exclusive guards: Promela picks among true guards, netlift the
-      // first.
       auto *i = cast<IfStmt>(s);
-      std::string earlier;
-      os << in << "if\n";
-      for (const IfArm &arm : i->arms) {
-        std::string c = expr(arm.cond);
-        os << in << ":: " << (earlier.empty() ? "" : "!(" + earlier + ") && ")
-           << "(" << c << ") ->\n";
-        stmts(arm.body, in + "   ");
-        os << in << "   skip\n";
-        earlier += (earlier.empty() ? "" : " || ") + ("(" + c + ")");
-      }
-      os << in << ":: else ->\n";
-      stmts(i->elseBody, in + "   ");
-      os << in << "   skip\n" << in << "fi;\n";
+      std::vector<std::pair<std::string, Block>> arms;
+      for (const IfArm &arm : i->arms)
+        arms.push_back({expr(arm.cond), arm.body});
+      firstTrueArm(arms, i->elseBody, in);
       break;
     }
     case StmtKind::Case: {
       auto *c = cast<CaseStmt>(s);
-      std::string sel = expr(c->selector), earlier;
-      os << in << "if\n";
+      std::string sel = expr(c->selector);
+      std::vector<std::pair<std::string, Block>> arms;
       for (const CaseArm &arm : c->arms) {
         std::string match;
-        for (const CaseLabel &l : arm.labels) {
-          std::string one = l.hi ? "(" + sel + " >= " + expr(l.lo) + " && " +
-                                       sel + " <= " + expr(l.hi) + ")"
-                                 : "(" + sel + " == " + expr(l.lo) + ")";
-          match += (match.empty() ? "" : " || ") + one;
-        }
-        os << in << ":: " << (earlier.empty() ? "" : "!(" + earlier + ") && ")
-           << "(" << match << ") ->\n";
-        stmts(arm.body, in + "   ");
-        os << in << "   skip\n";
-        earlier += (earlier.empty() ? "" : " || ") + ("(" + match + ")");
+        for (const CaseLabel &l : arm.labels)
+          match += (match.empty() ? "" : " || ") +
+                   (l.hi ? "(" + sel + " >= " + expr(l.lo) + " && " + sel +
+                               " <= " + expr(l.hi) + ")"
+                         : "(" + sel + " == " + expr(l.lo) + ")");
+        arms.push_back({match, arm.body});
       }
-      os << in << ":: else ->\n";
-      stmts(c->elseBody, in + "   ");
-      os << in << "   skip\n" << in << "fi;\n";
+      firstTrueArm(arms, c->elseBody, in);
       break;
     }
     case StmtKind::For: {
