@@ -88,6 +88,10 @@ llvm::StringRef spelling(Builtin b);
 /// Binding strength used by the parser and the printer (higher binds
 /// tighter).
 int precedence(BinaryOp op);
+/// `==` `!=` `<` `<=` `>` `>=` (one precedence level).
+inline bool isComparison(BinaryOp op) { return precedence(op) == 5; }
+/// `+` `-` `*` `/` `%` (the two highest levels).
+inline bool isArithmetic(BinaryOp op) { return precedence(op) >= 10; }
 
 class Expr {
 public:

@@ -574,24 +574,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     // In a property (`buf >= 2`, `a + b == 3`), a place compared or
     // counted with numbers stands for its token count; next to a Boolean
     // it still means "is marked".
-    bool countsPlaces = false;
-    switch (bin->op) {
-    case BinaryOp::Eq:
-    case BinaryOp::Ne:
-    case BinaryOp::Lt:
-    case BinaryOp::Le:
-    case BinaryOp::Gt:
-    case BinaryOp::Ge:
-    case BinaryOp::Add:
-    case BinaryOp::Sub:
-    case BinaryOp::Mul:
-    case BinaryOp::Div:
-    case BinaryOp::Mod:
-      countsPlaces = ctx == Ctx::State;
-      break;
-    default:
-      break;
-    }
+    bool countsPlaces =
+        ctx == Ctx::State && (isComparison(bin->op) || isArithmetic(bin->op));
     if (countsPlaces) {
       auto isPlace = [](const Expr *x) {
         auto *r = llvm::dyn_cast<Ref>(x);
