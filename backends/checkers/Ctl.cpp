@@ -90,6 +90,8 @@ public:
     if (f && peek().kind != Token::End)
       return fail(peek().offset, "expected the end of the property, found '" +
                                      peek().text + "'");
+    if (f)
+      f->loc = llvm::SMLoc::getFromPointer(text.data());
     return f;
   }
 

@@ -48,6 +48,8 @@ struct CtlFormula {
   std::unique_ptr<CtlFormula> lhs, rhs; // operands (rhs of binary, U)
   net::Expr *atom = nullptr;
   std::string atomText;
+  /// Where the property starts (set on the whole formula by parseCtl).
+  llvm::SMLoc loc;
 };
 
 /// Parses the formula in buffer `bufferID`; atoms are parsed and checked

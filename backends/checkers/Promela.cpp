@@ -1145,7 +1145,7 @@ bool StepWriter::writeLtl(llvm::ArrayRef<const CtlFormula *> properties) {
     if (failed)
       return false;
     if (text.empty()) {
-      diag.error(llvm::SMLoc(),
+      diag.error(properties[i]->loc,
                  "property " + std::to_string(i + 1) + " '" +
                      ctlToString(*properties[i]) +
                      "' is not in the fragment of CTL that netlift writes "
