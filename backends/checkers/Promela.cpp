@@ -246,9 +246,6 @@ bool StepWriter::buildUnits() {
   varUnitBase.assign(m.vars.size(), -1);
   portUnitBase.assign(m.ports.size(), -1);
   for (uint32_t v = 0; v < m.vars.size(); ++v) {
-    if (m.vars[v].type->isReal())
-      return refuse(m.vars[v].loc, "real variable '" + m.vars[v].name.str() +
-                                       "' (discretise first)");
     uint32_t slot = uint32_t(L.varSlot(v));
     if (!addUnits(identifier("V", v, m.vars[v].name), m.vars[v].type, slot,
                   false, m.vars[v].loc))
