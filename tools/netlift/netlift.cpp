@@ -38,6 +38,7 @@
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/InitLLVM.h"
+#include "llvm/Support/JSON.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/Program.h"
@@ -1193,41 +1194,41 @@ static bool writeTraceFiles(const std::string &base,
   auto label = [&](uint32_t l) {
     return l == statespace::Explorer::kNone ? std::string("tau") : x.label(l);
   };
-  auto quoted = [](const std::string &text) {
-    std::string out = "\"";
-    for (char c : text) {
-      if (c == '"' || c == '\\')
-        out += '\\';
-      out += c;
-    }
-    return out + "\"";
-  };
   bool ok = writeOutput(base + ".json", [&](llvm::raw_ostream &os) {
-    os << "{\"formula\": " << quoted(checkers::ctlToString(f))
-       << ", \"holds\": " << (holds ? "true" : "false")
-       << ", \"trace\": " << quoted(t.witness ? "witness" : "counterexample")
-       << ", \"claim\": " << quoted(t.claim) << ",\n \"states\": [";
-    for (size_t i = 0; i < steps.size(); ++i)
-      os << (i ? ", " : "") << steps[i].second;
-    os << "],\n \"labels\": [";
-    for (size_t i = 1; i < steps.size(); ++i)
-      os << (i > 1 ? ", " : "") << quoted(label(steps[i].first));
-    os << "],\n \"loop_to\": ";
-    if (t.loopTo >= 0)
-      os << t.loopTo << ", \"loop_label\": " << quoted(label(loopLabel));
-    else
-      os << "null";
-    os << "}\n";
+    llvm::json::OStream j(os, 1);
+    j.object([&] {
+      j.attribute("formula", checkers::ctlToString(f));
+      j.attribute("holds", holds);
+      j.attribute("trace", t.witness ? "witness" : "counterexample");
+      j.attribute("claim", t.claim);
+      j.attributeArray("states", [&] {
+        for (const auto &step : steps)
+          j.value(int64_t(step.second));
+      });
+      j.attributeArray("labels", [&] {
+        for (size_t i = 1; i < steps.size(); ++i)
+          j.value(label(steps[i].first));
+      });
+      if (t.loopTo >= 0) {
+        j.attribute("loop_to", t.loopTo);
+        j.attribute("loop_label", label(loopLabel));
+      } else {
+        j.attribute("loop_to", nullptr);
+      }
+    });
+    os << "\n";
   });
+  // The path as an Aldebaran graph, labels as `reach --format aut` writes
+  // them.
   ok = ok && writeOutput(base + ".aut", [&](llvm::raw_ostream &os) {
          size_t edges = steps.size() - 1 + (t.loopTo >= 0);
          os << "des (0, " << edges << ", " << steps.size() << ")\n";
          for (size_t i = 1; i < steps.size(); ++i)
-           os << "(" << i - 1 << "," << quoted(label(steps[i].first)) << ","
-              << i << ")\n";
+           os << "(" << i - 1 << ",\"" << label(steps[i].first) << "\"," << i
+              << ")\n";
          if (t.loopTo >= 0)
-           os << "(" << steps.size() - 1 << "," << quoted(label(loopLabel))
-              << "," << t.loopTo << ")\n";
+           os << "(" << steps.size() - 1 << ",\"" << label(loopLabel) << "\","
+              << t.loopTo << ")\n";
        });
   return ok;
 }
