@@ -18,7 +18,9 @@
 // event synchronisation), up to the renaming above. A forced transition whose
 // event input is driven by an event nobody emits can never fire; it keeps a
 // `false` guard and a warning says so. Modules other than the result are
-// removed from the design.
+// removed from the design. Attributes follow their entities (a module's own
+// become its instance's, `attr c device = ...`); those of bound inputs go
+// with the inputs.
 //
 //===----------------------------------------------------------------------===//
 #include "passes/Flatten.h"
@@ -74,6 +76,8 @@ Module *Flattener::run(Module *top) {
     return nullptr;
   if (!flat->ports.empty())
     flat->isSystem = false;
+  // An instance's bound inputs are gone, and their attributes with them.
+  flat->pruneAttributes();
   return flat;
 }
 
@@ -169,6 +173,15 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
       eqs.push_back(n);
     }
     b.addFlow(placeBase + f.place, eqs, f.loc);
+  }
+
+  // Attributes follow their entity; the module's own become the
+  // instance's (a scope of the flat names).
+  for (const Attribute &a : y.attributes) {
+    std::string target = a.target.empty() && !prefix.empty()
+                             ? prefix.substr(0, prefix.size() - 1)
+                             : prefix + a.target.str();
+    b.addAttribute(target, a.key, a.value, a.loc);
   }
 
   // Instances, depth first in declaration order.

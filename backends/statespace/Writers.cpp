@@ -20,31 +20,31 @@ void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
 }
 
 namespace {
-/// Values of one state by attribute: places, variables (leaves), outputs.
-struct Attribute {
+/// The columns of a state listing: places, variables (leaves), outputs.
+struct StateColumn {
   std::string name;
   enum Kind { Place, Clock, Data, Output } kind;
   uint32_t slot = 0;         // Place, Clock, Data, stored Output
   const Expr *def = nullptr; // defined Output
 };
 
-std::vector<Attribute> attributes(const sem::Semantics &sem) {
+std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
   const sem::StateLayout &L = sem.layout();
   const Module &m = sem.module();
-  std::vector<Attribute> out;
+  std::vector<StateColumn> out;
   for (uint32_t p = 0; p < m.places.size(); ++p)
     out.push_back(
-        {m.places[p].name.str(), Attribute::Place, L.markingSlot(p), nullptr});
+        {m.places[p].name.str(), StateColumn::Place, L.markingSlot(p), nullptr});
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (L.clockSlot(p) >= 0)
-      out.push_back({L.slots()[L.clockSlot(p)].name, Attribute::Clock,
+      out.push_back({L.slots()[L.clockSlot(p)].name, StateColumn::Clock,
                      uint32_t(L.clockSlot(p)), nullptr});
   for (uint32_t v = 0; v < m.vars.size(); ++v) {
     int32_t first = L.varSlot(v);
     if (first < 0)
       continue;
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(m.vars[v].type); ++i)
-      out.push_back({L.slots()[first + i].name, Attribute::Data,
+      out.push_back({L.slots()[first + i].name, StateColumn::Data,
                      uint32_t(first + i), nullptr});
   }
   for (uint32_t p = 0; p < m.ports.size(); ++p) {
@@ -52,12 +52,12 @@ std::vector<Attribute> attributes(const sem::Semantics &sem) {
     if (!port.isOutput() || port.kind == PortKind::Event)
       continue;
     if (port.definition) {
-      out.push_back({port.name.str(), Attribute::Output, 0, port.definition});
+      out.push_back({port.name.str(), StateColumn::Output, 0, port.definition});
       continue;
     }
     int32_t first = L.portSlot(p);
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(port.type); ++i)
-      out.push_back({L.slots()[first + i].name, Attribute::Output,
+      out.push_back({L.slots()[first + i].name, StateColumn::Output,
                      uint32_t(first + i), nullptr});
   }
   return out;
@@ -70,7 +70,7 @@ std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
   return flags;
 }
 
-int64_t valueOf(sem::Semantics &sem, const Attribute &a,
+int64_t valueOf(sem::Semantics &sem, const StateColumn &a,
                 const uint64_t *state) {
   if (a.def) {
     sem::RuntimeError err;
@@ -84,9 +84,9 @@ std::string netlift::statespace::describeState(sem::Semantics &sem,
                                                const uint64_t *state,
                                                llvm::StringRef separator) {
   std::string out;
-  for (const Attribute &a : attributes(sem)) {
+  for (const StateColumn &a : stateColumns(sem)) {
     int64_t v = valueOf(sem, a, state);
-    if (a.kind == Attribute::Place && v == 0)
+    if (a.kind == StateColumn::Place && v == 0)
       continue; // markings list the marked places only
     out +=
         (out.empty() ? "" : separator.str()) + a.name + "=" + std::to_string(v);
@@ -113,7 +113,7 @@ void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
 
 void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
                                    llvm::raw_ostream &os) {
-  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem);
   // Edges grouped by source state, each group in generation order.
   uint32_t n = x.store().size();
   std::vector<uint32_t> first(n + 1, 0);
@@ -128,11 +128,11 @@ void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
   for (uint32_t s = 0; s < n; ++s) {
     os << "state nr. " << s << "\n ";
     bool any = false;
-    for (const Attribute &a : attrs) {
+    for (const StateColumn &a : attrs) {
       int64_t v = valueOf(sem, a, x.store().state(s));
-      if (a.kind == Attribute::Place && v == 0)
+      if (a.kind == StateColumn::Place && v == 0)
         continue; // a marking lists its marked places
-      os << " " << a.name << (a.kind == Attribute::Place ? ":" : "=") << v;
+      os << " " << a.name << (a.kind == StateColumn::Place ? ":" : "=") << v;
       any = true;
     }
     if (!any)
@@ -148,14 +148,14 @@ void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
 void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
                                     const ExploreResult &r,
                                     llvm::raw_ostream &os) {
-  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem);
   std::vector<char> isDeadlock = deadlockFlags(x, r);
   llvm::json::OStream j(os, 1);
   j.object([&] {
     j.attribute("model", sem.module().name);
     j.attribute("complete", r.complete);
     j.attributeArray("attributes", [&] {
-      for (const Attribute &a : attrs)
+      for (const StateColumn &a : attrs)
         j.object([&] {
           j.attribute("name", a.name);
           static const char *kinds[] = {"place", "clock", "variable", "output"};
@@ -169,7 +169,7 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
           if (isDeadlock[s])
             j.attribute("deadlock", true);
           j.attributeArray("values", [&] {
-            for (const Attribute &a : attrs)
+            for (const StateColumn &a : attrs)
               j.value(valueOf(sem, a, x.store().state(s)));
           });
         });
@@ -198,15 +198,15 @@ static std::string csvField(const std::string &f) {
 void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
                                          const ExploreResult &r,
                                          llvm::raw_ostream &os) {
-  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem);
   std::vector<char> isDeadlock = deadlockFlags(x, r);
   os << "id,deadlock";
-  for (const Attribute &a : attrs)
+  for (const StateColumn &a : attrs)
     os << ',' << csvField(a.name);
   os << '\n';
   for (uint32_t s = 0; s < x.store().size(); ++s) {
     os << s << ',' << int(isDeadlock[s]);
-    for (const Attribute &a : attrs)
+    for (const StateColumn &a : attrs)
       os << ',' << valueOf(sem, a, x.store().state(s));
     os << '\n';
   }
@@ -250,7 +250,7 @@ void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
     int64_t loopTo, uint32_t loopLabel) {
-  std::vector<Attribute> attrs = attributes(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem);
   std::vector<int64_t> prev;
   size_t width = 9; // "(initial)"
   for (auto &[label, s] : path)
@@ -261,12 +261,12 @@ void netlift::statespace::writePath(
   for (size_t i = 0; i < path.size(); ++i) {
     auto [label, s] = path[i];
     std::vector<int64_t> cur;
-    for (const Attribute &a : attrs)
+    for (const StateColumn &a : attrs)
       cur.push_back(valueOf(sem, a, x.store().state(s)));
     std::string changes;
     for (size_t k = 0; k < attrs.size(); ++k) {
       if (i == 0) {
-        if (attrs[k].kind == Attribute::Place && cur[k] == 0)
+        if (attrs[k].kind == StateColumn::Place && cur[k] == 0)
           continue;
         changes += (changes.empty() ? "" : ", ") + attrs[k].name + "=" +
                    std::to_string(cur[k]);

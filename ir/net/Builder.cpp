@@ -77,6 +77,12 @@ void Builder::addConnection(Endpoint from, Endpoint to, SMLoc loc) {
   mod->connections.push_back({loc, from, to});
 }
 
+void Builder::addAttribute(StringRef target, StringRef key, StringRef value,
+                           SMLoc loc) {
+  mod->attributes.push_back(
+      {design.save(target), design.save(key), design.save(value), loc});
+}
+
 void Builder::addFlow(uint32_t place, ArrayRef<Flow::Equation> eqs, SMLoc loc) {
   Flow f;
   f.loc = loc;

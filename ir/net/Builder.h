@@ -37,6 +37,9 @@ public:
   uint32_t addInstance(llvm::StringRef name, llvm::StringRef moduleName,
                        llvm::SMLoc loc = {});
   void addConnection(Endpoint from, Endpoint to, llvm::SMLoc loc = {});
+  /// Attaches `key = value` to `target` (see Attribute; empty: the module).
+  void addAttribute(llvm::StringRef target, llvm::StringRef key,
+                    llvm::StringRef value, llvm::SMLoc loc = {});
   void addFlow(uint32_t place, llvm::ArrayRef<Flow::Equation> eqs,
                llvm::SMLoc loc = {});
 

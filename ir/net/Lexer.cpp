@@ -95,6 +95,17 @@ Token Lexer::next() {
     return false;
   };
   switch (c) {
+  case '"':
+    // A string ends at the next unescaped quote on the same line.
+    while (cur != end && *cur != '"' && *cur != '\n') {
+      if (*cur == '\\' && cur + 1 != end && cur[1] != '\n')
+        ++cur;
+      ++cur;
+    }
+    if (cur == end || *cur != '"')
+      return {Tok::Error, llvm::StringRef(start, 1)};
+    ++cur;
+    return make(Tok::String, start);
   case '{':
     return make(Tok::LBrace, start);
   case '}':

@@ -20,6 +20,7 @@ enum class Tok : uint8_t {
   Ident,
   Int,
   Real,
+  String, // "..." with \" and \\ escapes; text keeps the quotes
   LBrace,
   RBrace,
   LParen,

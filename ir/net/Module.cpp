@@ -2,6 +2,7 @@
 #include "ir/net/Module.h"
 
 #include "llvm/ADT/DenseSet.h"
+#include "llvm/ADT/STLExtras.h"
 
 #include "llvm/Support/xxhash.h"
 #include <cstring>
@@ -91,6 +92,40 @@ void Module::rebuildSymbols() {
     declare(vars[i].name, {SymKind::Var, i});
   for (uint32_t i = 0; i < instances.size(); ++i)
     declare(instances[i].name, {SymKind::Instance, i});
+  pruneAttributes();
+}
+
+bool Module::isAttributeTarget(StringRef target) const {
+  if (target.empty() || lookup(target).kind != SymKind::None)
+    return true;
+  // A scope: the prefix of some qualified name. Few attributes name one,
+  // so a scan per attribute is cheap enough.
+  auto inScope = [&](StringRef n) {
+    return n.size() > target.size() && n.startswith(target) &&
+           n[target.size()] == '.';
+  };
+  for (const Port &p : ports)
+    if (inScope(p.name))
+      return true;
+  for (const Place &p : places)
+    if (inScope(p.name))
+      return true;
+  for (const Transition &t : transitions)
+    if (inScope(t.name))
+      return true;
+  for (const Var &v : vars)
+    if (inScope(v.name))
+      return true;
+  for (const Instance &i : instances)
+    if (inScope(i.name))
+      return true;
+  return false;
+}
+
+void Module::pruneAttributes() {
+  llvm::erase_if(attributes, [&](const Attribute &a) {
+    return !isAttributeTarget(a.target);
+  });
 }
 
 StringRef Module::symbolName(Symbol s) const {

@@ -233,6 +233,23 @@ struct Connection {
   Endpoint from, to;
 };
 
+/// A named string attached to a module or to one of its entities
+/// (`attr step pragma = "attribute 'hide'";`): what a frontend knows about
+/// the source that has no meaning in the net, such as a PLC variable's
+/// pragmas or the device and resource an IEC 61499 block is mapped to.
+/// Analyses ignore attributes. They are kept beside the entities rather
+/// than in them because few entities have any; passes keep them with their
+/// entity (flatten qualifies the target; an entity a pass removes takes its
+/// attributes with it).
+struct Attribute {
+  /// An entity or instance of the module, a scope of its qualified names
+  /// (`c` of `c.scan`, after flatten), or empty: the module itself.
+  llvm::StringRef target;
+  llvm::StringRef key;
+  llvm::StringRef value;
+  llvm::SMLoc loc;
+};
+
 /// A NetIR module (or a system: a module with no interface).
 class Module {
 public:
@@ -252,6 +269,8 @@ public:
   std::vector<Flow> flows;
   std::vector<Instance> instances;
   std::vector<Connection> connections;
+  /// In the order they were declared (printed in that order).
+  std::vector<Attribute> attributes;
 
   /// One namespace for ports, places, transitions, variables and instances.
   /// Returns SymKind::None if absent.
@@ -269,8 +288,14 @@ public:
     symbols.reserve(numPlaces + numTransitions + numVars + ports.size(), *this);
   }
   /// Rebuilds the symbol table from the entity vectors (after a pass
-  /// removed or renamed entities).
+  /// removed or renamed entities), and drops the attributes of entities
+  /// that are gone.
   void rebuildSymbols();
+  /// Whether an attribute may name `target`: the module (empty), an
+  /// entity or instance, or a scope of entity names.
+  bool isAttributeTarget(llvm::StringRef target) const;
+  /// Drops the attributes whose target is gone.
+  void pruneAttributes();
   llvm::StringRef symbolName(Symbol s) const;
   int findPort(llvm::StringRef n) const;
 

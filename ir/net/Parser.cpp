@@ -89,6 +89,9 @@ private:
     if (tok.is(Tok::Error)) {
       if (lex.unterminatedComment)
         return error(tok.loc(), "unterminated /* comment");
+      if (tok.text == "\"")
+        return error(tok.loc(), "unterminated string (a string ends with "
+                                "'\"' on the line where it starts)");
       unsigned char c = tok.text.empty() ? 0 : tok.text[0];
       if (c >= 0x20 && c < 0x7f)
         return error(tok.loc(),
@@ -162,6 +165,7 @@ private:
   bool parseFlowDecl();
   bool parseInstDecl();
   bool parseConnectDecl();
+  bool parseAttrDecl();
   bool parseEndpoint(Endpoint &e);
   bool parseDefinition();
   bool resolveModuleFixups();
@@ -592,10 +596,12 @@ bool Parser::parseModuleItem() {
     return parseInstDecl();
   if (kw == "connect")
     return parseConnectDecl();
+  if (kw == "attr")
+    return parseAttrDecl();
   return error(SMLoc::getFromPointer(kw.data()),
                "unknown declaration '" + kw +
                    "' (expected event, cond, data, place, trans, var, clock, "
-                   "real, flow, inst, connect or 'name = expr;')");
+                   "real, flow, inst, connect, attr or 'name = expr;')");
 }
 
 bool Parser::parsePortDecl(PortKind kind) {
@@ -1017,6 +1023,44 @@ bool Parser::parseConnectDecl() {
   if (!parseEndpoint(from) || !expect(Tok::Arrow, "'->'") || !parseEndpoint(to))
     return false;
   b.addConnection(from, to, loc);
+  return expect(Tok::Semi, "';'");
+}
+
+/// `attr [TARGET] KEY = "VALUE";`
+bool Parser::parseAttrDecl() {
+  SMLoc loc = tok.loc();
+  StringRef target, key;
+  SMLoc nameLoc;
+  if (!parseName(key, nameLoc, "an attribute target or key"))
+    return false;
+  if (!tok.is(Tok::Equal)) {
+    target = key;
+    if (!parseSimpleName(key, nameLoc, "an attribute key"))
+      return false;
+  }
+  if (key.contains('.'))
+    return error(nameLoc,
+                 "an attribute key '" + key + "' must not be qualified (no '.')");
+  if (!expect(Tok::Equal, "'='"))
+    return false;
+  if (!tok.is(Tok::String))
+    return errorHere("expected a string (\"...\"), found " + describe());
+  std::string value;
+  StringRef quoted = tok.text.drop_front().drop_back();
+  for (size_t i = 0; i < quoted.size(); ++i) {
+    char c = quoted[i];
+    if (c == '\\') {
+      char n = quoted[++i];
+      if (n != '"' && n != '\\' && n != 'n' && n != 't')
+        return error(SMLoc::getFromPointer(quoted.data() + i - 1),
+                     llvm::Twine("unknown escape '\\") + llvm::Twine(n) +
+                         "' (write \\\", \\\\, \\n or \\t)");
+      c = n == 'n' ? '\n' : n == 't' ? '\t' : n;
+    }
+    value += c;
+  }
+  consume();
+  b.addAttribute(target, key, value, loc);
   return expect(Tok::Semi, "';'");
 }
 

@@ -349,6 +349,23 @@ void ModulePrinter::run() {
     printEnd(c.to);
     os << ";\n";
   }
+  for (const Attribute &a : m.attributes) {
+    os << "  attr ";
+    if (!a.target.empty())
+      os << a.target << ' ';
+    os << a.key << " = \"";
+    for (char c : a.value) {
+      if (c == '"' || c == '\\')
+        os << '\\' << c;
+      else if (c == '\n')
+        os << "\\n";
+      else if (c == '\t')
+        os << "\\t";
+      else
+        os << c;
+    }
+    os << "\";\n";
+  }
   os << "}\n";
 }
 

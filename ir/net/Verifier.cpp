@@ -49,6 +49,7 @@ private:
   std::string typeName(const Type *t) { return t->str(); }
   SMLoc locOf(Symbol s);
   void checkNames();
+  void checkAttributes();
   void checkPorts();
   void checkVars();
   void checkPlaces();
@@ -113,6 +114,15 @@ void ModuleVerifier::checkNames() {
     check(m.vars[i].name, m.vars[i].loc, {SymKind::Var, i});
   for (uint32_t i = 0; i < m.instances.size(); ++i)
     check(m.instances[i].name, m.instances[i].loc, {SymKind::Instance, i});
+}
+
+void ModuleVerifier::checkAttributes() {
+  for (const Attribute &a : m.attributes)
+    if (!m.isAttributeTarget(a.target))
+      error(a.loc, "attribute '" + a.key + "' is attached to '" + a.target +
+                       "', which is not a port, place, transition, "
+                       "variable, instance or scope of module '" +
+                       m.name + "'");
 }
 
 bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
@@ -1016,6 +1026,7 @@ void ModuleVerifier::run() {
     checkTransition(i);
   checkFlows();
   checkInstancesAndConnections();
+  checkAttributes();
   if (!diag.hadError()) {
     checkDefinitionCycles();
     checkEventCycles();
