@@ -128,6 +128,15 @@ private:
   // Bodies.
   void beginModule(Pou *program);
   void capClocks();
+  /// Pragmas become `pragma` attributes of what they annotate (see
+  /// attachPragmas).
+  void keepPragmas(const std::string &target,
+                   const std::vector<Attribute> &attrs) {
+    for (const Attribute &a : attrs)
+      pendingPragmas.push_back({target, &a});
+  }
+  void attachPragmas();
+  std::vector<std::pair<std::string, const Attribute *>> pendingPragmas;
   void lowerModule(Pou *program, int64_t periodTicks);
   void lowerEventBlock(EventDrivenBlock &block);
   void body(StmtList &list, Frame &f, Sink &out,
@@ -531,6 +540,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
   if (v->section == VarSection::External)
     return; // the global is declared once
   if (t->kind == PTypeKind::FunctionBlock) {
+    keepPragmas(sanitize(v->name), v->attrs);
     declareInstance(sanitize(v->name), t->fb,
                     v->typeSyntax ? v->typeSyntax->init : nullptr);
     return;
@@ -539,6 +549,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
     refuse(v->loc, "VAR_IN_OUT of the translated program '" +
                        currentProgram->name + "' has nothing to refer to");
   std::string name = sanitize(v->name);
+  keepPragmas(name, v->attrs);
   // An input bound to a global by a program argument is fed from it.
   bool isInput = (v->area() == 'I' || v->section == VarSection::Input) &&
                  !boundInputs.count(v);
@@ -599,10 +610,16 @@ void Lowering::declareProgramVar(VarDecl *v) {
 void Lowering::declareInstance(const std::string &path, Pou *fb,
                                Initializer *init) {
   instanceTypes[path] = fb;
+  // The block type's pragmas go to the instance, as flatten would carry a
+  // module's. netlift's own blocks' pragmas are directives to netlift.
+  if (!fb->isLibrary)
+    keepPragmas(path, fb->attrs);
   for (VarDecl *m : fb->vars) {
     if (m->section == VarSection::External)
       continue;
     std::string name = path + "." + sanitize(m->name);
+    if (!fb->isLibrary)
+      keepPragmas(name, m->attrs);
     Initializer *mi = m->typeSyntax ? m->typeSyntax->init : nullptr;
     if (init && init->kind == Initializer::Struct)
       for (auto &[fname, finit] : init->fields)
@@ -1898,6 +1915,8 @@ void Lowering::beginModule(Pou *program) {
   clockOfBound.clear();
   instanceTypes.clear();
   varTypes.clear();
+  pendingPragmas.clear();
+  keepPragmas("", program->attrs);
 
   // Globals this program uses are its own variables.
   std::set<VarDecl *> globalsUsed;
@@ -1979,6 +1998,20 @@ void Lowering::capClocks() {
   }
 }
 
+/// A pragma goes to the port, variable or instance scope its declaration
+/// became. A declaration that became none (a constant, a block without
+/// state) gives its pragma to the module, with the declaration's name in
+/// front, so that no pragma is lost.
+void Lowering::attachPragmas() {
+  for (auto &[target, a] : pendingPragmas) {
+    if (mod->isAttributeTarget(target))
+      b.addAttribute(target, "pragma", a->text, a->loc);
+    else
+      b.addAttribute("", "pragma", target + ": " + a->text, a->loc);
+  }
+  pendingPragmas.clear();
+}
+
 void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
   beginModule(program);
   std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
@@ -2004,6 +2037,7 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
                               b.ref(sanitize(v->name), v->loc), v->loc));
 
   capClocks();
+  attachPragmas();
 
   // Dead values reset at the end of the scan.
   auto varIndex = [&](StringRef name) -> int32_t {
@@ -2263,6 +2297,7 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
     b.setAction(t, action);
   }
   capClocks();
+  attachPragmas();
   eventDriven = false;
 }
 
