@@ -124,6 +124,7 @@ private:
 
   // Networks.
   void network(FbType &t);
+  void keepMapping(XmlSource &src, pugi::xml_node sys, pugi::xml_node app);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
@@ -1139,6 +1140,45 @@ void Translator::driveWithConstant(StringRef inst, StringRef input,
                   {design.save(inst), design.save(input), at}, at);
 }
 
+/// Where each block of an application runs (the system's Mapping) is kept
+/// as attributes of its instance: `attr boot device = "PLC";` and `attr
+/// boot resource = "RES";`. A block inside a subapplication gives the
+/// subapplication's instance `mapping = "inner.path -> PLC.RES"`.
+void Translator::keepMapping(XmlSource &src, pugi::xml_node sys,
+                             pugi::xml_node app) {
+  net::Module *m = b.getModule();
+  StringRef appName = app.attribute("Name").value();
+  for (pugi::xml_node mp : sys.children("Mapping")) {
+    StringRef from = mp.attribute("From").value();
+    auto [fromApp, path] = from.split('.');
+    if (!fromApp.equals_insensitive(appName))
+      continue;
+    llvm::SmallVector<StringRef, 4> to;
+    StringRef(mp.attribute("To").value()).split(to, '.');
+    if (to.size() < 3)
+      fail(src.locOf(mp), "mapping target '" +
+                              Twine(mp.attribute("To").value()) +
+                              "' is not DEVICE.RESOURCE.BLOCK");
+    auto [block, inner] = path.split('.');
+    const net::Instance *inst = nullptr;
+    for (const net::Instance &i : m->instances)
+      if (i.name.equals_insensitive(block))
+        inst = &i;
+    if (!inst)
+      fail(src.locOf(mp), "mapping source '" + from +
+                              "' names no block of application '" + appName +
+                              "'");
+    SMLoc at = src.locOf(mp);
+    if (inner.empty()) {
+      b.addAttribute(inst->name, "device", to[0], at);
+      b.addAttribute(inst->name, "resource", to[1], at);
+    } else {
+      b.addAttribute(inst->name, "mapping",
+                     (inner + " -> " + to[0] + "." + to[1]).str(), at);
+    }
+  }
+}
+
 void Translator::network(FbType &t) {
   networkOf(t.name, *t.src, t.body, &t, t.src->locOf(t.root));
 }
@@ -1277,6 +1317,7 @@ bool Translator::run(const std::vector<unsigned> &ids) {
           net = child(app, "FBNetwork");
         networkOf(app.attribute("Name").value(), *file->src, net, nullptr,
                   file->src->locOf(app));
+        keepMapping(*file->src, sys, app);
       }
 
     if (!st::addStandardLibrary(diag, unit) || !checkUnit(unit, diag))
