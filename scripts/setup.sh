@@ -9,6 +9,7 @@ packages=(
   llvm-14-dev llvm-14-tools            # LLVM ADT/Support; FileCheck, not, split-file, lit
   antlr4 libantlr4-runtime-dev default-jre-headless
   libfmt-dev libpugixml-dev
+  libtcmalloc-minimal4                 # the tools' allocator (CMakeLists.txt says why)
   libgtest-dev googletest
   graphviz clang-format
   spin                                 # cross-checks the Promela export (test/backends/checkers)
