@@ -272,6 +272,11 @@ public:
     } else {
       message = "syntax error: unexpected " + found;
     }
+    // Only the first error of a parse is reported (the next parse, with
+    // the broken statement hidden, finds the next real one), so the rest
+    // of the text need not be parsed: full-LL prediction is what makes a
+    // parse with errors slow.
+    throw antlr4::ParseCancellationException();
   }
   bool seen = false, atEof = false;
   size_t offset = 0, tokenIndex = 0;
@@ -1091,6 +1096,7 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
     if (!listener.seen)
       break;
     diag.error(lexer.locAt(listener.offset), listener.message);
+    tokens.fill(); // the parse stopped at the error: the rest is unread
     if (++reported >= maxErrors || listener.atEof ||
         !hideStatement(tokens, parser.getVocabulary(), listener.tokenIndex))
       break;
