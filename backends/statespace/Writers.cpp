@@ -33,8 +33,8 @@ std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
   const Module &m = sem.module();
   std::vector<StateColumn> out;
   for (uint32_t p = 0; p < m.places.size(); ++p)
-    out.push_back(
-        {m.places[p].name.str(), StateColumn::Place, L.markingSlot(p), nullptr});
+    out.push_back({m.places[p].name.str(), StateColumn::Place, L.markingSlot(p),
+                   nullptr});
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (L.clockSlot(p) >= 0)
       out.push_back({L.slots()[L.clockSlot(p)].name, StateColumn::Clock,

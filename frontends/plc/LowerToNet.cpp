@@ -126,7 +126,29 @@ private:
   void chooseTick(std::vector<int64_t> ns);
 
   // Bodies.
-  void beginModule(Pou *program);
+  /// One program of a module: the prefix of its own names ("" when the
+  /// module is the program's alone), the scan it runs in, and what its
+  /// lowering produces.
+  struct ProgramRun {
+    Pou *pou = nullptr;
+    std::string prefix;
+    std::string scan, cycle; // the scan transition and its place
+    int64_t period = 1;
+    Sink action;
+    std::vector<std::pair<std::string, NExpr *>> resets; // end of its scan
+    size_t membersBegin = 0, membersEnd = 0;             // its FB members
+  };
+  /// The globals `program` reads or writes (its body, the FBs and
+  /// functions it calls, its instance's arguments).
+  std::set<VarDecl *> globalsUsedBy(Pou *program);
+  void startModule(const std::string &name, SMLoc loc);
+  void declareProgram(ProgramRun &run);
+  void lowerProgramBody(ProgramRun &run);
+  void deadValueResets(ProgramRun &run);
+  /// One module holding `runs`; runs with the same scan share it, in
+  /// order.
+  void lowerPrograms(const std::string &name, SMLoc loc,
+                     std::vector<ProgramRun> &runs);
   void capClocks();
   /// Pragmas become `pragma` attributes of what they annotate (see
   /// attachPragmas).
@@ -137,7 +159,6 @@ private:
   }
   void attachPragmas();
   std::vector<std::pair<std::string, const Attribute *>> pendingPragmas;
-  void lowerModule(Pou *program, int64_t periodTicks);
   void lowerEventBlock(EventDrivenBlock &block);
   void body(StmtList &list, Frame &f, Sink &out,
             const std::vector<LoopCtx> &loops);
@@ -187,11 +208,15 @@ private:
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
   std::map<VarDecl *, std::set<std::string>> globalUsers;
+  /// The configuration's instance of each translated program.
+  std::map<Pou *, std::pair<ProgramInstance *, Configuration *>> instanceOf;
   /// The instance whose arguments bind a program's inputs and outputs.
   std::map<Pou *, ProgramInstance *> argumentsOf;
   /// Inputs of the program being lowered that an argument feeds.
   std::set<VarDecl *> boundInputs;
   Pou *currentProgram = nullptr;
+  /// The prefix of the current program's own names (see ProgramRun).
+  std::string programPrefix;
   /// Lowering an event-driven block: inputs take their full types.
   bool eventDriven = false;
 };
@@ -539,16 +564,15 @@ void Lowering::declareProgramVar(VarDecl *v) {
   const PType *t = v->type;
   if (v->section == VarSection::External)
     return; // the global is declared once
+  std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   if (t->kind == PTypeKind::FunctionBlock) {
-    keepPragmas(sanitize(v->name), v->attrs);
-    declareInstance(sanitize(v->name), t->fb,
-                    v->typeSyntax ? v->typeSyntax->init : nullptr);
+    keepPragmas(name, v->attrs);
+    declareInstance(name, t->fb, v->typeSyntax ? v->typeSyntax->init : nullptr);
     return;
   }
   if (v->section == VarSection::InOut)
     refuse(v->loc, "VAR_IN_OUT of the translated program '" +
                        currentProgram->name + "' has nothing to refer to");
-  std::string name = sanitize(v->name);
   keepPragmas(name, v->attrs);
   // An input bound to a global by a program argument is fed from it.
   bool isInput = (v->area() == 'I' || v->section == VarSection::Input) &&
@@ -1900,25 +1924,7 @@ static void readNames(llvm::ArrayRef<NStmt *> body, llvm::StringSet<> &out) {
   }
 }
 
-void Lowering::beginModule(Pou *program) {
-  currentProgram = program;
-  mod = b.createModule(sanitize(program->name), false, program->loc);
-  if (!mod)
-    refuse(program->loc,
-           "a module named '" + program->name + "' exists already");
-  resets.clear();
-  resetNames.clear();
-  instanceMembers.clear();
-  externallyRead.clear();
-  instanceUses.clear();
-  clocks.clear();
-  clockOfBound.clear();
-  instanceTypes.clear();
-  varTypes.clear();
-  pendingPragmas.clear();
-  keepPragmas("", program->attrs);
-
-  // Globals this program uses are its own variables.
+std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
   std::set<VarDecl *> globalsUsed;
   std::function<void(Expr *)> scanExpr = [&](Expr *e) {
     if (!e)
@@ -1957,21 +1963,57 @@ void Lowering::beginModule(Pou *program) {
     scanStmts(p->body);
   };
   scanPou(program);
+  if (auto it = argumentsOf.find(program); it != argumentsOf.end())
+    for (CallArg &a : it->second->args)
+      globalsUsed.insert(a.value->var);
+  return globalsUsed;
+}
+
+void Lowering::startModule(const std::string &name, SMLoc loc) {
+  mod = b.createModule(name, false, loc);
+  if (!mod)
+    refuse(loc, "a module named '" + name + "' exists already");
+  resets.clear();
+  resetNames.clear();
+  instanceMembers.clear();
+  externallyRead.clear();
+  instanceUses.clear();
+  clocks.clear();
+  clockOfBound.clear();
+  instanceTypes.clear();
+  varTypes.clear();
+  pendingPragmas.clear();
+}
+
+void Lowering::declareProgram(ProgramRun &run) {
+  Pou *program = run.pou;
+  currentProgram = program;
+  programPrefix = run.prefix;
+  std::swap(resets, run.resets);
+  run.membersBegin = instanceMembers.size();
+  // A module of its own takes the program's pragmas; in a module of
+  // several programs they go to the program's scope.
+  keepPragmas(run.prefix.empty() ? ""
+                                 : run.prefix.substr(0, run.prefix.size() - 1),
+              program->attrs);
   // Program arguments: inputs read their global at the start of the scan,
   // outputs write theirs at the end (IEC 61131-3 2.7.1).
   boundInputs.clear();
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
-    for (CallArg &a : it->second->args) {
-      VarDecl *v = program->find(a.name), *g = a.value->var;
-      globalsUsed.insert(g);
-      globalUsers[g].insert(program->name);
+    for (CallArg &a : it->second->args)
       if (!a.isOutput)
-        boundInputs.insert(v);
-    }
-  for (VarDecl *g : globalsUsed)
-    declareProgramVar(g);
+        boundInputs.insert(program->find(a.name));
+  // Globals this program uses are variables of the module (declared by
+  // the first program of the module that uses them).
+  for (VarDecl *g : globalsUsedBy(program)) {
+    globalUsers[g].insert(program->name);
+    if (mod->lookup(sanitize(g->name)).kind == net::SymKind::None)
+      declareProgramVar(g);
+  }
   for (VarDecl *v : program->vars)
     declareProgramVar(v);
+  run.membersEnd = instanceMembers.size();
+  std::swap(resets, run.resets);
 }
 
 /// Clock caps, and the TIME members they bound.
@@ -2012,8 +2054,11 @@ void Lowering::attachPragmas() {
   pendingPragmas.clear();
 }
 
-void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
-  beginModule(program);
+void Lowering::lowerProgramBody(ProgramRun &run) {
+  Pou *program = run.pou;
+  currentProgram = program;
+  programPrefix = run.prefix;
+  std::swap(resets, run.resets);
   std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
     for (CallArg &a : it->second->args)
@@ -2022,32 +2067,35 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
 
   Frame top;
   top.pou = program;
+  top.prefix = run.prefix;
   top.external = true;
-  Sink action;
+  Sink &action = run.action;
   if (mayJump(program->body, false)) {
-    top.returnFlag = unique("_return");
+    top.returnFlag = unique(run.prefix + "_return");
     declareTemp(top.returnFlag, elementaryType("BOOL"), program->loc);
   }
   for (auto &[v, g] : argIn)
-    action.push_back(b.assign(b.ref(sanitize(v->name), v->loc),
+    action.push_back(b.assign(b.ref(run.prefix + sanitize(v->name), v->loc),
                               b.ref(sanitize(g->name), v->loc), v->loc));
   body(program->body, top, action, {});
   for (auto &[v, g] : argOut)
     action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
-                              b.ref(sanitize(v->name), v->loc), v->loc));
+                              b.ref(run.prefix + sanitize(v->name), v->loc),
+                              v->loc));
+  std::swap(resets, run.resets);
+}
 
-  capClocks();
-  attachPragmas();
-
-  // Dead values reset at the end of the scan.
+/// FB members nobody reads after the scan go back to their initial values
+/// at its end, so that states do not differ by values no one will see.
+void Lowering::deadValueResets(ProgramRun &run) {
   auto varIndex = [&](StringRef name) -> int32_t {
     net::Symbol sym = mod->lookup(name);
     return sym.kind == net::SymKind::Var ? int32_t(sym.index) : -1;
   };
-  // Dead values reset at the end of the scan.
   llvm::StringSet<> read;
-  readNames(action, read);
-  for (const std::string &m : instanceMembers) {
+  readNames(run.action, read);
+  for (size_t k = run.membersBegin; k < run.membersEnd; ++k) {
+    const std::string &m = instanceMembers[k];
     bool dead = !read.count(m) && !externallyRead.count(m);
     if (!dead) {
       // An input every call passes and nobody reads from outside.
@@ -2069,20 +2117,48 @@ void Lowering::lowerModule(Pou *program, int64_t periodTicks) {
       continue;
     int32_t i = varIndex(m);
     if (i >= 0 && mod->vars[i].init) {
-      resets.push_back({m, mod->vars[i].init});
+      run.resets.push_back({m, mod->vars[i].init});
       resetNames.insert(m);
     }
   }
-  for (auto &[name, init] : resets)
-    action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
+}
 
-  uint32_t cycle = b.addPlace("cycle", 1, 1, program->loc);
-  net::PreArc pre{cycle, 1,
-                  net::Interval{uint32_t(periodTicks), uint32_t(periodTicks)}};
-  net::PostArc post{cycle, 1};
-  uint32_t scan = b.addTransition("scan", {pre}, {post}, program->loc);
-  b.setUrgent(scan);
-  b.setAction(scan, action);
+void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
+                             std::vector<ProgramRun> &runs) {
+  startModule(name, loc);
+  for (ProgramRun &run : runs)
+    declareProgram(run);
+  for (ProgramRun &run : runs)
+    lowerProgramBody(run);
+  capClocks();
+  attachPragmas();
+  for (ProgramRun &run : runs)
+    deadValueResets(run);
+  // One urgent scan per task, every `period` ticks: its programs in order,
+  // each followed by its end-of-scan resets.
+  for (size_t i = 0; i < runs.size(); ++i) {
+    bool first = true;
+    for (size_t j = 0; j < i; ++j)
+      first &= runs[j].scan != runs[i].scan;
+    if (!first)
+      continue;
+    Sink action;
+    for (ProgramRun &run : runs) {
+      if (run.scan != runs[i].scan)
+        continue;
+      action.insert(action.end(), run.action.begin(), run.action.end());
+      for (auto &[var, init] : run.resets)
+        action.push_back(b.assign(b.ref(var, init->loc), init, init->loc));
+    }
+    SMLoc at = runs[i].pou->loc;
+    uint32_t period = uint32_t(runs[i].period);
+    uint32_t cycle = b.addPlace(runs[i].cycle, 1, 1, at);
+    net::PreArc pre{cycle, 1, net::Interval{period, period}};
+    net::PostArc post{cycle, 1};
+    uint32_t scan = b.addTransition(runs[i].scan, {pre}, {post}, at);
+    b.setUrgent(scan);
+    b.setAction(scan, action);
+  }
 }
 
 void Lowering::chooseTick(std::vector<int64_t> ns) {
@@ -2139,8 +2215,10 @@ bool Lowering::run() {
     for (Configuration *c : unit.configs)
       for (ProgramInstance &pi : c->programs)
         if (sameName(pi.name, opts.top) || sameName(pi.typeName, opts.top))
-          if (Pou *p = unit.findPou(pi.typeName))
+          if (Pou *p = unit.findPou(pi.typeName)) {
             tops.push_back({p, taskOf(c, pi.task)});
+            instanceOf.try_emplace(p, &pi, c);
+          }
     if (tops.empty()) {
       Pou *p = unit.findPou(opts.top);
       if (!p || p->kind == PouKind::Function || p->isLibrary) {
@@ -2158,8 +2236,10 @@ bool Lowering::run() {
           bool dup = false;
           for (auto &[q, t] : tops)
             dup |= q == p;
-          if (!dup)
+          if (!dup) {
             tops.push_back({p, taskOf(c, pi.task)});
+            instanceOf.try_emplace(p, &pi, c);
+          }
         }
     if (tops.empty())
       for (Pou *p : unit.pous)
@@ -2216,6 +2296,7 @@ bool Lowering::run() {
         initTimes(g->typeSyntax->init, ns);
     chooseTick(std::move(ns));
 
+    std::vector<ProgramRun> runs;
     for (auto &[p, task] : tops) {
       int64_t period = 1;
       SMLoc at = p->loc;
@@ -2231,14 +2312,63 @@ bool Lowering::run() {
         refuse(task->single->loc, "event tasks (SINGLE) are not supported");
       if (period <= 0)
         refuse(at, "the scan period must be positive");
-      lowerModule(p, period);
+      ProgramRun run;
+      run.pou = p;
+      run.period = period;
+      run.scan = "scan";
+      run.cycle = "cycle";
+      if (task) {
+        run.scan = sanitize(task->name) + ".scan";
+        run.cycle = sanitize(task->name) + ".cycle";
+      }
+      runs.push_back(std::move(run));
     }
-    for (auto &[g, users] : globalUsers)
-      if (users.size() > 1 && !g->constant)
-        refuse(g->loc, "global '" + g->name + "' is shared by " +
-                           Twine(users.size()) +
-                           " programs, which netlift translates as separate "
-                           "modules (use --top to pick one)");
+    // Programs that share a variable (a global neither constant nor an FB
+    // instance) run in one module; otherwise each is a module of its own.
+    std::map<VarDecl *, unsigned> users;
+    bool shared = false;
+    for (ProgramRun &run : runs)
+      for (VarDecl *g : globalsUsedBy(run.pou)) {
+        if (g->constant || ++users[g] < 2)
+          continue;
+        if (g->type && g->type->kind == PTypeKind::FunctionBlock)
+          refuse(g->loc, "function block instance '" + g->name +
+                             "' is a global called by several programs; "
+                             "netlift does not model a shared instance");
+        shared = true;
+      }
+    if (!shared) {
+      for (ProgramRun &run : runs) {
+        std::vector<ProgramRun> one{std::move(run)};
+        one[0].scan = "scan";
+        one[0].cycle = "cycle";
+        lowerPrograms(sanitize(one[0].pou->name), one[0].pou->loc, one);
+      }
+    } else {
+      // One module for them all, named after their configuration: each
+      // program's own names under its instance's name, the globals
+      // bare, one scan per task (or `scan` alone when there is one task).
+      std::string name = "Programs";
+      SMLoc at = runs[0].pou->loc;
+      if (auto it = instanceOf.find(runs[0].pou); it != instanceOf.end()) {
+        name = sanitize(it->second.second->name);
+        at = it->second.second->loc;
+      }
+      bool oneScan = true;
+      for (ProgramRun &run : runs) {
+        oneScan &= run.scan == runs[0].scan;
+        auto it = instanceOf.find(run.pou);
+        run.prefix = sanitize(it != instanceOf.end() ? it->second.first->name
+                                                     : run.pou->name) +
+                     ".";
+      }
+      if (oneScan)
+        for (ProgramRun &run : runs) {
+          run.scan = "scan";
+          run.cycle = "cycle";
+        }
+      lowerPrograms(name, at, runs);
+    }
   } catch (Refusal &) {
     return false;
   }
@@ -2248,7 +2378,11 @@ bool Lowering::run() {
 void Lowering::lowerEventBlock(EventDrivenBlock &block) {
   eventDriven = true;
   Pou *pou = block.pou;
-  beginModule(pou);
+  startModule(sanitize(pou->name), pou->loc);
+  ProgramRun run;
+  run.pou = pou;
+  declareProgram(run);
+  resets = std::move(run.resets); // its temporaries, reset after reactions
   std::map<std::string, uint32_t> eventPorts;
   for (auto &[name, loc] : block.eventInputs)
     eventPorts[name] =

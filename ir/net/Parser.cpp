@@ -1039,8 +1039,8 @@ bool Parser::parseAttrDecl() {
       return false;
   }
   if (key.contains('.'))
-    return error(nameLoc,
-                 "an attribute key '" + key + "' must not be qualified (no '.')");
+    return error(nameLoc, "an attribute key '" + key +
+                              "' must not be qualified (no '.')");
   if (!expect(Tok::Equal, "'='"))
     return false;
   if (!tok.is(Tok::String))
