@@ -207,7 +207,6 @@ private:
   std::set<VarDecl *> written;
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
-  std::map<VarDecl *, std::set<std::string>> globalUsers;
   /// The configuration's instance of each translated program.
   std::map<Pou *, std::pair<ProgramInstance *, Configuration *>> instanceOf;
   /// The instance whose arguments bind a program's inputs and outputs.
@@ -866,10 +865,8 @@ NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
   auto alias = f.aliases.find(v);
   if (alias != f.aliases.end())
     return alias->second;
-  if (!v->owner) { // a global
-    globalUsers[v].insert(currentProgram->name);
+  if (!v->owner) // a global
     return b.ref(sanitize(v->name), at);
-  }
   return b.ref(f.prefix + sanitize(v->name), at);
 }
 
@@ -2006,7 +2003,6 @@ void Lowering::declareProgram(ProgramRun &run) {
   // Globals this program uses are variables of the module (declared by
   // the first program of the module that uses them).
   for (VarDecl *g : globalsUsedBy(program)) {
-    globalUsers[g].insert(program->name);
     if (mod->lookup(sanitize(g->name)).kind == net::SymKind::None)
       declareProgramVar(g);
   }
