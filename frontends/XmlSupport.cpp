@@ -101,6 +101,10 @@ StringRef XmlSource::placeAttribute(pugi::xml_node element, const char *name,
     *found = bool(a);
   if (!a)
     return {};
+  // An element netlift added itself (a simple FB's ECC) has no place in
+  // the text.
+  if (element.offset_debug() < 0)
+    return a.value();
   // pugixml keeps no offsets of attributes: find it in the start tag.
   size_t from = locOf(element).getPointer() - rawText.data();
   size_t tagEnd = rawText.find('>', from);

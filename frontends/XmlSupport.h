@@ -64,8 +64,9 @@ public:
   /// The text content of `element` (CDATA or character data, directly or in
   /// an xhtml <p>), placed at its offset in the copy; empty if none.
   llvm::StringRef placeText(pugi::xml_node element);
-  /// The value of attribute `name` of `element`, placed likewise; `found`
-  /// says whether the attribute exists.
+  /// The value of attribute `name` of `element`, placed likewise (as is
+  /// when the element was added after parsing); `found` says whether the
+  /// attribute exists.
   llvm::StringRef placeAttribute(pugi::xml_node element, const char *name,
                                  bool *found = nullptr);
 

@@ -64,7 +64,7 @@ struct Var {
   pugi::xml_node node;
 };
 
-enum class TypeKind { Basic, Composite, SubApp, Simple, Service, NoBody };
+enum class TypeKind { Basic, Composite, SubApp, Service, NoBody };
 
 /// One FB or subapplication type as read.
 struct FbType {
@@ -125,6 +125,7 @@ private:
   // Networks.
   void network(FbType &t);
   void keepMapping(XmlSource &src, pugi::xml_node sys, pugi::xml_node app);
+  void simpleAsBasic(FbType &t);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
@@ -256,9 +257,10 @@ void Translator::registerTypes(File &f, bool builtin) {
       t->kind = TypeKind::Basic;
     else if ((t->body = child(root, "FBNetwork")))
       t->kind = TypeKind::Composite;
-    else if ((t->body = child(root, "SimpleFB")))
-      t->kind = TypeKind::Simple;
-    else if ((t->body = child(root, "Service")))
+    else if ((t->body = child(root, "SimpleFB"))) {
+      simpleAsBasic(*t);
+      t->kind = TypeKind::Basic;
+    } else if ((t->body = child(root, "Service")))
       t->kind = TypeKind::Service;
   }
   std::string key = StringRef(t->name).upper();
@@ -602,6 +604,57 @@ Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
     throw Failure();
   rename(g);
   return g;
+}
+
+/// A simple FB (IEC 61499-1 Ed. 2) has no ECC: each input event runs the
+/// algorithm of the same name and then sends the output event of the same
+/// index, as 4diac FORTE's CSimpleFB does (REQ runs REQ, then CNF). It is
+/// translated as the basic FB with that ECC, written into the type's own
+/// element (so the algorithms keep their places in the file): START, and
+/// per input event a state running its algorithm and sending its output,
+/// left at once.
+void Translator::simpleAsBasic(FbType &t) {
+  if (child(t.body, "ECC"))
+    fail(t, t.body, "simple FB '" + t.name + "' has an ECC");
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    const Event &e = t.eventInputs[i];
+    bool found = false;
+    for (pugi::xml_node a : t.body.children("Algorithm"))
+      found |=
+          StringRef(a.attribute("Name").value()).equals_insensitive(e.name);
+    if (!found)
+      fail(t, e.node,
+           "event '" + e.name + "' of simple FB '" + t.name +
+               "' has no algorithm of its name (a simple FB runs the "
+               "algorithm named after the event)");
+    if (i >= t.eventOutputs.size())
+      fail(t, e.node,
+           "event '" + e.name + "' of simple FB '" + t.name +
+               "' has no output event at its position to confirm it");
+  }
+  pugi::xml_node ecc = t.body.append_child("ECC");
+  pugi::xml_node start = ecc.append_child("ECState");
+  start.append_attribute("Name") = "START";
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    std::string state = "RUN_" + t.eventInputs[i].name;
+    pugi::xml_node st = ecc.insert_child_after("ECState", start);
+    st.append_attribute("Name") = state.c_str();
+    pugi::xml_node act = st.append_child("ECAction");
+    act.append_attribute("Algorithm") = t.eventInputs[i].name.c_str();
+    act.append_attribute("Output") = t.eventOutputs[i].name.c_str();
+    start = st;
+  }
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    std::string state = "RUN_" + t.eventInputs[i].name;
+    pugi::xml_node go = ecc.append_child("ECTransition");
+    go.append_attribute("Source") = "START";
+    go.append_attribute("Destination") = state.c_str();
+    go.append_attribute("Condition") = t.eventInputs[i].name.c_str();
+    pugi::xml_node back = ecc.append_child("ECTransition");
+    back.append_attribute("Source") = state.c_str();
+    back.append_attribute("Destination") = "START";
+    back.append_attribute("Condition") = "1";
+  }
 }
 
 void Translator::basicBlock(FbType &t) {
@@ -1288,9 +1341,6 @@ bool Translator::run(const std::vector<unsigned> &ids) {
       case TypeKind::Basic:
         basicBlock(*t);
         break;
-      case TypeKind::Simple:
-        fail(*t, t->body,
-             "simple FB '" + t->name + "' is not supported (basic FBs only)");
       case TypeKind::Service:
       case TypeKind::NoBody:
         if (isShipped(t->name))
