@@ -141,6 +141,18 @@ private:
   /// The globals `program` reads or writes (its body, the FBs and
   /// functions it calls, its instance's arguments).
   std::set<VarDecl *> globalsUsedBy(Pou *program);
+  /// While one program's declarations or body are lowered: its names'
+  /// prefix is in force and end-of-scan resets go to it.
+  struct InProgram {
+    Lowering &L;
+    ProgramRun &run;
+    InProgram(Lowering &l, ProgramRun &r) : L(l), run(r) {
+      L.currentProgram = r.pou;
+      L.programPrefix = r.prefix;
+      std::swap(L.resets, r.resets);
+    }
+    ~InProgram() { std::swap(L.resets, run.resets); }
+  };
   void startModule(const std::string &name, SMLoc loc);
   void declareProgram(ProgramRun &run);
   void lowerProgramBody(ProgramRun &run);
@@ -1983,10 +1995,8 @@ void Lowering::startModule(const std::string &name, SMLoc loc) {
 }
 
 void Lowering::declareProgram(ProgramRun &run) {
+  InProgram in(*this, run);
   Pou *program = run.pou;
-  currentProgram = program;
-  programPrefix = run.prefix;
-  std::swap(resets, run.resets);
   run.membersBegin = instanceMembers.size();
   // A module of its own takes the program's pragmas; in a module of
   // several programs they go to the program's scope.
@@ -2009,7 +2019,6 @@ void Lowering::declareProgram(ProgramRun &run) {
   for (VarDecl *v : program->vars)
     declareProgramVar(v);
   run.membersEnd = instanceMembers.size();
-  std::swap(resets, run.resets);
 }
 
 /// Clock caps, and the TIME members they bound.
@@ -2051,10 +2060,8 @@ void Lowering::attachPragmas() {
 }
 
 void Lowering::lowerProgramBody(ProgramRun &run) {
+  InProgram in(*this, run);
   Pou *program = run.pou;
-  currentProgram = program;
-  programPrefix = run.prefix;
-  std::swap(resets, run.resets);
   std::vector<std::pair<VarDecl *, VarDecl *>> argIn, argOut; // (var, global)
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
     for (CallArg &a : it->second->args)
@@ -2078,7 +2085,6 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
     action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
                               b.ref(run.prefix + sanitize(v->name), v->loc),
                               v->loc));
-  std::swap(resets, run.resets);
 }
 
 /// FB members nobody reads after the scan go back to their initial values

@@ -104,22 +104,14 @@ bool Module::isAttributeTarget(StringRef target) const {
     return n.size() > target.size() && n.startswith(target) &&
            n[target.size()] == '.';
   };
-  for (const Port &p : ports)
-    if (inScope(p.name))
-      return true;
-  for (const Place &p : places)
-    if (inScope(p.name))
-      return true;
-  for (const Transition &t : transitions)
-    if (inScope(t.name))
-      return true;
-  for (const Var &v : vars)
-    if (inScope(v.name))
-      return true;
-  for (const Instance &i : instances)
-    if (inScope(i.name))
-      return true;
-  return false;
+  auto anyInScope = [&](const auto &table) {
+    for (const auto &entity : table)
+      if (inScope(entity.name))
+        return true;
+    return false;
+  };
+  return anyInScope(ports) || anyInScope(places) || anyInScope(transitions) ||
+         anyInScope(vars) || anyInScope(instances);
 }
 
 void Module::pruneAttributes() {
