@@ -20,7 +20,7 @@ import os
 
 
 # Words that make mutations reach past the lexer into parsers and checkers.
-WORDS = [b" IF ", b" THEN ", b" END_IF;", b" ELSE ", b" := ", b" VAR ", b" END_VAR ",
+WORDS = [b" attr ", b" \"", b"\\", b" = \"x\";", b" IF ", b" THEN ", b" END_IF;", b" ELSE ", b" := ", b" VAR ", b" END_VAR ",
          b" FOR i := 1 TO 3 DO ", b" END_FOR;", b" CASE x OF ", b" END_CASE;",
          b" TON", b" T#1s", b" T#0s", b"(IN := TRUE, PT := T#5s);", b" RETURN;",
          b" EXIT;", b" WHILE ", b" DO ", b" INT", b" BOOL", b" ARRAY[1..2] OF ",
