@@ -1273,8 +1273,6 @@ bool Parser::peekBinaryOp(BinaryOp &op) const {
   }
 }
 
-static bool isComparison(BinaryOp op) { return precedence(op) == 5; }
-
 Expr *Parser::parseBinary(int minPrec) {
   Expr *lhs;
   if (tok.isIdent("not")) {
