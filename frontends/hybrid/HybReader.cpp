@@ -83,7 +83,8 @@ private:
   bool build();
   /// Replaces parameter names by their values (in place).
   Expr *substitute(Expr *e);
-  Block substitute(Block blk);
+  /// Substitutes in place, in every statement of `blk`.
+  void substituteIn(Block blk);
 
   EmbeddedParser &p;
   Design &d;
@@ -383,7 +384,7 @@ bool ChartReader::parseState(unsigned region) {
         Block blk;
         if (!p.block(blk))
           return false;
-        blk = substitute(blk);
+        substituteIn(blk);
         if (which == "entry") {
           s.entry = blk;
           s.entryLoc = wl;
@@ -448,7 +449,7 @@ bool ChartReader::parseTransition(unsigned region) {
     if (tok().is(Tok::LBrace)) {
       if (!p.block(t.action))
         return false;
-      t.action = substitute(t.action);
+      substituteIn(t.action);
       t.hasAction = true;
     }
     if (isKw("emit")) {
@@ -522,7 +523,7 @@ Expr *ChartReader::substitute(Expr *e) {
   }
 }
 
-Block ChartReader::substitute(Block blk) {
+void ChartReader::substituteIn(Block blk) {
   for (Stmt *s : blk) {
     if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
       a->value = substitute(a->value);
@@ -530,22 +531,21 @@ Block ChartReader::substitute(Block blk) {
       std::vector<IfArm> arms(i->arms.begin(), i->arms.end());
       for (IfArm &arm : arms) {
         arm.cond = substitute(arm.cond);
-        substitute(arm.body);
+        substituteIn(arm.body);
       }
       i->arms = d.copy(llvm::ArrayRef<IfArm>(arms));
-      substitute(i->elseBody);
+      substituteIn(i->elseBody);
     } else if (auto *c = llvm::dyn_cast<CaseStmt>(s)) {
       c->selector = substitute(c->selector);
       for (const CaseArm &arm : c->arms)
-        substitute(arm.body);
-      substitute(c->elseBody);
+        substituteIn(arm.body);
+      substituteIn(c->elseBody);
     } else if (auto *f = llvm::dyn_cast<ForStmt>(s)) {
       f->lo = substitute(f->lo);
       f->hi = substitute(f->hi);
-      substitute(f->body);
+      substituteIn(f->body);
     }
   }
-  return blk;
 }
 
 bool ChartReader::build() {
@@ -562,15 +562,15 @@ bool ChartReader::build() {
     if (v.init)
       v.init = substitute(v.init);
   for (HybState &st : states) {
-    substitute(st.entry);
-    substitute(st.during);
-    substitute(st.exit);
+    substituteIn(st.entry);
+    substituteIn(st.during);
+    substituteIn(st.exit);
     for (Flow::Equation &eq : st.flows)
       eq.rate = substitute(eq.rate);
   }
   for (HybTransition &t : transitions) {
     t.guard = substitute(t.guard);
-    substitute(t.action);
+    substituteIn(t.action);
   }
   // Initial states: the declared one, else the first state of the region.
   std::vector<int> initialOf(regionNames.size(), -1);
