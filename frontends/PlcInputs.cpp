@@ -210,8 +210,10 @@ bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
         return false;
     }
     // The closing keyword the declaration's first keyword calls for.
-    size_t db, de;
-    cdataAfter(text, size_t(decl.offset_debug()), text.size(), db, de);
+    // (keep() above has required the declaration's CDATA section.)
+    size_t db = 0, de = 0;
+    if (!cdataAfter(text, size_t(decl.offset_debug()), text.size(), db, de))
+      de = db;
     llvm::SourceMgr scratch;
     DiagEngine quiet(scratch);
     st::StLexer lexer(text.substr(db, de - db), quiet);

@@ -619,7 +619,7 @@ bool ChartReader::build() {
     std::string name = (t.from + "_to_" + t.to).str();
     for (unsigned k = 2; mod->lookup(name).kind != SymKind::None; ++k)
       name = (t.from + "_to_" + t.to + "_" + llvm::Twine(k)).str();
-    uint32_t tr = b.addTransition(d.save(name), {PreArc{fi->second}},
+    uint32_t tr = b.addTransition(d.save(name), {PreArc{fi->second, 1, {}}},
                                   {PostArc{ti->second}}, t.loc);
     if (!t.event.empty()) {
       int port = mod->findPort(t.event);

@@ -419,7 +419,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     for (StringRef c : conjuncts(loc.child_value("flow"))) {
       if (c == "true")
         continue;
-      ExprParser ep{*this, c, 0, loc.child("flow"), bind, prefix};
+      ExprParser ep{*this, c, 0, loc.child("flow"), bind, prefix, true, {}};
       Expr *e = ep.orExpr();
       ep.skip();
       if (!ep.ok)
@@ -474,7 +474,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
       labelsOf[inst].insert(pt.label);
     }
     for (StringRef c : conjuncts(t.child_value("guard"))) {
-      ExprParser ep{*this, c, 0, t.child("guard"), bind, prefix};
+      ExprParser ep{*this, c, 0, t.child("guard"), bind, prefix, true, {}};
       Expr *e = ep.orExpr();
       ep.skip();
       if (ep.ok && ep.pos != c.size())
@@ -487,8 +487,10 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
       // `x' == e`, `x' = e` or `x := e`.
       auto [lhsText, rhsText] = c.split(":=");
       bool assign = c.contains(":=");
-      ExprParser ep{*this, assign ? lhsText : c, 0, t.child("assignment"), bind,
-                    prefix};
+      ExprParser ep{*this, assign ? lhsText : c,
+                    0,     t.child("assignment"),
+                    bind,  prefix,
+                    true,  {}};
       Expr *e = ep.orExpr();
       if (!ep.ok)
         return false;
@@ -496,7 +498,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
       Expr *value = nullptr;
       if (assign) {
         target = llvm::dyn_cast<Ref>(e);
-        ExprParser rp{*this, rhsText, 0, t.child("assignment"), bind, prefix};
+        ExprParser rp{*this, rhsText, 0,    t.child("assignment"),
+                      bind,  prefix,  true, {}};
         value = rp.orExpr();
         if (!rp.ok)
           return false;
@@ -563,7 +566,7 @@ bool SpaceExReader::run() {
     std::vector<Expr *> guards;
     std::vector<Stmt *> resets;
     for (const ProtoTransition *p : parts) {
-      pre.push_back({p->from});
+      pre.push_back({p->from, 1, {}});
       post.push_back({p->to});
       guards.insert(guards.end(), p->guards.begin(), p->guards.end());
       resets.insert(resets.end(), p->resets.begin(), p->resets.end());

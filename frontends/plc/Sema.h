@@ -35,6 +35,7 @@ enum class PTypeKind : uint8_t {
 };
 
 struct PType {
+  explicit PType(PTypeKind k) : kind(k) {}
   PTypeKind kind;
   std::string name; // IEC spelling or the user type's name
   // Int

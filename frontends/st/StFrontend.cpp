@@ -1005,7 +1005,7 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   std::string typeName = t->type->getText();
   std::string value = t->value ? t->value->getText() : t->enumName->getText();
   bool negative = t->sign && t->sign->getType() == P::MINUS;
-  switch (t->value ? t->value->getType() : P::IDENT) {
+  switch (t->value ? t->value->getType() : size_t(P::IDENT)) {
   case P::INTEGER: {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
     e->typeName = typeName;
