@@ -46,7 +46,8 @@ TEST(KeyAttributes, AlgorithmXAgreesWithBruteForce) {
       }
     Analysis::KeyAttributes got = a.keyAttributes();
     EXPECT_EQ(got.exact, !expected.empty()) << "round " << round;
-    if (got.exact)
+    if (got.exact) {
       EXPECT_EQ(got.sets, expected) << "round " << round;
+    }
   }
 }
