@@ -595,15 +595,19 @@ std::optional<CtlTrace> checkers::ctlTrace(
   bool holds = e.eval(f)[0];
   std::string a = f.lhs ? ctlToString(*f.lhs) : "";
   std::string b = f.rhs ? ctlToString(*f.rhs) : "";
+  // EX and EF have a witness when they hold; AX and AG a counterexample
+  // when they fail, which reaches where the operand fails.
+  auto goalOf = [&](bool exists) {
+    Set goal = e.eval(*f.lhs);
+    return exists ? goal : e.negate(goal);
+  };
   switch (f.kind) {
   case CtlFormula::EX:
   case CtlFormula::AX: {
     bool exists = f.kind == CtlFormula::EX;
     if (holds != exists)
       return std::nullopt;
-    Set goal = e.eval(*f.lhs);
-    if (!exists)
-      goal = e.negate(goal);
+    Set goal = goalOf(exists);
     uint32_t next = UINT32_MAX;
     e.forSucc(0, [&](uint32_t t) {
       if (next == UINT32_MAX && goal[t])
@@ -618,9 +622,7 @@ std::optional<CtlTrace> checkers::ctlTrace(
     bool exists = f.kind == CtlFormula::EF;
     if (holds != exists)
       return std::nullopt;
-    Set goal = e.eval(*f.lhs);
-    if (!exists)
-      goal = e.negate(goal);
+    Set goal = goalOf(exists);
     return path(exists,
                 "a shortest path to a state where " + a +
                     (exists ? " holds" : " does not hold"),
