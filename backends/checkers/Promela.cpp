@@ -1,6 +1,7 @@
 //===- Promela.cpp - flat modules as Promela models for spin --------------===//
 #include "backends/checkers/Promela.h"
 #include "backends/checkers/PtSubset.h"
+#include "backends/checkers/StateUnits.h"
 #include "ir/net/Printer.h"
 #include "ir/semantics/Semantics.h"
 
@@ -19,15 +20,6 @@ using namespace netlift::checkers;
 using llvm::cast;
 
 namespace {
-/// A Promela identifier: a prefix and index keep names unique, the NetIR
-/// name (non-identifier characters replaced) keeps them readable.
-std::string identifier(const char *prefix, uint32_t i, llvm::StringRef name) {
-  std::string out = prefix + std::to_string(i) + "_";
-  for (char c : name)
-    out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return out;
-}
-
 const char *typeFor(int64_t lo, int64_t hi) {
   if (lo >= 0 && hi <= 1)
     return "bit";
@@ -50,7 +42,7 @@ void writePlainNet(const Module &m, const sem::StateLayout &L,
                    llvm::raw_ostream &os) {
   std::vector<std::string> names;
   for (uint32_t p = 0; p < m.places.size(); ++p)
-    names.push_back(identifier("P", p, m.places[p].name));
+    names.push_back(checkerIdentifier("P", p, m.places[p].name));
   auto hiOf = [&](uint32_t p) { return L.slotMax(L.markingSlot(p)); };
 
   std::vector<std::string> enabling;
@@ -121,48 +113,20 @@ void writePlainNet(const Module &m, const sem::StateLayout &L,
 // The general encoding: one step per atomic sequence
 //===----------------------------------------------------------------------===//
 
-/// Storage of the state or of the inputs as Promela sees it: a scalar slot,
-/// or an array of scalar slots (indexed at run time).
-struct Unit {
-  std::string name;
-  uint32_t firstSlot = 0;
-  uint32_t count = 1; // > 1 or `isArray`: a Promela array
-  bool isArray = false;
-  int64_t indexLo = 0;
-  int64_t lo = 0, hi = 0; // of each element
-  bool wrap = false;
-  bool isInput = false;
-};
-
-/// Where an expression's storage is: a unit and either a static element or
-/// an index expression (arrays).
-struct Access {
-  uint32_t unit = 0;
-  const Expr *index = nullptr;
-};
-
-class StepWriter {
+class StepWriter : public StateUnits {
 public:
   StepWriter(const Module &m, const sem::StateLayout &L, DiagEngine &diag,
              llvm::raw_ostream &os)
-      : m(m), L(L), diag(diag), os(os) {}
+      : StateUnits(m, L, diag, "the Promela export"), os(os) {}
 
   bool write();
   /// The properties as `ltl` claims (buildUnits() first when write() was
   /// not called).
   bool writeLtl(llvm::ArrayRef<const CtlFormula *> properties);
-  bool buildUnits();
 
 private:
-  const Module &m;
-  const sem::StateLayout &L;
-  DiagEngine &diag;
   llvm::raw_ostream &os;
 
-  std::vector<Unit> units;
-  std::vector<int32_t> unitOfSlot; // first slot of a unit -> unit
-  std::vector<int32_t> varUnitBase, portUnitBase;
-  std::vector<std::string> placeNames, clockNames, eventNames;
   std::vector<uint32_t> forced, spontaneous;
   /// Units each action writes, in unit order.
   std::vector<std::vector<uint32_t>> writesOf;
@@ -171,18 +135,6 @@ private:
   /// read from its shadow copies.
   int64_t actionOf = -1;
   int loopDepth = 0, maxLoopDepth = 0;
-  bool failed = false;
-
-  bool refuse(llvm::SMLoc loc, const std::string &what) {
-    if (!failed)
-      diag.error(loc, what + ": the Promela export does not cover it");
-    failed = true;
-    return false;
-  }
-
-  bool addUnits(const std::string &name, const Type *t, uint32_t &slot,
-                bool isInput, llvm::SMLoc loc);
-  std::optional<Access> access(const Expr *e);
   std::string unitRef(const Access &a, bool shadow);
   std::string expr(const Expr *e);
   void collectWrites(Block b, std::set<uint32_t> &out);
@@ -204,105 +156,6 @@ private:
     return "W" + std::to_string(t) + "_" + units[u].name;
   }
 };
-
-bool StepWriter::addUnits(const std::string &name, const Type *t,
-                          uint32_t &slot, bool isInput, llvm::SMLoc loc) {
-  switch (t->kind) {
-  case TypeKind::Record:
-    for (const Field &f : t->fields)
-      if (!addUnits(name + "_" + f.name.str(), f.type, slot, isInput, loc))
-        return false;
-    return true;
-  case TypeKind::Array:
-    if (!t->elem->isScalar())
-      return refuse(loc, "an array of arrays or records ('" +
-                             L.slots()[slot].name + "')");
-    [[fallthrough]];
-  default: {
-    Unit u;
-    u.name = name;
-    u.firstSlot = slot;
-    u.isArray = t->kind == TypeKind::Array;
-    u.count = u.isArray ? uint32_t(t->indexHi - t->indexLo + 1) : 1;
-    u.indexLo = u.isArray ? t->indexLo : 0;
-    const sem::Slot &s = L.slots()[slot];
-    u.lo = s.lo;
-    u.hi = s.hi;
-    u.wrap = s.wrap;
-    u.isInput = isInput;
-    if (s.lo < INT32_MIN || s.hi > INT32_MAX)
-      return refuse(loc, "'" + s.name + "' ranges over " + num(s.lo) + ".." +
-                             num(s.hi) + ", beyond Promela's 32-bit int");
-    unitOfSlot[slot] = int32_t(units.size());
-    units.push_back(u);
-    slot += u.count;
-    return true;
-  }
-  }
-}
-
-bool StepWriter::buildUnits() {
-  unitOfSlot.assign(L.numSlots(), -1);
-  varUnitBase.assign(m.vars.size(), -1);
-  portUnitBase.assign(m.ports.size(), -1);
-  for (uint32_t v = 0; v < m.vars.size(); ++v) {
-    uint32_t slot = uint32_t(L.varSlot(v));
-    if (!addUnits(identifier("V", v, m.vars[v].name), m.vars[v].type, slot,
-                  false, m.vars[v].loc))
-      return false;
-  }
-  for (uint32_t p = 0; p < m.ports.size(); ++p) {
-    const Port &port = m.ports[p];
-    if (port.kind == PortKind::Event) {
-      if (port.isInput())
-        eventNames.push_back(identifier("E", p, port.name));
-      continue;
-    }
-    if (!port.isInput() && !port.isStored())
-      continue;
-    uint32_t slot = uint32_t(L.portSlot(p));
-    if (!addUnits(identifier(port.isInput() ? "I" : "O", p, port.name),
-                  port.type, slot, port.isInput(), port.loc))
-      return false;
-  }
-  for (uint32_t p = 0; p < m.places.size(); ++p) {
-    placeNames.push_back(identifier("P", p, m.places[p].name));
-    clockNames.push_back(identifier("K", p, m.places[p].name));
-  }
-  return true;
-}
-
-/// The slot an expression statically designates (-1: none or not static).
-static int64_t staticSlot(const sem::StateLayout &L, const Expr *e) {
-  if (auto *r = llvm::dyn_cast<Ref>(e))
-    return L.refSlot(r);
-  if (auto *f = llvm::dyn_cast<FieldExpr>(e)) {
-    int64_t base = staticSlot(L, f->base);
-    return base < 0 ? -1
-                    : base + sem::StateLayout::fieldOffset(f->base->type,
-                                                           f->fieldIndex);
-  }
-  return -1;
-}
-
-std::optional<Access> StepWriter::access(const Expr *e) {
-  if (auto *x = llvm::dyn_cast<IndexExpr>(e)) {
-    int64_t base = staticSlot(L, x->base);
-    if (base < 0 || unitOfSlot[base] < 0 || !units[unitOfSlot[base]].isArray) {
-      refuse(e->loc, "indexing '" + exprToString(x->base) + "'");
-      return std::nullopt;
-    }
-    return Access{uint32_t(unitOfSlot[base]), x->index};
-  }
-  int64_t slot = staticSlot(L, e);
-  if (slot < 0)
-    return std::nullopt;
-  if (unitOfSlot[slot] < 0 || units[unitOfSlot[slot]].isArray) {
-    refuse(e->loc, "the aggregate value '" + exprToString(e) + "'");
-    return std::nullopt;
-  }
-  return Access{uint32_t(unitOfSlot[slot]), nullptr};
-}
 
 std::string StepWriter::unitRef(const Access &a, bool useShadow) {
   const Unit &u = units[a.unit];
@@ -611,10 +464,7 @@ std::string StepWriter::eventEnabling(uint32_t ti) {
   for (const EventSource &s : t.events()) {
     std::string one;
     if (s.fromPort) {
-      uint32_t k = 0;
-      for (uint32_t p = 0; p < s.index; ++p)
-        k += m.ports[p].kind == PortKind::Event && m.ports[p].isInput();
-      one = eventNames[k];
+      one = eventNames[inputEventIndex(s.index)];
     } else {
       one = "ST[" + num(s.index) + "]";
     }

@@ -9,6 +9,7 @@
 #include "backends/checkers/Ctl.h"
 #include "backends/checkers/PnmlWriter.h"
 #include "backends/checkers/Promela.h"
+#include "backends/checkers/Smv.h"
 #include "backends/enforce/EditAutomatonJson.h"
 #include "backends/enforce/Enforce.h"
 #include "backends/mealy/ExtractMealy.h"
@@ -339,7 +340,7 @@ static cl::opt<bool> showStats("stats",
                                         "stderr"),
                                cl::sub(optCmd), cl::cat(category));
 
-enum class EmitFormat { Net, Dot, Promela, Pnml, NcesXml, Pnt };
+enum class EmitFormat { Net, Dot, Promela, Smv, Pnml, NcesXml, Pnt };
 static cl::opt<EmitFormat>
     emitFormat("to", cl::desc("Output format"), cl::Required,
                cl::values(clEnumValN(EmitFormat::Net, "net", "NetIR text"),
@@ -349,6 +350,9 @@ static cl::opt<EmitFormat>
                           clEnumValN(EmitFormat::Promela, "promela",
                                      "Promela for spin (the flattened top; "
                                      "--ctl properties as ltl claims)"),
+                          clEnumValN(EmitFormat::Smv, "smv",
+                                     "SMV for NuSMV/nuXmv (the flattened "
+                                     "top; --ctl properties as CTLSPECs)"),
                           clEnumValN(EmitFormat::Pnml, "pnml",
                                      "PNML P/T net (the flattened top; "
                                      "capacities as complementary places)"),
@@ -647,9 +651,10 @@ static int runEmit() {
   net::Design design;
   std::vector<std::string> inputs{emitInput};
   bool flatTop = emitFormat != EmitFormat::Net && emitFormat != EmitFormat::Dot;
-  if (!checkFormulas.empty() && emitFormat != EmitFormat::Promela) {
-    llvm::errs() << "netlift: error: --ctl goes with emit --to promela (or "
-                    "netlift check)\n";
+  if (!checkFormulas.empty() && emitFormat != EmitFormat::Promela &&
+      emitFormat != EmitFormat::Smv) {
+    llvm::errs() << "netlift: error: --ctl goes with emit --to promela or "
+                    "smv (or netlift check)\n";
     return 1;
   }
   if ((!flatTop && !topUsable(inputs, "emit")) ||
@@ -679,7 +684,9 @@ static int runEmit() {
       for (const auto &f : formulas)
         properties.push_back(f.get());
       sem::StateLayout layout(*top, sem::Options().unboundedBits);
-      if (!checkers::writePromela(*top, layout, diag, buf, properties))
+      if (emitFormat == EmitFormat::Smv
+              ? !checkers::writeSmv(*top, layout, diag, buf, properties)
+              : !checkers::writePromela(*top, layout, diag, buf, properties))
         return 1;
     }
     return writeOutput(outputFile, [&](llvm::raw_ostream &os) { os << text; })
@@ -696,6 +703,7 @@ static int runEmit() {
                          writeDot(design, os);
                          break;
                        case EmitFormat::Promela:
+                       case EmitFormat::Smv:
                        case EmitFormat::Pnml:
                        case EmitFormat::NcesXml:
                        case EmitFormat::Pnt:

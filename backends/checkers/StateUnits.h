@@ -1,0 +1,85 @@
+//===- StateUnits.h - a flat module's state as a checker names it -*- C++ -*-===//
+//
+// The exports to model checkers (Promela, SMV) name the same things: each
+// place's marking and clock, each scalar or array of scalars a variable or
+// stored port holds (records split into their fields), the free inputs and
+// the input events. This unit builds those names and storage units once
+// from the state layout, finds which unit an expression designates, and
+// refuses, by name and place, what neither export can carry (arrays of
+// aggregates, values beyond 32 bits).
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_BACKENDS_CHECKERS_STATEUNITS_H
+#define NETLIFT_BACKENDS_CHECKERS_STATEUNITS_H
+
+#include "ir/net/Module.h"
+#include "ir/semantics/StateLayout.h"
+#include "ir/support/Diagnostics.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace netlift::checkers {
+
+/// A checker identifier: a prefix and index keep names unique, the NetIR
+/// name (non-identifier characters replaced) keeps them readable.
+std::string checkerIdentifier(const char *prefix, uint32_t i,
+                              llvm::StringRef name);
+
+/// Storage of the state or of the inputs as a checker sees it: a scalar
+/// slot, or an array of scalar slots.
+struct Unit {
+  std::string name;
+  uint32_t firstSlot = 0;
+  uint32_t count = 1; // > 1 or `isArray`: an array
+  bool isArray = false;
+  int64_t indexLo = 0;
+  int64_t lo = 0, hi = 0; // of each element
+  bool wrap = false;
+  bool isInput = false;
+};
+
+/// Where an expression's storage is: a unit and either a static element or
+/// an index expression (arrays).
+struct Access {
+  uint32_t unit = 0;
+  const net::Expr *index = nullptr;
+};
+
+class StateUnits {
+public:
+  /// `format` names the export in refusals ("the Promela export").
+  StateUnits(const net::Module &m, const sem::StateLayout &L, DiagEngine &diag,
+             const char *format)
+      : m(m), L(L), diag(diag), format(format) {}
+
+  /// Builds the units, names and input events; false after a refusal.
+  bool buildUnits();
+  /// The unit `e` designates; nullopt if it designates none statically (a
+  /// refusal is reported for indexing a non-array and for aggregates).
+  std::optional<Access> access(const net::Expr *e);
+  /// Reports the first refusal only; always false.
+  bool refuse(llvm::SMLoc loc, const std::string &what);
+  /// The position of input event port `port` among the input events.
+  uint32_t inputEventIndex(uint32_t port) const;
+
+protected:
+  const net::Module &m;
+  const sem::StateLayout &L;
+  DiagEngine &diag;
+  const char *format;
+
+  std::vector<Unit> units;
+  std::vector<int32_t> unitOfSlot; // first slot of a unit -> unit
+  std::vector<std::string> placeNames, clockNames, eventNames;
+  bool failed = false;
+
+private:
+  bool addUnits(const std::string &name, const net::Type *t, uint32_t &slot,
+                bool isInput, llvm::SMLoc loc);
+};
+
+} // namespace netlift::checkers
+
+#endif
