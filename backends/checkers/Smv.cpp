@@ -44,8 +44,9 @@ struct Effect {
 };
 
 /// The first arm whose condition holds, as an SMV case expression.
-std::string firstOf(const std::vector<std::pair<std::string, std::string>> &arms,
-                    const std::string &otherwise) {
+std::string
+firstOf(const std::vector<std::pair<std::string, std::string>> &arms,
+        const std::string &otherwise) {
   std::string out = "case ";
   for (const auto &[cond, v] : arms)
     out += cond + " : " + v + "; ";
@@ -110,7 +111,8 @@ private:
   void assign(const AssignStmt *a, Effect &eff);
   void merge(const std::vector<std::string> &conds,
              const std::vector<Effect> &arms, Effect &eff);
-  std::string enabling(uint32_t t);
+  /// Collects in `errs` the runtime errors evaluating it can raise.
+  std::string enabling(uint32_t t, std::vector<std::string> &errs);
   std::string joint(const std::function<std::string(uint32_t)> &member);
   std::string ctl(const CtlFormula &f);
 };
@@ -145,18 +147,17 @@ Val SmvWriter::read(const Expr *e) {
       k < u.indexLo + int64_t(u.count))
     return {readElement(a->unit, uint32_t(k - u.indexLo))};
   if (!errors) {
-    refuse(e->loc, "indexing with a variable outside an action ('" +
+    refuse(e->loc, "indexing with a variable in a property ('" +
                        exprToString(e) + "')");
     return {"0"};
   }
   std::string idx = define(intOf(expr(a->index)));
-  errors->push_back("(" + pc + " & !(" + idx + " >= " + num(u.indexLo) +
-                    " & " + idx + " <= " +
-                    num(u.indexLo + int64_t(u.count) - 1) + "))");
+  errors->push_back("(" + pc + " & !(" + idx + " >= " + num(u.indexLo) + " & " +
+                    idx + " <= " + num(u.indexLo + int64_t(u.count) - 1) +
+                    "))");
   std::vector<std::pair<std::string, std::string>> arms;
   for (uint32_t i = 1; i < u.count; ++i)
-    arms.push_back(
-        {idx + " = " + num(u.indexLo + i), readElement(a->unit, i)});
+    arms.push_back({idx + " = " + num(u.indexLo + i), readElement(a->unit, i)});
   return {"(" + firstOf(arms, readElement(a->unit, 0)) + ")"};
 }
 
@@ -210,8 +211,16 @@ Val SmvWriter::expr(const Expr *e) {
     return binary(cast<BinaryExpr>(e));
   case ExprKind::Cond: {
     auto *c = cast<CondExpr>(e);
-    Val a = expr(c->thenExpr), b = expr(c->elseExpr);
-    std::string cond = boolOf(expr(c->cond));
+    std::string cond = boolOf(expr(c->cond)), outer = pc;
+    if (errors) {
+      cond = define(cond);
+      pc = "(" + outer + " & " + cond + ")";
+    }
+    Val a = expr(c->thenExpr);
+    if (errors)
+      pc = "(" + outer + " & !" + cond + ")";
+    Val b = expr(c->elseExpr);
+    pc = outer;
     if (a.isBool && b.isBool)
       return {"(" + cond + " ? " + a.text + " : " + b.text + ")", true};
     return {"(" + cond + " ? " + intOf(a) + " : " + intOf(b) + ")"};
@@ -231,6 +240,18 @@ Val SmvWriter::expr(const Expr *e) {
 
 Val SmvWriter::binary(const BinaryExpr *b) {
   bool boolOperands = b->lhs->type && b->lhs->type->isBool();
+  if (b->op == BinaryOp::And || b->op == BinaryOp::Or) {
+    // The right operand is evaluated (and can fail) only where the left
+    // one does not decide.
+    std::string x = boolOf(expr(b->lhs)), outer = pc;
+    if (errors) {
+      x = define(x);
+      pc = "(" + outer + (b->op == BinaryOp::And ? " & " : " & !") + x + ")";
+    }
+    std::string y = boolOf(expr(b->rhs));
+    pc = outer;
+    return {"(" + x + (b->op == BinaryOp::And ? " & " : " | ") + y + ")", true};
+  }
   Val x = expr(b->lhs), y = expr(b->rhs);
   auto logical = [&](const char *op) {
     return Val{"(" + boolOf(x) + " " + op + " " + boolOf(y) + ")", true};
@@ -245,9 +266,7 @@ Val SmvWriter::binary(const BinaryExpr *b) {
   };
   switch (b->op) {
   case BinaryOp::Or:
-    return logical("|");
-  case BinaryOp::And:
-    return logical("&");
+  case BinaryOp::And: // above
   case BinaryOp::Xor:
     return logical("xor");
   case BinaryOp::Eq:
@@ -289,8 +308,9 @@ Val SmvWriter::binary(const BinaryExpr *b) {
   case BinaryOp::Shr: {
     int64_t k;
     if (!evalConstInt(b->rhs, k) || k < 0 || k > 30) {
-      refuse(b->loc, "the shift '" + exprToString(b) + "' (only by a "
-                                                       "constant 0..30)");
+      refuse(b->loc, "the shift '" + exprToString(b) +
+                         "' (only by a "
+                         "constant 0..30)");
       return {"0"};
     }
     std::string p = num(int64_t(1) << k), v = define(intOf(x));
@@ -313,7 +333,7 @@ Val SmvWriter::binary(const BinaryExpr *b) {
     if (evalConstInt(b->rhs, k) && k != 0)
       return arith(op);
     if (!errors) {
-      refuse(b->loc, "dividing by a variable outside an action ('" +
+      refuse(b->loc, "dividing by a variable in a property ('" +
                          exprToString(b) + "')");
       return {"0"};
     }
@@ -343,9 +363,9 @@ void SmvWriter::assign(const AssignStmt *a, Effect &eff) {
   std::string raw = define(intOf(v)), stored = raw;
   uint64_t span = uint64_t(u.hi - u.lo) + 1;
   if (u.wrap)
-    stored = define(num(u.lo) + " + (((" + raw + " - " + num(u.lo) +
-                    ") mod " + num(int64_t(span)) + ") + " +
-                    num(int64_t(span)) + ") mod " + num(int64_t(span)));
+    stored = define(num(u.lo) + " + (((" + raw + " - " + num(u.lo) + ") mod " +
+                    num(int64_t(span)) + ") + " + num(int64_t(span)) +
+                    ") mod " + num(int64_t(span)));
   else if (!v.isBool)
     errors->push_back("(" + pc + " & !(" + raw + " >= " + num(u.lo) + " & " +
                       raw + " <= " + num(u.hi) + "))");
@@ -363,9 +383,9 @@ void SmvWriter::assign(const AssignStmt *a, Effect &eff) {
     return;
   }
   std::string idx = define(intOf(expr(acc->index)));
-  errors->push_back("(" + pc + " & !(" + idx + " >= " + num(u.indexLo) +
-                    " & " + idx + " <= " +
-                    num(u.indexLo + int64_t(u.count) - 1) + "))");
+  errors->push_back("(" + pc + " & !(" + idx + " >= " + num(u.indexLo) + " & " +
+                    idx + " <= " + num(u.indexLo + int64_t(u.count) - 1) +
+                    "))");
   for (uint32_t i = 0; i < u.count; ++i) {
     uint32_t slot = u.firstSlot + i;
     std::string hit = "(" + idx + " = " + num(u.indexLo + i) + ")";
@@ -433,10 +453,10 @@ void SmvWriter::exec(Block b, Effect &eff) {
         for (const CaseArm &arm : c->arms) {
           std::vector<std::string> match;
           for (const CaseLabel &l : arm.labels)
-            match.push_back(
-                l.hi ? "(" + sel + " >= " + intOf(expr(l.lo)) + " & " + sel +
-                           " <= " + intOf(expr(l.hi)) + ")"
-                     : "(" + sel + " = " + intOf(expr(l.lo)) + ")");
+            match.push_back(l.hi ? "(" + sel + " >= " + intOf(expr(l.lo)) +
+                                       " & " + sel +
+                                       " <= " + intOf(expr(l.hi)) + ")"
+                                 : "(" + sel + " = " + intOf(expr(l.lo)) + ")");
           conds.push_back(define(joinWith(match, "|", "FALSE")));
           bodies.push_back(arm.body);
         }
@@ -481,7 +501,7 @@ void SmvWriter::exec(Block b, Effect &eff) {
   }
 }
 
-std::string SmvWriter::enabling(uint32_t ti) {
+std::string SmvWriter::enabling(uint32_t ti, std::vector<std::string> &errs) {
   const Transition &t = m.transitions[ti];
   std::vector<std::string> c;
   for (const PlaceEffect &e : placeEffects(t)) {
@@ -500,10 +520,21 @@ std::string SmvWriter::enabling(uint32_t ti) {
       if (a.time.hi != kInf)
         c.push_back(k + " <= " + num(a.time.hi));
     }
-  for (const Expr *x : t.conds())
+  // Conditions, then the guard, each evaluated (and able to fail) only
+  // where everything before it holds, as the engine does.
+  std::vector<std::string> *outerErrors = errors;
+  std::string outerPc = pc;
+  errors = &errs;
+  for (const Expr *x : t.conds()) {
+    pc = joinWith(c, "&", "TRUE");
     c.push_back(boolOf(expr(x)));
-  if (const Expr *g = t.guard())
+  }
+  if (const Expr *g = t.guard()) {
+    pc = joinWith(c, "&", "TRUE");
     c.push_back(boolOf(expr(g)));
+  }
+  errors = outerErrors;
+  pc = outerPc;
   return joinWith(c, "&", "TRUE");
 }
 
@@ -526,16 +557,26 @@ SmvWriter::joint(const std::function<std::string(uint32_t)> &member) {
     if (!forcedTouches[p])
       continue;
     std::vector<std::string> demand, delta;
+    int64_t fixedDemand = 0, fixedDelta = 0; // of members that are TRUE
     for (auto &[ti, e] : byPlace[p]) {
       std::string in = member(ti);
+      int64_t dlt = int64_t(e.post) - int64_t(e.pre);
       if (in == "FALSE")
         continue;
+      if (in == "TRUE") {
+        fixedDemand += e.pre;
+        fixedDelta += dlt;
+        continue;
+      }
       if (e.pre > 0)
         demand.push_back("(" + in + " ? " + num(e.pre) + " : 0)");
-      int64_t dlt = int64_t(e.post) - int64_t(e.pre);
       if (dlt != 0)
         delta.push_back("(" + in + " ? " + num(dlt) + " : 0)");
     }
+    if (fixedDemand)
+      demand.push_back(num(fixedDemand));
+    if (fixedDelta)
+      delta.push_back(num(fixedDelta));
     if (!demand.empty())
       c.push_back(placeNames[p] + " >= " + joinWith(demand, "+", "0"));
     if (m.places[p].capacity != kInf && !delta.empty())
@@ -557,13 +598,8 @@ std::string SmvWriter::ctl(const CtlFormula &f) {
     return "FALSE";
   case CtlFormula::Deadlock:
     return "deadlock";
-  case CtlFormula::Atom: {
-    inputsRead.clear();
-    std::string a = boolOf(expr(f.atom));
-    if (!inputsRead.empty())
-      refuse(f.loc, "a property reading a free input");
-    return "(" + a + ")";
-  }
+  case CtlFormula::Atom: // parseCtl refuses free inputs in properties
+    return "(" + boolOf(expr(f.atom)) + ")";
   case CtlFormula::Not:
     return "(" + un("!") + ")";
   case CtlFormula::And:
@@ -599,8 +635,8 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
     // A step must then contain one, which depends on the closure's
     // choices: `deadlock` would no longer be a state formula.
     if (tr.isForced() && tr.urgent)
-      return refuse(tr.loc, "the urgent forced transition '" +
-                                tr.name.str() + "'");
+      return refuse(tr.loc,
+                    "the urgent forced transition '" + tr.name.str() + "'");
   }
   sem::Semantics semantics(m, L, sem::Options());
   std::vector<uint64_t> init(L.numWords());
@@ -611,12 +647,15 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
   }
 
   // Enabling, urgency and time.
+  // Every state evaluates every transition's enabling (under each input
+  // valuation): an error there is a runtime error of the state.
   std::vector<std::set<uint32_t>> enablingInputs(m.transitions.size());
-  std::vector<std::string> urgent;
+  std::vector<std::string> urgent, stateErrors;
   for (uint32_t t = 0; t < m.transitions.size(); ++t) {
     inputsRead.clear();
-    d << "  EN" << t << " := " << enabling(t) << "; -- "
-      << m.transitions[t].name << "\n";
+    std::string en = enabling(t, stateErrors); // may define helpers first
+    d << "  EN" << t << " := " << en << "; -- " << m.transitions[t].name
+      << "\n";
     enablingInputs[t] = inputsRead;
     if (m.transitions[t].urgent)
       urgent.push_back("EN" + num(t));
@@ -643,8 +682,7 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
   auto member = [&](uint32_t round, uint32_t t) {
     if (!m.transitions[t].isForced())
       return "(trig = S" + num(t) + ")";
-    return round == 0 ? std::string("FALSE")
-                      : "F" + num(round) + "_" + num(t);
+    return round == 0 ? std::string("FALSE") : "F" + num(round) + "_" + num(t);
   };
   uint32_t rounds = uint32_t(forced.size());
   std::vector<std::string> roundOk;
@@ -664,24 +702,23 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
         << " & " << fits << ";\n";
     }
     d << "  ALL" << r << " := " << joint([&](uint32_t x) {
-      return m.transitions[x].isForced()
-                 ? "(" + member(r - 1, x) + " | CD" + num(r) + "_" + num(x) +
-                       ")"
-                 : member(r - 1, x);
+      return m.transitions[x].isForced() ? "(" + member(r - 1, x) + " | CD" +
+                                               num(r) + "_" + num(x) + ")"
+                                         : member(r - 1, x);
     }) << ";\n";
     for (uint32_t f : forced)
-      d << "  F" << r << "_" << f << " := " << member(r - 1, f) << " | (CD"
-        << r << "_" << f << " & (ALL" << r << " | C" << r << "_" << f
-        << "));\n";
+      d << "  F" << r << "_" << f << " := " << member(r - 1, f) << " | (CD" << r
+        << "_" << f << " & (ALL" << r << " | C" << r << "_" << f << "));\n";
     std::vector<std::string> maximal{
         joint([&](uint32_t x) { return member(r, x); })};
     for (uint32_t f : forced)
-      maximal.push_back("((CD" + num(r) + "_" + num(f) + " & !" +
-                        member(r, f) + ") -> !" + joint([&](uint32_t x) {
+      maximal.push_back("((CD" + num(r) + "_" + num(f) + " & !" + member(r, f) +
+                        ") -> !" + joint([&](uint32_t x) {
                           return x == f ? std::string("TRUE") : member(r, x);
-                        }) + ")");
-    d << "  OK" << r << " := ALL" << r << " | " << joinWith(maximal, "&", "TRUE")
-      << ";\n";
+                        }) +
+                        ")");
+    d << "  OK" << r << " := ALL" << r << " | "
+      << joinWith(maximal, "&", "TRUE") << ";\n";
     roundOk.push_back("OK" + num(r));
   }
   auto inStep = [&](uint32_t t) { return member(rounds, t); };
@@ -708,10 +745,9 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
   for (const auto &[slot, ts] : writers)
     for (size_t i = 0; i < ts.size(); ++i)
       for (size_t j = i + 1; j < ts.size(); ++j)
-        stepErrors.push_back("(" + inStep(ts[i]) + " & " +
-                             effects[ts[i]].wrote[slot] + " & " +
-                             inStep(ts[j]) + " & " +
-                             effects[ts[j]].wrote[slot] + ")");
+        stepErrors.push_back(
+            "(" + inStep(ts[i]) + " & " + effects[ts[i]].wrote[slot] + " & " +
+            inStep(ts[j]) + " & " + effects[ts[j]].wrote[slot] + ")");
   // Token sums past an unbounded place's encoding.
   std::vector<std::string> nextMarking(m.places.size());
   for (uint32_t p = 0; p < m.places.size(); ++p) {
@@ -746,71 +782,88 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
                       ")");
   d << "  STEP := " << joinWith(seeds, "|", "FALSE") << " & "
     << joinWith(roundOk, "&", "TRUE") << ";\n";
+  d << "  STATEERR := " << joinWith(stateErrors, "|", "FALSE") << ";\n";
   d << "  STEPERR := " << joinWith(stepErrors, "|", "FALSE") << ";\n";
-  d << "  FIRE := trig != none & trig != tick & STEP & !STEPERR;\n";
-  d << "  TICK := trig = tick & !URGENT & TICKS;\n";
+  d << "  FIRE := trig != none & trig != tick & STEP & !STEPERR & "
+       "!STATEERR;\n";
+  d << "  TICK := trig = tick & !URGENT & TICKS & !STATEERR;\n";
 
-  // A deadlock: no step under any valuation of the free inputs enabling
-  // reads, and no tick. A spontaneous seed always makes a step (urgent
-  // forced transitions are refused), and input events alone make one
-  // when a forced transition they alone trigger is enabled.
-  std::set<uint32_t> readByEnabling;
-  for (const auto &s : enablingInputs)
-    readByEnabling.insert(s.begin(), s.end());
-  std::vector<uint32_t> seedOnly;
+  // A deadlock: no step under any valuation of the free inputs, and no
+  // tick. A spontaneous seed always makes a step (urgent forced
+  // transitions are refused), and input events alone make one when a
+  // forced transition they alone trigger is enabled. Each way to go on is
+  // a disjunct that exists for some valuation of the inputs its enabling
+  // and urgency read: those valuations are enumerated.
+  std::set<uint32_t> urgentReads;
+  std::vector<uint32_t> urgentOnes;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    if (m.transitions[t].urgent) {
+      urgentOnes.push_back(t);
+      urgentReads.insert(enablingInputs[t].begin(), enablingInputs[t].end());
+    }
+  std::map<uint32_t, int64_t> fixed;
+  auto en = [&](uint32_t t) {
+    if (!inputValue) // no input read: the definitions serve as they are
+      return "EN" + num(t);
+    std::vector<std::string> counted; // in STATEERR already
+    return enabling(t, counted);
+  };
+  auto notUrgent = [&]() {
+    std::vector<std::string> u;
+    for (uint32_t t : urgentOnes)
+      u.push_back(en(t));
+    return "!" + joinWith(u, "|", "FALSE");
+  };
+  std::vector<std::string> live;
+  // `body` for every valuation of `reads` and the urgent ones' inputs.
+  auto forSomeInputs = [&](int64_t t,
+                           const std::function<std::string()> &body) {
+    std::set<uint32_t> reads = urgentReads;
+    if (t >= 0)
+      reads.insert(enablingInputs[t].begin(), enablingInputs[t].end());
+    std::vector<uint32_t> slots(reads.begin(), reads.end());
+    uint64_t valuations = 1;
+    for (uint32_t slot : slots) {
+      valuations *= uint64_t(L.slots()[slot].hi - L.slots()[slot].lo + 1);
+      if (valuations > 4096)
+        return refuse(t >= 0 ? m.transitions[t].loc : m.loc,
+                      "enabling that reads free inputs with over 4096 "
+                      "valuations (the deadlock condition enumerates them)");
+    }
+    inputValue = slots.empty() ? nullptr : &fixed;
+    for (uint64_t v = 0; v < valuations; ++v) {
+      uint64_t rest = v;
+      for (uint32_t slot : slots) {
+        const sem::Slot &s = L.slots()[slot];
+        uint64_t span = uint64_t(s.hi - s.lo + 1);
+        fixed[slot] = s.lo + int64_t(rest % span);
+        rest /= span;
+      }
+      live.push_back(body());
+    }
+    inputValue = nullptr;
+    return true;
+  };
+  for (uint32_t t : spontaneous)
+    if (!forSomeInputs(t, [&] {
+          return m.transitions[t].urgent
+                     ? en(t)
+                     : "(" + en(t) + " & " + notUrgent() + ")";
+        }))
+      return false;
   for (uint32_t f : forced) {
     const Transition &t = m.transitions[f];
     bool fromInputs = t.mode == EventMode::And;
     for (const EventSource &s : t.events())
       fromInputs = t.mode == EventMode::And ? fromInputs && s.fromPort
                                             : fromInputs || s.fromPort;
-    if (fromInputs)
-      seedOnly.push_back(f);
+    if (fromInputs && !forSomeInputs(f, [&] {
+          return "(" + en(f) + " & " + notUrgent() + ")";
+        }))
+      return false;
   }
-  uint64_t valuations = 1;
-  std::vector<uint32_t> inputSlots(readByEnabling.begin(),
-                                   readByEnabling.end());
-  for (uint32_t slot : inputSlots) {
-    const sem::Slot &s = L.slots()[slot];
-    valuations *= uint64_t(s.hi - s.lo + 1);
-    if (valuations > 4096)
-      return refuse(m.loc, "enabling that reads free inputs with over 4096 "
-                           "valuations (the deadlock condition enumerates "
-                           "them)");
-  }
-  std::vector<std::string> live;
-  std::map<uint32_t, int64_t> fixed;
-  for (uint64_t v = 0; v < valuations; ++v) {
-    uint64_t rest = v;
-    for (uint32_t slot : inputSlots) {
-      const sem::Slot &s = L.slots()[slot];
-      uint64_t span = uint64_t(s.hi - s.lo + 1);
-      fixed[slot] = s.lo + int64_t(rest % span);
-      rest /= span;
-    }
-    // With no input read, the definitions above serve as they are.
-    auto en = [&](uint32_t t) {
-      if (inputSlots.empty())
-        return "EN" + num(t);
-      inputValue = &fixed;
-      std::string e = enabling(t);
-      inputValue = nullptr;
-      return e;
-    };
-    std::vector<std::string> u, any;
-    for (uint32_t t = 0; t < m.transitions.size(); ++t)
-      if (m.transitions[t].urgent)
-        u.push_back(en(t));
-    std::string notUrgent = "!" + joinWith(u, "|", "FALSE");
-    for (uint32_t t : spontaneous)
-      any.push_back(m.transitions[t].urgent ? en(t)
-                                            : "(" + en(t) + " & " + notUrgent +
-                                                  ")");
-    for (uint32_t f : seedOnly)
-      any.push_back("(" + en(f) + " & " + notUrgent + ")");
-    any.push_back("(TICKS & " + notUrgent + ")");
-    live.push_back(joinWith(any, "|", "FALSE"));
-  }
+  if (!forSomeInputs(-1, [&] { return "(TICKS & " + notUrgent() + ")"; }))
+    return false;
   d << "  deadlock := !" << joinWith(live, "|", "FALSE") << ";\n";
 
   // Properties (checked before anything is written).
@@ -881,12 +934,12 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
           touched.push_back(inStep(t));
           break;
         }
-    os << "  init(" << k << ") := "
-       << L.get(init.data(), uint32_t(L.clockSlot(p))) << ";\n"
-       << "  next(" << k << ") := case TICK : (" << n << " > 0 & " << k
-       << " < " << L.clockCap(p) << " ? " << k << " + 1 : " << k
-       << "); FIRE & " << joinWith(touched, "|", "FALSE") << " : 0; TRUE : "
-       << k << "; esac;\n";
+    os << "  init(" << k
+       << ") := " << L.get(init.data(), uint32_t(L.clockSlot(p))) << ";\n"
+       << "  next(" << k << ") := case TICK : (" << n << " > 0 & " << k << " < "
+       << L.clockCap(p) << " ? " << k << " + 1 : " << k << "); FIRE & "
+       << joinWith(touched, "|", "FALSE") << " : 0; TRUE : " << k
+       << "; esac;\n";
   }
   for (uint32_t u = 0; u < units.size(); ++u) {
     if (units[u].isInput)
@@ -900,27 +953,28 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
       os << "  init(" << n << ") := " << L.get(init.data(), slot) << ";\n";
       std::vector<std::pair<std::string, std::string>> arms;
       if (clock)
-        arms.push_back({"TICK", "(" + n + " < " + num(units[u].hi) + " ? " +
-                                    n + " + 1 : " + n + ")"});
+        arms.push_back({"TICK", "(" + n + " < " + num(units[u].hi) + " ? " + n +
+                                    " + 1 : " + n + ")"});
       if (auto w = writers.find(slot); w != writers.end())
         for (uint32_t t : w->second)
-          arms.push_back({"FIRE & " + inStep(t) + " & " +
-                              effects[t].wrote[slot],
-                          effects[t].value[slot]});
+          arms.push_back(
+              {"FIRE & " + inStep(t) + " & " + effects[t].wrote[slot],
+               effects[t].value[slot]});
       if (!arms.empty())
         os << "  next(" << n << ") := " << firstOf(arms, n) << ";\n";
     }
   }
   os << "  init(netlift_error) := FALSE;\n"
-        "  next(netlift_error) := netlift_error | (trig != none & trig != "
-        "tick & STEP & STEPERR);\n"
+        "  next(netlift_error) := netlift_error | STATEERR | (trig != none "
+        "& trig != tick & STEP & STEPERR);\n"
         "-- A step, a tick, or staying put in a deadlock or after an error.\n"
-        "TRANS\n  case netlift_error : trig = none; trig = none : deadlock; "
+        "TRANS\n  case netlift_error | STATEERR : trig = none; trig = none : "
+        "deadlock; "
         "trig = tick : TICK; TRUE : STEP; esac\n"
         "INVARSPEC !netlift_error\n";
   for (size_t i = 0; i < properties.size(); ++i)
-    os << "-- p" << i + 1 << ": " << ctlToString(*properties[i])
-       << "\nCTLSPEC " << specs[i] << "\n";
+    os << "-- p" << i + 1 << ": " << ctlToString(*properties[i]) << "\nCTLSPEC "
+       << specs[i] << "\n";
   return true;
 }
 

@@ -1,4 +1,5 @@
-//===- StateUnits.h - a flat module's state as a checker names it -*- C++ -*-===//
+//===- StateUnits.h - a flat module's state as a checker names it -*- C++
+//-*-===//
 //
 // The exports to model checkers (Promela, SMV) name the same things: each
 // place's marking and clock, each scalar or array of scalars a variable or
