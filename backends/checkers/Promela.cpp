@@ -432,29 +432,15 @@ void StepWriter::stmts(Block b, const std::string &in) {
 
 std::string StepWriter::enabling(uint32_t ti) {
   const Transition &t = m.transitions[ti];
-  std::string c;
-  auto conj = [&](const std::string &x) { c += (c.empty() ? "" : " && ") + x; };
-  for (const PlaceEffect &e : placeEffects(t)) {
-    if (e.pre > 0)
-      conj(placeNames[e.place] + " >= " + num(e.pre));
-    uint32_t cap = m.places[e.place].capacity;
-    if (e.post > e.pre && cap != kInf)
-      conj(placeNames[e.place] + " + " + num(e.post - e.pre) +
-           " <= " + num(cap));
-  }
-  for (const PreArc &a : t.pre())
-    if (!a.time.isTrivial()) {
-      const std::string &k = clockNames[a.place];
-      if (a.time.lo > 0)
-        conj(k + " >= " + num(a.time.lo));
-      if (a.time.hi != kInf)
-        conj(k + " <= " + num(a.time.hi));
-    }
+  std::vector<std::string> c = tokenAndTimeConditions(ti);
   for (const Expr *x : t.conds())
-    conj(expr(x));
+    c.push_back(expr(x));
   if (const Expr *g = t.guard())
-    conj(expr(g));
-  return c.empty() ? "1" : "(" + c + ")";
+    c.push_back(expr(g));
+  std::string out;
+  for (const std::string &x : c)
+    out += (out.empty() ? "" : " && ") + x;
+  return out.empty() ? "1" : "(" + out + ")";
 }
 
 std::string StepWriter::eventEnabling(uint32_t ti) {
@@ -477,21 +463,10 @@ std::string StepWriter::eventEnabling(uint32_t ti) {
 /// and production)? Only places a forced transition touches can make a
 /// candidate conflict, so only they are checked.
 std::string StepWriter::jointEnabling() {
-  std::vector<std::vector<std::pair<uint32_t, PlaceEffect>>> byPlace(
-      m.places.size());
-  std::vector<char> forcedTouches(m.places.size(), 0);
-  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti)
-    for (const PlaceEffect &e : placeEffects(m.transitions[ti])) {
-      byPlace[e.place].push_back({ti, e});
-      if (m.transitions[ti].isForced())
-        forcedTouches[e.place] = 1;
-    }
   std::string c;
-  for (uint32_t p = 0; p < m.places.size(); ++p) {
-    if (!forcedTouches[p])
-      continue;
+  for (const auto &[p, effects] : forcedPlaces()) {
     std::string demand, delta;
-    for (auto &[ti, e] : byPlace[p]) {
+    for (auto &[ti, e] : effects) {
       if (e.pre > 0)
         demand += (demand.empty() ? "" : " + ") +
                   ("SEL[" + num(ti) + "]*" + num(e.pre));
@@ -701,13 +676,10 @@ bool StepWriter::write() {
   if (failed)
     return false;
 
-  sem::Semantics semantics(m, L, sem::Options());
-  std::vector<uint64_t> init(L.numWords());
-  sem::RuntimeError err;
-  if (!semantics.initialState(init.data(), err)) {
-    diag.error(err.loc, err.message);
+  std::vector<uint64_t> init;
+  if (!initialState(init))
     return false;
-  }
+  sem::Semantics semantics(m, L, sem::Options());
   bool hasInputs = !eventNames.empty();
   for (const Unit &u : units)
     hasInputs |= u.isInput;

@@ -503,23 +503,7 @@ void SmvWriter::exec(Block b, Effect &eff) {
 
 std::string SmvWriter::enabling(uint32_t ti, std::vector<std::string> &errs) {
   const Transition &t = m.transitions[ti];
-  std::vector<std::string> c;
-  for (const PlaceEffect &e : placeEffects(t)) {
-    if (e.pre > 0)
-      c.push_back(placeNames[e.place] + " >= " + num(e.pre));
-    uint32_t cap = m.places[e.place].capacity;
-    if (e.post > e.pre && cap != kInf)
-      c.push_back(placeNames[e.place] + " + " + num(e.post - e.pre) +
-                  " <= " + num(cap));
-  }
-  for (const PreArc &a : t.pre())
-    if (!a.time.isTrivial()) {
-      const std::string &k = clockNames[a.place];
-      if (a.time.lo > 0)
-        c.push_back(k + " >= " + num(a.time.lo));
-      if (a.time.hi != kInf)
-        c.push_back(k + " <= " + num(a.time.hi));
-    }
+  std::vector<std::string> c = tokenAndTimeConditions(ti);
   // Conditions, then the guard, each evaluated (and able to fail) only
   // where everything before it holds, as the engine does.
   std::vector<std::string> *outerErrors = errors;
@@ -543,22 +527,11 @@ std::string SmvWriter::enabling(uint32_t ti, std::vector<std::string> &errs) {
 /// make a candidate conflict, so only they are checked.
 std::string
 SmvWriter::joint(const std::function<std::string(uint32_t)> &member) {
-  std::vector<std::vector<std::pair<uint32_t, PlaceEffect>>> byPlace(
-      m.places.size());
-  std::vector<char> forcedTouches(m.places.size(), 0);
-  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti)
-    for (const PlaceEffect &e : placeEffects(m.transitions[ti])) {
-      byPlace[e.place].push_back({ti, e});
-      if (m.transitions[ti].isForced())
-        forcedTouches[e.place] = 1;
-    }
   std::vector<std::string> c;
-  for (uint32_t p = 0; p < m.places.size(); ++p) {
-    if (!forcedTouches[p])
-      continue;
+  for (const auto &[p, effects] : forcedPlaces()) {
     std::vector<std::string> demand, delta;
     int64_t fixedDemand = 0, fixedDelta = 0; // of members that are TRUE
-    for (auto &[ti, e] : byPlace[p]) {
+    for (auto &[ti, e] : effects) {
       std::string in = member(ti);
       int64_t dlt = int64_t(e.post) - int64_t(e.pre);
       if (in == "FALSE")
@@ -638,13 +611,9 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
       return refuse(tr.loc,
                     "the urgent forced transition '" + tr.name.str() + "'");
   }
-  sem::Semantics semantics(m, L, sem::Options());
-  std::vector<uint64_t> init(L.numWords());
-  sem::RuntimeError err;
-  if (!semantics.initialState(init.data(), err)) {
-    diag.error(err.loc, err.message);
+  std::vector<uint64_t> init;
+  if (!initialState(init))
     return false;
-  }
 
   // Enabling, urgency and time.
   // Every state evaluates every transition's enabling (under each input

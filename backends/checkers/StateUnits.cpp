@@ -128,3 +128,53 @@ std::optional<Access> StateUnits::access(const Expr *e) {
   }
   return Access{uint32_t(unitOfSlot[slot]), nullptr};
 }
+
+bool StateUnits::initialState(std::vector<uint64_t> &state) {
+  sem::Semantics semantics(m, L, sem::Options());
+  state.assign(L.numWords(), 0);
+  sem::RuntimeError err;
+  if (semantics.initialState(state.data(), err))
+    return true;
+  diag.error(err.loc, err.message);
+  return false;
+}
+
+std::vector<std::string> StateUnits::tokenAndTimeConditions(uint32_t ti) const {
+  const Transition &t = m.transitions[ti];
+  std::vector<std::string> c;
+  for (const PlaceEffect &e : placeEffects(t)) {
+    if (e.pre > 0)
+      c.push_back(placeNames[e.place] + " >= " + std::to_string(e.pre));
+    uint32_t cap = m.places[e.place].capacity;
+    if (e.post > e.pre && cap != kInf)
+      c.push_back(placeNames[e.place] + " + " + std::to_string(e.post - e.pre) +
+                  " <= " + std::to_string(cap));
+  }
+  for (const PreArc &a : t.pre())
+    if (!a.time.isTrivial()) {
+      const std::string &k = clockNames[a.place];
+      if (a.time.lo > 0)
+        c.push_back(k + " >= " + std::to_string(a.time.lo));
+      if (a.time.hi != kInf)
+        c.push_back(k + " <= " + std::to_string(a.time.hi));
+    }
+  return c;
+}
+
+std::vector<std::pair<uint32_t, EffectsOnPlace>>
+StateUnits::forcedPlaces() const {
+  std::vector<std::vector<std::pair<uint32_t, PlaceEffect>>> byPlace(
+      m.places.size());
+  std::vector<char> forcedTouches(m.places.size(), 0);
+  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti)
+    for (const PlaceEffect &e : placeEffects(m.transitions[ti])) {
+      byPlace[e.place].push_back({ti, e});
+      if (m.transitions[ti].isForced())
+        forcedTouches[e.place] = 1;
+    }
+  std::vector<std::pair<uint32_t, EffectsOnPlace>> out;
+  for (uint32_t p = 0; p < m.places.size(); ++p)
+    if (forcedTouches[p])
+      out.push_back({p, std::move(byPlace[p])});
+  return out;
+}

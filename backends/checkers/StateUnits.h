@@ -14,6 +14,7 @@
 #define NETLIFT_BACKENDS_CHECKERS_STATEUNITS_H
 
 #include "ir/net/Module.h"
+#include "ir/semantics/Semantics.h"
 #include "ir/semantics/StateLayout.h"
 #include "ir/support/Diagnostics.h"
 
@@ -27,6 +28,9 @@ namespace netlift::checkers {
 /// name (non-identifier characters replaced) keeps them readable.
 std::string checkerIdentifier(const char *prefix, uint32_t i,
                               llvm::StringRef name);
+
+/// Each transition's effect on one place, by transition.
+using EffectsOnPlace = std::vector<std::pair<uint32_t, net::PlaceEffect>>;
 
 /// Storage of the state or of the inputs as a checker sees it: a scalar
 /// slot, or an array of scalar slots.
@@ -64,6 +68,14 @@ public:
   bool refuse(llvm::SMLoc loc, const std::string &what);
   /// The position of input event port `port` among the input events.
   uint32_t inputEventIndex(uint32_t port) const;
+  /// The initial state, or false after reporting why there is none.
+  bool initialState(std::vector<uint64_t> &state);
+  /// Transition t's token, capacity and time conditions as comparisons
+  /// both languages read alike (`P0_a >= 1`, `K2_b <= 3`).
+  std::vector<std::string> tokenAndTimeConditions(uint32_t t) const;
+  /// For every place a forced transition touches (only those can make
+  /// closure candidates conflict), every transition's effect on it.
+  std::vector<std::pair<uint32_t, EffectsOnPlace>> forcedPlaces() const;
 
 protected:
   const net::Module &m;
