@@ -25,6 +25,8 @@ import subprocess
 import sys
 import tempfile
 
+from crosscheck import Tally, netlift_summary, split_ctl
+
 EXPLORE = os.path.join(os.path.dirname(os.path.abspath(__file__)),
                        "smv-explore.py")
 
@@ -57,14 +59,11 @@ def check(netlift, model, ctl):
         if x.returncode != 0:
             return False, f"{name}: {x.stderr.strip()[:300]}"
         theirs = json.loads(x.stdout)
-        r = subprocess.run([netlift, "reach", model, "--summary", "json",
-                            "-q"], capture_output=True, text=True)
-        runtime_error = r.returncode == 1 and "runtime error" in r.stderr
-        if runtime_error:
+        ours = netlift_summary(netlift, model)
+        if ours is None:
             ok = theirs["invarspec"] == [False]
             return ok, (f"{name}: runtime error: netlift stops, INVARSPEC "
                         f"!netlift_error {'fails' if ok else 'holds'}")
-        ours = json.loads(r.stdout)
         pairs = netlift_pairs(netlift, model, work)
     edges = pairs + ours["deadlocks"]
     ok = (ours["complete"] and theirs["states"] == ours["states"]
@@ -87,21 +86,12 @@ def check(netlift, model, ctl):
 
 
 def main():
-    args = sys.argv[1:]
-    ctl = []
-    while "--ctl" in args:
-        i = args.index("--ctl")
-        ctl.append(args[i + 1])
-        del args[i:i + 2]
+    ctl, args = split_ctl(sys.argv[1:])
     netlift, models = args[0], args[1:]
-    passed = failed = 0
+    tally = Tally()
     for model in models:
-        ok, line = check(netlift, model, ctl)
-        print(("ok   " if ok else "FAIL ") + line)
-        passed += ok
-        failed += not ok
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+        tally.report(*check(netlift, model, ctl))
+    return tally.finish()
 
 
 if __name__ == "__main__":

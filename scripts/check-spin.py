@@ -30,6 +30,8 @@ import sys
 import tempfile
 import time
 
+from crosscheck import Tally, netlift_summary, split_ctl
+
 
 def header(pml):
     """The export's header: encoding, state offset, deadlock convention."""
@@ -156,16 +158,11 @@ def check_properties(netlift, model, name, ctl):
 
 
 def main():
-    args = sys.argv[1:]
+    ctl, args = split_ctl(sys.argv[1:])
     bench = "--bench" in args
     args = [a for a in args if a != "--bench"]
-    ctl = []
-    while "--ctl" in args:
-        i = args.index("--ctl")
-        ctl.append(args[i + 1])
-        del args[i:i + 2]
     netlift, models = args[0], args[1:]
-    passed = failed = 0
+    tally = Tally()
     for model in models:
         name = os.path.basename(os.path.dirname(model)) \
             if os.path.basename(model) == "model.pnml" else os.path.basename(model)
@@ -174,34 +171,29 @@ def main():
             e = subprocess.run([netlift, "emit", "--to", "promela", model,
                                 "-o", pml], capture_output=True, text=True)
             if e.returncode != 0:
-                print(f"FAIL {name}: emit: {e.stderr.strip()[:300]}")
-                failed += 1
+                tally.report(False, f"{name}: emit: {e.stderr.strip()[:300]}")
                 continue
-            r = subprocess.run([netlift, "reach", model, "--summary", "json",
-                                "-q"], capture_output=True, text=True)
             # A runtime error of the model (write conflict, range...) stops
             # netlift; spin must fail an assertion or a bound check.
-            runtime_error = r.returncode == 1 and "runtime error" in r.stderr
-            ours = None if runtime_error else json.loads(r.stdout)
+            ours = netlift_summary(netlift, model)
+            runtime_error = ours is None
             head = header(pml)
             try:
                 theirs = spin_run(pml, work, head,
                                   ours["states"] if ours else 100000, bench)
             except RuntimeError as err:
-                print(f"FAIL {name}: {err}")
-                failed += 1
+                tally.report(False, f"{name}: {err}")
                 continue
         if ctl and not runtime_error:
+            # check_properties prints a line per property.
             if check_properties(netlift, model, name, ctl):
-                passed += 1
+                tally.passed += 1
             else:
-                failed += 1
+                tally.failed += 1
         if runtime_error:
             ok = theirs["assertion"] or theirs["bound"]
-            print(("ok   " if ok else "FAIL ") + f"{name}: runtime error:"
-                  f" netlift stops, spin {'fails' if ok else 'does not'}")
-            passed += ok
-            failed += not ok
+            tally.report(ok, f"{name}: runtime error: netlift stops, spin"
+                         f" {'fails' if ok else 'does not'}")
             continue
         steps = head["encoding"] == "steps"
         ok = (not theirs["assertion"] and ours["complete"]
@@ -228,11 +220,8 @@ def main():
                      f" spin {theirs['rate']:.0f} states/s"
                      f" {spin_bps:.1f} B/state; time netlift/spin"
                      f" {ours['seconds'] / max(theirs['seconds'], 1e-6):.2f}")
-        print(("ok   " if ok else "FAIL ") + line)
-        passed += ok
-        failed += not ok
-    print(f"{passed} passed, {failed} failed")
-    return 1 if failed else 0
+        tally.report(ok, line)
+    return tally.finish()
 
 
 if __name__ == "__main__":
