@@ -22,7 +22,6 @@ usage: check-spin.py [--bench] [--ctl FORMULA]... NETLIFT MODEL...
 Prints one line per model and a closing 'N passed, M failed' line; exit 1
 when some failed.
 """
-import json
 import os
 import re
 import subprocess
