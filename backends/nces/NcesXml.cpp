@@ -38,6 +38,35 @@ const char *kNoData = "NCES has no data; run the lower-data pass first "
                       "(netlift opt -p 'flatten,lower-data')";
 const char *kSignal = "an NCES condition arc starts at a place or a "
                       "condition input, not at an expression";
+
+/// The XML declaration, the FBType element and its InterfaceList: event
+/// ports as events, condition ports as BOOL variables.
+void writeHeader(const Module &m, llvm::raw_ostream &os) {
+  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+     << "<!-- Module '" << xmlEscape(m.name)
+     << "' as ViVe NCES XML (netlift emit --to nces-xml) -->\n"
+     << "<FBType Name=\"" << xmlEscape(m.name) << "\">\n"
+     << "  <InterfaceList>\n";
+  auto section = [&](const char *tag, const char *item, PortKind kind,
+                     bool input) {
+    bool any = false;
+    for (const Port &p : m.ports)
+      if (p.kind == kind && p.isInput() == input) {
+        if (!any)
+          os << "    <" << tag << ">\n";
+        any = true;
+        os << "      <" << item << " Name=\"" << xmlEscape(p.name) << "\""
+           << (kind == PortKind::Cond ? " Type=\"BOOL\"" : "") << "/>\n";
+      }
+    if (any)
+      os << "    </" << tag << ">\n";
+  };
+  section("EventInputs", "Event", PortKind::Event, true);
+  section("EventOutputs", "Event", PortKind::Event, false);
+  section("InputVars", "VarDeclaration", PortKind::Cond, true);
+  section("OutputVars", "VarDeclaration", PortKind::Cond, false);
+  os << "  </InterfaceList>\n";
+}
 } // namespace
 
 bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
@@ -70,30 +99,8 @@ bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
                       kSignal);
   }
 
-  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-     << "<!-- Module '" << xmlEscape(m.name)
-     << "' as ViVe NCES XML (netlift emit --to nces-xml) -->\n"
-     << "<FBType Name=\"" << xmlEscape(m.name) << "\">\n"
-     << "  <InterfaceList>\n";
-  auto section = [&](const char *tag, const char *item, PortKind kind,
-                     bool input) {
-    bool any = false;
-    for (const Port &p : m.ports)
-      if (p.kind == kind && p.isInput() == input) {
-        if (!any)
-          os << "    <" << tag << ">\n";
-        any = true;
-        os << "      <" << item << " Name=\"" << xmlEscape(p.name) << "\""
-           << (kind == PortKind::Cond ? " Type=\"BOOL\"" : "") << "/>\n";
-      }
-    if (any)
-      os << "    </" << tag << ">\n";
-  };
-  section("EventInputs", "Event", PortKind::Event, true);
-  section("EventOutputs", "Event", PortKind::Event, false);
-  section("InputVars", "VarDeclaration", PortKind::Cond, true);
-  section("OutputVars", "VarDeclaration", PortKind::Cond, false);
-  os << "  </InterfaceList>\n  <SNS>\n";
+  writeHeader(m, os);
+  os << "  <SNS>\n";
   // Layout: places in a row, transitions in the row below, so that a
   // drawing tool shows something legible before the user arranges it.
   for (uint32_t p = 0; p < m.places.size(); ++p) {
@@ -174,5 +181,58 @@ bool nces::writePnt(const Module &m, DiagEngine &diag, llvm::raw_ostream &os) {
     os << "     " << t << ": " << m.transitions[t].name << "   "
        << (m.transitions[t].urgent ? 1 : 0) << "    0\n";
   os << "@\n";
+  return true;
+}
+
+bool nces::writeNcesComposite(const Module &m, DiagEngine &diag,
+                              llvm::raw_ostream &os) {
+  if (!m.places.empty() || !m.transitions.empty() || !m.vars.empty())
+    return refuse(diag, m.loc,
+                  "module '" + m.name.str() +
+                      "' with both instances and a net of its own",
+                  "an NCES module is either basic (a net) or composite "
+                  "(instances and connections); move its own net into a "
+                  "module it instantiates");
+  for (const Port &p : m.ports) {
+    if (p.kind == PortKind::Data)
+      return refuse(diag, p.loc, "data port '" + p.name.str() + "'", kNoData);
+    if (p.definition)
+      return refuse(diag, p.definitionLoc,
+                    "output '" + p.name.str() +
+                        "' = " + exprToString(p.definition),
+                    "a composite NCES module's outputs are connected, not "
+                    "defined");
+  }
+  // A connection carries what its (verified) source port is: events or
+  // conditions, as data ports are refused with the modules that have them.
+  auto sourceIsEvent = [&](const Connection &c) {
+    const Module *owner = &m;
+    for (const Instance &i : m.instances)
+      if (i.name == c.from.instance)
+        owner = i.module;
+    return owner->ports[owner->findPort(c.from.port)].kind == PortKind::Event;
+  };
+  std::string events, conditions;
+  auto endpoint = [](const Endpoint &e) {
+    return xmlEscape(e.instance.empty()
+                         ? e.port.str()
+                         : e.instance.str() + "." + e.port.str());
+  };
+  for (const Connection &c : m.connections) {
+    (sourceIsEvent(c) ? events : conditions) +=
+        "      <Connection Source=\"" + endpoint(c.from) + "\" Destination=\"" +
+        endpoint(c.to) + "\"/>\n";
+  }
+  writeHeader(m, os);
+  os << "  <FBNetwork>\n";
+  for (uint32_t i = 0; i < m.instances.size(); ++i)
+    os << "    <FB Name=\"" << xmlEscape(m.instances[i].name) << "\" Type=\""
+       << xmlEscape(m.instances[i].moduleName) << "\" X=\"" << 300 * i
+       << "\" Y=\"0\"/>\n";
+  if (!events.empty())
+    os << "    <EventConnections>\n" << events << "    </EventConnections>\n";
+  if (!conditions.empty())
+    os << "    <DataConnections>\n" << conditions << "    </DataConnections>\n";
+  os << "  </FBNetwork>\n</FBType>\n";
   return true;
 }

@@ -1,8 +1,9 @@
 //===- NcesXml.h - flat modules for NCES tools (ViVe XML, .pnt) -*- C++ -*-===//
 //
-// Writes a flat module for the tools of the NCES community: ViVe's NCES XML
+// Writes modules for the tools of the NCES community: ViVe's NCES XML
 // (one FBType with its InterfaceList and an SNS of places, transitions and
-// flow, condition and event arcs, FORMATS.md) and the INA-style `.pnt`
+// flow, condition and event arcs, FORMATS.md; or, for a module of
+// instances, a composite FBType with an FBNetwork) and the INA-style `.pnt`
 // place/transition table that SESA and INA read. NCES has no data: a module
 // with variables, guards or actions must go through `lower-data` first, and
 // a condition or output must be a place or a condition signal, not an
@@ -24,6 +25,14 @@ namespace netlift::nces {
 /// construct NCES cannot carry.
 bool writeNcesXml(const net::Module &m, DiagEngine &diag,
                   llvm::raw_ostream &os);
+
+/// ViVe's NCES XML for module `m` made of instances and connections: a
+/// composite FBType whose FBNetwork mirrors them one to one (event
+/// connections and condition connections). False after an error at a
+/// construct NCES cannot carry (data, a module mixing instances with a net
+/// of its own).
+bool writeNcesComposite(const net::Module &m, DiagEngine &diag,
+                        llvm::raw_ostream &os);
 
 /// The place/transition part of flat module `m` as an INA `.pnt` table
 /// (conditions, events and time are not part of it and are refused).

@@ -48,6 +48,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <set>
 
 using namespace netlift;
 namespace cl = llvm::cl;
@@ -364,6 +365,12 @@ static cl::opt<EmitFormat>
                                      "place/transition nets)")),
                cl::sub(emitCmd), cl::cat(category));
 
+static cl::opt<bool> emitModular(
+    "modular",
+    cl::desc("nces-xml: one FBType file per module in the -o directory, "
+             "modules of instances as composite FBTypes (FBNetwork)"),
+    cl::sub(emitCmd), cl::cat(category));
+
 enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
 static cl::opt<GraphFormat> reachFormat(
     "format", cl::desc("Write the state space"), cl::init(GraphFormat::None),
@@ -645,6 +652,49 @@ parseProperties(DiagEngine &diag, net::Design &design, net::Module &top,
   return true;
 }
 
+/// `emit --to nces-xml --modular`: the top module and every module it
+/// instantiates, each as DIR/<name>.xml, instantiated modules first.
+static bool writeNcesModules(net::Design &design, DiagEngine &diag) {
+  std::string why;
+  net::Module *top = design.findTop(plcTop, why);
+  if (!top) {
+    llvm::errs() << "netlift: error: emit: " << why << "\n";
+    return false;
+  }
+  // Every file is built before any is written: an error leaves nothing.
+  std::vector<std::pair<std::string, std::string>> files; // name, text
+  std::set<const net::Module *> done;
+  std::function<bool(const net::Module &)> build =
+      [&](const net::Module &m) -> bool {
+    if (!done.insert(&m).second)
+      return true;
+    for (const net::Instance &i : m.instances)
+      if (!build(*i.module))
+        return false;
+    std::string text;
+    llvm::raw_string_ostream buf(text);
+    if (m.instances.empty() ? !nces::writeNcesXml(m, diag, buf)
+                            : !nces::writeNcesComposite(m, diag, buf))
+      return false;
+    files.push_back({m.name.str() + ".xml", buf.str()});
+    return true;
+  };
+  if (!build(*top))
+    return false;
+  if (std::error_code ec = llvm::sys::fs::create_directories(outputFile)) {
+    llvm::errs() << "netlift: error: cannot create '" << outputFile
+                 << "': " << ec.message() << "\n";
+    return false;
+  }
+  for (const auto &[name, text] : files) {
+    llvm::SmallString<128> path(outputFile.getValue());
+    llvm::sys::path::append(path, name);
+    if (!writeOutput(path, [&](llvm::raw_ostream &os) { os << text; }))
+      return false;
+  }
+  return true;
+}
+
 static int runEmit() {
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
@@ -657,9 +707,17 @@ static int runEmit() {
                     "smv (or netlift check)\n";
     return 1;
   }
+  if (emitModular && (emitFormat != EmitFormat::NcesXml || outputFile.empty() ||
+                      outputFile == "-")) {
+    llvm::errs() << "netlift: error: --modular goes with --to nces-xml and "
+                    "-o DIRECTORY\n";
+    return 1;
+  }
   if ((!flatTop && !topUsable(inputs, "emit")) ||
       !loadInputs(inputs, inputFormat, diag, design))
     return 1;
+  if (emitModular)
+    return writeNcesModules(design, diag) ? 0 : 1;
   if (flatTop) {
     // Checker formats take the flattened top module.
     net::Module *top = explorableTop(design, diag, plcTop, "emit");
