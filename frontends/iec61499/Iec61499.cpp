@@ -64,7 +64,18 @@ struct Var {
   pugi::xml_node node;
 };
 
-enum class TypeKind { Basic, Composite, SubApp, Service, NoBody };
+enum class TypeKind { Basic, Composite, SubApp, Service, Adapter, NoBody };
+
+struct FbType;
+
+/// A plug or socket of a type: its elements became ports of the type named
+/// `<name>_<element>` (see expandAdapters).
+struct AdapterUse {
+  std::string name;
+  bool isPlug = false;
+  FbType *type = nullptr;
+  pugi::xml_node decl;
+};
 
 /// One FB or subapplication type as read.
 struct FbType {
@@ -74,9 +85,25 @@ struct FbType {
   pugi::xml_node root, body; // body: BasicFB / FBNetwork / SubAppNetwork
   std::vector<Event> eventInputs, eventOutputs;
   std::vector<Var> inputs, outputs;
+  /// Plugs and sockets: declared (read with the interface), then expanded
+  /// into ports when the type is first used.
+  std::vector<std::pair<pugi::xml_node, bool>> adapterDecls; // decl, plug
+  std::vector<AdapterUse> adapters;
   bool builtin = false;
   bool translated = false;
+
+  const AdapterUse *adapter(StringRef n) const {
+    for (const AdapterUse &a : adapters)
+      if (StringRef(a.name).equals_insensitive(n))
+        return &a;
+    return nullptr;
+  }
 };
+
+/// The port an element of plug or socket `adapter` became.
+static std::string adapterPort(StringRef adapter, StringRef element) {
+  return adapter.str() + "_" + element.str();
+}
 
 struct File {
   std::unique_ptr<pugi::xml_document> doc;
@@ -105,11 +132,17 @@ private:
   File &readFile(unsigned id);
   void registerTypes(File &f, bool builtin);
   void readInterface(FbType &t, pugi::xml_node iface);
-  FbType *findType(StringRef name, SMLoc use);
+  void expandAdapters(FbType &t);
+  void expandAdapterConnections(XmlSource &src, pugi::xml_node net,
+                                const FbType *owner);
+  /// `what` names the kind of type in the error when there is none.
+  FbType *findType(StringRef name, SMLoc use,
+                   const char *what = "function block");
   FbType *searchLibraries(StringRef name);
   FbType *libraryType(StringRef name);
   void collect(FbType &t);
-  void collectNetwork(XmlSource &src, pugi::xml_node net);
+  void collectNetwork(XmlSource &src, pugi::xml_node net,
+                      const FbType *owner);
   FbType &generatedType(const std::string &name, const std::string &text);
   std::string fanOutType(size_t ways);
   std::string inputQueueType(const FbType &t);
@@ -159,6 +192,8 @@ private:
   /// Names (upper case) an algorithm of the FB being read refers to by its
   /// interface name and that netlift keeps in an internal copy.
   std::set<std::string> copied;
+  /// The basic FB being read (its plugs and sockets name ports).
+  const FbType *current = nullptr;
 
   // Parameters: durations for the tick, constant modules by name.
   std::vector<int64_t> parameterTimes;
@@ -223,11 +258,79 @@ void Translator::readInterface(FbType &t, pugi::xml_node iface) {
   vars(child(iface, "InputVars"), t.inputs);
   vars(child(iface, "OutputVars"), t.outputs);
   for (const char *adapters : {"Plugs", "Sockets"})
-    if (pugi::xml_node a = child(iface, adapters))
-      if (a.first_child())
-        fail(t, a,
-             "adapters (<" + Twine(adapters) + ">) are not supported (type '" +
-                 t.name + "')");
+    for (pugi::xml_node a : child(iface, adapters).children("AdapterDeclaration"))
+      t.adapterDecls.push_back({a, StringRef(adapters) == "Plugs"});
+}
+
+/// A plug or socket of adapter type A becomes ports of the type it is
+/// declared in: what flows from plug to socket (A's event outputs and
+/// output variables) leaves through a plug and enters through a socket;
+/// A's event inputs and input variables flow the other way. Each port is
+/// named `<plug or socket>_<element>`, so that a plug is wired to a socket
+/// by one event or data connection per element.
+void Translator::expandAdapters(FbType &t) {
+  if (t.adapterDecls.empty())
+    return;
+  pugi::xml_node copies = t.root.append_child("_netliftAdapterPorts");
+  for (auto [decl, isPlug] : t.adapterDecls) {
+    std::string name = decl.attribute("Name").value();
+    SMLoc at = t.src->locOf(decl);
+    if (name.empty())
+      fail(at, "<AdapterDeclaration> without a Name");
+    FbType *a = findType(decl.attribute("Type").value(), at, "adapter");
+    if (a->kind != TypeKind::Adapter)
+      fail(at, "'" + a->name + "' of " + (isPlug ? "plug" : "socket") + " '" +
+                   name + "' is not an adapter type");
+    if (t.adapter(name))
+      fail(at, "two plugs or sockets named '" + name + "'");
+    t.adapters.push_back({name, isPlug, a, decl});
+    auto taken = [&](StringRef n) {
+      for (const auto *list : {&t.eventInputs, &t.eventOutputs})
+        for (const Event &e : *list)
+          if (StringRef(e.name).equals_insensitive(n))
+            return true;
+      for (const auto *list : {&t.inputs, &t.outputs})
+        for (const Var &v : *list)
+          if (StringRef(v.name).equals_insensitive(n))
+            return true;
+      return false;
+    };
+    // Copies in the type's own document keep the declarations' attributes
+    // readable (elements netlift adds have no place in the text).
+    auto copy = [&](pugi::xml_node orig) {
+      std::string port = adapterPort(name, orig.attribute("Name").value());
+      if (taken(port))
+        fail(at, "port '" + port + "' of " + (isPlug ? "plug" : "socket") +
+                     " '" + name + "' clashes with a name of '" + t.name +
+                     "'");
+      pugi::xml_node c = copies.append_copy(orig);
+      c.attribute("Name") = port.c_str();
+      return c;
+    };
+    auto events = [&](const std::vector<Event> &from, std::vector<Event> &to) {
+      for (const Event &e : from) {
+        Event ev;
+        ev.node = copy(e.node);
+        ev.name = ev.node.attribute("Name").value();
+        for (const std::string &w : e.with)
+          ev.with.push_back(adapterPort(name, w));
+        to.push_back(ev);
+      }
+    };
+    auto vars = [&](const std::vector<Var> &from, std::vector<Var> &to) {
+      for (const Var &v : from) {
+        if (!StringRef(v.node.attribute("InitialValue").value()).trim().empty())
+          fail(at, "initial value of '" + v.name + "' in adapter type '" +
+                       a->name + "' is not supported");
+        pugi::xml_node c = copy(v.node);
+        to.push_back({c.attribute("Name").value(), v.type, c});
+      }
+    };
+    events(a->eventOutputs, isPlug ? t.eventOutputs : t.eventInputs);
+    events(a->eventInputs, isPlug ? t.eventInputs : t.eventOutputs);
+    vars(a->outputs, isPlug ? t.outputs : t.inputs);
+    vars(a->inputs, isPlug ? t.inputs : t.outputs);
+  }
 }
 
 void Translator::registerTypes(File &f, bool builtin) {
@@ -242,12 +345,15 @@ void Translator::registerTypes(File &f, bool builtin) {
   t->src = f.src.get();
   t->root = root;
   t->builtin = builtin;
-  if (kind != "FBType" && kind != "SubAppType")
+  if (kind != "FBType" && kind != "SubAppType" && kind != "AdapterType")
     fail(*t, root,
          "not an IEC 61499 type or system: root element <" + kind + ">");
   if (t->name.empty())
     fail(*t, root, "<" + kind + "> without a Name");
-  if (kind == "SubAppType") {
+  if (kind == "AdapterType") {
+    readInterface(*t, child(root, "InterfaceList"));
+    t->kind = TypeKind::Adapter;
+  } else if (kind == "SubAppType") {
     readInterface(*t, child(root, "SubAppInterfaceList"));
     t->kind = TypeKind::SubApp;
     t->body = child(root, "SubAppNetwork");
@@ -288,7 +394,8 @@ FbType *Translator::searchLibraries(StringRef name) {
       for (llvm::sys::fs::recursive_directory_iterator it(dir, ec), end;
            it != end && !ec; it.increment(ec)) {
         StringRef ext = llvm::sys::path::extension(it->path());
-        if (ext.equals_insensitive(".fbt") || ext.equals_insensitive(".sub"))
+        if (ext.equals_insensitive(".fbt") || ext.equals_insensitive(".sub") ||
+            ext.equals_insensitive(".adp"))
           found.push_back(it->path());
       }
       if (ec)
@@ -326,7 +433,7 @@ FbType *Translator::libraryType(StringRef name) {
   return nullptr;
 }
 
-FbType *Translator::findType(StringRef name, SMLoc use) {
+FbType *Translator::findType(StringRef name, SMLoc use, const char *what) {
   if (auto it = types.find(name.upper()); it != types.end())
     return it->second.get();
   // The timed and start-up FBs are always netlift's models (4diac's are
@@ -335,7 +442,7 @@ FbType *Translator::findType(StringRef name, SMLoc use) {
     return libraryType(name);
   if (FbType *t = searchLibraries(name))
     return t;
-  fail(use, "unknown function block type '" + name +
+  fail(use, "unknown " + Twine(what) + " type '" + name +
                 "' (not in the inputs, the -I directories or netlift's "
                 "library)");
 }
@@ -355,28 +462,100 @@ void Translator::collect(FbType &t) {
   if (t.translated)
     return;
   t.translated = true;
+  expandAdapters(t);
   if (t.kind == TypeKind::Composite || t.kind == TypeKind::SubApp) {
     if (tops.count(&t) && !t.eventInputs.empty())
       collect(generatedType("_Inputs_" + t.name, inputQueueType(t)));
-    collectNetwork(*t.src, t.body);
+    collectNetwork(*t.src, t.body, &t);
   }
   order.push_back(&t);
 }
 
-void Translator::collectNetwork(XmlSource &src, pugi::xml_node net) {
+void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
+                                const FbType *owner) {
   std::map<std::string, size_t> destinations; // event source -> count
   for (pugi::xml_node fb : blocksOf(net)) {
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       fail(src.locOf(fb),
            "untyped subapplication '" + Twine(fb.attribute("Name").value()) +
                "' is not supported (save it as a subapplication type)");
-    collect(*findType(fb.attribute("Type").value(), src.locOf(fb)));
+    FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
+    if (type->kind == TypeKind::Adapter)
+      fail(src.locOf(fb), "'" + type->name + "' is an adapter type, not a "
+                                             "function block type");
+    collect(*type);
   }
+  expandAdapterConnections(src, net, owner);
   for (pugi::xml_node c : child(net, "EventConnections").children("Connection"))
     ++destinations[StringRef(c.attribute("Source").value()).upper()];
   for (auto &[source, ways] : destinations)
     if (ways > 1)
       collect(generatedType(fanOutType(ways), ""));
+}
+
+/// Each adapter connection `A.P -> B.S` (a plug to a socket of the same
+/// adapter type) becomes one event or data connection per element of the
+/// adapter, in the direction the element flows, added to the network's
+/// connections before anything reads them.
+void Translator::expandAdapterConnections(XmlSource &src, pugi::xml_node net,
+                                          const FbType *owner) {
+  pugi::xml_node list = child(net, "AdapterConnections");
+  if (!list)
+    return;
+  std::map<std::string, FbType *> blockTypes; // upper-case name -> type
+  for (pugi::xml_node fb : blocksOf(net))
+    blockTypes[StringRef(fb.attribute("Name").value()).upper()] =
+        findType(fb.attribute("Type").value(), src.locOf(fb));
+  for (pugi::xml_node c : list.children("Connection")) {
+    SMLoc at = src.locOf(c);
+    auto end = [&](const char *attr) {
+      StringRef text = c.attribute(attr).value();
+      auto [inst, name] = text.split('.');
+      if (name.empty())
+        fail(at, "adapter connection to '" + text + "', a plug or socket of " +
+                     (owner ? "'" + owner->name + "'" : "the application") +
+                     " itself, is not supported");
+      auto it = blockTypes.find(inst.upper());
+      if (it == blockTypes.end())
+        fail(at, Twine(attr) + " '" + text + "' names no function block");
+      const AdapterUse *a = it->second->adapter(name);
+      if (!a)
+        fail(at, "'" + inst + "' (" + it->second->name +
+                     ") has no plug or socket '" + name + "'");
+      return std::make_pair(inst.str(), a);
+    };
+    auto [plugBlock, plug] = end("Source");
+    auto [socketBlock, socket] = end("Destination");
+    if (!plug->isPlug || socket->isPlug)
+      fail(at, "an adapter connection goes from a plug to a socket ('" +
+                   plug->name + "' is a " + (plug->isPlug ? "plug" : "socket") +
+                   ", '" + socket->name + "' a " +
+                   (socket->isPlug ? "plug" : "socket") + ")");
+    if (plug->type != socket->type)
+      fail(at, "plug '" + plug->name + "' is a '" + plug->type->name +
+                   "' and socket '" + socket->name + "' a '" +
+                   socket->type->name + "'");
+    auto add = [&](const char *kind, StringRef element, bool toSocket) {
+      pugi::xml_node conns = child(net, kind);
+      if (!conns)
+        conns = net.append_child(kind);
+      std::string p = plugBlock + "." + adapterPort(plug->name, element),
+                  s = socketBlock + "." + adapterPort(socket->name, element);
+      pugi::xml_node conn = conns.append_child("Connection");
+      conn.append_attribute("Source") = (toSocket ? p : s).c_str();
+      conn.append_attribute("Destination") = (toSocket ? s : p).c_str();
+    };
+    const FbType &a = *plug->type;
+    for (const Event &e : a.eventOutputs)
+      add("EventConnections", e.name, true);
+    for (const Event &e : a.eventInputs)
+      add("EventConnections", e.name, false);
+    for (const Var &v : a.outputs)
+      add("DataConnections", v.name, true);
+    for (const Var &v : a.inputs)
+      add("DataConnections", v.name, false);
+  }
+  net.remove_child(list);
 }
 
 /// A type netlift makes up (its text is kept in the SourceMgr so that its
@@ -484,6 +663,14 @@ static std::string internal(StringRef name) { return "_" + name.str(); }
 void Translator::rename(Expr *e) {
   if (!e)
     return;
+  // `S.x`, element x of plug or socket S, is the port it became.
+  if (e->kind == ExprKind::Field && current && e->operands.size() == 1 &&
+      e->operands[0]->kind == ExprKind::Name)
+    if (const AdapterUse *a = current->adapter(e->operands[0]->name)) {
+      e->kind = ExprKind::Name;
+      e->name = adapterPort(a->name, e->name);
+      e->operands.clear();
+    }
   if (e->kind == ExprKind::Name && copied.count(StringRef(e->name).upper()))
     e->name = internal(e->name);
   for (Expr *o : e->operands)
@@ -577,10 +764,21 @@ Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
   if (trimmed.startswith("[") && trimmed.endswith("]"))
     trimmed = trimmed.drop_front().drop_back().trim();
   size_t id = 0;
-  while (id < trimmed.size() &&
-         (isalnum((unsigned char)trimmed[id]) || trimmed[id] == '_'))
-    ++id;
-  StringRef head = trimmed.take_front(id), rest = trimmed.drop_front(id).trim();
+  auto word = [&] {
+    while (id < trimmed.size() &&
+           (isalnum((unsigned char)trimmed[id]) || trimmed[id] == '_'))
+      ++id;
+  };
+  word();
+  std::string head = trimmed.take_front(id).str();
+  // `S.e`: event e of plug or socket S.
+  if (id < trimmed.size() && trimmed[id] == '.')
+    if (const AdapterUse *a = t.adapter(head)) {
+      size_t from = ++id;
+      word();
+      head = adapterPort(a->name, trimmed.slice(from, id));
+    }
+  StringRef rest = trimmed.drop_front(id).trim();
   for (const Event &e : t.eventInputs)
     if (StringRef(e.name).equals_insensitive(head) &&
         (rest.empty() || rest.startswith("["))) {
@@ -665,6 +863,7 @@ void Translator::basicBlock(FbType &t) {
   pou->loc = at;
   unit.pous.push_back(pou);
   copied.clear();
+  current = &t;
 
   auto declare = [&](StringRef name, TypeSyntax *ts, VarSection s, SMLoc loc) {
     if (pou->find(name))
@@ -819,6 +1018,11 @@ void Translator::basicBlock(FbType &t) {
         out.insert(out.end(), body.begin(), body.end());
       }
       if (StringRef o = a.attribute("Output").value(); !o.empty()) {
+        std::string port = o.str();
+        if (auto [name, element] = o.split('.'); !element.empty())
+          if (const AdapterUse *ad = t.adapter(name))
+            port = adapterPort(ad->name, element);
+        o = port;
         const Event *ev = nullptr;
         for (const Event &e : t.eventOutputs)
           if (StringRef(e.name).equals_insensitive(o))
@@ -1076,9 +1280,20 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     auto [a, p] = text.split('.');
     if (p.empty())
       return net::Endpoint{"", design.save(a), loc};
-    if (!instances.count(a.upper()))
+    // An element of the enclosing type's own plug or socket.
+    if (!instances.count(a.upper()) && iface)
+      if (const AdapterUse *own = iface->adapter(a))
+        return net::Endpoint{"", design.save(adapterPort(own->name, p)), loc};
+    auto inst = instances.find(a.upper());
+    if (inst == instances.end())
       fail(loc, Twine(attr) + " '" + text + "' names no function block of '" +
                     name + "'");
+    // `B.S.e`: element e of block B's plug or socket S.
+    auto [port, element] = p.split('.');
+    if (!element.empty())
+      if (const AdapterUse *ad = inst->second->adapter(port))
+        return net::Endpoint{design.save(a),
+                             design.save(adapterPort(ad->name, element)), loc};
     return net::Endpoint{design.save(a), design.save(p), loc};
   };
   std::set<std::pair<std::string, std::string>> driven; // (inst, port) upper
@@ -1087,9 +1302,6 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     for (pugi::xml_node p : fb.children("Parameter"))
       driven.insert({StringRef(fb.attribute("Name").value()).upper(),
                      StringRef(p.attribute("Name").value()).upper()});
-  if (pugi::xml_node adapters = child(net, "AdapterConnections"))
-    if (pugi::xml_node c = adapters.child("Connection"))
-      fail(src.locOf(c), "adapter connections are not supported");
   for (pugi::xml_node c :
        child(net, "DataConnections").children("Connection")) {
     net::Endpoint from = endpoint(c, "Source"), to = endpoint(c, "Destination");
@@ -1310,7 +1522,7 @@ bool Translator::run(const std::vector<unsigned> &ids) {
         pugi::xml_node net = child(app, "SubAppNetwork");
         if (!net)
           net = child(app, "FBNetwork");
-        collectNetwork(*file->src, net);
+        collectNetwork(*file->src, net, nullptr);
       }
     // A resource's own FBs (not mapped from an application) would run
     // besides the applications; netlift translates applications only, so
