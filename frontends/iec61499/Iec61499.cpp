@@ -141,8 +141,7 @@ private:
   FbType *searchLibraries(StringRef name);
   FbType *libraryType(StringRef name);
   void collect(FbType &t);
-  void collectNetwork(XmlSource &src, pugi::xml_node net,
-                      const FbType *owner);
+  void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
   FbType &generatedType(const std::string &name, const std::string &text);
   std::string fanOutType(size_t ways);
   std::string inputQueueType(const FbType &t);
@@ -258,7 +257,8 @@ void Translator::readInterface(FbType &t, pugi::xml_node iface) {
   vars(child(iface, "InputVars"), t.inputs);
   vars(child(iface, "OutputVars"), t.outputs);
   for (const char *adapters : {"Plugs", "Sockets"})
-    for (pugi::xml_node a : child(iface, adapters).children("AdapterDeclaration"))
+    for (pugi::xml_node a :
+         child(iface, adapters).children("AdapterDeclaration"))
       t.adapterDecls.push_back({a, StringRef(adapters) == "Plugs"});
 }
 
@@ -301,8 +301,7 @@ void Translator::expandAdapters(FbType &t) {
       std::string port = adapterPort(name, orig.attribute("Name").value());
       if (taken(port))
         fail(at, "port '" + port + "' of " + (isPlug ? "plug" : "socket") +
-                     " '" + name + "' clashes with a name of '" + t.name +
-                     "'");
+                     " '" + name + "' clashes with a name of '" + t.name + "'");
       pugi::xml_node c = copies.append_copy(orig);
       c.attribute("Name") = port.c_str();
       return c;
@@ -481,8 +480,9 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
                "' is not supported (save it as a subapplication type)");
     FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
     if (type->kind == TypeKind::Adapter)
-      fail(src.locOf(fb), "'" + type->name + "' is an adapter type, not a "
-                                             "function block type");
+      fail(src.locOf(fb), "'" + type->name +
+                              "' is an adapter type, not a "
+                              "function block type");
     collect(*type);
   }
   expandAdapterConnections(src, net, owner);
