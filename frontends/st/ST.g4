@@ -48,6 +48,9 @@ expressionOnly : expression EOF ;
 // A POU body alone (the ST bodies of PLCopen XML).
 statementsOnly : statementList EOF ;
 
+// Declarations alone (a long VAR block parsed in groups).
+varDeclsOnly : varDecl* EOF ;
+
 libraryElement
   : programDecl
   | functionBlockDecl

@@ -15,7 +15,11 @@
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSwitch.h"
 
+#include "llvm/Support/CommandLine.h"
+
 #include <cmath>
+#include <map>
+#include <optional>
 #include <type_traits>
 
 using namespace netlift;
@@ -339,11 +343,24 @@ bool hideStatement(antlr4::BufferedTokenStream &tokens,
 
 /// Walks the parse tree once. The first refusal or malformed literal stops
 /// the walk (`failed`), so one mistake gives one message.
+/// Parses the declarations of one group of a long VAR block (see
+/// LongParts) into `out`; false after reporting an error.
+bool parseDeclarations(StringRef text, DiagEngine &diag, Unit &unit,
+                       VarSection section, bool constant, bool retain,
+                       std::vector<VarDecl *> &out);
+
 class AstBuilder {
 public:
   AstBuilder(StringRef text, DiagEngine &diag, Unit &unit,
              antlr4::BufferedTokenStream &tokens)
       : text(text), diag(diag), unit(unit), tokens(tokens) {}
+
+  /// Bodies and VAR blocks the parse skipped, as groups of whole statements
+  /// or declarations, by the offset of the token closing them.
+  const std::map<size_t, std::vector<StringRef>> *skipped = nullptr;
+  /// Adds the variables `d` declares in a block of `section`.
+  void declare(P::VarDeclContext *d, VarSection section, bool constant,
+               bool retain, std::vector<VarDecl *> &out);
 
   bool build(P::CompilationUnitContext *cu);
   Expr *expr(P::ExpressionContext *ctx);
@@ -453,6 +470,14 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   for (auto *vb : c->pouVarBlock())
     varBlock(vb->varBlock(), pou->vars);
   statements(c->body, pou->body);
+  if (skipped)
+    if (auto it = skipped->find(c->getStop()->getStartIndex());
+        it != skipped->end())
+      for (StringRef group : it->second)
+        if (!st::parseStatements(group, diag, unit, pou->body)) {
+          failed = true; // reported where it is
+          return nullptr;
+        }
   unit.pous.push_back(pou);
   return pou;
 }
@@ -585,40 +610,57 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
       retain = true;
   }
   for (auto *d : c->varDecl()) {
-    if (d->accessPath())
-      return (void)refuse(loc(d), "access path declarations are not "
-                                  "supported");
-    TypeSyntax *type = typeSpec(d->typeSpec());
+    declare(d, section, constant, retain, out);
     if (failed)
       return;
-    std::vector<Attribute> attrs = pragmasBefore(d->getStart());
-    char edge = 0;
-    if (d->edge) {
-      std::string e = StringRef(d->edge->getText()).upper();
-      if (e != "R_EDGE" && e != "F_EDGE")
-        return (void)refuse(loc(d->edge),
-                            "expected ';', found '" + d->edge->getText() + "'");
-      edge = e[0];
-    }
-    std::string location = d->DIRECT() ? d->DIRECT()->getText() : "";
-    auto add = [&](std::string name, SMLoc at) {
-      VarDecl *v = unit.make<VarDecl>();
-      v->name = std::move(name);
-      v->loc = at;
-      v->section = section;
-      v->constant = constant;
-      v->retain = retain;
-      v->location = location;
-      v->typeSyntax = type;
-      v->attrs = attrs;
-      v->edge = edge;
-      out.push_back(v);
-    };
-    if (d->ident().empty()) // `AT %IX0.0 : BOOL;` names itself by address
-      add(location, loc(d->DIRECT()));
-    for (auto *id : d->ident())
-      add(id->getText(), loc(id));
   }
+  if (skipped)
+    if (auto it = skipped->find(c->getStop()->getStartIndex());
+        it != skipped->end())
+      for (StringRef group : it->second)
+        if (!parseDeclarations(group, diag, unit, section, constant, retain,
+                               out)) {
+          failed = true; // reported where it is
+          return;
+        }
+}
+
+void AstBuilder::declare(P::VarDeclContext *d, VarSection section,
+                         bool constant, bool retain,
+                         std::vector<VarDecl *> &out) {
+  if (d->accessPath())
+    return (void)refuse(loc(d), "access path declarations are not "
+                                "supported");
+  TypeSyntax *type = typeSpec(d->typeSpec());
+  if (failed)
+    return;
+  std::vector<Attribute> attrs = pragmasBefore(d->getStart());
+  char edge = 0;
+  if (d->edge) {
+    std::string e = StringRef(d->edge->getText()).upper();
+    if (e != "R_EDGE" && e != "F_EDGE")
+      return (void)refuse(loc(d->edge),
+                          "expected ';', found '" + d->edge->getText() + "'");
+    edge = e[0];
+  }
+  std::string location = d->DIRECT() ? d->DIRECT()->getText() : "";
+  auto add = [&](std::string name, SMLoc at) {
+    VarDecl *v = unit.make<VarDecl>();
+    v->name = std::move(name);
+    v->loc = at;
+    v->section = section;
+    v->constant = constant;
+    v->retain = retain;
+    v->location = location;
+    v->typeSyntax = type;
+    v->attrs = attrs;
+    v->edge = edge;
+    out.push_back(v);
+  };
+  if (d->ident().empty()) // `AT %IX0.0 : BOOL;` names itself by address
+    add(location, loc(d->DIRECT()));
+  for (auto *id : d->ident())
+    add(id->getText(), loc(id));
 }
 
 TypeSyntax *AstBuilder::typeSpec(P::TypeSpecContext *c) {
@@ -1104,17 +1146,230 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
   return reported ? nullptr : tree;
 }
 
+bool parseDeclarations(StringRef text, DiagEngine &diag, Unit &unit,
+                       VarSection section, bool constant, bool retain,
+                       std::vector<VarDecl *> &out) {
+  st::StLexer lexer(text, diag);
+  antlr4::CommonTokenStream tokens(&lexer);
+  P parser(&tokens);
+  P::VarDeclsOnlyContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::varDeclsOnly,
+                st::kMaxSyntaxErrors, "END_VAR");
+  if (!tree)
+    return false;
+  AstBuilder builder(text, diag, unit, tokens);
+  for (auto *d : tree->varDecl()) {
+    builder.declare(d, section, constant, retain, out);
+    if (builder.failed)
+      return false;
+  }
+  return true;
+}
+
+} // namespace
+
+namespace {
+
+/// Long POU bodies and VAR blocks, found by one pass of the lexer. ANTLR's
+/// C++ runtime keeps every token and every tree node of a parse until the
+/// parser dies (about 300 bytes per source byte), so a long body or block
+/// is taken out of the file's parse and parsed in groups of about
+/// groupTokens tokens, each with a parser of its own: statements cut after
+/// a `;` outside any IF/CASE/FOR/WHILE/REPEAT, declarations after a `;`
+/// outside any STRUCT. Groups are contiguous, so comments and pragmas stay
+/// with the declaration they precede.
+struct LongParts {
+  std::vector<std::pair<size_t, size_t>> ranges; // [begin, end) in order
+  /// The groups, by the offset of the token that closes the part
+  /// (END_PROGRAM, END_FUNCTION_BLOCK, END_FUNCTION or END_VAR).
+  std::map<size_t, std::vector<StringRef>> groups;
+};
+
+// Hidden knobs, so that tests can make small inputs take the grouped path.
+llvm::cl::opt<unsigned> longPartTokens(
+    "st-long-part-tokens", llvm::cl::Hidden, llvm::cl::init(16384),
+    llvm::cl::sub(*llvm::cl::AllSubCommands),
+    llvm::cl::desc("ST: parse bodies and VAR blocks of at least this many "
+                   "tokens in groups"));
+llvm::cl::opt<unsigned> groupTokens(
+    "st-group-tokens", llvm::cl::Hidden, llvm::cl::init(4096),
+    llvm::cl::sub(*llvm::cl::AllSubCommands),
+    llvm::cl::desc("ST: tokens per group of a long body or VAR block"));
+
+struct ScanToken {
+  size_t type, start, stop;
+};
+
+/// Cuts tokens [begin, end) into groups (see LongParts); false when they do
+/// not nest properly or hold something else (`plain` decides), in which
+/// case the part stays in the file's parse.
+template <typename Depth>
+bool cutIntoGroups(StringRef text, const std::vector<ScanToken> &toks,
+                   size_t begin, size_t end, Depth depthChange,
+                   LongParts &out) {
+  if (end - begin < longPartTokens || toks[end - 1].type != P::SEMI)
+    return false;
+  std::vector<StringRef> groups;
+  int depth = 0;
+  size_t from = toks[begin - 1].stop + 1, count = 0;
+  for (size_t k = begin; k < end; ++k, ++count) {
+    std::optional<int> change = depthChange(toks[k].type);
+    if (!change || (depth += *change) < 0)
+      return false;
+    if (toks[k].type == P::SEMI && depth == 0 &&
+        (count >= groupTokens || k + 1 == end)) {
+      size_t to = k + 1 == end ? toks[end].start : toks[k].stop + 1;
+      groups.push_back(text.slice(from, to));
+      from = to;
+      count = 0;
+    }
+  }
+  if (depth != 0)
+    return false;
+  out.ranges.push_back({toks[begin - 1].stop + 1, toks[end].start});
+  out.groups[toks[end].start] = std::move(groups);
+  return true;
+}
+
+LongParts findLongParts(StringRef text, DiagEngine &diag) {
+  std::vector<ScanToken> toks;
+  {
+    st::StLexer lexer(text, diag);
+    lexer.setSilent();
+    for (;;) {
+      std::unique_ptr<antlr4::Token> t = lexer.nextToken();
+      if (t->getType() == antlr4::Token::EOF)
+        break;
+      if (t->getChannel() == antlr4::Token::DEFAULT_CHANNEL)
+        toks.push_back({t->getType(), t->getStartIndex(), t->getStopIndex()});
+    }
+    if (lexer.hadError())
+      return {};
+  }
+  auto statementDepth = [](size_t type) -> std::optional<int> {
+    switch (type) {
+    case P::IF:
+    case P::CASE:
+    case P::FOR:
+    case P::WHILE:
+    case P::REPEAT:
+      return 1;
+    case P::END_IF:
+    case P::END_CASE:
+    case P::END_FOR:
+    case P::END_WHILE:
+    case P::END_REPEAT:
+      return -1;
+    case P::METHOD:
+    case P::ACTION:
+    case P::PROPERTY:
+    case P::STEP:
+    case P::INITIAL_STEP:
+    case P::TRANSITION:
+    case P::VAR:
+    case P::END_VAR:
+      return std::nullopt; // not a plain statement list
+    default:
+      return 0;
+    }
+  };
+  auto declarationDepth = [](size_t type) -> std::optional<int> {
+    return type == P::STRUCT ? 1 : type == P::END_STRUCT ? -1 : 0;
+  };
+  LongParts out;
+  size_t bodyStart = 0; // the token after the POU's last END_VAR (0: none)
+  for (size_t i = 0; i < toks.size(); ++i) {
+    switch (toks[i].type) {
+    case P::PROGRAM:
+    case P::FUNCTION_BLOCK:
+    case P::FUNCTION:
+      bodyStart = 0;
+      break;
+    case P::VAR:
+    case P::VAR_INPUT:
+    case P::VAR_OUTPUT:
+    case P::VAR_IN_OUT:
+    case P::VAR_EXTERNAL:
+    case P::VAR_GLOBAL:
+    case P::VAR_TEMP: {
+      size_t first = i + 1;
+      while (first < toks.size() && (toks[first].type == P::CONSTANT ||
+                                     toks[first].type == P::RETAIN ||
+                                     toks[first].type == P::NON_RETAIN ||
+                                     toks[first].type == P::PERSISTENT))
+        ++first;
+      size_t e = first;
+      while (e < toks.size() && toks[e].type != P::END_VAR)
+        ++e;
+      if (e == toks.size())
+        return out; // unterminated: the parse reports it
+      cutIntoGroups(text, toks, first, e, declarationDepth, out);
+      i = e;
+      bodyStart = e + 1;
+      break;
+    }
+    case P::END_PROGRAM:
+    case P::END_FUNCTION_BLOCK:
+    case P::END_FUNCTION:
+      if (bodyStart)
+        cutIntoGroups(text, toks, bodyStart, i, statementDepth, out);
+      bodyStart = 0;
+      break;
+    default:
+      break;
+    }
+  }
+  return out;
+}
+
+/// The lexer's tokens without those of the long parts.
+class SkippingSource : public antlr4::TokenSource {
+public:
+  SkippingSource(st::StLexer &lexer,
+                 const std::vector<std::pair<size_t, size_t>> &skip)
+      : lexer(lexer), skip(skip) {}
+  std::unique_ptr<antlr4::Token> nextToken() override {
+    for (;;) {
+      std::unique_ptr<antlr4::Token> t = lexer.nextToken();
+      if (t->getType() == antlr4::Token::EOF)
+        return t;
+      size_t at = t->getStartIndex();
+      while (next < skip.size() && at >= skip[next].second)
+        ++next;
+      if (next == skip.size() || at < skip[next].first)
+        return t;
+    }
+  }
+  size_t getLine() const override { return lexer.getLine(); }
+  size_t getCharPositionInLine() override {
+    return lexer.getCharPositionInLine();
+  }
+  antlr4::CharStream *getInputStream() override { return nullptr; }
+  std::string getSourceName() override { return lexer.getSourceName(); }
+  antlr4::TokenFactory<antlr4::CommonToken> *getTokenFactory() override {
+    return lexer.getTokenFactory();
+  }
+
+private:
+  st::StLexer &lexer;
+  const std::vector<std::pair<size_t, size_t>> &skip;
+  size_t next = 0;
+};
+
 } // namespace
 
 bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit) {
+  LongParts parts = findLongParts(text, diag);
   StLexer lexer(text, diag);
-  antlr4::CommonTokenStream tokens(&lexer);
+  SkippingSource source(lexer, parts.ranges);
+  antlr4::CommonTokenStream tokens(&source);
   P parser(&tokens);
   P::CompilationUnitContext *tree = parseWith(
       text, diag, lexer, tokens, parser, &P::compilationUnit, kMaxSyntaxErrors);
   if (!tree)
     return false;
   AstBuilder builder(text, diag, unit, tokens);
+  builder.skipped = &parts.groups;
   return builder.build(tree);
 }
 
