@@ -8,7 +8,7 @@ TRANS; INVARSPEC; CTLSPEC) and computes what SMV's semantics gives it,
 independently of netlift's engine: the reachable states (valuations of the
 VARs), the transitions (pairs of states related by some valuation of the
 IVARs that TRANS allows), the verdict of every INVARSPEC and CTLSPEC in
-the initial state. Input variables are chosen lazily: an evaluation that
+the initial state (in file order). Input variables are chosen lazily: an evaluation that
 reads one not chosen yet is restarted once per value of it, so only the
 inputs that matter are enumerated.
 
@@ -194,7 +194,7 @@ class Parser:
 
     def model(self):
         m = {"vars": {}, "ivars": {}, "defines": {}, "init": {}, "next": {},
-             "trans": [], "invarspec": [], "ctlspec": []}
+             "trans": [], "specs": []}
         while self.peek() is not None:
             sec = self.next()
             if sec == "MODULE":
@@ -226,8 +226,10 @@ class Parser:
                 e = self.expr()
                 if self.peek() == ";":
                     self.next()
-                m[{"TRANS": "trans", "INVARSPEC": "invarspec",
-                   "CTLSPEC": "ctlspec"}[sec]].append(e)
+                if sec == "TRANS":
+                    m["trans"].append(e)
+                else:
+                    m["specs"].append((sec, e))
             else:
                 raise SmvError(f"section {sec!r} is not read")
         return m
@@ -452,11 +454,12 @@ def main():
             result[d] = sum(
                 1 for s in states
                 if ev.eval(("id", d), dict(zip(names, s)), {}, {}))
-        result["invarspec"] = [
+        # Every INVARSPEC and CTLSPEC in file order: an invariant holds in
+        # every reachable state, a CTL formula in the initial state.
+        result["specs"] = [
             all(ev.eval(e, dict(zip(names, s)), {}, {}) for s in states)
-            for e in model["invarspec"]]
-        result["ctlspec"] = [0 in ctl_sets(e, graph)
-                             for e in model["ctlspec"]]
+            if kind == "INVARSPEC" else 0 in ctl_sets(e, graph)
+            for kind, e in model["specs"]]
     except SmvError as e:
         print(f"smv-explore: error: {e}", file=sys.stderr)
         return 1

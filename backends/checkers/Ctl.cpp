@@ -314,6 +314,26 @@ std::unique_ptr<CtlFormula> checkers::parseCtl(unsigned bufferID,
   return CtlParser(bufferID, diag, design, top).parse();
 }
 
+bool checkers::isStateProposition(const CtlFormula &f, bool deadlockIsState) {
+  switch (f.kind) {
+  case CtlFormula::True:
+  case CtlFormula::False:
+  case CtlFormula::Atom:
+    return true;
+  case CtlFormula::Deadlock:
+    return deadlockIsState;
+  case CtlFormula::Not:
+    return isStateProposition(*f.lhs, deadlockIsState);
+  case CtlFormula::And:
+  case CtlFormula::Or:
+  case CtlFormula::Implies:
+    return isStateProposition(*f.lhs, deadlockIsState) &&
+           isStateProposition(*f.rhs, deadlockIsState);
+  default:
+    return false;
+  }
+}
+
 std::string checkers::ctlToString(const CtlFormula &f) {
   auto sub = [](const CtlFormula &g) {
     bool simple = g.kind == CtlFormula::Atom || g.kind == CtlFormula::True ||

@@ -61,6 +61,11 @@ std::unique_ptr<CtlFormula> parseCtl(unsigned bufferID, DiagEngine &diag,
 /// The formula written back in the canonical syntax.
 std::string ctlToString(const CtlFormula &f);
 
+/// Is `f` a formula of the state alone: no temporal operator, and no
+/// `deadlock` unless `deadlockIsState` (an export that can write it as a
+/// state predicate)?
+bool isStateProposition(const CtlFormula &f, bool deadlockIsState);
+
 /// A state graph: successors of each state (deadlocks without any), the
 /// deadlocked states, and the atoms' truth per state.
 struct CtlGraph {

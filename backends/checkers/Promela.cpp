@@ -869,22 +869,9 @@ bool StepWriter::write() {
   return !failed;
 }
 
-/// Is `f` a state proposition (no temporal operator, no `deadlock`)?
+/// A state proposition for spin: no temporal operator, no `deadlock`.
 static bool isProposition(const CtlFormula &f) {
-  switch (f.kind) {
-  case CtlFormula::True:
-  case CtlFormula::False:
-  case CtlFormula::Atom:
-    return true;
-  case CtlFormula::Not:
-    return isProposition(*f.lhs);
-  case CtlFormula::And:
-  case CtlFormula::Or:
-  case CtlFormula::Implies:
-    return isProposition(*f.lhs) && isProposition(*f.rhs);
-  default:
-    return false;
-  }
+  return isStateProposition(f, /*deadlockIsState=*/false);
 }
 
 /// The LTL of a CTL formula in the fragment where dropping the path

@@ -836,9 +836,14 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
   d << "  deadlock := !" << joinWith(live, "|", "FALSE") << ";\n";
 
   // Properties (checked before anything is written).
+  // An invariant goes to NuSMV's invariant checker (AG p holds exactly
+  // where every reachable state satisfies p, deadlocks included).
   std::vector<std::string> specs;
   for (const CtlFormula *f : properties)
-    specs.push_back(ctl(*f));
+    specs.push_back(f->kind == CtlFormula::AG &&
+                            isStateProposition(*f->lhs, true)
+                        ? "INVARSPEC " + ctl(*f->lhs)
+                        : "CTLSPEC " + ctl(*f));
   if (failed)
     return false;
 
@@ -942,7 +947,7 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
         "trig = tick : TICK; TRUE : STEP; esac\n"
         "INVARSPEC !netlift_error\n";
   for (size_t i = 0; i < properties.size(); ++i)
-    os << "-- p" << i + 1 << ": " << ctlToString(*properties[i]) << "\nCTLSPEC "
+    os << "-- p" << i + 1 << ": " << ctlToString(*properties[i]) << "\n"
        << specs[i] << "\n";
   return true;
 }
