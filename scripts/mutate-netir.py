@@ -4,7 +4,9 @@ Text, Instruction List, ...: the mutated file keeps its input's extension)
 and require that each run ends with exit code 0 or 1, never a crash, a
 sanitizer report or a hang.
 
-usage: mutate-netir.py NETLIFT SEED COUNT FILE...
+usage: mutate-netir.py NETLIFT SEED COUNT [-I DIR] FILE...
+(-I DIR: a type library for translate, e.g. the inputs' own directory, so
+that a mutated IEC 61499 type still finds the adapters and FBs it uses)
 
 Mutations: delete, duplicate or replace a random span; insert random bytes
 (including NUL and non-ASCII) or a keyword of the input languages;
@@ -70,8 +72,11 @@ def mutate(rng, data):
 
 def main():
     netlift, seed, count = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+    files, include = sys.argv[4:], []
+    if files[:1] == ["-I"]:
+        include, files = ["-I", files[1]], files[2:]
     corpus = [(os.path.splitext(f)[1] or ".net", open(f, "rb").read())
-              for f in sys.argv[4:]]
+              for f in files]
     rng = random.Random(seed)
     codes = {0: 0, 1: 0}
     with tempfile.TemporaryDirectory() as tmp:
@@ -90,9 +95,11 @@ def main():
                 commands = [["sr", path, "--attr", "x=1 == 1"],
                             ["edit-automaton", path, "--from", "json"]]
             else:
-                commands = [["translate", path], ["opt", path, "-p", "flatten"],
+                commands = [["translate", path, *include],
+                            ["opt", path, "-p", "flatten"],
                             ["reach", path, "-q", "--max-states", "2000",
-                             "--time-limit", "5"]]
+                             "--time-limit", "5", *include],
+                            ["emit", path, "--to", "smv", *include]]
             for args in commands:
                 try:
                     r = subprocess.run([netlift] + args, capture_output=True, timeout=20)
