@@ -21,7 +21,7 @@ bool netlift::isTrue(pugi::xml_attribute a) {
 
 XmlSource::XmlSource(unsigned bufferID, DiagEngine &diag)
     : XmlBuffer(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()),
-      rawText(text()) {
+      rawText(text()), sourceMgr(diag.sourceMgr()) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   auto buffer = llvm::WritableMemoryBuffer::getNewUninitMemBuffer(
@@ -101,10 +101,16 @@ StringRef XmlSource::placeAttribute(pugi::xml_node element, const char *name,
     *found = bool(a);
   if (!a)
     return {};
-  // An element netlift added itself (a simple FB's ECC) has no place in
-  // the text.
-  if (element.offset_debug() < 0)
-    return a.value();
+  // An element netlift added itself (a simple FB's ECC, a model of a
+  // function FB) has no place in the text.
+  if (element.offset_debug() < 0) {
+    unsigned id = sourceMgr.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(
+            a.value(),
+            "<netlift generated>/" + std::string(element.name()) + "." + name),
+        llvm::SMLoc());
+    return sourceMgr.getMemoryBuffer(id)->getBuffer();
+  }
   // pugixml keeps no offsets of attributes: find it in the start tag.
   size_t from = locOf(element).getPointer() - rawText.data();
   size_t tagEnd = rawText.find('>', from);

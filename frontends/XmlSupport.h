@@ -64,9 +64,10 @@ public:
   /// The text content of `element` (CDATA or character data, directly or in
   /// an xhtml <p>), placed at its offset in the copy; empty if none.
   llvm::StringRef placeText(pugi::xml_node element);
-  /// The value of attribute `name` of `element`, placed likewise (as is
-  /// when the element was added after parsing); `found` says whether the
-  /// attribute exists.
+  /// The value of attribute `name` of `element`, placed likewise (for an
+  /// element netlift added, in a buffer of its own named
+  /// `<netlift generated>/ELEMENT.NAME`, so that a diagnostic in it still
+  /// prints); `found` says whether the attribute exists.
   llvm::StringRef placeAttribute(pugi::xml_node element, const char *name,
                                  bool *found = nullptr);
 
@@ -76,6 +77,7 @@ private:
 
   llvm::StringRef rawText;
   char *copy = nullptr; // owned by the SourceMgr
+  llvm::SourceMgr &sourceMgr;
 };
 
 /// An element's name without its namespace prefix.

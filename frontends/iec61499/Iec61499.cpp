@@ -158,6 +158,7 @@ private:
   void network(FbType &t);
   void keepMapping(XmlSource &src, pugi::xml_node sys, pugi::xml_node app);
   void simpleAsBasic(FbType &t);
+  bool modelFunctionFb(FbType &t);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
@@ -462,6 +463,9 @@ void Translator::collect(FbType &t) {
     return;
   t.translated = true;
   expandAdapters(t);
+  if ((t.kind == TypeKind::Service || t.kind == TypeKind::NoBody) &&
+      !isShipped(t.name) && modelFunctionFb(t))
+    t.kind = TypeKind::Basic;
   if (t.kind == TypeKind::Composite || t.kind == TypeKind::SubApp) {
     if (tops.count(&t) && !t.eventInputs.empty())
       collect(generatedType("_Inputs_" + t.name, inputQueueType(t)));
@@ -802,6 +806,37 @@ Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
     throw Failure();
   rename(g);
   return g;
+}
+
+/// 4diac implements its type conversions in FORTE's C++: `F_<A>_TO_<B>`
+/// (REQ with IN : A, CNF with OUT : B) and `<A>2<A>` (OUT := IN) have no
+/// body in their .fbt. netlift gives them the body their name means, as a
+/// simple FB whose REQ algorithm is `OUT := A_TO_B(IN);` (or `OUT := IN;`),
+/// so that the conversion is the ST frontend's (a conversion it refuses,
+/// such as to REAL or STRING, is refused at that algorithm).
+bool Translator::modelFunctionFb(FbType &t) {
+  if (t.eventInputs.size() != 1 || t.eventOutputs.size() != 1 ||
+      t.inputs.size() != 1 || t.outputs.size() != 1 ||
+      !StringRef(t.eventInputs[0].name).equals_insensitive("REQ") ||
+      !StringRef(t.eventOutputs[0].name).equals_insensitive("CNF") ||
+      !StringRef(t.inputs[0].name).equals_insensitive("IN") ||
+      !StringRef(t.outputs[0].name).equals_insensitive("OUT"))
+    return false;
+  StringRef name = t.name, from = t.inputs[0].type, to = t.outputs[0].type;
+  std::string text;
+  if (name.equals_insensitive(("F_" + from + "_TO_" + to).str()))
+    text = "OUT := " + from.str() + "_TO_" + to.str() + "(IN);";
+  else if (name.equals_insensitive((from + "2" + to).str()) &&
+           from.equals_insensitive(to))
+    text = "OUT := IN;";
+  else
+    return false;
+  t.body = t.root.append_child("SimpleFB");
+  pugi::xml_node alg = t.body.append_child("Algorithm");
+  alg.append_attribute("Name") = t.eventInputs[0].name.c_str();
+  alg.append_child("ST").append_attribute("Text") = text.c_str();
+  simpleAsBasic(t);
+  return true;
 }
 
 /// A simple FB (IEC 61499-1 Ed. 2) has no ECC: each input event runs the
