@@ -18,6 +18,7 @@
 #include "ir/net/Builder.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
+#include "ir/support/XmlEscape.h"
 #include "passes/Flatten.h"
 
 #include "llvm/Support/FileSystem.h"
@@ -159,6 +160,8 @@ private:
   void keepMapping(XmlSource &src, pugi::xml_node sys, pugi::xml_node app);
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
+  void specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
+                                  const FbType *owner);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
@@ -477,6 +480,7 @@ void Translator::collect(FbType &t) {
 void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
                                 const FbType *owner) {
   std::map<std::string, size_t> destinations; // event source -> count
+  specializeGenericFunctions(src, net, owner);
   for (pugi::xml_node fb : blocksOf(net)) {
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       fail(src.locOf(fb),
@@ -837,6 +841,172 @@ bool Translator::modelFunctionFb(FbType &t) {
   alg.append_child("ST").append_attribute("Text") = text.c_str();
   simpleAsBasic(t);
   return true;
+}
+
+/// The ST that 4diac's generic function FB `name` (its behaviour is in
+/// FORTE's C++, its variables typed ANY_...) runs on REQ, over its
+/// interface's names; null if netlift has none.
+static const char *genericFunctionBody(StringRef name) {
+  static const std::pair<const char *, const char *> kBodies[] = {
+      {"F_ADD", "OUT := IN1 + IN2;"},
+      {"F_ADD_3", "OUT := IN1 + IN2 + IN3;"},
+      {"F_SUB", "OUT := IN1 - IN2;"},
+      {"F_MUL", "OUT := IN1 * IN2;"},
+      {"F_DIV", "OUT := IN1 / IN2;"},
+      {"F_MOD", "OUT := IN1 MOD IN2;"},
+      {"F_MOVE", "OUT := IN;"},
+      {"F_ABS", "OUT := ABS(IN);"},
+      {"F_AND", "OUT := IN1 AND IN2;"},
+      {"F_AND_3", "OUT := IN1 AND IN2 AND IN3;"},
+      {"F_OR", "OUT := IN1 OR IN2;"},
+      {"F_OR_3", "OUT := IN1 OR IN2 OR IN3;"},
+      {"F_XOR", "OUT := IN1 XOR IN2;"},
+      {"F_XOR_3", "OUT := IN1 XOR IN2 XOR IN3;"},
+      {"F_NOT", "OUT := NOT IN;"},
+      {"F_SHL", "OUT := SHL(IN, N);"},
+      {"F_SHR", "OUT := SHR(IN, N);"},
+      {"F_ROL", "OUT := ROL(IN, N);"},
+      {"F_ROR", "OUT := ROR(IN, N);"},
+      {"F_EQ", "OUT := IN1 = IN2;"},
+      {"F_NE", "OUT := IN1 <> IN2;"},
+      {"F_GT", "OUT := IN1 > IN2;"},
+      {"F_GE", "OUT := IN1 >= IN2;"},
+      {"F_LT", "OUT := IN1 < IN2;"},
+      {"F_LE", "OUT := IN1 <= IN2;"},
+      {"F_MAX", "OUT := MAX(IN1, IN2);"},
+      {"F_MIN", "OUT := MIN(IN1, IN2);"},
+      {"F_LIMIT", "OUT := LIMIT(MN, IN, MX);"},
+      {"F_SEL", "OUT := SEL(G, IN0, IN1);"},
+      {"F_MUX_2", "OUT := MUX(K, IN1, IN2);"},
+  };
+  for (const auto &[n, body] : kBodies)
+    if (name.equals_insensitive(n))
+      return body;
+  return nullptr;
+}
+
+static bool isGenericType(StringRef type) {
+  return type.startswith_insensitive("ANY");
+}
+
+/// A block of a network whose type is one of 4diac's generic function FBs
+/// (see genericFunctionBody) gets a type of its own, `F_ADD__INT`: every
+/// variable of one generic type (ANY_NUM, ANY_INT...) takes the type of a
+/// port it is connected to (a group no connection fixes takes the first
+/// fixed group's, as OUT : ANY_NUM of F_MOD follows IN1 : ANY_INT), and REQ
+/// runs the function's ST as a simple FB. The block's Type is rewritten to
+/// that type before the network is read.
+void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
+                                            const FbType *owner) {
+  std::map<std::string, FbType *> blockTypes; // upper-case name -> type
+  std::vector<pugi::xml_node> generic;
+  for (pugi::xml_node fb : blocksOf(net)) {
+    if (!fb.attribute("Type"))
+      continue;
+    FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
+    blockTypes[StringRef(fb.attribute("Name").value()).upper()] = type;
+    bool anyGeneric = false;
+    for (const auto *list : {&type->inputs, &type->outputs})
+      for (const Var &v : *list)
+        anyGeneric |= isGenericType(v.type);
+    if ((type->kind == TypeKind::Service || type->kind == TypeKind::NoBody) &&
+        anyGeneric && genericFunctionBody(type->name))
+      generic.push_back(fb);
+  }
+  // The declared type of `end` ("block.PORT" or an own port), if fixed.
+  auto typeAt = [&](StringRef end) -> std::string {
+    auto [a, p] = end.split('.');
+    const FbType *t = owner;
+    StringRef port = a;
+    if (!p.empty()) {
+      auto it = blockTypes.find(a.upper());
+      if (it == blockTypes.end())
+        return "";
+      t = it->second;
+      port = p;
+    }
+    if (!t)
+      return "";
+    for (const auto *list : {&t->inputs, &t->outputs})
+      for (const Var &v : *list)
+        if (StringRef(v.name).equals_insensitive(port) &&
+            !isGenericType(v.type))
+          return v.type;
+    return "";
+  };
+  for (pugi::xml_node fb : generic) {
+    StringRef inst = fb.attribute("Name").value();
+    FbType &t = *blockTypes.at(inst.upper());
+    std::map<std::string, std::string> fixed; // generic type -> type
+    std::vector<std::string> order;           // generic types, in order
+    for (const auto *list : {&t.inputs, &t.outputs})
+      for (const Var &v : *list)
+        if (isGenericType(v.type) &&
+            std::find(order.begin(), order.end(), v.type) == order.end())
+          order.push_back(v.type);
+    for (pugi::xml_node c :
+         child(net, "DataConnections").children("Connection")) {
+      for (auto [here, there] : {std::pair{"Destination", "Source"},
+                                 std::pair{"Source", "Destination"}}) {
+        auto [b, port] = StringRef(c.attribute(here).value()).split('.');
+        if (!b.equals_insensitive(inst))
+          continue;
+        for (const auto *list : {&t.inputs, &t.outputs})
+          for (const Var &v : *list)
+            if (StringRef(v.name).equals_insensitive(port) &&
+                isGenericType(v.type) && !fixed.count(v.type)) {
+              std::string other = typeAt(c.attribute(there).value());
+              if (!other.empty())
+                fixed[v.type] = other;
+            }
+      }
+    }
+    if (fixed.empty())
+      fail(src.locOf(fb), "the types of '" + inst + "' (" + t.name +
+                              ", a generic function) are not fixed by any "
+                              "data connection to a typed port");
+    std::string firstFixed;
+    for (const std::string &g : order)
+      if (firstFixed.empty() && fixed.count(g))
+        firstFixed = fixed[g];
+    auto concrete = [&](const std::string &generic) {
+      auto it = fixed.find(generic);
+      return it != fixed.end() ? it->second : firstFixed;
+    };
+    std::string name = t.name + "_";
+    for (const std::string &g : order)
+      name += "_" + concrete(g);
+    std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
+    auto events = [&](const char *tag, const std::vector<Event> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Event &e : list) {
+        text += "<Event Name=\"" + e.name + "\">";
+        for (const std::string &w : e.with)
+          text += "<With Var=\"" + w + "\"/>";
+        text += "</Event>";
+      }
+      text += std::string("</") + tag + ">\n";
+    };
+    auto vars = [&](const char *tag, const std::vector<Var> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Var &v : list)
+        text += "<VarDeclaration Name=\"" + v.name + "\" Type=\"" +
+                (isGenericType(v.type) ? concrete(v.type) : v.type) + "\"/>";
+      text += std::string("</") + tag + ">\n";
+    };
+    events("EventInputs", t.eventInputs);
+    events("EventOutputs", t.eventOutputs);
+    vars("InputVars", t.inputs);
+    vars("OutputVars", t.outputs);
+    text +=
+        "</InterfaceList>\n<SimpleFB><Algorithm Name=\"" +
+        (t.eventInputs.empty() ? std::string("REQ") : t.eventInputs[0].name) +
+        "\"><ST Text=\"" + xmlEscape(genericFunctionBody(t.name)) +
+        "\"/></Algorithm></SimpleFB>\n</FBType>\n";
+    generatedType(name, text);
+    fb.attribute("Type") = name.c_str();
+    blockTypes[inst.upper()] = types.at(StringRef(name).upper()).get();
+  }
 }
 
 /// A simple FB (IEC 61499-1 Ed. 2) has no ECC: each input event runs the
