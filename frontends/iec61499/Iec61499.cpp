@@ -162,6 +162,9 @@ private:
   bool modelFunctionFb(FbType &t);
   void specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
                                   const FbType *owner);
+  /// The type of every typed block of `net`, by upper-case name.
+  std::map<std::string, FbType *> blockTypes(XmlSource &src,
+                                             pugi::xml_node net);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
   void declarePorts(const FbType &t);
@@ -501,6 +504,16 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
       collect(generatedType(fanOutType(ways), ""));
 }
 
+std::map<std::string, FbType *> Translator::blockTypes(XmlSource &src,
+                                                       pugi::xml_node net) {
+  std::map<std::string, FbType *> out;
+  for (pugi::xml_node fb : blocksOf(net))
+    if (fb.attribute("Type"))
+      out[StringRef(fb.attribute("Name").value()).upper()] =
+          findType(fb.attribute("Type").value(), src.locOf(fb));
+  return out;
+}
+
 /// Each adapter connection `A.P -> B.S` (a plug to a socket of the same
 /// adapter type) becomes one event or data connection per element of the
 /// adapter, in the direction the element flows, added to the network's
@@ -510,10 +523,7 @@ void Translator::expandAdapterConnections(XmlSource &src, pugi::xml_node net,
   pugi::xml_node list = child(net, "AdapterConnections");
   if (!list)
     return;
-  std::map<std::string, FbType *> blockTypes; // upper-case name -> type
-  for (pugi::xml_node fb : blocksOf(net))
-    blockTypes[StringRef(fb.attribute("Name").value()).upper()] =
-        findType(fb.attribute("Type").value(), src.locOf(fb));
+  std::map<std::string, FbType *> types = blockTypes(src, net);
   for (pugi::xml_node c : list.children("Connection")) {
     SMLoc at = src.locOf(c);
     auto end = [&](const char *attr) {
@@ -523,8 +533,8 @@ void Translator::expandAdapterConnections(XmlSource &src, pugi::xml_node net,
         fail(at, "adapter connection to '" + text + "', a plug or socket of " +
                      (owner ? "'" + owner->name + "'" : "the application") +
                      " itself, is not supported");
-      auto it = blockTypes.find(inst.upper());
-      if (it == blockTypes.end())
+      auto it = types.find(inst.upper());
+      if (it == types.end())
         fail(at, Twine(attr) + " '" + text + "' names no function block");
       const AdapterUse *a = it->second->adapter(name);
       if (!a)
@@ -898,13 +908,12 @@ static bool isGenericType(StringRef type) {
 /// that type before the network is read.
 void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
                                             const FbType *owner) {
-  std::map<std::string, FbType *> blockTypes; // upper-case name -> type
+  std::map<std::string, FbType *> types = blockTypes(src, net);
   std::vector<pugi::xml_node> generic;
   for (pugi::xml_node fb : blocksOf(net)) {
     if (!fb.attribute("Type"))
       continue;
-    FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
-    blockTypes[StringRef(fb.attribute("Name").value()).upper()] = type;
+    FbType *type = types.at(StringRef(fb.attribute("Name").value()).upper());
     bool anyGeneric = false;
     for (const auto *list : {&type->inputs, &type->outputs})
       for (const Var &v : *list)
@@ -919,8 +928,8 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
     const FbType *t = owner;
     StringRef port = a;
     if (!p.empty()) {
-      auto it = blockTypes.find(a.upper());
-      if (it == blockTypes.end())
+      auto it = types.find(a.upper());
+      if (it == types.end())
         return "";
       t = it->second;
       port = p;
@@ -936,7 +945,7 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
   };
   for (pugi::xml_node fb : generic) {
     StringRef inst = fb.attribute("Name").value();
-    FbType &t = *blockTypes.at(inst.upper());
+    FbType &t = *types.at(inst.upper());
     std::map<std::string, std::string> fixed; // generic type -> type
     std::vector<std::string> order;           // generic types, in order
     for (const auto *list : {&t.inputs, &t.outputs})
@@ -1005,7 +1014,7 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
         "\"/></Algorithm></SimpleFB>\n</FBType>\n";
     generatedType(name, text);
     fb.attribute("Type") = name.c_str();
-    blockTypes[inst.upper()] = types.at(StringRef(name).upper()).get();
+    types[inst.upper()] = this->types.at(StringRef(name).upper()).get();
   }
 }
 
