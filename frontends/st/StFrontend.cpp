@@ -1232,6 +1232,9 @@ bool cutIntoGroups(StringRef text, const std::vector<ScanToken> &toks,
 }
 
 LongParts findLongParts(StringRef text, DiagEngine &diag) {
+  // A part of N tokens takes N bytes at least: short files need no scan.
+  if (text.size() < longPartTokens)
+    return {};
   std::vector<ScanToken> toks;
   {
     st::StLexer lexer(text, diag);
