@@ -34,8 +34,9 @@ std::vector<Token> tokenize(StringRef s, size_t &bad) {
     }
     size_t start = i;
     if (llvm::isAlpha(c) || c == '_') {
+      // Qualified names (`c.step`) and enumerators (`Mode#AUTO`).
       while (i < s.size() &&
-             (llvm::isAlnum(s[i]) || s[i] == '_' || s[i] == '.'))
+             (llvm::isAlnum(s[i]) || s[i] == '_' || s[i] == '.' || s[i] == '#'))
         ++i;
       out.push_back({Token::Word, s.slice(start, i), start});
       continue;
