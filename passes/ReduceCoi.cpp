@@ -194,32 +194,7 @@ public:
         t.extras->action = reduce::dropAssignments(
             b, t.extras->action,
             [&](const AssignStmt *a) { return cone.targetRelevant(a); });
-    // Outputs go last: ports are not renumbered by compactModule.
-    std::vector<Port> ports;
-    for (uint32_t p = 0; p < m->ports.size(); ++p)
-      if (cone.port[p])
-        ports.push_back(m->ports[p]);
-    std::vector<uint32_t> portMap(m->ports.size(), UINT32_MAX);
-    for (uint32_t p = 0, n = 0; p < m->ports.size(); ++p)
-      if (cone.port[p])
-        portMap[p] = n++;
-    for (Transition &t : m->transitions) {
-      if (!t.extras)
-        continue;
-      std::vector<uint32_t> emits;
-      for (uint32_t e : t.extras->emits)
-        if (portMap[e] != UINT32_MAX)
-          emits.push_back(portMap[e]);
-      t.extras->emits = d.copy(llvm::ArrayRef<uint32_t>(emits));
-      std::vector<EventSource> evs;
-      for (EventSource s : t.extras->events) {
-        if (s.fromPort)
-          s.index = portMap[s.index];
-        evs.push_back(s);
-      }
-      t.extras->events = d.copy(llvm::ArrayRef<EventSource>(evs));
-    }
-    m->ports.assign(ports.begin(), ports.end());
+    reduce::removePorts(d, *m, cone.port);
     reduce::compactModule(*m, cone.place, cone.trans, cone.var);
     return reduce::reverify(d, diag, "reduce-coi");
   }

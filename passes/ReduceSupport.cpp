@@ -310,6 +310,34 @@ void reduce::compactModule(Module &m, const std::vector<bool> &keepPlace,
   m.rebuildSymbols();
 }
 
+void reduce::removePorts(Design &d, Module &m,
+                         const std::vector<bool> &keepPort) {
+  std::vector<Port> ports;
+  std::vector<uint32_t> portMap(m.ports.size(), UINT32_MAX);
+  for (uint32_t p = 0; p < m.ports.size(); ++p)
+    if (keepPort[p]) {
+      portMap[p] = ports.size();
+      ports.push_back(m.ports[p]);
+    }
+  for (Transition &t : m.transitions) {
+    if (!t.extras)
+      continue;
+    std::vector<uint32_t> emits;
+    for (uint32_t e : t.extras->emits)
+      if (portMap[e] != UINT32_MAX)
+        emits.push_back(portMap[e]);
+    t.extras->emits = d.copy(llvm::ArrayRef<uint32_t>(emits));
+    std::vector<EventSource> evs;
+    for (EventSource s : t.extras->events) {
+      if (s.fromPort)
+        s.index = portMap[s.index];
+      evs.push_back(s);
+    }
+    t.extras->events = d.copy(llvm::ArrayRef<EventSource>(evs));
+  }
+  m.ports.assign(ports.begin(), ports.end());
+}
+
 bool reduce::reverify(Design &d, DiagEngine &diag, StringRef pass) {
   if (verifyDesign(d, diag))
     return true;

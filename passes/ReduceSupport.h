@@ -76,6 +76,12 @@ void compactModule(net::Module &m, const std::vector<bool> &keepPlace,
                    const std::vector<bool> &keepTrans,
                    const std::vector<bool> &keepVar);
 
+/// Removes the ports whose keep flag is false, renumbering the events
+/// transitions emit and listen to (the symbol table is the caller's to
+/// rebuild, e.g. by compactModule). Nothing kept may still mention them.
+void removePorts(net::Design &d, net::Module &m,
+                 const std::vector<bool> &keepPort);
+
 /// What a reduction must keep observable: the elements `observe=` names
 /// (places, variables, ports, transitions), or every output without it.
 struct Observed {

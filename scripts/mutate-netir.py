@@ -4,9 +4,10 @@ Text, Instruction List, ...: the mutated file keeps its input's extension)
 and require that each run ends with exit code 0 or 1, never a crash, a
 sanitizer report or a hang.
 
-usage: mutate-netir.py NETLIFT SEED COUNT [-I DIR] FILE...
+usage: mutate-netir.py NETLIFT SEED COUNT [-I DIR] [--fb-semantics M] FILE...
 (-I DIR: a type library for translate, e.g. the inputs' own directory, so
-that a mutated IEC 61499 type still finds the adapters and FBs it uses)
+that a mutated IEC 61499 type still finds the adapters and FBs it uses;
+--fb-semantics M: the IEC 61499 execution model of every run)
 
 Mutations: delete, duplicate or replace a random span; insert random bytes
 (including NUL and non-ASCII) or a keyword of the input languages;
@@ -73,8 +74,8 @@ def mutate(rng, data):
 def main():
     netlift, seed, count = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
     files, include = sys.argv[4:], []
-    if files[:1] == ["-I"]:
-        include, files = ["-I", files[1]], files[2:]
+    while files[:1] in (["-I"], ["--fb-semantics"]):
+        include, files = include + files[:2], files[2:]
     corpus = [(os.path.splitext(f)[1] or ".net", open(f, "rb").read())
               for f in files]
     rng = random.Random(seed)

@@ -138,11 +138,7 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
   // The transitions whose events something listens to, and those a
   // block's reaction listens to (a reaction always fires on its event; a
   // timer's START or STOP may not, so their senders take themselves off).
-  std::set<uint32_t> heard, heardByReaction;
-  for (const Transition &t : m.transitions)
-    for (const EventSource &e : t.events())
-      if (!e.fromPort)
-        heard.insert(e.index);
+  std::set<uint32_t> heardByReaction;
   for (auto &[prefix, blk] : blocks)
     for (uint32_t r : blk.reactions)
       for (const EventSource &e : m.transitions[r].events())
@@ -199,14 +195,25 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
       touched.insert(t);
     }
   }
-  // Other transitions that start events (the environment's queue, timers,
-  // start-up) wait for the current chain to end.
+  waitForIdle(b, m, touched, idle);
+  return true;
+}
+
+void iec61499::waitForIdle(Builder &b, Module &m,
+                           const std::set<uint32_t> &ordered,
+                           llvm::function_ref<Expr *()> idle) {
+  std::set<uint32_t> heard;
+  for (const Transition &t : m.transitions)
+    for (const EventSource &e : t.events())
+      if (!e.fromPort)
+        heard.insert(e.index);
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
     const Transition &t = m.transitions[i];
-    if (touched.count(i) || t.isForced())
+    if (ordered.count(i) || t.isForced())
       continue;
-    if (heard.count(i) || !t.emits().empty())
-      b.setGuard(i, conj(t.guard(), idle()));
+    if (heard.count(i) || !t.emits().empty()) {
+      Expr *g = t.guard();
+      b.setGuard(i, g ? b.binary(BinaryOp::And, g, idle(), t.loc) : idle());
+    }
   }
-  return true;
 }

@@ -11,11 +11,28 @@
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
+#include "llvm/ADT/STLFunctionalExtras.h"
+
+#include <set>
+
+namespace netlift::net {
+class Builder;
+}
+
 namespace netlift::iec61499 {
 
 /// Rewrites the flat module `m` built from translated blocks so that their
 /// events go in one FIFO order. Returns false after reporting.
 bool orderLikeForte(net::Design &design, net::Module &m, DiagEngine &diag);
+
+/// What starts an event chain from outside the blocks — the environment's
+/// queue, E_DELAY and E_CYCLE expiring, E_RESTART — waits for `idle`
+/// (added to its guard): every transition that is not forced, not in
+/// `ordered` and emits an event or is heard. Shared by the execution models
+/// that run a chain to its end before taking the next outside event.
+void waitForIdle(net::Builder &b, net::Module &m,
+                 const std::set<uint32_t> &ordered,
+                 llvm::function_ref<net::Expr *()> idle);
 
 } // namespace netlift::iec61499
 

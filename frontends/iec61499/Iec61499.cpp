@@ -10,6 +10,7 @@
 #include "frontends/iec61499/Iec61499.h"
 
 #include "frontends/XmlSupport.h"
+#include "frontends/iec61499/CyclicOrder.h"
 #include "frontends/iec61499/ForteOrder.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
@@ -51,6 +52,10 @@ struct LibraryFile {
 constexpr int kRunawayFactor = 4;
 /// How many output events of one block may wait to be sent.
 constexpr int kMaxQueued = 8;
+/// Under the cyclic model, the hidden event input of a basic block whose
+/// reaction is the block's turn in the cycle (CyclicOrder.cpp gives the
+/// turns).
+constexpr const char *kCycleTurn = "_run";
 
 struct Failure {};
 
@@ -145,6 +150,18 @@ private:
   void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
   FbType &generatedType(const std::string &name, const std::string &text);
   std::string fanOutType(size_t ways);
+  /// A network's event connections by source (upper case), and the
+  /// sources in document order when `order` is given.
+  std::map<std::string, std::vector<pugi::xml_node>>
+  eventsBySource(pugi::xml_node net, std::vector<std::string> *order);
+  /// How many outputs the relay (a _FanOut block) between one source and
+  /// its destinations `conns` has, or 0 when they are connected directly.
+  /// Several destinations are reached one per step in connection order
+  /// (FORTE queues them so); a block's event to itself is handed back in a
+  /// later step (a block takes one event at a time, so it would be lost
+  /// while the block sends it). Under the cyclic model an arriving event
+  /// only sets a flag: always directly.
+  size_t relayWays(const std::vector<pugi::xml_node> &conns) const;
   std::string inputQueueType(const FbType &t);
 
   // Basic FBs.
@@ -482,7 +499,6 @@ void Translator::collect(FbType &t) {
 
 void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
                                 const FbType *owner) {
-  std::map<std::string, size_t> destinations; // event source -> count
   specializeGenericFunctions(src, net, owner);
   for (pugi::xml_node fb : blocksOf(net)) {
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
@@ -497,11 +513,39 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
     collect(*type);
   }
   expandAdapterConnections(src, net, owner);
-  for (pugi::xml_node c : child(net, "EventConnections").children("Connection"))
-    ++destinations[StringRef(c.attribute("Source").value()).upper()];
-  for (auto &[source, ways] : destinations)
-    if (ways > 1)
+  for (auto &[source, conns] : eventsBySource(net, nullptr))
+    if (size_t ways = relayWays(conns))
       collect(generatedType(fanOutType(ways), ""));
+}
+
+std::map<std::string, std::vector<pugi::xml_node>>
+Translator::eventsBySource(pugi::xml_node net,
+                           std::vector<std::string> *order) {
+  std::map<std::string, std::vector<pugi::xml_node>> bySource;
+  for (pugi::xml_node c :
+       child(net, "EventConnections").children("Connection")) {
+    std::string key = StringRef(c.attribute("Source").value()).upper();
+    if (order && !bySource.count(key))
+      order->push_back(key);
+    bySource[key].push_back(c);
+  }
+  return bySource;
+}
+
+size_t Translator::relayWays(const std::vector<pugi::xml_node> &conns) const {
+  if (semantics == "cyclic")
+    return 0;
+  if (conns.size() > 1)
+    return conns.size();
+  auto block = [](StringRef end) {
+    auto [name, port] = end.split('.');
+    return port.empty() ? StringRef() : name;
+  };
+  StringRef from = block(conns.front().attribute("Source").value());
+  return !from.empty() && from.equals_insensitive(block(
+                              conns.front().attribute("Destination").value()))
+             ? 1
+             : 0;
 }
 
 std::map<std::string, FbType *> Translator::blockTypes(XmlSource &src,
@@ -677,6 +721,8 @@ static Stmt *when(Unit &u, Expr *cond, StmtList body, SMLoc at) {
 
 /// The internal copy of interface variable `name`.
 static std::string internal(StringRef name) { return "_" + name.str(); }
+/// Under the cyclic model: whether event `name` is pending.
+static std::string eventFlag(StringRef name) { return "_ev_" + name.str(); }
 
 void Translator::rename(Expr *e) {
   if (!e)
@@ -1078,6 +1124,9 @@ void Translator::basicBlock(FbType &t) {
   unit.pous.push_back(pou);
   copied.clear();
   current = &t;
+  // The environment's queue stays event-driven: it feeds the cycle.
+  bool cyclic =
+      semantics == "cyclic" && !StringRef(t.name).startswith("_Inputs_");
 
   auto declare = [&](StringRef name, TypeSyntax *ts, VarSection s, SMLoc loc) {
     if (pou->find(name))
@@ -1197,7 +1246,12 @@ void Translator::basicBlock(FbType &t) {
     declare("_queued", subrange(0, kMaxQueued), VarSection::Var, at);
   }
   declare("_live", named("BOOL", at), VarSection::Temp, at);
-  declare("_event", named("BOOL", at), VarSection::Temp, at);
+  if (cyclic)
+    for (const Event &e : t.eventInputs)
+      declare(eventFlag(e.name), named("BOOL", at), VarSection::Var,
+              t.src->locOf(e.node));
+  else
+    declare("_event", named("BOOL", at), VarSection::Temp, at);
   declare("_fired", named("BOOL", at), VarSection::Temp, at);
   int64_t limit = int64_t(transitions.size()) * kRunawayFactor + 1;
   declare("_step", subrange(0, std::max<int64_t>(limit, kMaxQueued) + 1),
@@ -1300,18 +1354,14 @@ void Translator::basicBlock(FbType &t) {
     block.sends.push_back(std::move(send));
   }
 
-  for (const Event &ei : t.eventInputs) {
-    SMLoc loc = t.src->locOf(ei.node);
-    StmtList h;
-    for (const std::string &w : ei.with)
-      h.push_back(assign(unit, nameRef(unit, internal(w), loc),
-                         nameRef(unit, w, loc), loc));
-    h.push_back(assign(unit, nameRef(unit, "_live", loc),
-                       boolLit(unit, true, loc), loc));
-    h.push_back(assign(unit, nameRef(unit, "_event", loc),
-                       boolLit(unit, true, loc), loc));
-    // One evaluation: the first transition (document order) of the current
-    // state whose condition holds fires; the event counts only once.
+  // Running the ECC to completion: from the current state the first
+  // transition (document order) whose condition holds fires, its new
+  // state's actions run, and evaluation repeats until none fires. An event
+  // condition holds only at the first evaluation: `eventCond` gives it
+  // (null: the transition cannot fire in this reaction), and `consumed`
+  // runs after every evaluation, taking the events away.
+  auto runEcc = [&](llvm::function_ref<Expr *(StringRef, SMLoc)> eventCond,
+                    llvm::function_ref<StmtList(SMLoc)> consumed, SMLoc loc) {
     Stmt *sel = unit.make<Stmt>(StmtKind::Case, loc);
     sel->value = nameRef(unit, "ECC", loc);
     for (pugi::xml_node s : states) {
@@ -1324,12 +1374,11 @@ void Translator::basicBlock(FbType &t) {
         Expr *g = guard(t, tr, event);
         SMLoc tloc = t.src->locOf(tr);
         if (!event.empty()) {
-          if (!StringRef(event).equals_insensitive(ei.name))
+          Expr *e = eventCond(event, tloc);
+          if (!e)
             continue;
-          g = g->kind == ExprKind::BoolLit
-                  ? nameRef(unit, "_event", tloc)
-                  : binary(unit, Op::And, nameRef(unit, "_event", tloc), g,
-                           tloc);
+          g = g->kind == ExprKind::BoolLit ? e
+                                           : binary(unit, Op::And, e, g, tloc);
         }
         pugi::xml_node dst =
             stateByName[StringRef(tr.attribute("Destination").value()).upper()];
@@ -1361,8 +1410,8 @@ void Translator::basicBlock(FbType &t) {
                           boolLit(unit, false, loc), loc));
     if (!sel->caseArms.empty())
       once.push_back(sel);
-    once.push_back(assign(unit, nameRef(unit, "_event", loc),
-                          boolLit(unit, false, loc), loc));
+    StmtList taken = consumed(loc);
+    once.insert(once.end(), taken.begin(), taken.end());
     Expr *notFired = unit.make<Expr>(ExprKind::Unary, loc);
     notFired->op = Op::Not;
     notFired->operands.push_back(nameRef(unit, "_fired", loc));
@@ -1375,9 +1424,85 @@ void Translator::basicBlock(FbType &t) {
     loop->from = intLit(unit, 0, loc);
     loop->to = intLit(unit, limit, loc);
     loop->body.push_back(when(unit, nameRef(unit, "_live", loc), once, loc));
-    h.push_back(loop);
+    return StmtList{assign(unit, nameRef(unit, "_live", loc),
+                           boolLit(unit, true, loc), loc),
+                    loop};
+  };
+  auto handle = [&](StringRef event, StmtList h, SMLoc loc,
+                    bool latch = false) {
     pou->body.insert(pou->body.end(), h.begin(), h.end());
-    block.handlers.push_back({ei.name, std::move(h), loc});
+    block.handlers.push_back({event.str(), std::move(h), loc, latch});
+  };
+
+  if (cyclic) {
+    // fb2smv's cyclic model: an arriving event only sets its flag; when the
+    // block's turn in the cycle comes (`_run`, ordered by CyclicOrder), it
+    // samples the data of its pending events and runs the ECC with all of
+    // them at once, then forgets them.
+    for (const Event &ei : t.eventInputs) {
+      SMLoc loc = t.src->locOf(ei.node);
+      handle(ei.name,
+             {assign(unit, nameRef(unit, eventFlag(ei.name), loc),
+                     boolLit(unit, true, loc), loc)},
+             loc, /*latch=*/true);
+    }
+    StmtList h;
+    for (const Var &v : t.inputs) {
+      Expr *pending = nullptr;
+      SMLoc loc = t.src->locOf(v.node);
+      for (const Event &ei : t.eventInputs)
+        for (const std::string &w : ei.with)
+          if (StringRef(w).equals_insensitive(v.name)) {
+            Expr *f = nameRef(unit, eventFlag(ei.name), loc);
+            pending = pending ? binary(unit, Op::Or, pending, f, loc) : f;
+          }
+      if (pending)
+        h.push_back(when(unit, pending,
+                         {assign(unit, nameRef(unit, internal(v.name), loc),
+                                 nameRef(unit, v.name, loc), loc)},
+                         loc));
+    }
+    StmtList run = runEcc(
+        [&](StringRef event, SMLoc loc) -> Expr * {
+          return nameRef(unit, eventFlag(event), loc);
+        },
+        [&](SMLoc loc) {
+          StmtList forget;
+          for (const Event &ei : t.eventInputs)
+            forget.push_back(assign(unit,
+                                    nameRef(unit, eventFlag(ei.name), loc),
+                                    boolLit(unit, false, loc), loc));
+          return forget;
+        },
+        at);
+    h.insert(h.end(), run.begin(), run.end());
+    handle(kCycleTurn, std::move(h), at);
+    block.eventInputs.push_back({kCycleTurn, at});
+  } else {
+    for (const Event &ei : t.eventInputs) {
+      SMLoc loc = t.src->locOf(ei.node);
+      StmtList h;
+      for (const std::string &w : ei.with)
+        h.push_back(assign(unit, nameRef(unit, internal(w), loc),
+                           nameRef(unit, w, loc), loc));
+      // Only this event's transitions, and only at the first evaluation.
+      StmtList run = runEcc(
+          [&](StringRef event, SMLoc at) -> Expr * {
+            if (!event.equals_insensitive(ei.name))
+              return nullptr;
+            return nameRef(unit, "_event", at);
+          },
+          [&](SMLoc at) -> StmtList {
+            return {assign(unit, nameRef(unit, "_event", at),
+                           boolLit(unit, false, at), at)};
+          },
+          loc);
+      h.insert(h.end(), run.begin(), run.begin() + 1);
+      h.push_back(assign(unit, nameRef(unit, "_event", loc),
+                         boolLit(unit, true, loc), loc));
+      h.insert(h.end(), run.begin() + 1, run.end());
+      handle(ei.name, std::move(h), loc);
+    }
   }
   blocks.push_back(std::move(block));
 }
@@ -1531,30 +1656,22 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
       b.addConnection({"", design.save(e.name), at},
                       {"_inputs", design.save(e.name), at}, at);
   }
-  // Events by source in document order. A source with several destinations
-  // reaches them one per step, in the order the connections are written
-  // (as FORTE queues them), through a _FanOut block.
+  // Events by source in document order; a relay where relayWays says.
   std::vector<std::string> sources;
-  std::map<std::string, std::vector<pugi::xml_node>> bySource;
-  for (pugi::xml_node c :
-       child(net, "EventConnections").children("Connection")) {
-    std::string key = StringRef(c.attribute("Source").value()).upper();
-    if (!bySource.count(key))
-      sources.push_back(key);
-    bySource[key].push_back(c);
-  }
+  std::map<std::string, std::vector<pugi::xml_node>> bySource =
+      eventsBySource(net, &sources);
   for (const std::string &key : sources) {
     const std::vector<pugi::xml_node> &conns = bySource[key];
     net::Endpoint from = endpoint(conns.front(), "Source");
     if (queued && from.instance.empty())
       from = {"_inputs", design.save(from.port.str() + "_o"), from.loc};
-    if (conns.size() > 1) {
+    if (size_t ways = relayWays(conns)) {
       std::string fan =
           "_fan_" +
           net::toIdentifier((from.instance.empty() ? from.port.str()
                                                    : from.instance.str() + "_" +
                                                          from.port.str()));
-      b.addInstance(fan, fanOutType(conns.size()), from.loc);
+      b.addInstance(fan, fanOutType(ways), from.loc);
       b.addConnection(from, {design.save(fan), "EI", from.loc}, from.loc);
       for (size_t i = 0; i < conns.size(); ++i) {
         net::Endpoint to = endpoint(conns[i], "Destination");
@@ -1565,9 +1682,11 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
       }
       continue;
     }
-    net::Endpoint to = endpoint(conns.front(), "Destination");
-    driven.insert({to.instance.upper(), to.port.upper()});
-    b.addConnection(from, to, src.locOf(conns.front()));
+    for (pugi::xml_node c : conns) {
+      net::Endpoint to = endpoint(c, "Destination");
+      driven.insert({to.instance.upper(), to.port.upper()});
+      b.addConnection(from, to, src.locOf(c));
+    }
   }
   // An unconnected input of a block inside a network never sees an event and
   // keeps its initial value (it is not the environment's).
@@ -1859,10 +1978,10 @@ bool Translator::run(const std::vector<unsigned> &ids) {
                              dataType(c.type, c.loc), c.loc);
       m->ports[p].definition = b.intLit(v, c.loc);
     }
-    if (semantics == "forte") {
+    if (semantics == "forte" || semantics == "cyclic") {
       // Each resource (a translated type or an application) becomes one
-      // flat module with one FIFO of events; the modules it was built from
-      // go.
+      // flat module with one FIFO of events (or one cycle of its blocks);
+      // the modules it was built from go.
       std::vector<std::string> resources;
       for (FbType *t : topList)
         resources.push_back(net::toIdentifier(t->name));
@@ -1892,7 +2011,9 @@ bool Translator::run(const std::vector<unsigned> &ids) {
       for (net::Module *flat : flats) {
         StringRef name = StringRef(flat->name).drop_back(strlen(".flat"));
         design.renameModule(flat, design.save(name));
-        if (!iec61499::orderLikeForte(design, *flat, diag))
+        if (semantics == "forte"
+                ? !iec61499::orderLikeForte(design, *flat, diag)
+                : !iec61499::orderCyclically(design, *flat, diag))
           return false;
       }
     }
@@ -1905,10 +2026,11 @@ bool Translator::run(const std::vector<unsigned> &ids) {
 bool iec61499::translate(const std::vector<unsigned> &ids,
                          const Options &options, DiagEngine &diag,
                          net::Design &design) {
-  if (options.semantics != "forte" && options.semantics != "sequential") {
+  if (options.semantics != "forte" && options.semantics != "sequential" &&
+      options.semantics != "cyclic") {
     diag.error(SMLoc(), "unknown IEC 61499 execution model '" +
                             options.semantics +
-                            "' (--fb-semantics forte or sequential)");
+                            "' (--fb-semantics forte, sequential or cyclic)");
     return false;
   }
   Translator t(diag, design, options);

@@ -29,9 +29,10 @@ struct Options {
   /// -I directories.
   std::vector<std::string> typeLibraries;
   std::optional<int64_t> timescaleNs;
-  /// "forte" (one flat module per resource, events in one FIFO) or
+  /// "forte" (one flat module per resource, events in one FIFO),
   /// "sequential" (modules mirroring the networks, events of different
-  /// blocks in any order).
+  /// blocks in any order) or "cyclic" (fb2smv's: one flat module per
+  /// resource whose blocks take turns in network order).
   std::string semantics = "forte";
 };
 

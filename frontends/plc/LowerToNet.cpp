@@ -2406,10 +2406,13 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
                     "in an IEC 61499 function block");
     body(h.body, top, action, {});
     // Temporaries are back at their initial values after every reaction.
-    for (auto &[name, init] : resets)
-      action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
-    uint32_t t = b.addTransition("recv_" + h.event, {net::PreArc{ready, 1, {}}},
-                                 {net::PostArc{ready, 1}}, h.loc);
+    if (!h.latch)
+      for (auto &[name, init] : resets)
+        action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
+    uint32_t t = h.latch ? b.addTransition("recv_" + h.event, {}, {}, h.loc)
+                         : b.addTransition("recv_" + h.event,
+                                           {net::PreArc{ready, 1, {}}},
+                                           {net::PostArc{ready, 1}}, h.loc);
     b.setEvents(t, {net::EventSource{eventPorts.at(h.event), true}});
     b.setAction(t, action);
   }

@@ -49,6 +49,10 @@ struct EventHandler {
   std::string event;
   StmtList body;
   llvm::SMLoc loc;
+  /// Only records that the event came (the cyclic model's flags): it
+  /// neither waits for the block's turn (`ready`) nor resets temporaries,
+  /// so events arriving together are all recorded in one step.
+  bool latch = false;
 };
 
 /// An output event: an urgent transition `send_<event>` emits it whenever

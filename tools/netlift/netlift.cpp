@@ -283,8 +283,10 @@ static cl::opt<std::string> fbSemantics(
     "fb-semantics",
     cl::desc("IEC 61499 input: the execution model, forte (default: one "
              "flat module per resource, events in one FIFO as 4diac FORTE "
-             "runs them) or sequential (modules mirroring the networks, "
-             "events of different blocks in any order)"),
+             "runs them), sequential (modules mirroring the networks, "
+             "events of different blocks in any order) or cyclic (fb2smv's "
+             "model: blocks take turns in network order, each reacting to "
+             "all its pending events at once)"),
     cl::value_desc("MODEL"), cl::sub(translateCmd), cl::sub(composeCmd),
     cl::sub(optCmd), cl::sub(emitCmd), cl::sub(reachCmd), cl::sub(srCmd),
     cl::sub(mealyCmd), cl::sub(eaCmd), cl::sub(enforceCmd), cl::sub(checkCmd),
