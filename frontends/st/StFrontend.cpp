@@ -17,10 +17,12 @@
 
 #include "llvm/Support/CommandLine.h"
 
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <type_traits>
+#include <typeinfo>
 
 using namespace netlift;
 using namespace netlift::plc;
@@ -341,14 +343,26 @@ bool hideStatement(antlr4::BufferedTokenStream &tokens,
 // Parse tree to PLC model
 //===----------------------------------------------------------------------===//
 
-/// Walks the parse tree once. The first refusal or malformed literal stops
-/// the walk (`failed`), so one mistake gives one message.
 /// Parses the declarations of one group of a long VAR block (see
 /// LongParts) into `out`; false after reporting an error.
 bool parseDeclarations(StringRef text, DiagEngine &diag, Unit &unit,
                        VarSection section, bool constant, bool retain,
                        std::vector<VarDecl *> &out);
 
+/// `c` as the labelled alternative T (a leaf class of the parse tree), or
+/// null. A node of a labelled alternative is of exactly that class, so the
+/// addresses of the type_info objects decide; dynamic_cast, whose misses
+/// compare type names with strcmp in libstdc++, took a sixth of the
+/// frontend's time on long programs.
+template <class T> T *alt(antlr4::ParserRuleContext *c) {
+  bool is = c && &typeid(*c) == &typeid(T);
+  assert(is == (dynamic_cast<T *>(c) != nullptr) &&
+         "alt<> is for leaf classes only");
+  return is ? static_cast<T *>(c) : nullptr;
+}
+
+/// Walks the parse tree once. The first refusal or malformed literal stops
+/// the walk (`failed`), so one mistake gives one message.
 class AstBuilder {
 public:
   AstBuilder(StringRef text, DiagEngine &diag, Unit &unit,
@@ -671,19 +685,19 @@ TypeSyntax *AstBuilder::typeSpec(P::TypeSpecContext *c) {
 }
 
 TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
-  if (auto *n = dynamic_cast<P::NamedTypeContext *>(c)) {
+  if (auto *n = alt<P::NamedTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(n));
     t->name = n->qualifiedName()->getText();
     return t;
   }
-  if (auto *a = dynamic_cast<P::ArrayTypeContext *>(c)) {
+  if (auto *a = alt<P::ArrayTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
     for (auto *s : a->subrange())
       t->dims.push_back({expr(s->lo), expr(s->hi)});
     t->elem = typeSpec0(a->elem);
     return t;
   }
-  if (auto *s = dynamic_cast<P::StructTypeContext *>(c)) {
+  if (auto *s = alt<P::StructTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, loc(s));
     for (auto *f : s->structField()) {
       if (f->DIRECT())
@@ -700,13 +714,13 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     }
     return t;
   }
-  if (auto *u = dynamic_cast<P::UnionTypeContext *>(c))
+  if (auto *u = alt<P::UnionTypeContext>(c))
     return refuse(loc(u), "UNION types are not supported");
-  if (auto *p = dynamic_cast<P::PointerTypeContext *>(c))
+  if (auto *p = alt<P::PointerTypeContext>(c))
     return refuse(loc(p), llvm::Twine(p->getStart()->getText()) +
                               " types (pointers and references) are not "
                               "supported");
-  if (auto *e = dynamic_cast<P::EnumTypeContext *>(c)) {
+  if (auto *e = alt<P::EnumTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
     if (e->base)
       t->name = e->base->getText();
@@ -716,14 +730,14 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
                                 loc(v->name)});
     return t;
   }
-  if (auto *s = dynamic_cast<P::SubrangeTypeContext *>(c)) {
+  if (auto *s = alt<P::SubrangeTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, loc(s));
     t->name = s->base->getText();
     t->lo = expr(s->subrange()->lo);
     t->hi = expr(s->subrange()->hi);
     return t;
   }
-  if (auto *s = dynamic_cast<P::StringTypeContext *>(c)) {
+  if (auto *s = alt<P::StringTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::String, loc(s));
     t->name = s->WSTRING_KW() ? "WSTRING" : "STRING";
     return t;
@@ -732,12 +746,12 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
 }
 
 Initializer *AstBuilder::initializer(P::InitializerContext *c) {
-  if (auto *e = dynamic_cast<P::ExprInitContext *>(c)) {
+  if (auto *e = alt<P::ExprInitContext>(c)) {
     auto *i = unit.make<Initializer>(Initializer::Value, loc(e));
     i->value = expr(e->expression());
     return i;
   }
-  if (auto *a = dynamic_cast<P::ArrayInitContext *>(c)) {
+  if (auto *a = alt<P::ArrayInitContext>(c)) {
     auto *i = unit.make<Initializer>(Initializer::Array, loc(a));
     for (auto *el : a->arrayInitElem()) {
       int64_t count = 1;
@@ -766,18 +780,18 @@ void AstBuilder::statements(P::StatementListContext *c, StmtList &out) {
 }
 
 Stmt *AstBuilder::statement(P::StatementContext *c) {
-  if (dynamic_cast<P::EmptyStmtContext *>(c))
+  if (alt<P::EmptyStmtContext>(c))
     return nullptr;
-  if (auto *a = dynamic_cast<P::AssignStmtContext *>(c)) {
+  if (auto *a = alt<P::AssignStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Assign, loc(a->ASSIGN()));
     s->target = variable(a->target);
     s->value = expr(a->value);
     return s;
   }
-  if (auto *r = dynamic_cast<P::RefusedAssignStmtContext *>(c))
+  if (auto *r = alt<P::RefusedAssignStmtContext>(c))
     return refuse(loc(r->op), "'" + r->op->getText() +
                                   "' (reference assignment) is not supported");
-  if (auto *call = dynamic_cast<P::CallStmtContext *>(c)) {
+  if (auto *call = alt<P::CallStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Call, loc(call));
     Expr *callee = variable(call->callee);
     if (!callee)
@@ -792,7 +806,7 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     s->value = e;
     return s;
   }
-  if (auto *i = dynamic_cast<P::IfStmtContext *>(c)) {
+  if (auto *i = alt<P::IfStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::If, loc(i));
     s->arms.push_back({expr(i->cond), {}});
     statements(i->statementList(0), s->arms.back().second);
@@ -806,7 +820,7 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     }
     return s;
   }
-  if (auto *cs = dynamic_cast<P::CaseStmtContext *>(c)) {
+  if (auto *cs = alt<P::CaseStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Case, loc(cs));
     s->value = expr(cs->sel);
     for (auto *arm : cs->caseArm()) {
@@ -822,7 +836,7 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     }
     return s;
   }
-  if (auto *f = dynamic_cast<P::ForStmtContext *>(c)) {
+  if (auto *f = alt<P::ForStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::For, loc(f));
     s->target = unit.make<Expr>(ExprKind::Name, loc(f->var));
     s->target->name = f->var->getText();
@@ -833,25 +847,25 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     statements(f->statementList(), s->body);
     return s;
   }
-  if (auto *w = dynamic_cast<P::WhileStmtContext *>(c)) {
+  if (auto *w = alt<P::WhileStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::While, loc(w));
     s->value = expr(w->cond);
     statements(w->statementList(), s->body);
     return s;
   }
-  if (auto *r = dynamic_cast<P::RepeatStmtContext *>(c)) {
+  if (auto *r = alt<P::RepeatStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Repeat, loc(r));
     statements(r->statementList(), s->body);
     s->value = expr(r->cond);
     return s;
   }
-  if (dynamic_cast<P::ExitStmtContext *>(c))
+  if (alt<P::ExitStmtContext>(c))
     return unit.make<Stmt>(StmtKind::Exit, loc(c));
-  if (dynamic_cast<P::ContinueStmtContext *>(c))
+  if (alt<P::ContinueStmtContext>(c))
     return unit.make<Stmt>(StmtKind::Continue, loc(c));
-  if (dynamic_cast<P::ReturnStmtContext *>(c))
+  if (alt<P::ReturnStmtContext>(c))
     return unit.make<Stmt>(StmtKind::Return, loc(c));
-  if (dynamic_cast<P::JumpStmtContext *>(c))
+  if (alt<P::JumpStmtContext>(c))
     return refuse(loc(c), "JMP in Structured Text is not supported");
   return refuse(loc(c), "unsupported statement");
 }
@@ -861,10 +875,10 @@ bool AstBuilder::callArgs(const std::vector<P::CallArgContext *> &args,
   for (auto *a : args) {
     CallArg arg;
     arg.loc = loc(a);
-    if (auto *n = dynamic_cast<P::NamedInputContext *>(a)) {
+    if (auto *n = alt<P::NamedInputContext>(a)) {
       arg.name = n->name->getText();
       arg.value = expr(n->value);
-    } else if (auto *o = dynamic_cast<P::NamedOutputContext *>(a)) {
+    } else if (auto *o = alt<P::NamedOutputContext>(a)) {
       arg.name = o->name->getText();
       arg.isOutput = true;
       arg.negated = o->NOT() != nullptr;
@@ -920,9 +934,9 @@ static Op binaryOp(size_t tokenType) {
 Expr *AstBuilder::expr(P::ExpressionContext *c) {
   if (failed || !c)
     return nullptr;
-  if (auto *p = dynamic_cast<P::PrimaryExprContext *>(c))
+  if (auto *p = alt<P::PrimaryExprContext>(c))
     return primary(p->primary());
-  if (auto *u = dynamic_cast<P::UnaryExprContext *>(c)) {
+  if (auto *u = alt<P::UnaryExprContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::Unary, loc(u->op));
     e->op = u->op->getType() == P::MINUS  ? Op::Neg
             : u->op->getType() == P::PLUS ? Op::Plus
@@ -931,18 +945,12 @@ Expr *AstBuilder::expr(P::ExpressionContext *c) {
     return failed ? nullptr : e;
   }
   // Every other alternative is binary: expression op expression.
-  auto *lhs = c->children.size() == 3
-                  ? dynamic_cast<P::ExpressionContext *>(c->children[0])
-                  : nullptr;
-  auto *rhs = c->children.size() == 3
-                  ? dynamic_cast<P::ExpressionContext *>(c->children[2])
-                  : nullptr;
-  auto *opNode =
-      c->children.size() == 3
-          ? dynamic_cast<antlr4::tree::TerminalNode *>(c->children[1])
-          : nullptr;
-  if (!lhs || !rhs || !opNode)
+  // (The grammar's binary alternatives are `expression op expression`.)
+  if (c->children.size() != 3)
     return refuse(loc(c), "unsupported expression");
+  auto *lhs = static_cast<P::ExpressionContext *>(c->children[0]);
+  auto *rhs = static_cast<P::ExpressionContext *>(c->children[2]);
+  auto *opNode = static_cast<antlr4::tree::TerminalNode *>(c->children[1]);
   Expr *e = unit.make<Expr>(ExprKind::Binary, loc(opNode));
   e->op = binaryOp(opNode->getSymbol()->getType());
   e->operands = {expr(lhs), expr(rhs)};
@@ -950,11 +958,11 @@ Expr *AstBuilder::expr(P::ExpressionContext *c) {
 }
 
 Expr *AstBuilder::primary(P::PrimaryContext *c) {
-  if (auto *l = dynamic_cast<P::LiteralPrimaryContext *>(c))
+  if (auto *l = alt<P::LiteralPrimaryContext>(c))
     return literal(l->literal());
-  if (auto *p = dynamic_cast<P::ParenPrimaryContext *>(c))
+  if (auto *p = alt<P::ParenPrimaryContext>(c))
     return expr(p->expression());
-  if (auto *v = dynamic_cast<P::VariablePrimaryContext *>(c))
+  if (auto *v = alt<P::VariablePrimaryContext>(c))
     return variable(v->variable());
   auto *call = static_cast<P::CallPrimaryContext *>(c);
   Expr *callee = variable(call->callee);
@@ -977,18 +985,18 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
   Expr *e = unit.make<Expr>(ExprKind::Name, loc(head));
   e->name = head->getText();
   for (auto *sel : c->selector()) {
-    if (auto *f = dynamic_cast<P::FieldSelContext *>(sel)) {
+    if (auto *f = alt<P::FieldSelContext>(sel)) {
       Expr *fe = unit.make<Expr>(ExprKind::Field, loc(f->ident()));
       fe->name = f->ident()->getText();
       fe->operands.push_back(e);
       e = fe;
-    } else if (auto *b = dynamic_cast<P::BitSelContext *>(sel)) {
+    } else if (auto *b = alt<P::BitSelContext>(sel)) {
       Expr *be = unit.make<Expr>(ExprKind::BitAccess, loc(b->INTEGER()));
       if (!st::parseIntegerLiteral(b->INTEGER()->getText(), be->intValue))
         return refuse(loc(b->INTEGER()), "malformed bit number");
       be->operands.push_back(e);
       e = be;
-    } else if (auto *ix = dynamic_cast<P::IndexSelContext *>(sel)) {
+    } else if (auto *ix = alt<P::IndexSelContext>(sel)) {
       Expr *ie = unit.make<Expr>(ExprKind::Index, loc(ix));
       ie->operands.push_back(e);
       for (auto *x : ix->expression())
@@ -1004,7 +1012,7 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
 
 Expr *AstBuilder::literal(P::LiteralContext *c) {
   SMLoc at = loc(c);
-  if (auto *i = dynamic_cast<P::IntLiteralContext *>(c)) {
+  if (auto *i = alt<P::IntLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
     if (!st::parseIntegerLiteral(i->getText(), e->intValue))
       return refuse(at, "integer literal '" + i->getText() +
@@ -1012,7 +1020,7 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
                             "range");
     return e;
   }
-  if (auto *r = dynamic_cast<P::RealLiteralContext *>(c)) {
+  if (auto *r = alt<P::RealLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::RealLit, at);
     std::string t;
     for (char ch : r->getText())
@@ -1021,24 +1029,24 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
     e->realValue = std::strtod(t.c_str(), nullptr);
     return e;
   }
-  if (auto *b = dynamic_cast<P::BoolLiteralContext *>(c)) {
+  if (auto *b = alt<P::BoolLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::BoolLit, at);
     e->intValue = b->TRUE() != nullptr;
     return e;
   }
-  if (auto *d = dynamic_cast<P::DurationLiteralContext *>(c)) {
+  if (auto *d = alt<P::DurationLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::TimeLit, at);
     std::string err;
     if (!st::parseDuration(d->getText(), e->intValue, err))
       return refuse(at, err);
     return e;
   }
-  if (dynamic_cast<P::DateLiteralContext *>(c)) {
+  if (alt<P::DateLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::DateLit, at);
     e->name = c->getText();
     return e;
   }
-  if (auto *s = dynamic_cast<P::StringLiteralContext *>(c)) {
+  if (auto *s = alt<P::StringLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::StringLit, at);
     e->name = s->getText();
     return e;
