@@ -4,7 +4,11 @@
 NuSMV and nuXmv are not in Debian's archive, so this script reads the part
 of the SMV language netlift writes (one MODULE main; VAR and IVAR of
 boolean, integer range and enumeration types; DEFINE; ASSIGN init/next;
-TRANS; INVARSPEC; CTLSPEC) and computes what SMV's semantics gives it,
+TRANS; INVARSPEC; CTLSPEC) and the parts fb2smv writes besides (modules
+with parameters, instantiated by VAR and flattened here; dotted names;
+invariant assignments `x := e`; FAIRNESS and LTLSPEC, which are not
+checked; variables without init() or next() take any value of their type,
+as in SMV) and computes what SMV's semantics gives it,
 independently of netlift's engine: the reachable states (valuations of the
 VARs), the transitions (pairs of states related by some valuation of the
 IVARs that TRANS allows), the verdict of every INVARSPEC and CTLSPEC in
@@ -12,7 +16,9 @@ the initial state (in file order). Input variables are chosen lazily: an evaluat
 reads one not chosen yet is restarted once per value of it, so only the
 inputs that matter are enumerated.
 
-Usage: smv-explore.py FILE.smv [--count DEFINE] [--json]
+Usage: smv-explore.py FILE.smv [--count DEFINE] [--project EXPR,...] [--json]
+(--project: the changes of these expressions' values along the
+transitions, as pairs of value tuples, stuttering left out)
 """
 import argparse
 import json
@@ -21,9 +27,9 @@ import sys
 from collections import deque
 
 TOKEN = re.compile(r"\s*(?:(--[^\n]*)|([A-Za-z_][A-Za-z0-9_$#]*)|(\d+)|"
-                   r"(:=|->|<->|!=|<=|>=|\.\.|[()\[\]{};:,=<>+\-*/!&|?]))")
+                   r"(:=|->|<->|!=|<=|>=|\.\.|[.()\[\]{};:,=<>+\-*/!&|?]))")
 SECTIONS = {"MODULE", "VAR", "IVAR", "DEFINE", "ASSIGN", "TRANS", "INIT",
-            "INVARSPEC", "CTLSPEC", "INVAR"}
+            "INVARSPEC", "CTLSPEC", "INVAR", "FAIRNESS", "LTLSPEC"}
 
 
 class SmvError(Exception):
@@ -171,13 +177,31 @@ class Parser:
             self.next()
             return ("case", arms)
         if isinstance(t, str) and re.match(r"[A-Za-z_]", t):
-            return ("id", t)
+            return ("id", self.dotted(t))
         raise SmvError(f"unexpected {t!r} at token {self.i}")
+
+    def dotted(self, name):
+        """`a.b.c`: a name in an instance, kept as one identifier."""
+        while self.peek() == "." and isinstance(self.peek(1), str):
+            self.next()
+            name += "." + self.next()
+        return name
 
     def type_(self):
         t = self.next()
         if t == "boolean":
             return [False, True]
+        if isinstance(t, str) and re.match(r"[A-Za-z_]", t):
+            # An instance of module t.
+            args = []
+            if self.peek() == "(":
+                self.next()
+                while self.peek() != ")":
+                    args.append(self.expr())
+                    if self.peek() == ",":
+                        self.next()
+                self.next()
+            return ("module", t, args)
         if t == "{":
             vals = [self.next()]
             while self.peek() == ",":
@@ -192,14 +216,27 @@ class Parser:
         hi = -self.next() if t == "-" else t
         return list(range(lo, hi + 1))
 
-    def model(self):
-        m = {"vars": {}, "ivars": {}, "defines": {}, "init": {}, "next": {},
-             "trans": [], "specs": []}
+    def modules(self):
+        """Every MODULE: its parameters and sections."""
+        mods, m = {}, None
         while self.peek() is not None:
             sec = self.next()
             if sec == "MODULE":
-                if self.next() != "main":
-                    raise SmvError("only MODULE main is read")
+                name = self.next()
+                params = []
+                if self.peek() == "(":
+                    self.next()
+                    while self.peek() != ")":
+                        params.append(self.next())
+                        if self.peek() == ",":
+                            self.next()
+                    self.next()
+                m = {"params": params, "vars": {}, "ivars": {},
+                     "defines": {}, "init": {}, "next": {}, "assign": {},
+                     "trans": [], "specs": []}
+                mods[name] = m
+            elif m is None:
+                raise SmvError(f"{sec!r} before the first MODULE")
             elif sec in ("VAR", "IVAR"):
                 table = m["vars"] if sec == "VAR" else m["ivars"]
                 while self.peek() not in SECTIONS and self.peek() is not None:
@@ -209,16 +246,19 @@ class Parser:
                     self.expect(";")
             elif sec == "DEFINE":
                 while self.peek() not in SECTIONS and self.peek() is not None:
-                    name = self.next()
+                    name = self.dotted(self.next())
                     self.expect(":=")
                     m["defines"][name] = self.expr()
                     self.expect(";")
             elif sec == "ASSIGN":
-                while self.peek() in ("init", "next"):
+                while self.peek() not in SECTIONS and self.peek() is not None:
                     kind = self.next()
-                    self.expect("(")
-                    name = self.next()
-                    self.expect(")")
+                    if kind in ("init", "next") and self.peek() == "(":
+                        self.next()
+                        name = self.dotted(self.next())
+                        self.expect(")")
+                    else:
+                        kind, name = "assign", self.dotted(kind)
                     self.expect(":=")
                     m[kind][name] = self.expr()
                     self.expect(";")
@@ -230,9 +270,105 @@ class Parser:
                     m["trans"].append(e)
                 else:
                     m["specs"].append((sec, e))
+            elif sec in ("FAIRNESS", "LTLSPEC"):
+                # Not checked: skipped up to the next section.
+                while self.peek() not in SECTIONS and self.peek() is not None:
+                    self.next()
             else:
                 raise SmvError(f"section {sec!r} is not read")
-        return m
+        return mods
+
+    def model(self):
+        return flatten(self.modules())
+
+
+def rename(e, scope):
+    """Expression `e` of a module instance in the flat model's names."""
+    prefix, params, local = scope
+    op = e[0]
+    if op == "const":
+        return e
+    if op == "id":
+        head, _, rest = e[1].partition(".")
+        if head in params:
+            bound = params[head]
+            if not rest:
+                return bound
+            if bound[0] != "id":
+                raise SmvError(f"{e[1]}: parameter {head} is not a name")
+            return ("id", bound[1] + "." + rest)
+        if head in local:
+            return ("id", prefix + e[1])
+        return e  # an enumeration constant
+    if op == "case":
+        return ("case", [(rename(c, scope), rename(v, scope))
+                         for c, v in e[1]])
+    return (op,) + tuple(rename(x, scope) for x in e[1:])
+
+
+def flatten(mods):
+    """The instance tree from MODULE main as one module (fb2smv's models
+    pass variables of the enclosing instance as parameters and assign
+    them)."""
+    if "main" not in mods:
+        raise SmvError("no MODULE main")
+    out = {"vars": {}, "ivars": {}, "defines": {}, "init": {}, "next": {},
+           "trans": [], "specs": []}
+    assign = {}
+
+    def instantiate(name, prefix, params, depth):
+        if depth > 50:
+            raise SmvError("modules instantiate themselves")
+        m = mods.get(name)
+        if m is None:
+            raise SmvError(f"no MODULE {name}")
+        local = set(m["vars"]) | set(m["ivars"]) | set(m["defines"])
+        scope = (prefix, params, local)
+
+        def target(n):
+            t = rename(("id", n), scope)
+            if t[0] != "id":
+                raise SmvError(f"{prefix}{n}: assigned parameter is not a "
+                               "variable")
+            return t[1]
+        for v, ty in m["vars"].items():
+            if isinstance(ty, tuple):
+                sub = mods.get(ty[1])
+                if sub is None:
+                    raise SmvError(f"no MODULE {ty[1]}")
+                if len(sub["params"]) != len(ty[2]):
+                    raise SmvError(f"{prefix}{v}: {ty[1]} takes "
+                                   f"{len(sub['params'])} parameters")
+                instantiate(ty[1], prefix + v + ".",
+                            {p: rename(a, scope)
+                             for p, a in zip(sub["params"], ty[2])},
+                            depth + 1)
+            else:
+                out["vars"][prefix + v] = ty
+        for v, ty in m["ivars"].items():
+            out["ivars"][prefix + v] = ty
+        for d, e in m["defines"].items():
+            out["defines"][prefix + d] = rename(e, scope)
+        for kind, table in (("init", out["init"]), ("next", out["next"]),
+                            ("assign", assign)):
+            for n, e in m[kind].items():
+                t = target(n)
+                if t in table:
+                    raise SmvError(f"{kind}({t}) is assigned twice")
+                table[t] = rename(e, scope)
+        out["trans"] += [rename(e, scope) for e in m["trans"]]
+        out["specs"] += [(k, rename(e, scope)) for k, e in m["specs"]]
+
+    if mods["main"]["params"]:
+        raise SmvError("MODULE main has parameters")
+    instantiate("main", "", {}, 0)
+    # `x := e` makes x a name for e in every state.
+    for n, e in assign.items():
+        if n not in out["vars"]:
+            raise SmvError(f"{n} := ...: not a variable")
+        del out["vars"][n]
+        out["defines"][n] = e
+    return out
 
 
 class Need(Exception):
@@ -326,13 +462,29 @@ class Evaluator:
 def explore(model, max_states):
     ev = Evaluator(model)
     names = list(model["vars"])
-    init = {}
+    # A variable without init() starts with any value of its type, one
+    # without next() takes any value at every step (SMV's semantics).
+    inits = [{}]
     for n in names:
         if n not in model["init"]:
-            raise SmvError(f"{n} has no init()")
-        init[n] = ev.eval(model["init"][n], {}, {}, {})
-        if init[n] not in model["vars"][n]:
-            raise SmvError(f"init({n}) = {init[n]} is outside its type")
+            inits = [{**i, n: v} for i in inits for v in model["vars"][n]]
+
+    class Initial(dict):
+        """Initial values computed on demand: init() may read others."""
+        def __contains__(self, n):
+            return n in model["vars"]
+
+        def __missing__(self, n):
+            self[n] = None  # a cycle reads None and fails below
+            v = ev.eval(model["init"][n], self, {}, {})
+            if v not in model["vars"][n]:
+                raise SmvError(f"init({n}) = {v} is outside its type")
+            self[n] = v
+            return v
+    inits = [Initial(i) for i in inits]
+    for i in inits:
+        for n in names:
+            i[n]
     trans = model["trans"]
 
     def successors(state):
@@ -344,24 +496,27 @@ def explore(model, max_states):
             try:
                 if not all(ev.eval(t, state, iv, cache) for t in trans):
                     continue
-                nxt = []
+                nxt = [[]]
                 for n in names:
-                    v = (ev.eval(model["next"][n], state, iv, cache)
-                         if n in model["next"] else state[n])
+                    if n not in model["next"]:
+                        nxt = [t + [v] for t in nxt for v in model["vars"][n]]
+                        continue
+                    v = ev.eval(model["next"][n], state, iv, cache)
                     if v not in model["vars"][n]:
                         raise SmvError(f"next({n}) = {v} is outside its "
                                        f"type in state {state}")
-                    nxt.append(v)
-                found.add(tuple(nxt))
+                    for t in nxt:
+                        t.append(v)
+                found.update(tuple(t) for t in nxt)
             except Need as need:
                 for val in model["ivars"][need.var]:
                     work.append({**iv, need.var: val})
         return found
 
-    start = tuple(init[n] for n in names)
-    index = {start: 0}
-    states, succ = [start], []
-    queue = deque([start])
+    starts = sorted({tuple(i[n] for n in names) for i in inits}, key=repr)
+    index = {t: k for k, t in enumerate(starts)}
+    states, succ = list(starts), []
+    queue = deque(starts)
     while queue:
         s = queue.popleft()
         out = []
@@ -442,6 +597,9 @@ def main():
     ap.add_argument("--count", action="append", default=[],
                     help="also count the states where this DEFINE holds")
     ap.add_argument("--max-states", type=int, default=200000)
+    ap.add_argument("--project", default=None,
+                    help="comma-separated expressions: print the changes "
+                    "of their values along the transitions")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args()
     try:
@@ -450,6 +608,14 @@ def main():
         names, states, succ, ev = graph
         result = {"states": len(states),
                   "transitions": sum(len(o) for o in succ)}
+        if args.project:
+            exprs = [Parser(tokenize(x)).expr()
+                     for x in args.project.split(",")]
+            values = [tuple(ev.eval(x, dict(zip(names, st)), {}, {})
+                            for x in exprs) for st in states]
+            result["changes"] = sorted(
+                {(values[a], values[b]) for a, out in enumerate(succ)
+                 for b in out if values[a] != values[b]}, key=repr)
         for d in args.count:
             result[d] = sum(
                 1 for s in states
@@ -467,6 +633,10 @@ def main():
         print(json.dumps(result))
     else:
         for k, v in result.items():
+            if k == "changes":
+                v = "\n".join(f"  {a} -> {b}" for a, b in v)
+                print(f"{k}:\n{v}")
+                continue
             if isinstance(v, list):
                 v = " ".join("true" if x else "false" for x in v) or "-"
             print(f"{k}: {v}")

@@ -895,9 +895,13 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
     const std::string &n = placeNames[p];
     os << "  init(" << n << ") := " << L.get(init.data(), L.markingSlot(p))
        << ";\n";
+    // A variable without next() would be free in SMV: one nothing changes
+    // keeps its value explicitly.
     if (!nextMarking[p].empty())
       os << "  next(" << n << ") := (FIRE ? " << nextMarking[p] << " : " << n
          << ");\n";
+    else
+      os << "  next(" << n << ") := " << n << ";\n";
     if (L.clockSlot(p) < 0)
       continue;
     const std::string &k = clockNames[p];
@@ -934,8 +938,8 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
           arms.push_back(
               {"FIRE & " + inStep(t) + " & " + effects[t].wrote[slot],
                effects[t].value[slot]});
-      if (!arms.empty())
-        os << "  next(" << n << ") := " << firstOf(arms, n) << ";\n";
+      os << "  next(" << n << ") := " << (arms.empty() ? n : firstOf(arms, n))
+         << ";\n";
     }
   }
   os << "  init(netlift_error) := FALSE;\n"
