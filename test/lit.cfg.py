@@ -66,5 +66,7 @@ config.substitutions.append(("%corpus", corpus))
 if os.path.exists(os.path.join(corpus, "pnml", "mcc2021",
                                "oracle-statespace.tsv")):
     config.available_features.add("mcc-corpus")
+if os.path.isdir(os.path.join(corpus, "iec61499", "fb2smv", "tests", "smv")):
+    config.available_features.add("fb2smv-corpus")
 if os.path.isdir(os.path.join(corpus, "spaceex")):
     config.available_features.add("spaceex-corpus")
