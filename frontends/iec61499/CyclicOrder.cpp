@@ -59,16 +59,12 @@ bool iec61499::orderCyclically(Design &design, Module &m, DiagEngine &diag) {
   for (size_t j = 0; j < blocks.size(); ++j)
     byPrefix[blocks[j].prefix] = j;
   for (const Var &v : m.vars) {
-    StringRef name = v.name;
-    size_t dot = name.rfind('.');
-    std::string prefix =
-        dot == StringRef::npos ? "" : name.take_front(dot + 1).str();
-    StringRef local = dot == StringRef::npos ? name : name.drop_front(dot + 1);
+    auto [prefix, local] = splitBlockName(v.name);
     auto it = byPrefix.find(prefix);
     if (it == byPrefix.end())
       continue;
     if (local.startswith("_ev_"))
-      blocks[it->second].flags.push_back(name.str());
+      blocks[it->second].flags.push_back(v.name.str());
     else if (local == "_queued")
       blocks[it->second].hasQueue = true;
   }
@@ -149,13 +145,9 @@ bool iec61499::orderCyclically(Design &design, Module &m, DiagEngine &diag) {
   };
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
     const Transition &t = m.transitions[i];
-    StringRef name = t.name;
-    size_t dot = name.rfind('.');
-    std::string prefix =
-        dot == StringRef::npos ? "" : name.take_front(dot + 1).str();
+    auto [prefix, local] = splitBlockName(t.name);
     if (!byPrefix.count(prefix))
       continue;
-    StringRef local = name.drop_front(prefix.size());
     if (local.startswith("send_"))
       ordered.insert(i);
     bool fromEnvironment =

@@ -70,11 +70,7 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
   if (blocks.empty())
     return true;
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
-    StringRef name = m.transitions[i].name;
-    size_t dot = name.rfind('.');
-    std::string prefix =
-        dot == StringRef::npos ? "" : name.take_front(dot + 1).str();
-    StringRef local = dot == StringRef::npos ? name : name.drop_front(dot + 1);
+    auto [prefix, local] = splitBlockName(m.transitions[i].name);
     auto it = blocks.find(prefix);
     if (it == blocks.end())
       continue;
@@ -197,6 +193,13 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
   }
   waitForIdle(b, m, touched, idle);
   return true;
+}
+
+std::pair<std::string, StringRef> iec61499::splitBlockName(StringRef name) {
+  size_t dot = name.rfind('.');
+  if (dot == StringRef::npos)
+    return {"", name};
+  return {name.take_front(dot + 1).str(), name.drop_front(dot + 1)};
 }
 
 void iec61499::waitForIdle(Builder &b, Module &m,

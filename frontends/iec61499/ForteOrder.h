@@ -25,6 +25,10 @@ namespace netlift::iec61499 {
 /// events go in one FIFO order. Returns false after reporting.
 bool orderLikeForte(net::Design &design, net::Module &m, DiagEngine &diag);
 
+/// A name of the flat module split into the prefix of the block it belongs
+/// to (`a.b.`, empty at the top) and its name in the block (`send_EO`).
+std::pair<std::string, llvm::StringRef> splitBlockName(llvm::StringRef name);
+
 /// What starts an event chain from outside the blocks — the environment's
 /// queue, E_DELAY and E_CYCLE expiring, E_RESTART — waits for `idle`
 /// (added to its guard): every transition that is not forced, not in
