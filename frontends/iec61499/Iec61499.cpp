@@ -1435,6 +1435,12 @@ void Translator::basicBlock(FbType &t) {
   };
 
   if (cyclic) {
+    for (const Event &ei : t.eventInputs)
+      if (StringRef(ei.name).equals_insensitive(kCycleTurn))
+        fail(t, ei.node,
+             "event input '" + ei.name +
+                 "' has the name netlift gives a block's turn under "
+                 "--fb-semantics cyclic; rename it");
     // fb2smv's cyclic model: an arriving event only sets its flag; when the
     // block's turn in the cycle comes (`_run`, ordered by CyclicOrder), it
     // samples the data of its pending events and runs the ECC with all of
