@@ -146,6 +146,20 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
     os << "</ul>\n";
   }
 
+  if (a.numEdges()) {
+    os << "<h2>Regions never left</h2>\n";
+    std::vector<Region> trapped = a.regionsNeverLeft();
+    if (trapped.empty()) {
+      os << "<p id=\"never-left\">Every region can be left.</p>\n";
+    } else {
+      os << "<ul id=\"never-left\">\n";
+      for (Region r : trapped)
+        os << fmt::format("<li>{}: {} states; no edge leaves it</li>\n",
+                          xmlEscape(a.regionName(r)), a.statesIn(r));
+      os << "</ul>\n";
+    }
+  }
+
   os << "<h2>Regions</h2>\n<table id=\"region-table\">\n<tr><th>region</th>"
         "<th>states</th><th>share</th><th>deadlocks</th><th>example state"
         "</th></tr>\n";

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
+#include <set>
 
 using namespace netlift;
 using namespace netlift::structural;
@@ -232,6 +233,20 @@ void Analysis::checkInvariants() const {
   }
 }
 
+std::vector<Region> Analysis::regionsNeverLeft() const {
+  std::vector<Region> out;
+  if (edges == 0)
+    return out;
+  std::set<Region> left;
+  for (auto &[p, c] : edgeCounts())
+    if (p.first != p.second)
+      left.insert(p.first);
+  for (auto &[r, c] : counts)
+    if (c && !left.count(r))
+      out.push_back(r);
+  return out;
+}
+
 void Analysis::writeText(llvm::raw_ostream &os, bool allRegions) const {
   checkInvariants();
   os << "states: " << states << ", edges: " << edges
@@ -262,6 +277,15 @@ void Analysis::writeText(llvm::raw_ostream &os, bool allRegions) const {
   for (auto &[p, c] : edgeCounts())
     os << "  " << regionName(p.first) << " -> " << regionName(p.second) << ": "
        << c << (p.first == p.second ? " (inside the region)" : "") << "\n";
+  if (edges) {
+    os << "\nregions never left:";
+    std::vector<Region> trapped = regionsNeverLeft();
+    if (trapped.empty())
+      os << " none";
+    os << "\n";
+    for (Region r : trapped)
+      os << "  " << regionName(r) << ": " << statesIn(r) << " states\n";
+  }
   KeyAttributes key = keyAttributes();
   os << "\nkey attributes: ";
   if (key.sets.empty()) {
@@ -313,6 +337,13 @@ void Analysis::writeJson(llvm::raw_ostream &os, bool allRegions) const {
           j.attribute("from", regionName(p.first));
           j.attribute("to", regionName(p.second));
           j.attribute("edges", int64_t(c));
+        });
+    });
+    j.attributeArray("regions_never_left", [&] {
+      for (Region r : regionsNeverLeft())
+        j.object([&] {
+          j.attribute("region", regionName(r));
+          j.attribute("states", int64_t(statesIn(r)));
         });
     });
     j.attributeObject("key_attributes", [&] {

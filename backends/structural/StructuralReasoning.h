@@ -68,6 +68,13 @@ public:
   /// = 2e8, greedily beyond.
   KeyAttributes keyAttributes() const;
 
+  /// The occurring regions no edge leaves: once the system is in one of
+  /// their states it stays in the region for ever (the paper's lifter with
+  /// a pallet stuck and no actuator on, where the controller keeps
+  /// scanning, so that no state is a deadlock). Empty when the state space
+  /// came without edges.
+  std::vector<Region> regionsNeverLeft() const;
+
   std::string regionName(Region r) const;
   /// Checks the invariants: node counts sum to the states, edge counts to
   /// the edges. Aborts if violated (they are facts, not inputs).
