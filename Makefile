@@ -1,6 +1,6 @@
 # The two commands of the README:
-#   make demo   - set up, build, then translate, flatten, draw and explore a
-#                 bundled example
+#   make demo   - set up, build, then run the lifter example end to end
+#                 (examples/lifter/run.sh) and print where its reports are
 #   make test   - set up, build, and run the whole test suite (lit + GoogleTest)
 # Also: make build, make sanitize-test (ASan+UBSan build running the suite),
 #       make bench, make format.
@@ -24,18 +24,9 @@ build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	@echo "== netlift translate examples/cylinder/closed.net (verified, canonical form)"
-	$(BUILD)/bin/netlift translate examples/cylinder/closed.net
-	@echo "== netlift opt -p flatten: one flat module"
-	$(BUILD)/bin/netlift opt examples/cylinder/closed.net -p flatten --stats -o $(BUILD)/closed.flat.net
-	cat $(BUILD)/closed.flat.net
-	$(BUILD)/bin/netlift emit $(BUILD)/closed.flat.net --to dot -o $(BUILD)/closed.flat.dot
-	dot -Tsvg $(BUILD)/closed.flat.dot -o $(BUILD)/closed.flat.svg
-	@echo "== drawing written to $(BUILD)/closed.flat.svg"
-	@echo "== netlift reach: the closed loop's state space"
-	$(BUILD)/bin/netlift reach examples/cylinder/closed.net --summary json -q
-	@echo "== a shortest run to the cylinder at its end, controller in step 2"
-	$(BUILD)/bin/netlift reach examples/cylinder/closed.net -q --find 'p.end and c.step == 2'
+	@echo "== the lifter of the structural-reasoning paper: Ladder Diagram controller"
+	@echo "== (PLCopen XML) + plant library -> closed loop -> reduced -> explored -> report"
+	bash examples/lifter/run.sh $(BUILD)/bin/netlift $(BUILD)/lifter
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
