@@ -94,7 +94,8 @@ static cl::SubCommand
                "Compose a controller and plant models (any input formats) "
                "into one closed-loop system (docs/compose.md)");
 static cl::SubCommand emitCmd("emit",
-                              "Write a model in another format (net, dot)");
+                              "Write a model in another format (net, dot, "
+                              "promela, smv, pnml, nces-xml, pnt)");
 
 static cl::list<std::string> translateInputs(cl::Positional,
                                              cl::desc("<input files>"),
@@ -1556,7 +1557,8 @@ int main(int argc, char **argv) {
           "[--print-after-all] [--stats]\n"
           "  netlift compose CTRL PLANT... [--connect FILE] [--match "
           "names|none] [--inst NAME:MODULE]... [-o OUT]\n"
-          "  netlift emit IN --to net|dot [-o OUT]\n"
+          "  netlift emit IN --to net|dot|promela|smv|pnml|nces-xml|pnt [-o "
+          "OUT]\n"
           "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] "
           "[--summary "
           "json] [--find EXPR]\n"
@@ -1566,7 +1568,8 @@ int main(int argc, char **argv) {
           "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
           "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
           "  netlift check MODEL --ctl FORMULA...\n"
-          "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json] [--ev "
+          "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json|html] "
+          "[--ev "
           "F.svg] "
           "[--ag FILE.dot]\n\n"
           "Run 'netlift <subcommand> --help' for a subcommand's options.\n",
