@@ -14,9 +14,11 @@ attrs=(--attr B1=lt.occupied --attr B2=sl.occupied --attr B3=ut.occupied
        --attr M2=lifter.M2 --attr M3=lifter.M3 --attr UP=lifter.UP)
 for ctl in lifter-faulty lifter; do
   "$netlift" compose "$here/$ctl.xml" "$lib/conveyor.net" "$lib/cylinder.net" \
-    "$here/lifter-plant.net" --inst lifter:Lifter --inst lt:Conveyor \
+    "$lib/sensor.net" "$here/lifter-plant.net" --inst lifter:Lifter \
+    --inst lt:Conveyor --inst b5:Sensor \
     --inst sl:Conveyor --inst ut:Conveyor --inst lift:Cylinder \
     --inst levels:Levels --inst src:PalletSource --inst line:Mainline \
+    --inst panel:Panel \
     --connect "$here/wiring.txt" -q -o "$out/$ctl.net"
   "$netlift" opt "$out/$ctl.net" -p 'flatten,reduce' -o "$out/$ctl-reduced.net"
   "$netlift" sr "$out/$ctl-reduced.net" "${attrs[@]}" --report html \
