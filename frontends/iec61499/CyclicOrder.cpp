@@ -44,14 +44,11 @@ bool iec61499::orderCyclically(Design &design, Module &m, DiagEngine &diag) {
   Builder b(design);
   b.setModule(&m);
   SMLoc at = m.loc;
-  const StringRef run = "recv__run";
-
   std::vector<CycleBlock> blocks;
   for (uint32_t i = 0; i < m.transitions.size(); ++i) {
-    StringRef name = m.transitions[i].name;
-    if (name == run || name.endswith("." + run.str()))
-      blocks.push_back(
-          {name.drop_back(run.size()).str(), i, {}, /*hasQueue=*/false});
+    auto [prefix, local] = splitBlockName(m.transitions[i].name);
+    if (local == "recv__run")
+      blocks.push_back({prefix, i, {}, /*hasQueue=*/false});
   }
   if (blocks.empty())
     return true;

@@ -1359,8 +1359,11 @@ void Translator::basicBlock(FbType &t) {
   // state's actions run, and evaluation repeats until none fires. An event
   // condition holds only at the first evaluation: `eventCond` gives it
   // (null: the transition cannot fire in this reaction), and `consumed`
-  // runs after every evaluation, taking the events away.
-  auto runEcc = [&](llvm::function_ref<Expr *(StringRef, SMLoc)> eventCond,
+  // runs after every evaluation, taking the events away. Appended to `h`:
+  // `_live := TRUE`, the statements `armed` (which arm the events), the
+  // loop.
+  auto runEcc = [&](StmtList &h, StmtList armed,
+                    llvm::function_ref<Expr *(StringRef, SMLoc)> eventCond,
                     llvm::function_ref<StmtList(SMLoc)> consumed, SMLoc loc) {
     Stmt *sel = unit.make<Stmt>(StmtKind::Case, loc);
     sel->value = nameRef(unit, "ECC", loc);
@@ -1424,9 +1427,10 @@ void Translator::basicBlock(FbType &t) {
     loop->from = intLit(unit, 0, loc);
     loop->to = intLit(unit, limit, loc);
     loop->body.push_back(when(unit, nameRef(unit, "_live", loc), once, loc));
-    return StmtList{assign(unit, nameRef(unit, "_live", loc),
-                           boolLit(unit, true, loc), loc),
-                    loop};
+    h.push_back(assign(unit, nameRef(unit, "_live", loc),
+                       boolLit(unit, true, loc), loc));
+    h.insert(h.end(), armed.begin(), armed.end());
+    h.push_back(loop);
   };
   auto handle = [&](StringRef event, StmtList h, SMLoc loc,
                     bool latch = false) {
@@ -1435,17 +1439,16 @@ void Translator::basicBlock(FbType &t) {
   };
 
   if (cyclic) {
-    for (const Event &ei : t.eventInputs)
-      if (StringRef(ei.name).equals_insensitive(kCycleTurn))
-        fail(t, ei.node,
-             "event input '" + ei.name +
-                 "' has the name netlift gives a block's turn under "
-                 "--fb-semantics cyclic; rename it");
     // fb2smv's cyclic model: an arriving event only sets its flag; when the
     // block's turn in the cycle comes (`_run`, ordered by CyclicOrder), it
     // samples the data of its pending events and runs the ECC with all of
     // them at once, then forgets them.
     for (const Event &ei : t.eventInputs) {
+      if (StringRef(ei.name).equals_insensitive(kCycleTurn))
+        fail(t, ei.node,
+             "event input '" + ei.name +
+                 "' has the name netlift gives a block's turn under "
+                 "--fb-semantics cyclic; rename it");
       SMLoc loc = t.src->locOf(ei.node);
       handle(ei.name,
              {assign(unit, nameRef(unit, eventFlag(ei.name), loc),
@@ -1468,7 +1471,8 @@ void Translator::basicBlock(FbType &t) {
                                  nameRef(unit, v.name, loc), loc)},
                          loc));
     }
-    StmtList run = runEcc(
+    runEcc(
+        h, {},
         [&](StringRef event, SMLoc loc) -> Expr * {
           return nameRef(unit, eventFlag(event), loc);
         },
@@ -1481,7 +1485,6 @@ void Translator::basicBlock(FbType &t) {
           return forget;
         },
         at);
-    h.insert(h.end(), run.begin(), run.end());
     handle(kCycleTurn, std::move(h), at);
     block.eventInputs.push_back({kCycleTurn, at});
   } else {
@@ -1492,7 +1495,10 @@ void Translator::basicBlock(FbType &t) {
         h.push_back(assign(unit, nameRef(unit, internal(w), loc),
                            nameRef(unit, w, loc), loc));
       // Only this event's transitions, and only at the first evaluation.
-      StmtList run = runEcc(
+      runEcc(
+          h,
+          {assign(unit, nameRef(unit, "_event", loc), boolLit(unit, true, loc),
+                  loc)},
           [&](StringRef event, SMLoc at) -> Expr * {
             if (!event.equals_insensitive(ei.name))
               return nullptr;
@@ -1503,10 +1509,6 @@ void Translator::basicBlock(FbType &t) {
                            boolLit(unit, false, at), at)};
           },
           loc);
-      h.insert(h.end(), run.begin(), run.begin() + 1);
-      h.push_back(assign(unit, nameRef(unit, "_event", loc),
-                         boolLit(unit, true, loc), loc));
-      h.insert(h.end(), run.begin() + 1, run.end());
       handle(ei.name, std::move(h), loc);
     }
   }
