@@ -144,7 +144,7 @@ private:
   /// `what` names the kind of type in the error when there is none.
   FbType *findType(StringRef name, SMLoc use,
                    const char *what = "function block");
-  FbType *searchLibraries(StringRef name);
+  FbType *searchLibraries(StringRef name, SMLoc use);
   FbType *libraryType(StringRef name);
   void collect(FbType &t);
   void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
@@ -407,7 +407,7 @@ void Translator::registerTypes(File &f, bool builtin) {
   it->second = std::move(t);
 }
 
-FbType *Translator::searchLibraries(StringRef name) {
+FbType *Translator::searchLibraries(StringRef name, SMLoc use) {
   if (!indexed) {
     indexed = true;
     // First match in directory order given, then sorted paths.
@@ -435,7 +435,19 @@ FbType *Translator::searchLibraries(StringRef name) {
       fail(SMLoc(),
            "cannot read '" + it->second + "': " + buf.getError().message());
     unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
-    registerTypes(readFile(id), false);
+    File &f = readFile(id);
+    // The file is found by its name; the type it declares must be the one
+    // asked for, or the block would silently run another type (or
+    // netlift's own model of the name).
+    pugi::xml_node root = f.doc->document_element();
+    StringRef declared = root.attribute("Name").value();
+    if (localName(root) != "System" && !declared.equals_insensitive(name)) {
+      diag.error(use, "type '" + name + "' is found in '" + it->second +
+                          "', which declares type '" + declared + "'");
+      diag.note(f.src->locOf(root), "the type declared there");
+      throw Failure();
+    }
+    registerTypes(f, false);
     if (auto t = types.find(key); t != types.end())
       return t->second.get();
   }
@@ -463,7 +475,7 @@ FbType *Translator::findType(StringRef name, SMLoc use, const char *what) {
   // service FBs, or composites taking DT from outside).
   if (isShipped(name))
     return libraryType(name);
-  if (FbType *t = searchLibraries(name))
+  if (FbType *t = searchLibraries(name, use))
     return t;
   fail(use, "unknown " + Twine(what) + " type '" + name +
                 "' (not in the inputs, the -I directories or netlift's "

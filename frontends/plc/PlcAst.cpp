@@ -54,6 +54,12 @@ StringRef netlift::plc::spelling(Op op) {
   return "?";
 }
 
+std::string netlift::plc::noInstanceMessage(StringRef typeName) {
+  return "block " + typeName.str() +
+         " has no instanceName (a function block is drawn with the "
+         "instance it runs)";
+}
+
 StringRef netlift::plc::spelling(VarSection s) {
   switch (s) {
   case VarSection::Var:

@@ -86,6 +86,7 @@ enum class Op : uint8_t {
 llvm::StringRef spelling(Op op);
 
 struct Expr;
+struct DrawnBlock;
 
 /// One argument of a call: `x`, `IN := x`, `Q => y`, `NOT Q => y`.
 struct CallArg {
@@ -107,6 +108,7 @@ struct Expr {
   std::vector<Expr *> operands; // Unary: 1, Binary: 2, Field/BitAccess/
                                 // Deref: base, Index: base then indices
   std::vector<CallArg> args;    // Call
+  DrawnBlock *drawn = nullptr;  // Call: the graphical block it was drawn as
 
   // Filled in by Sema.
   const PType *type = nullptr;
@@ -184,6 +186,29 @@ enum class VarSection : uint8_t {
 };
 
 llvm::StringRef spelling(VarSection s);
+
+/// A pin of a block drawn in a graphical body (LD, FBD): its formal
+/// parameter and the pin group it sits in (inputVariables: Input,
+/// inOutVariables: InOut, outputVariables: Output).
+struct DrawnPin {
+  std::string name;
+  VarSection drawnAs;
+  llvm::SMLoc loc;
+};
+
+/// What a graphical body drew for a call: the block's typeName and every
+/// pin. A graphical block names its type and its instance separately, so
+/// the two can disagree; Sema checks the drawing against the declaration
+/// (a TOF drawn on an instance declared TON is an error, never a TON).
+/// The error for a graphical block of a function block type drawn without
+/// an instanceName (LD/FBD readers and Sema say it alike).
+std::string noInstanceMessage(llvm::StringRef typeName);
+
+struct DrawnBlock {
+  std::string typeName;
+  std::string instanceName; // empty for a function
+  std::vector<DrawnPin> pins;
+};
 
 struct VarDecl {
   std::string name;

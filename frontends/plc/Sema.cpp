@@ -243,6 +243,7 @@ private:
   const PType *lvalue(Expr *e);
   const PType *call(Expr *e, bool asStatement);
   void functionArgs(Expr *e, Pou *fn);
+  bool drawnAsDeclared(Expr *e, Pou *type);
   bool assignable(const PType *to, Expr *from, SMLoc at, const Twine &what);
   void checkProgramArgs(ProgramInstance &pi, Pou *p);
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
@@ -1396,7 +1397,10 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
       if (!p ||
           (p->section != VarSection::Input && p->section != VarSection::InOut &&
            p->section != VarSection::Output)) {
-        error(a.loc, "'" + fn->name + "' has no parameter '" + a.name + "'");
+        // Through an instance, say its type: `PT c` on a CTU named c.
+        error(a.loc, (e->var ? "'" + e->name + "' (" + fn->name + ")"
+                             : "'" + fn->name + "'") +
+                         " has no parameter '" + a.name + "'");
         return;
       }
     }
@@ -1494,6 +1498,56 @@ bool Checker::orderStdArgs(Expr *e, StdFn fn) {
   return true;
 }
 
+static const char *withArticle(VarSection s) {
+  switch (s) {
+  case VarSection::Input:
+    return "an input";
+  case VarSection::Output:
+    return "an output";
+  case VarSection::InOut:
+    return "an in-out parameter";
+  default:
+    return "a local variable";
+  }
+}
+
+/// Holds a graphical block against the type it calls: the type it is drawn
+/// as must be the one its instance is declared with, and each pin must be a
+/// parameter of that type in the group it is drawn in.
+bool Checker::drawnAsDeclared(Expr *e, Pou *type) {
+  const DrawnBlock &d = *e->drawn;
+  if (!d.instanceName.empty() && !sameName(d.typeName, type->name)) {
+    error(e->loc, "block '" + d.instanceName + "' is drawn as " + d.typeName +
+                      " but declared " + type->name);
+    return false;
+  }
+  std::string block = d.instanceName.empty() ? "block " + type->name
+                                             : "block '" + d.instanceName +
+                                                   "' (" + type->name + ")";
+  for (const DrawnPin &pin : d.pins) {
+    VarDecl *p = type->find(pin.name);
+    if (!p)
+      p = enEno(type, pin.name);
+    // A function's result leaves through the output pin OUT.
+    if (!p && type->kind == PouKind::Function && pin.name.size() == 3 &&
+        sameName(pin.name, "OUT") && pin.drawnAs == VarSection::Output)
+      continue;
+    if (!p ||
+        (p->section != VarSection::Input && p->section != VarSection::Output &&
+         p->section != VarSection::InOut)) {
+      error(pin.loc, block + " has no parameter '" + pin.name + "'");
+      return false;
+    }
+    if (p->section != pin.drawnAs) {
+      error(pin.loc, block + ": '" + p->name + "' is " +
+                         withArticle(p->section) + ", drawn as " +
+                         withArticle(pin.drawnAs));
+      return false;
+    }
+  }
+  return true;
+}
+
 const PType *Checker::call(Expr *e, bool asStatement) {
   // An FB instance call (statement only).
   if (VarDecl *v = lookupVar(e->name)) {
@@ -1510,14 +1564,25 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       return nullptr;
     }
     e->var = v;
+    if (e->drawn && !drawnAsDeclared(e, v->type->fb))
+      return nullptr;
     functionArgs(e, v->type->fb);
     return voidType();
   }
+  if (e->drawn && !e->drawn->instanceName.empty()) {
+    error(e->loc, "block '" + e->drawn->instanceName + "' (" +
+                      e->drawn->typeName + "): no variable '" +
+                      e->drawn->instanceName + "' is declared");
+    return nullptr;
+  }
   if (Pou *p = unit.findPou(e->name)) {
     if (p->kind != PouKind::Function) {
-      error(e->loc, "'" + e->name + "' is a " + spelling(p->kind) +
-                        "; only functions and function block instances can "
-                        "be called");
+      if (e->drawn)
+        error(e->loc, noInstanceMessage(e->name));
+      else
+        error(e->loc, "'" + e->name + "' is a " + spelling(p->kind) +
+                          "; only functions and function block instances "
+                          "can be called");
       return nullptr;
     }
     if (p == current) {
@@ -1525,6 +1590,8 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       return nullptr;
     }
     e->callee = p;
+    if (e->drawn && !drawnAsDeclared(e, p))
+      return nullptr;
     functionArgs(e, p);
     return p->resultType;
   }

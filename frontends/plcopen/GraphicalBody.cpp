@@ -14,6 +14,7 @@
 #include "frontends/plcopen/PlcOpen.h"
 
 #include "frontends/st/StFrontend.h"
+#include "frontends/st/StdLib.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/StringMap.h"
@@ -140,6 +141,7 @@ private:
   void coil(const Element &e);
   void contactTrigger(const Element &e);
   void block(const Element &e);
+  DrawnBlock *drawing(const Element &b);
   void jump(const Element &e);
   void label(const Element &e);
 
@@ -611,8 +613,15 @@ void Network::block(const Element &e) {
   std::string id = std::to_string(e.id);
   if (type.empty())
     fail(e.node, describe(e) + " has no typeName");
+  if (instance.empty()) {
+    Pou *fb = unit.findPou(type);
+    if (st::isStandardFunctionBlock(type) ||
+        (fb && fb->kind != PouKind::Function))
+      fail(e.node, noInstanceMessage(type));
+  }
   Expr *call = make(ExprKind::Call, at);
   call->name = instance.empty() ? type : instance;
+  call->drawn = drawing(e);
   for (const char *group : {"inputVariables", "inOutVariables"})
     for (pugi::xml_node v : child(e.node, group).children()) {
       if (localName(v) != "variable")
@@ -686,6 +695,24 @@ void Network::block(const Element &e) {
   emit(assign(nameRef(flag, at),
               joined(e, wiresOf(child(env, "connectionPointIn")), env), at));
   emit(when(nameRef(flag, at), {s}, at));
+}
+
+/// The block as drawn, for Sema to hold against the declared type: its
+/// typeName and every pin with the group it sits in.
+DrawnBlock *Network::drawing(const Element &b) {
+  DrawnBlock *d = unit.make<DrawnBlock>();
+  d->typeName = b.node.attribute("typeName").value();
+  d->instanceName = b.node.attribute("instanceName").value();
+  static const std::pair<const char *, VarSection> groups[] = {
+      {"inputVariables", VarSection::Input},
+      {"inOutVariables", VarSection::InOut},
+      {"outputVariables", VarSection::Output}};
+  for (auto [group, section] : groups)
+    for (pugi::xml_node v : child(b.node, group).children())
+      if (localName(v) == "variable")
+        d->pins.push_back(
+            {v.attribute("formalParameter").value(), section, src.locOf(v)});
+  return d;
 }
 
 void Network::jump(const Element &e) {
