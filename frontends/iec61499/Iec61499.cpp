@@ -175,6 +175,8 @@ private:
   // Networks.
   void network(FbType &t);
   void keepMapping(XmlSource &src, pugi::xml_node sys, pugi::xml_node app);
+  void checkMappedType(XmlSource &src, pugi::xml_node sys, pugi::xml_node copy,
+                       StringRef from);
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
   void specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
@@ -1814,6 +1816,36 @@ void Translator::keepMapping(XmlSource &src, pugi::xml_node sys,
   }
 }
 
+/// A resource holds a copy of each block mapped to it, with its type
+/// again; the runtime runs the copy, netlift the application's block, so
+/// the two types must be the same.
+void Translator::checkMappedType(XmlSource &src, pugi::xml_node sys,
+                                 pugi::xml_node copy, StringRef from) {
+  auto [appName, path] = from.split('.');
+  if (path.contains('.'))
+    return; // inside a subapplication: the copy is of the inner block
+  for (pugi::xml_node app : sys.children("Application")) {
+    if (!appName.equals_insensitive(app.attribute("Name").value()))
+      continue;
+    pugi::xml_node net = child(app, "SubAppNetwork");
+    if (!net)
+      net = child(app, "FBNetwork");
+    for (pugi::xml_node fb : blocksOf(net)) {
+      StringRef type = fb.attribute("Type").value();
+      StringRef copyType = copy.attribute("Type").value();
+      if (!path.equals_insensitive(fb.attribute("Name").value()) ||
+          copyType.empty() || copyType.equals_insensitive(type))
+        continue;
+      diag.error(src.locOf(copy),
+                 "FB '" + Twine(copy.attribute("Name").value()) +
+                     "' is typed " + copyType + " in its resource but " + type +
+                     " in application '" + appName + "'");
+      diag.note(src.locOf(fb), "the application's block");
+      throw Failure();
+    }
+  }
+}
+
 void Translator::network(FbType &t) {
   networkOf(t.name, *t.src, t.body, &t, t.src->locOf(t.root));
 }
@@ -1898,22 +1930,25 @@ bool Translator::run(const std::vector<unsigned> &ids) {
     // besides the applications; netlift translates applications only, so
     // they are refused rather than left out.
     for (auto &[file, sys] : systems) {
-      std::set<std::string> mapped;
+      std::map<std::string, std::string> mappedFrom; // To -> From, upper
       for (pugi::xml_node m : sys.children("Mapping"))
-        mapped.insert(StringRef(m.attribute("To").value()).upper());
+        mappedFrom[StringRef(m.attribute("To").value()).upper()] =
+            m.attribute("From").value();
       for (pugi::xml_node dev : sys.children("Device"))
         for (pugi::xml_node res : dev.children("Resource"))
           for (pugi::xml_node fb : blocksOf(child(res, "FBNetwork"))) {
             std::string path = std::string(dev.attribute("Name").value()) +
                                "." + res.attribute("Name").value() + "." +
                                fb.attribute("Name").value();
-            if (!mapped.count(StringRef(path).upper()))
+            auto from = mappedFrom.find(StringRef(path).upper());
+            if (from == mappedFrom.end())
               fail(file->src->locOf(fb),
                    "FB '" + Twine(fb.attribute("Name").value()) +
                        "' of resource '" + dev.attribute("Name").value() + "." +
                        res.attribute("Name").value() +
                        "' is mapped from no application; netlift translates "
                        "applications only (move it into one)");
+            checkMappedType(*file->src, sys, fb, from->second);
           }
     }
 
