@@ -5,6 +5,7 @@
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
 
+#include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/Process.h"
@@ -14,7 +15,8 @@ using namespace netlift;
 using llvm::StringRef;
 
 static const FrontendInfo registry[] = {
-#define NETLIFT_FRONTEND(ID, DESC, EXTS, LOAD) {#ID, DESC, EXTS, LOAD},
+#define NETLIFT_FRONTEND(ID, DESC, EXTS, LOAD, FINISH)                         \
+  {#ID, DESC, EXTS, LOAD, FINISH},
 #include "frontends/FrontendRegistry.def"
 #undef NETLIFT_FRONTEND
 };
@@ -33,7 +35,7 @@ static const FrontendInfo *byExtension(StringRef path) {
   return nullptr;
 }
 
-bool netlift::loadNetIR(unsigned bufferID, DiagEngine &diag,
+bool netlift::loadNetIR(FrontendContext &, unsigned bufferID, DiagEngine &diag,
                         net::Design &design) {
   if (!net::parseNetIR(bufferID, diag, design))
     return false;
@@ -125,7 +127,9 @@ static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
 }
 
 bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
-                         DiagEngine &diag, net::Design &design) {
+                         const FrontendOptions &options, DiagEngine &diag,
+                         net::Design &design) {
+  FrontendContext ctx(options);
   bool allNet = true;
   for (const std::string &path : paths) {
     const FrontendInfo *fe = chooseFrontend(path, from);
@@ -149,11 +153,18 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
       }
       allNet = false;
     }
-    if (!fe->load(id, diag, design))
+    if (!fe->load(ctx, id, diag, design))
       return false;
   }
-  if (!finishPlcInputs(diag, design) || !finishIec61499Inputs(diag, design))
-    return false;
+  // Each finish phase once, in registry order (the PLC frontends share
+  // one).
+  std::vector<decltype(FrontendInfo::finish)> finished;
+  for (const FrontendInfo &f : registry)
+    if (f.finish && !llvm::is_contained(finished, f.finish)) {
+      finished.push_back(f.finish);
+      if (!f.finish(ctx, diag, design))
+        return false;
+    }
   if (!net::verifyDesign(design, diag))
     return false;
   if (allNet) {

@@ -15,14 +15,19 @@
 
 #include "llvm/ADT/StringRef.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace netlift {
 
-/// Options of the PLC frontends, set by the driver from its command line
-/// (translate --top/--timescale/--scan-period/--ranges).
+namespace plc {
+struct Unit;
+} // namespace plc
+
+/// The options the frontends take, set by the driver from its command
+/// line (--top, --timescale, --scan-period, --ranges, -I, --fb-semantics).
 struct FrontendOptions {
   std::string top;
   std::optional<int64_t> timescaleNs;
@@ -32,14 +37,47 @@ struct FrontendOptions {
   std::vector<std::string> typeLibraries;
   /// --fb-semantics: the IEC 61499 execution model (empty: the default).
   std::string fbSemantics;
+  /// How ST parses long bodies and VAR blocks (hidden knobs for tests).
+  unsigned stLongPartTokens = 16384;
+  unsigned stGroupTokens = 4096;
 };
-FrontendOptions &frontendOptions();
 
+/// One reading of a set of input files: the options the driver set, and
+/// what frontends collect across files until every file is read (a PLC
+/// program and the function blocks it uses, an IEC 61499 network and its
+/// types, may come from different files). loadInputs makes one per call
+/// and hands it to each frontend's load (per file) and finish (per design)
+/// phase, so nothing is kept between two readings.
+class FrontendContext {
+public:
+  explicit FrontendContext(const FrontendOptions &options);
+  ~FrontendContext();
+  FrontendContext(const FrontendContext &) = delete;
+  FrontendContext &operator=(const FrontendContext &) = delete;
+
+  const FrontendOptions &options;
+  /// The PLC sources read so far (ST, IL, TwinCAT, PLCopen), made on first
+  /// use; taken by the PLC frontends' finish phase.
+  plc::Unit &plcUnit();
+  std::unique_ptr<plc::Unit> takePlcUnit();
+  /// IEC 61499 files read so far (buffer ids), translated together.
+  std::vector<unsigned> iec61499Files;
+
+private:
+  std::unique_ptr<plc::Unit> plc;
+};
+
+/// A frontend of FrontendRegistry.def. `load` reads one file (a buffer of
+/// diag's SourceMgr) and either adds its modules to the design or keeps
+/// what it read in the context; `finish`, when there is one, runs once
+/// after every file is read and adds what was kept to the design.
 struct FrontendInfo {
   llvm::StringRef id;
   llvm::StringRef description;
   llvm::StringRef extensions;
-  bool (*load)(unsigned bufferID, DiagEngine &diag, net::Design &design);
+  bool (*load)(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+               net::Design &design);
+  bool (*finish)(FrontendContext &ctx, DiagEngine &diag, net::Design &design);
 };
 
 /// All registered frontends, in registry order.
@@ -50,29 +88,36 @@ llvm::ArrayRef<FrontendInfo> frontends();
 /// `design`, then verifies it as a whole (a module may instantiate one from
 /// another file). Returns false after reporting an error.
 bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
-                DiagEngine &diag, net::Design &design);
+                const FrontendOptions &options, DiagEngine &diag,
+                net::Design &design);
 
 /// Frontend implementations (one per line of FrontendRegistry.def).
-bool loadNetIR(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadPnml(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadStructuredText(unsigned bufferID, DiagEngine &diag,
-                        net::Design &design);
-bool loadInstructionList(unsigned bufferID, DiagEngine &diag,
-                         net::Design &design);
-bool loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadPlcOpen(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadHybridChart(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadSpaceEx(unsigned bufferID, DiagEngine &diag, net::Design &design);
-bool loadIec61499(unsigned bufferID, DiagEngine &diag, net::Design &design);
+bool loadNetIR(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+               net::Design &design);
+bool loadPnml(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+              net::Design &design);
+bool loadStructuredText(FrontendContext &ctx, unsigned bufferID,
+                        DiagEngine &diag, net::Design &design);
+bool loadInstructionList(FrontendContext &ctx, unsigned bufferID,
+                         DiagEngine &diag, net::Design &design);
+bool loadTwinCat(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+                 net::Design &design);
+bool loadPlcOpen(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+                 net::Design &design);
+bool loadHybridChart(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+                     net::Design &design);
+bool loadSpaceEx(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+                 net::Design &design);
+bool loadIec61499(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
+                  net::Design &design);
 
-/// PLC sources are collected across all input files (a program and the
-/// function blocks it uses may live in different files) and translated
-/// together once every file is read. Returns false after reporting.
-bool finishPlcInputs(DiagEngine &diag, net::Design &design);
+/// The PLC sources of all input files, checked and lowered together.
+bool finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
+                     net::Design &design);
 
-/// IEC 61499 files likewise: a network and the types it uses are read
-/// together. Returns false after reporting.
-bool finishIec61499Inputs(DiagEngine &diag, net::Design &design);
+/// The IEC 61499 files, translated together with the types they use.
+bool finishIec61499Inputs(FrontendContext &ctx, DiagEngine &diag,
+                          net::Design &design);
 
 } // namespace netlift
 

@@ -26,36 +26,43 @@ using namespace netlift;
 using llvm::SMLoc;
 using llvm::StringRef;
 
-FrontendOptions &netlift::frontendOptions() {
-  static FrontendOptions opts;
-  return opts;
+// FrontendContext lives here, where plc::Unit is a complete type.
+FrontendContext::FrontendContext(const FrontendOptions &options)
+    : options(options) {}
+
+FrontendContext::~FrontendContext() = default;
+
+plc::Unit &FrontendContext::plcUnit() {
+  if (!plc)
+    plc = std::make_unique<plc::Unit>();
+  return *plc;
 }
 
-static std::unique_ptr<plc::Unit> &pendingUnit() {
-  static std::unique_ptr<plc::Unit> unit;
-  return unit;
+std::unique_ptr<plc::Unit> FrontendContext::takePlcUnit() {
+  return std::move(plc);
 }
 
-static plc::Unit &unitForLoading() {
-  auto &u = pendingUnit();
-  if (!u)
-    u = std::make_unique<plc::Unit>();
-  return *u;
+static st::ParseOptions parseOptions(const FrontendContext &ctx) {
+  st::ParseOptions po;
+  po.longPartTokens = ctx.options.stLongPartTokens;
+  po.groupTokens = ctx.options.stGroupTokens;
+  return po;
 }
 
-bool netlift::loadStructuredText(unsigned bufferID, DiagEngine &diag,
-                                 net::Design &) {
+bool netlift::loadStructuredText(FrontendContext &ctx, unsigned bufferID,
+                                 DiagEngine &diag, net::Design &) {
   StringRef text = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
-  return st::parseStructuredText(text, diag, unitForLoading());
+  return st::parseStructuredText(text, diag, ctx.plcUnit(), parseOptions(ctx));
 }
 
-bool netlift::loadInstructionList(unsigned bufferID, DiagEngine &diag,
-                                  net::Design &) {
-  return il::parseInstructionList(bufferID, diag, unitForLoading());
+bool netlift::loadInstructionList(FrontendContext &ctx, unsigned bufferID,
+                                  DiagEngine &diag, net::Design &) {
+  return il::parseInstructionList(bufferID, diag, ctx.plcUnit());
 }
 
-bool netlift::loadPlcOpen(unsigned bufferID, DiagEngine &diag, net::Design &) {
-  return plcopen::readPlcOpen(bufferID, diag, unitForLoading());
+bool netlift::loadPlcOpen(FrontendContext &ctx, unsigned bufferID,
+                          DiagEngine &diag, net::Design &) {
+  return plcopen::readPlcOpen(bufferID, diag, ctx.plcUnit());
 }
 
 /// `--ranges FILE`: one `NAME LO..HI` per line; `#` or `//` start comments.
@@ -87,11 +94,12 @@ static bool readRanges(StringRef path, DiagEngine &diag,
   return true;
 }
 
-bool netlift::finishPlcInputs(DiagEngine &diag, net::Design &design) {
-  std::unique_ptr<plc::Unit> unit = std::move(pendingUnit());
+bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
+                              net::Design &design) {
+  std::unique_ptr<plc::Unit> unit = ctx.takePlcUnit();
   if (!unit)
     return true;
-  const FrontendOptions &fo = frontendOptions();
+  const FrontendOptions &fo = ctx.options;
   plc::LowerOptions opts;
   opts.top = fo.top;
   opts.timescaleNs = fo.timescaleNs;
@@ -125,7 +133,8 @@ static bool cdataAfter(StringRef text, size_t from, size_t limit, size_t &begin,
 /// which everything but those sections is blanked (line ends kept) and the
 /// closing END_ keyword is appended, so every location is the XML file's
 /// own line and column.
-bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
+bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
+                          DiagEngine &diag, net::Design &) {
   llvm::SourceMgr &sm = diag.sourceMgr();
   const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(bufferID);
   StringRef text = buf->getBuffer();
@@ -238,29 +247,26 @@ bool netlift::loadTwinCat(unsigned bufferID, DiagEngine &diag, net::Design &) {
                                 blanked + trailer, buf->getBufferIdentifier()),
                             SMLoc());
   return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
-                                 unitForLoading());
+                                 ctx.plcUnit(), parseOptions(ctx));
 }
 
 //===----------------------------------------------------------------------===//
 // IEC 61499
 //===----------------------------------------------------------------------===//
 
-static std::vector<unsigned> &pendingIec61499() {
-  static std::vector<unsigned> ids;
-  return ids;
-}
-
-bool netlift::loadIec61499(unsigned bufferID, DiagEngine &, net::Design &) {
-  pendingIec61499().push_back(bufferID);
+bool netlift::loadIec61499(FrontendContext &ctx, unsigned bufferID,
+                           DiagEngine &, net::Design &) {
+  ctx.iec61499Files.push_back(bufferID);
   return true;
 }
 
-bool netlift::finishIec61499Inputs(DiagEngine &diag, net::Design &design) {
-  std::vector<unsigned> ids = std::move(pendingIec61499());
-  pendingIec61499().clear();
+bool netlift::finishIec61499Inputs(FrontendContext &ctx, DiagEngine &diag,
+                                   net::Design &design) {
+  std::vector<unsigned> ids = std::move(ctx.iec61499Files);
+  ctx.iec61499Files.clear();
   if (ids.empty())
     return true;
-  const FrontendOptions &fo = frontendOptions();
+  const FrontendOptions &fo = ctx.options;
   iec61499::Options options;
   options.typeLibraries = fo.typeLibraries;
   options.timescaleNs = fo.timescaleNs;

@@ -666,8 +666,8 @@ bool ChartReader::build() {
   return true;
 }
 
-bool netlift::loadHybridChart(unsigned bufferID, DiagEngine &diag,
-                              Design &design) {
+bool netlift::loadHybridChart(FrontendContext &, unsigned bufferID,
+                              DiagEngine &diag, Design &design) {
   const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
   EmbeddedParser p(buf->getBuffer(), diag, design);
   ChartReader r(p, design, diag);

@@ -59,9 +59,12 @@ struct ProtoTransition {
 
 class SpaceExReader {
 public:
-  SpaceExReader(unsigned bufferID, DiagEngine &diag, Design &design)
+  /// `top`: the component to translate (--top); empty: the last one.
+  SpaceExReader(unsigned bufferID, DiagEngine &diag, Design &design,
+                StringRef top)
       : diag(diag), d(design), b(design),
-        xml(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()) {}
+        xml(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()),
+        wantedTop(top.str()) {}
   bool run();
 
 private:
@@ -90,6 +93,7 @@ private:
   Design &d;
   Builder b;
   XmlBuffer xml;
+  std::string wantedTop;
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
@@ -531,7 +535,7 @@ bool SpaceExReader::run() {
                      llvm::Twine(doc.first_child().name()) +
                      ">, expected <sspaceex>");
   pugi::xml_node top;
-  const std::string &want = frontendOptions().top;
+  const std::string &want = wantedTop;
   for (pugi::xml_node c : root.children("component"))
     if (want.empty() || want == c.attribute("id").value())
       top = c;
@@ -626,6 +630,7 @@ bool SpaceExReader::run() {
   return true;
 }
 
-bool netlift::loadSpaceEx(unsigned bufferID, DiagEngine &diag, Design &design) {
-  return SpaceExReader(bufferID, diag, design).run();
+bool netlift::loadSpaceEx(FrontendContext &ctx, unsigned bufferID,
+                          DiagEngine &diag, Design &design) {
+  return SpaceExReader(bufferID, diag, design, ctx.options.top).run();
 }

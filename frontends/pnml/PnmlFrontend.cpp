@@ -216,6 +216,7 @@ bool PnmlReader::run() {
 
 } // namespace
 
-bool netlift::loadPnml(unsigned bufferID, DiagEngine &diag, Design &design) {
+bool netlift::loadPnml(FrontendContext &, unsigned bufferID, DiagEngine &diag,
+                       Design &design) {
   return PnmlReader(bufferID, diag, design).run();
 }

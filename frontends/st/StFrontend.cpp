@@ -15,8 +15,6 @@
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSwitch.h"
 
-#include "llvm/Support/CommandLine.h"
-
 #include <cassert>
 #include <cmath>
 #include <map>
@@ -1193,17 +1191,6 @@ struct LongParts {
   std::map<size_t, std::vector<StringRef>> groups;
 };
 
-// Hidden knobs, so that tests can make small inputs take the grouped path.
-llvm::cl::opt<unsigned> longPartTokens(
-    "st-long-part-tokens", llvm::cl::Hidden, llvm::cl::init(16384),
-    llvm::cl::sub(*llvm::cl::AllSubCommands),
-    llvm::cl::desc("ST: parse bodies and VAR blocks of at least this many "
-                   "tokens in groups"));
-llvm::cl::opt<unsigned> groupTokens(
-    "st-group-tokens", llvm::cl::Hidden, llvm::cl::init(4096),
-    llvm::cl::sub(*llvm::cl::AllSubCommands),
-    llvm::cl::desc("ST: tokens per group of a long body or VAR block"));
-
 struct ScanToken {
   size_t type, start, stop;
 };
@@ -1214,8 +1201,8 @@ struct ScanToken {
 template <typename Depth>
 bool cutIntoGroups(StringRef text, const std::vector<ScanToken> &toks,
                    size_t begin, size_t end, Depth depthChange,
-                   LongParts &out) {
-  if (end - begin < longPartTokens || toks[end - 1].type != P::SEMI)
+                   const st::ParseOptions &options, LongParts &out) {
+  if (end - begin < options.longPartTokens || toks[end - 1].type != P::SEMI)
     return false;
   std::vector<StringRef> groups;
   int depth = 0;
@@ -1225,7 +1212,7 @@ bool cutIntoGroups(StringRef text, const std::vector<ScanToken> &toks,
     if (!change || (depth += *change) < 0)
       return false;
     if (toks[k].type == P::SEMI && depth == 0 &&
-        (count >= groupTokens || k + 1 == end)) {
+        (count >= options.groupTokens || k + 1 == end)) {
       size_t to = k + 1 == end ? toks[end].start : toks[k].stop + 1;
       groups.push_back(text.slice(from, to));
       from = to;
@@ -1239,9 +1226,10 @@ bool cutIntoGroups(StringRef text, const std::vector<ScanToken> &toks,
   return true;
 }
 
-LongParts findLongParts(StringRef text, DiagEngine &diag) {
+LongParts findLongParts(StringRef text, DiagEngine &diag,
+                        const st::ParseOptions &options) {
   // A part of N tokens takes N bytes at least: short files need no scan.
-  if (text.size() < longPartTokens)
+  if (text.size() < options.longPartTokens)
     return {};
   std::vector<ScanToken> toks;
   {
@@ -1314,7 +1302,7 @@ LongParts findLongParts(StringRef text, DiagEngine &diag) {
         ++e;
       if (e == toks.size())
         return out; // unterminated: the parse reports it
-      cutIntoGroups(text, toks, first, e, declarationDepth, out);
+      cutIntoGroups(text, toks, first, e, declarationDepth, options, out);
       i = e;
       bodyStart = e + 1;
       break;
@@ -1323,7 +1311,7 @@ LongParts findLongParts(StringRef text, DiagEngine &diag) {
     case P::END_FUNCTION_BLOCK:
     case P::END_FUNCTION:
       if (bodyStart)
-        cutIntoGroups(text, toks, bodyStart, i, statementDepth, out);
+        cutIntoGroups(text, toks, bodyStart, i, statementDepth, options, out);
       bodyStart = 0;
       break;
     default:
@@ -1369,8 +1357,9 @@ private:
 
 } // namespace
 
-bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit) {
-  LongParts parts = findLongParts(text, diag);
+bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit,
+                             const ParseOptions &options) {
+  LongParts parts = findLongParts(text, diag, options);
   StLexer lexer(text, diag);
   SkippingSource source(lexer, parts.ranges);
   antlr4::CommonTokenStream tokens(&source);

@@ -20,10 +20,20 @@ namespace netlift::st {
 /// file the rest are not worth reading.
 inline constexpr unsigned kMaxSyntaxErrors = 20;
 
+/// How long parts of a file are parsed. ANTLR keeps every token and tree
+/// node of a parse alive until the parser dies, so POU bodies and VAR
+/// blocks of at least `longPartTokens` tokens are parsed in groups of about
+/// `groupTokens` tokens, each with a parser of its own (tests set them
+/// small to take that path on small inputs).
+struct ParseOptions {
+  unsigned longPartTokens = 16384;
+  unsigned groupTokens = 4096;
+};
+
 /// Parses `text` (inside a buffer of diag's SourceMgr) and appends what it
 /// declares to `unit`. Returns false after reporting an error.
 bool parseStructuredText(llvm::StringRef text, DiagEngine &diag,
-                         plc::Unit &unit);
+                         plc::Unit &unit, const ParseOptions &options = {});
 
 /// Parses a statement list alone (a POU body kept apart from its
 /// declarations, as in PLCopen XML) and appends it to `out`.
