@@ -968,9 +968,13 @@ bool StepWriter::writeLtl(llvm::ArrayRef<const CtlFormula *> properties) {
 
 } // namespace
 
-bool checkers::writePromela(const Module &m, const sem::StateLayout &L,
-                            DiagEngine &diag, llvm::raw_ostream &os,
+bool checkers::writePromela(const sem::Semantics &semantics, DiagEngine &diag,
+                            llvm::raw_ostream &os,
                             llvm::ArrayRef<const CtlFormula *> properties) {
+  const Module &m = semantics.module();
+  const sem::StateLayout &L = semantics.layout();
+  if (!encodesSemantics(m, semantics.options(), "the Promela export", diag))
+    return false;
   StepWriter steps(m, L, diag, os);
   if (!steps.buildUnits())
     return false;

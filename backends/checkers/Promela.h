@@ -17,7 +17,7 @@
 #define NETLIFT_BACKENDS_CHECKERS_PROMELA_H
 
 #include "backends/checkers/Ctl.h"
-#include "ir/semantics/StateLayout.h"
+#include "ir/semantics/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"
@@ -29,8 +29,10 @@ namespace netlift::checkers {
 /// not cover, or at a property outside the fragment of CTL that netlift
 /// writes as LTL (invariants `AG p`, `AF p`, `A[p U q]`, `AG AF p`,
 /// `AG (p -> AF q)`, conjunctions of these, over state propositions).
-bool writePromela(const net::Module &m, const sem::StateLayout &layout,
-                  DiagEngine &diag, llvm::raw_ostream &os,
+/// The module and its layout are the semantics' (an ExplorationSetup's);
+/// a step policy or timing the encoding does not cover is refused.
+bool writePromela(const sem::Semantics &semantics, DiagEngine &diag,
+                  llvm::raw_ostream &os,
                   llvm::ArrayRef<const CtlFormula *> properties = {});
 
 } // namespace netlift::checkers

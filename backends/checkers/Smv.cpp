@@ -958,9 +958,12 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
 
 } // namespace
 
-bool checkers::writeSmv(const Module &m, const sem::StateLayout &L,
-                        DiagEngine &diag, llvm::raw_ostream &os,
+bool checkers::writeSmv(const sem::Semantics &semantics, DiagEngine &diag,
+                        llvm::raw_ostream &os,
                         llvm::ArrayRef<const CtlFormula *> properties) {
-  SmvWriter w(m, L, diag, os);
+  const Module &m = semantics.module();
+  if (!encodesSemantics(m, semantics.options(), "the SMV export", diag))
+    return false;
+  SmvWriter w(m, semantics.layout(), diag, os);
   return w.buildUnits() && w.write(properties);
 }

@@ -16,7 +16,7 @@
 #define NETLIFT_BACKENDS_CHECKERS_SMV_H
 
 #include "backends/checkers/Ctl.h"
-#include "ir/semantics/StateLayout.h"
+#include "ir/semantics/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"
@@ -25,8 +25,10 @@ namespace netlift::checkers {
 
 /// Writes `m` (flat) as SMV with one CTLSPEC per property. False, with an
 /// error at the first construct the encoding does not cover.
-bool writeSmv(const net::Module &m, const sem::StateLayout &layout,
-              DiagEngine &diag, llvm::raw_ostream &os,
+/// The module and its layout are the semantics' (an ExplorationSetup's);
+/// a step policy or timing the encoding does not cover is refused.
+bool writeSmv(const sem::Semantics &semantics, DiagEngine &diag,
+              llvm::raw_ostream &os,
               llvm::ArrayRef<const CtlFormula *> properties = {});
 
 } // namespace netlift::checkers

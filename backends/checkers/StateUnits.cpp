@@ -61,6 +61,39 @@ bool StateUnits::addUnits(const std::string &name, const Type *t,
   }
 }
 
+bool checkers::encodesSemantics(const Module &m, const sem::Options &o,
+                                const char *format, DiagEngine &diag) {
+  if (o.policy == sem::StepPolicy::Maximal) {
+    unsigned spontaneous = 0;
+    for (const Transition &t : m.transitions)
+      spontaneous += !t.isForced();
+    if (spontaneous > 1) {
+      diag.error(llvm::SMLoc(),
+                 std::string(format) +
+                     " encodes one spontaneous transition a step; "
+                     "--semantics maximal differs on module '" +
+                     m.name.str() + "' (" + std::to_string(spontaneous) +
+                     " spontaneous transitions): check it with `netlift "
+                     "check --semantics maximal`");
+      return false;
+    }
+  }
+  if (o.timing == sem::Timing::Strong)
+    for (const Transition &t : m.transitions)
+      for (const PreArc &a : t.pre())
+        if (!t.urgent && !a.time.isTrivial() && a.time.hi != kInf) {
+          diag.error(t.loc, std::string(format) +
+                                " encodes weak timing; --timing strong "
+                                "differs at transition '" +
+                                t.name.str() +
+                                "' (a deadline on a transition that is not "
+                                "urgent): check it with `netlift check "
+                                "--timing strong`");
+          return false;
+        }
+  return true;
+}
+
 bool StateUnits::buildUnits() {
   unitOfSlot.assign(L.numSlots(), -1);
   for (uint32_t v = 0; v < m.vars.size(); ++v) {

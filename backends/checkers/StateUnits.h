@@ -24,6 +24,15 @@
 
 namespace netlift::checkers {
 
+/// The Promela and SMV exports encode netlift's default steps: one
+/// spontaneous transition a step (`--semantics interleaving`) and weak
+/// timing. A semantics whose state space on `m` differs from those is
+/// refused, naming the option, rather than silently encoded as the default
+/// (maximal steps are the same on a module of one spontaneous transition,
+/// strong timing where every transition with a finite deadline is urgent).
+bool encodesSemantics(const net::Module &m, const sem::Options &semantics,
+                      const char *format, DiagEngine &diag);
+
 /// A checker identifier: a prefix and index keep names unique, the NetIR
 /// name (non-identifier characters replaced) keeps them readable.
 std::string checkerIdentifier(const char *prefix, uint32_t i,

@@ -52,13 +52,13 @@ static bool collectSignals(const Module &m, const MealyExtractOptions &opts,
   return ok;
 }
 
-bool netlift::extractMealy(const Module &m, const MealyExtractOptions &opts,
+bool netlift::extractMealy(sem::Semantics &sem, const MealyExtractOptions &opts,
                            DiagEngine &diag, automata::MealyMachine &out) {
+  const Module &m = sem.module();
+  const sem::StateLayout &layout = sem.layout();
   Signals sig;
   if (!collectSignals(m, opts, diag, sig))
     return false;
-  sem::StateLayout layout(m, opts.semantics.unboundedBits);
-  sem::Semantics sem(m, layout, opts.semantics);
   const uint32_t W = layout.numWords();
   const size_t n = sig.inputPorts.size();
 

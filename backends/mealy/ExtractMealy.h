@@ -24,7 +24,6 @@
 namespace netlift {
 
 struct MealyExtractOptions {
-  sem::Options semantics;
   /// Refuse machines with more states (the extraction is exhaustive).
   uint32_t maxStates = 1u << 20;
   /// Every state tries 2^inputs vectors.
@@ -33,11 +32,12 @@ struct MealyExtractOptions {
   uint64_t maxWaitTicks = 1u << 20;
 };
 
-/// Extracts the Mealy machine of flat module `m` into `out` (states named
-/// s0, s1, ... in breadth-first order from the initial state s0; rows
-/// merged into input cubes). False after reporting the reason through
-/// `diag`.
-bool extractMealy(const net::Module &m, const MealyExtractOptions &opts,
+/// Extracts the Mealy machine of the semantics' flat module (an
+/// ExplorationSetup's: its step policy and timing decide what a step is)
+/// into `out` (states named s0, s1, ... in breadth-first order from the
+/// initial state s0; rows merged into input cubes). False after reporting
+/// the reason through `diag`.
+bool extractMealy(sem::Semantics &semantics, const MealyExtractOptions &opts,
                   DiagEngine &diag, automata::MealyMachine &out);
 
 } // namespace netlift

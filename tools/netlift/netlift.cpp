@@ -16,6 +16,7 @@
 #include "backends/mealy/MealyWriters.h"
 #include "backends/nces/NcesXml.h"
 #include "backends/nces/NetDot.h"
+#include "backends/statespace/ExplorationSetup.h"
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/Writers.h"
 #include "backends/structural/DensityChart.h"
@@ -424,6 +425,11 @@ static cl::opt<bool>
     reachDeadlockTrace("deadlock-trace",
                        cl::desc("Print a shortest path to a deadlock"),
                        cl::sub(reachCmd), cl::cat(category));
+// The exploration set-up: every command that explores or encodes the step
+// relation takes the same semantics options, so they mean the same model.
+#define NETLIFT_EXPLORING                                                      \
+  cl::sub(reachCmd), cl::sub(checkCmd), cl::sub(srCmd), cl::sub(mealyCmd),     \
+      cl::sub(eaCmd), cl::sub(enforceCmd)
 static cl::opt<sem::StepPolicy> reachPolicy(
     "semantics", cl::desc("Step policy"),
     cl::init(sem::StepPolicy::Interleaving),
@@ -431,18 +437,18 @@ static cl::opt<sem::StepPolicy> reachPolicy(
                           "one spontaneous transition per step"),
                clEnumValN(sem::StepPolicy::Maximal, "maximal",
                           "a maximal set of spontaneous transitions")),
-    cl::sub(reachCmd), cl::cat(category));
+    NETLIFT_EXPLORING, cl::sub(emitCmd), cl::cat(category));
 static cl::opt<sem::Timing> reachTiming(
     "timing", cl::desc("Timing"), cl::init(sem::Timing::Weak),
     cl::values(clEnumValN(sem::Timing::Weak, "weak",
                           "a passed upper bound disables"),
                clEnumValN(sem::Timing::Strong, "strong",
                           "time may not pass an enabled upper bound")),
-    cl::sub(reachCmd), cl::cat(category));
+    NETLIFT_EXPLORING, cl::sub(emitCmd), cl::cat(category));
 static cl::opt<uint64_t> reachMaxStates("max-states",
                                         cl::desc("Stop after N states"),
-                                        cl::init(0), cl::sub(reachCmd),
-                                        cl::sub(checkCmd), cl::cat(category));
+                                        cl::init(0), NETLIFT_EXPLORING,
+                                        cl::cat(category));
 static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
                                        cl::Required, cl::sub(checkCmd));
 static cl::list<std::string>
@@ -459,10 +465,10 @@ static cl::opt<std::string>
 static cl::opt<std::string>
     reachMaxMemory("max-memory",
                    cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
-                   cl::sub(reachCmd), cl::cat(category));
+                   NETLIFT_EXPLORING, cl::cat(category));
 static cl::opt<double> reachTimeLimit("time-limit",
                                       cl::desc("Stop after SECONDS"),
-                                      cl::init(0), cl::sub(reachCmd),
+                                      cl::init(0), NETLIFT_EXPLORING,
                                       cl::cat(category));
 static cl::opt<bool> reachDfs("dfs", cl::desc("Depth-first order"),
                               cl::sub(reachCmd), cl::cat(category));
@@ -471,12 +477,37 @@ static cl::opt<bool> reachQuiet("q", cl::desc("No progress output"),
 static cl::opt<unsigned> reachPlaceBits(
     "place-bits",
     cl::desc("Bits for the marking of unbounded places (default 8)"),
-    cl::init(8), cl::sub(reachCmd), cl::cat(category));
+    cl::init(8), NETLIFT_EXPLORING, cl::sub(emitCmd), cl::cat(category));
 static cl::opt<bool> reachInterpreter(
     "interpreter",
     cl::desc("Use the general interpreter even for plain P/T nets (to "
              "cross-check the compiled P/T kernel)"),
-    cl::sub(reachCmd), cl::cat(category));
+    NETLIFT_EXPLORING, cl::cat(category));
+#undef NETLIFT_EXPLORING
+
+static bool parseSize(llvm::StringRef text, uint64_t &out);
+
+/// The exploration options of the command line; false after an error.
+static bool explorationOptions(statespace::ExplorationOptions &eo,
+                               DiagEngine &diag) {
+  eo.top = plcTop;
+  eo.semantics.policy = reachPolicy;
+  eo.semantics.timing = reachTiming;
+  eo.semantics.unboundedBits = reachPlaceBits;
+  eo.semantics.compilePT = !reachInterpreter;
+  eo.maxStates = reachMaxStates;
+  eo.timeLimit = reachTimeLimit;
+  if (!reachMaxMemory.empty() && !parseSize(reachMaxMemory, eo.maxMemory)) {
+    diag.error(llvm::SMLoc(), "--max-memory: '" + reachMaxMemory +
+                                  "' is not a size (e.g. 512M, 4G)");
+    return false;
+  }
+  if (reachPlaceBits < 1 || reachPlaceBits > 32) {
+    diag.error(llvm::SMLoc(), "--place-bits must be 1..32");
+    return false;
+  }
+  return true;
+}
 
 /// Writes through `body` to `path` ("-": stdout) via a temporary file that
 /// is renamed into place only when everything was written.
@@ -639,27 +670,6 @@ static int runOpt() {
   return writeDesign(design);
 }
 
-static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
-                                  llvm::StringRef topName,
-                                  llvm::StringRef command);
-
-/// Reports the runtime error an exploration stopped at, at its place in the
-/// model and with the path that leads there (when the initial state could
-/// be built). Every command that explores says it the same way.
-static void reportRuntimeError(const statespace::ExploreResult &r, bool started,
-                               statespace::Explorer &explorer,
-                               sem::Semantics &semantics, DiagEngine &diag) {
-  if (r.error->loc.isValid())
-    diag.error(r.error->loc, "runtime error: " + r.error->message);
-  else
-    llvm::errs() << "netlift: error: " << r.error->message << "\n";
-  if (started) {
-    llvm::errs() << "trace to the state where it happens (the next step "
-                    "fails):\n";
-    statespace::writeTrace(explorer, semantics, r.errorState, llvm::errs());
-  }
-}
-
 /// Parses the --ctl properties over the flat top (errors point into them).
 static bool
 parseProperties(DiagEngine &diag, net::Design &design, net::Module &top,
@@ -745,9 +755,13 @@ static int runEmit() {
     return writeNcesModules(design, diag) ? 0 : 1;
   if (flatTop) {
     // Checker formats take the flattened top module.
-    net::Module *top = explorableTop(design, diag, plcTop, "emit");
-    if (!top)
+    statespace::ExplorationOptions xo;
+    if (!explorationOptions(xo, diag))
       return 1;
+    auto setup = statespace::ExplorationSetup::create(design, xo, diag, "emit");
+    if (!setup)
+      return 1;
+    net::Module *top = &setup->top();
     std::string text;
     llvm::raw_string_ostream buf(text);
     if (emitFormat == EmitFormat::Pnml) {
@@ -766,10 +780,10 @@ static int runEmit() {
       std::vector<const checkers::CtlFormula *> properties;
       for (const auto &f : formulas)
         properties.push_back(f.get());
-      sem::StateLayout layout(*top, sem::Options().unboundedBits);
       if (emitFormat == EmitFormat::Smv
-              ? !checkers::writeSmv(*top, layout, diag, buf, properties)
-              : !checkers::writePromela(*top, layout, diag, buf, properties))
+              ? !checkers::writeSmv(setup->semantics(), diag, buf, properties)
+              : !checkers::writePromela(setup->semantics(), diag, buf,
+                                        properties))
         return 1;
     }
     return writeOutput(outputFile, [&](llvm::raw_ostream &os) { os << text; })
@@ -823,11 +837,16 @@ static bool readMealy(const std::string &path, DiagEngine &diag,
   std::vector<std::string> inputs{path};
   if (!loadInputs(inputs, inputFormat, frontendOptions(), diag, design))
     return false;
-  net::Module *top = explorableTop(design, diag, plcTop, "mealy");
-  if (!top)
+  statespace::ExplorationOptions xo;
+  if (!explorationOptions(xo, diag))
+    return false;
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "mealy");
+  if (!setup)
     return false;
   MealyExtractOptions opts;
-  return extractMealy(*top, opts, diag, m);
+  if (xo.maxStates)
+    opts.maxStates = uint32_t(std::min<uint64_t>(xo.maxStates, UINT32_MAX));
+  return extractMealy(setup->semantics(), opts, diag, m);
 }
 
 static int runMealy() {
@@ -1042,34 +1061,6 @@ static bool parseSize(llvm::StringRef text, uint64_t &out) {
   return true;
 }
 
-/// The flat, discrete module an exploration starts from: the design's top
-/// (or `topName`), flattened when it has instances. Null after reporting.
-static net::Module *explorableTop(net::Design &design, DiagEngine &diag,
-                                  llvm::StringRef topName,
-                                  llvm::StringRef command) {
-  std::string why;
-  net::Module *top = design.findTop(topName, why);
-  if (!top) {
-    llvm::errs() << "netlift: error: " << command << ": " << why << "\n";
-    return nullptr;
-  }
-  if (!top->instances.empty()) {
-    PassManager pm;
-    std::string pipeline = "flatten{top=" + top->name.str() + "}";
-    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag) ||
-        !net::verifyDesign(design, diag))
-      return nullptr;
-    top = design.modules[0].get();
-  }
-  if (net::hasHybridParts(*top)) {
-    llvm::errs() << "netlift: error: " << command << ": module '" << top->name
-                 << "' has real variables or flows; run the discretise "
-                    "pass first\n";
-    return nullptr;
-  }
-  return top;
-}
-
 /// The attribute graph as SVG by graphviz's `dot`, or "" when it is not
 /// installed or fails (the report then shows the DOT text).
 static std::string renderWithGraphviz(const structural::Analysis &an,
@@ -1178,22 +1169,23 @@ static int runSr() {
     std::vector<std::string> inputs{srInput};
     if (!loadInputs(inputs, inputFormat, frontendOptions(), diag, design))
       return 1;
-    net::Module *top = explorableTop(design, diag, plcTop, "sr");
-    if (!top)
+    statespace::ExplorationOptions xo;
+    if (!explorationOptions(xo, diag))
+      return 1;
+    auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
+    if (!setup)
       return 1;
     for (net::Expr *e : preds)
-      if (!net::verifyPredicate(design, *top, e, diag))
+      if (!net::verifyPredicate(design, setup->top(), e, diag))
         return 1;
-    sem::Options so;
-    sem::StateLayout layout(*top, so.unboundedBits);
-    sem::Semantics semantics(*top, layout, so);
-    statespace::ExploreOptions eo;
+    sem::Semantics &semantics = setup->semantics();
+    statespace::ExploreOptions eo = setup->exploreOptions();
     eo.recordEdges = true;
     statespace::Explorer explorer(semantics, eo);
     statespace::ExploreResult r;
     bool started = explorer.run(r);
     if (r.error) {
-      reportRuntimeError(r, started, explorer, semantics, diag);
+      statespace::reportRuntimeError(r, started, explorer, semantics, diag);
       return 1;
     }
     complete = r.complete;
@@ -1338,23 +1330,23 @@ static int runCheck() {
   std::vector<std::string> inputs{checkInput};
   if (!loadInputs(inputs, inputFormat, frontendOptions(), diag, design))
     return 1;
-  net::Module *top = explorableTop(design, diag, plcTop, "check");
-  if (!top)
+  statespace::ExplorationOptions xo;
+  if (!explorationOptions(xo, diag))
+    return 1;
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "check");
+  if (!setup)
     return 1;
   std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
-  if (!parseProperties(diag, design, *top, formulas))
+  if (!parseProperties(diag, design, setup->top(), formulas))
     return 1;
-  sem::Options so;
-  sem::StateLayout layout(*top, so.unboundedBits);
-  sem::Semantics semantics(*top, layout, so);
-  statespace::ExploreOptions eo;
+  sem::Semantics &semantics = setup->semantics();
+  statespace::ExploreOptions eo = setup->exploreOptions();
   eo.recordEdges = true;
-  eo.maxStates = reachMaxStates;
   statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
   bool started = explorer.run(r);
   if (r.error) {
-    reportRuntimeError(r, started, explorer, semantics, diag);
+    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
     return 1;
   }
   if (!r.complete) {
@@ -1446,26 +1438,14 @@ static int runReach() {
   std::vector<std::string> inputs{reachInput};
   if (!loadInputs(inputs, inputFormat, frontendOptions(), diag, design))
     return 1;
-  uint64_t maxMemory = 0;
-  if (!reachMaxMemory.empty() && !parseSize(reachMaxMemory, maxMemory)) {
-    llvm::errs() << "netlift: error: --max-memory: '" << reachMaxMemory
-                 << "' is not a size (e.g. 512M, 4G)\n";
+  statespace::ExplorationOptions xo;
+  if (!explorationOptions(xo, diag))
     return 1;
-  }
-  if (reachPlaceBits < 1 || reachPlaceBits > 32) {
-    llvm::errs() << "netlift: error: --place-bits must be 1..32\n";
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "reach");
+  if (!setup)
     return 1;
-  }
-  net::Module *top = explorableTop(design, diag, plcTop, "reach");
-  if (!top)
-    return 1;
-  sem::Options so;
-  so.policy = reachPolicy;
-  so.timing = reachTiming;
-  so.unboundedBits = reachPlaceBits;
-  so.compilePT = !reachInterpreter;
-  sem::StateLayout layout(*top, so.unboundedBits);
-  sem::Semantics semantics(*top, layout, so);
+  net::Module *top = &setup->top();
+  sem::Semantics &semantics = setup->semantics();
 
   net::Expr *findExpr = nullptr;
   if (!reachFind.empty()) {
@@ -1476,11 +1456,8 @@ static int runReach() {
     if (!findExpr || !net::verifyPredicate(design, *top, findExpr, diag))
       return 1;
   }
-  statespace::ExploreOptions eo;
+  statespace::ExploreOptions eo = setup->exploreOptions();
   eo.depthFirst = reachDfs;
-  eo.maxStates = reachMaxStates;
-  eo.maxMemory = maxMemory;
-  eo.timeLimit = reachTimeLimit;
   eo.recordEdges = reachFormat != GraphFormat::None || !reachEdges.empty();
   eo.progress = !reachQuiet;
   sem::RuntimeError findErr;
@@ -1493,7 +1470,7 @@ static int runReach() {
   statespace::ExploreResult r;
   bool started = explorer.run(r);
   if (r.error) {
-    reportRuntimeError(r, started, explorer, semantics, diag);
+    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
     return 1;
   }
   if (!writeOutput(outputFile, [&](llvm::raw_ostream &os) {

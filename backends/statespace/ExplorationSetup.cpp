@@ -1,0 +1,78 @@
+//===- ExplorationSetup.cpp - one state space for every command -----------===//
+#include "backends/statespace/ExplorationSetup.h"
+
+#include "backends/statespace/Writers.h"
+#include "ir/net/Verifier.h"
+#include "passes/Pass.h"
+
+#include "llvm/Support/raw_ostream.h"
+
+using namespace netlift;
+using namespace netlift::statespace;
+
+net::Module *statespace::explorableTop(net::Design &design,
+                                       llvm::StringRef topName,
+                                       DiagEngine &diag,
+                                       llvm::StringRef command) {
+  std::string why;
+  net::Module *top = design.findTop(topName, why);
+  if (!top) {
+    diag.error(llvm::SMLoc(), command + ": " + why);
+    return nullptr;
+  }
+  if (!top->instances.empty()) {
+    PassManager pm;
+    std::string pipeline = "flatten{top=" + top->name.str() + "}";
+    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag) ||
+        !net::verifyDesign(design, diag))
+      return nullptr;
+    top = design.modules[0].get();
+  }
+  if (net::hasHybridParts(*top)) {
+    diag.error(llvm::SMLoc(), command + ": module '" + top->name +
+                                  "' has real variables or flows; run the "
+                                  "discretise pass first");
+    return nullptr;
+  }
+  return top;
+}
+
+ExplorationSetup::ExplorationSetup(net::Module &top,
+                                   const ExplorationOptions &options)
+    : module(&top), opts(options),
+      stateLayout(std::make_unique<sem::StateLayout>(
+          top, options.semantics.unboundedBits)),
+      sem(std::make_unique<sem::Semantics>(top, *stateLayout,
+                                           options.semantics)) {}
+
+std::unique_ptr<ExplorationSetup>
+ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
+                         DiagEngine &diag, llvm::StringRef command) {
+  net::Module *top = explorableTop(design, options.top, diag, command);
+  if (!top)
+    return nullptr;
+  return std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
+}
+
+ExploreOptions ExplorationSetup::exploreOptions() const {
+  ExploreOptions eo;
+  eo.maxStates = opts.maxStates;
+  eo.maxMemory = opts.maxMemory;
+  eo.timeLimit = opts.timeLimit;
+  return eo;
+}
+
+void statespace::reportRuntimeError(const ExploreResult &r, bool started,
+                                    Explorer &explorer,
+                                    sem::Semantics &semantics,
+                                    DiagEngine &diag) {
+  if (r.error->loc.isValid())
+    diag.error(r.error->loc, "runtime error: " + r.error->message);
+  else
+    diag.error(llvm::SMLoc(), r.error->message);
+  if (started) {
+    llvm::errs() << "trace to the state where it happens (the next step "
+                    "fails):\n";
+    writeTrace(explorer, semantics, r.errorState, llvm::errs());
+  }
+}

@@ -1,0 +1,78 @@
+//===- ExplorationSetup.h - one state space for every command ---*- C++ -*-===//
+//
+// What decides which state space a command means: the module explored
+// (the design's top or --top, flattened when it has instances, refused
+// while it still has hybrid parts), the semantics options (step policy,
+// timing, place bits, kernel) and the exploration limits. Every command
+// that explores or encodes the step relation — reach, check, sr, mealy and
+// the Promela and SMV exports — builds its Semantics through one
+// ExplorationSetup from one ExplorationOptions, so that a property checked
+// and a state space explored are always about the same model.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_BACKENDS_STATESPACE_EXPLORATIONSETUP_H
+#define NETLIFT_BACKENDS_STATESPACE_EXPLORATIONSETUP_H
+
+#include "backends/statespace/Explorer.h"
+#include "ir/net/Module.h"
+#include "ir/semantics/Semantics.h"
+#include "ir/semantics/StateLayout.h"
+#include "ir/support/Diagnostics.h"
+
+#include <memory>
+#include <string>
+
+namespace netlift::statespace {
+
+/// The options every exploring command takes alike.
+struct ExplorationOptions {
+  /// --top: the module explored (empty: the design's top module).
+  std::string top;
+  /// --semantics, --timing, --place-bits, --interpreter.
+  sem::Options semantics;
+  /// --max-states, --max-memory, --time-limit (0: no limit).
+  uint64_t maxStates = 0;
+  uint64_t maxMemory = 0;
+  double timeLimit = 0;
+};
+
+/// The flat, discrete module a command explores: the design's top (or
+/// `topName`), flattened when it has instances. Null after reporting;
+/// `command` names the subcommand in the message.
+net::Module *explorableTop(net::Design &design, llvm::StringRef topName,
+                           DiagEngine &diag, llvm::StringRef command);
+
+class ExplorationSetup {
+public:
+  /// Finds the top module and builds its state layout and semantics. Null
+  /// after reporting.
+  static std::unique_ptr<ExplorationSetup>
+  create(net::Design &design, const ExplorationOptions &options,
+         DiagEngine &diag, llvm::StringRef command);
+
+  net::Module &top() const { return *module; }
+  const ExplorationOptions &options() const { return opts; }
+  const sem::StateLayout &layout() const { return *stateLayout; }
+  sem::Semantics &semantics() { return *sem; }
+
+  /// Explorer options with the limits set; callers add what they record.
+  ExploreOptions exploreOptions() const;
+
+private:
+  ExplorationSetup(net::Module &top, const ExplorationOptions &options);
+  net::Module *module;
+  ExplorationOptions opts;
+  std::unique_ptr<sem::StateLayout> stateLayout;
+  std::unique_ptr<sem::Semantics> sem;
+};
+
+/// Reports the runtime error an exploration stopped at, at its place in
+/// the model and with the path that leads there (when the initial state
+/// could be built). Every command that explores says it the same way.
+void reportRuntimeError(const ExploreResult &result, bool started,
+                        Explorer &explorer, sem::Semantics &semantics,
+                        DiagEngine &diag);
+
+} // namespace netlift::statespace
+
+#endif
