@@ -90,3 +90,28 @@ void netlift::writeMealyDot(const MealyMachine &m, llvm::raw_ostream &os) {
   }
   os << "}\n";
 }
+
+void netlift::writeMealyInfo(const automata::MealyMachine &m,
+                             llvm::raw_ostream &os) {
+  std::vector<int64_t> missing = m.unspecifiedVectors();
+  int64_t incomplete = 0;
+  for (int64_t n : missing)
+    incomplete += n > 0;
+  if (m.isSymbolic())
+    os << "input symbols: " << m.inputSymbols.size()
+       << ", output symbols: " << m.outputSymbols.size() << ", ";
+  os << "inputs: " << m.inputs.size() << ", outputs: " << m.outputs.size()
+     << ", states: " << m.states.size()
+     << ", transitions: " << m.transitions.size()
+     << ", initial: " << m.states[m.initial] << "\n";
+  if (!missing.empty() && missing[0] < 0)
+    os << "completeness: not checked (more than 24 inputs)\n";
+  else if (incomplete == 0)
+    os << "completeness: complete\n";
+  else
+    for (size_t s = 0; s < missing.size(); ++s)
+      if (missing[s] > 0)
+        os << "state " << m.states[s] << ": " << missing[s]
+           << (m.isSymbolic() ? " input symbols" : " input vectors")
+           << " unspecified\n";
+}

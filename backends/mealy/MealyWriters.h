@@ -17,6 +17,9 @@ namespace netlift {
 
 void writeKiss2(const automata::MealyMachine &m, llvm::raw_ostream &os);
 void writeMealyDot(const automata::MealyMachine &m, llvm::raw_ostream &os);
+/// `mealy --info`: the signals, states and transitions, and which states
+/// leave input vectors (or symbols) unspecified.
+void writeMealyInfo(const automata::MealyMachine &m, llvm::raw_ostream &os);
 
 } // namespace netlift
 

@@ -2,9 +2,15 @@
 #include "backends/nces/NcesXml.h"
 #include "backends/checkers/PtSubset.h"
 #include "ir/net/Printer.h"
+#include "ir/support/OutputFile.h"
 #include "ir/support/XmlEscape.h"
 
 #include "llvm/Support/Casting.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+
+#include <functional>
+#include <set>
 
 #include <string>
 #include <vector>
@@ -234,5 +240,39 @@ bool nces::writeNcesComposite(const Module &m, DiagEngine &diag,
   if (!conditions.empty())
     os << "    <DataConnections>\n" << conditions << "    </DataConnections>\n";
   os << "  </FBNetwork>\n</FBType>\n";
+  return true;
+}
+
+bool nces::writeNcesModules(const Module &top, llvm::StringRef dir,
+                            DiagEngine &diag) {
+  std::vector<std::pair<std::string, std::string>> files; // name, text
+  std::set<const Module *> done;
+  std::function<bool(const Module &)> build = [&](const Module &m) -> bool {
+    if (!done.insert(&m).second)
+      return true;
+    for (const Instance &i : m.instances)
+      if (!build(*i.module))
+        return false;
+    std::string text;
+    llvm::raw_string_ostream buf(text);
+    if (m.instances.empty() ? !writeNcesXml(m, diag, buf)
+                            : !writeNcesComposite(m, diag, buf))
+      return false;
+    files.push_back({m.name.str() + ".xml", buf.str()});
+    return true;
+  };
+  if (!build(top))
+    return false;
+  if (std::error_code ec = llvm::sys::fs::create_directories(dir)) {
+    diag.error(llvm::SMLoc(), "cannot create '" + dir + "': " + ec.message());
+    return false;
+  }
+  for (const auto &[name, text] : files) {
+    llvm::SmallString<128> path(dir);
+    llvm::sys::path::append(path, name);
+    if (!writeOutputFile(
+            path, [&](llvm::raw_ostream &os) { os << text; }, diag))
+      return false;
+  }
   return true;
 }

@@ -38,6 +38,12 @@ bool writeNcesComposite(const net::Module &m, DiagEngine &diag,
 /// (conditions, events and time are not part of it and are refused).
 bool writePnt(const net::Module &m, DiagEngine &diag, llvm::raw_ostream &os);
 
+/// `emit --to nces-xml --modular`: `top` and every module it instantiates,
+/// each as `dir/<name>.xml` (modules of instances as composites). Every
+/// file is built before any is written: an error leaves nothing.
+bool writeNcesModules(const net::Module &top, llvm::StringRef dir,
+                      DiagEngine &diag);
+
 } // namespace netlift::nces
 
 #endif

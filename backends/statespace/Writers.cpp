@@ -1,5 +1,6 @@
 //===- Writers.cpp - state spaces as files --------------------------------===//
 #include "backends/statespace/Writers.h"
+#include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
 
@@ -284,4 +285,54 @@ void netlift::statespace::writePath(
     os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
                       loopLabel == Explorer::kNone ? "" : x.label(loopLabel),
                       width, loopTo);
+}
+
+bool statespace::writeTraceFiles(
+    const std::string &base, const TraceFileHeader &header, const Explorer &x,
+    llvm::ArrayRef<std::pair<uint32_t, uint32_t>> steps, int64_t loopTo,
+    uint32_t loopLabel, DiagEngine &diag) {
+  auto label = [&](uint32_t l) {
+    return l == Explorer::kNone ? std::string("tau") : x.label(l);
+  };
+  bool ok = writeOutputFile(
+      base + ".json",
+      [&](llvm::raw_ostream &os) {
+        llvm::json::OStream j(os, 1);
+        j.object([&] {
+          j.attribute("formula", header.formula);
+          j.attribute("holds", header.holds);
+          j.attribute("trace", header.witness ? "witness" : "counterexample");
+          j.attribute("claim", header.claim);
+          j.attributeArray("states", [&] {
+            for (const auto &step : steps)
+              j.value(int64_t(step.second));
+          });
+          j.attributeArray("labels", [&] {
+            for (size_t i = 1; i < steps.size(); ++i)
+              j.value(label(steps[i].first));
+          });
+          if (loopTo >= 0) {
+            j.attribute("loop_to", loopTo);
+            j.attribute("loop_label", label(loopLabel));
+          } else {
+            j.attribute("loop_to", nullptr);
+          }
+        });
+        os << "\n";
+      },
+      diag);
+  // Labels as `reach --format aut` writes them.
+  return ok && writeOutputFile(
+                   base + ".aut",
+                   [&](llvm::raw_ostream &os) {
+                     size_t edges = steps.size() - 1 + (loopTo >= 0);
+                     os << "des (0, " << edges << ", " << steps.size() << ")\n";
+                     for (size_t i = 1; i < steps.size(); ++i)
+                       os << "(" << i - 1 << ",\"" << label(steps[i].first)
+                          << "\"," << i << ")\n";
+                     if (loopTo >= 0)
+                       os << "(" << steps.size() - 1 << ",\""
+                          << label(loopLabel) << "\"," << loopTo << ")\n";
+                   },
+                   diag);
 }

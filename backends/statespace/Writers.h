@@ -12,6 +12,7 @@
 #define NETLIFT_BACKENDS_STATESPACE_WRITERS_H
 
 #include "backends/statespace/Explorer.h"
+#include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"
 
@@ -47,6 +48,22 @@ void writePath(const Explorer &x, sem::Semantics &sem,
                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                llvm::raw_ostream &os, int64_t loopTo = -1,
                uint32_t loopLabel = Explorer::kNone);
+
+/// What a trace file says of the path it holds.
+struct TraceFileHeader {
+  std::string formula;
+  bool holds = false;
+  bool witness = false; // else a counterexample
+  std::string claim;    // what the path shows, in words
+};
+
+/// Writes a path as `BASE.json` (the header, the states by id as `reach`
+/// numbers them, the step labels, the loop) and `BASE.aut` (the path as an
+/// Aldebaran graph, the loop as an edge back). False after reporting.
+bool writeTraceFiles(const std::string &base, const TraceFileHeader &header,
+                     const Explorer &x,
+                     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                     int64_t loopTo, uint32_t loopLabel, DiagEngine &diag);
 
 } // namespace netlift::statespace
 

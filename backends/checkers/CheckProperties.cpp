@@ -1,0 +1,126 @@
+//===- CheckProperties.cpp - CTL properties on an explored model ----------===//
+#include "backends/checkers/CheckProperties.h"
+
+#include "backends/statespace/Writers.h"
+
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+
+using namespace netlift;
+using namespace netlift::checkers;
+
+bool checkers::parseProperties(llvm::ArrayRef<std::string> texts,
+                               net::Design &design, net::Module &top,
+                               DiagEngine &diag,
+                               std::vector<std::unique_ptr<CtlFormula>> &out) {
+  for (size_t i = 0; i < texts.size(); ++i) {
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(
+            texts[i], "<ctl " + std::to_string(i + 1) + ">"),
+        llvm::SMLoc());
+    auto f = parseCtl(id, diag, design, top);
+    if (!f)
+      return false;
+    out.push_back(std::move(f));
+  }
+  return true;
+}
+
+/// The explored graph in CSR form, edges of one state together.
+static CtlGraph graphOf(const statespace::Explorer &explorer,
+                        const statespace::ExploreResult &r) {
+  CtlGraph g;
+  size_t n = explorer.store().size();
+  g.deadlock.assign(n, 0);
+  for (uint32_t d : r.deadlocks)
+    g.deadlock[d] = 1;
+  g.succStart.assign(n + 1, 0);
+  for (const statespace::Edge &e : explorer.edges())
+    ++g.succStart[e.from + 1];
+  for (size_t i = 0; i < n; ++i)
+    g.succStart[i + 1] += g.succStart[i];
+  g.succ.resize(explorer.edges().size());
+  g.succLabel.resize(explorer.edges().size());
+  std::vector<uint32_t> fill(g.succStart.begin(), g.succStart.end() - 1);
+  for (const statespace::Edge &e : explorer.edges()) {
+    g.succLabel[fill[e.from]] = e.label;
+    g.succ[fill[e.from]++] = e.to;
+  }
+  return g;
+}
+
+int checkers::checkProperties(
+    statespace::ExplorationSetup &setup,
+    llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
+    const std::string &traceDir, llvm::raw_ostream &out, DiagEngine &diag) {
+  sem::Semantics &semantics = setup.semantics();
+  statespace::ExploreOptions eo = setup.exploreOptions();
+  eo.recordEdges = true;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  bool started = explorer.run(r);
+  if (r.error) {
+    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+    return 1;
+  }
+  if (!r.complete) {
+    out << "undecided: the exploration stopped at a limit ("
+        << explorer.store().size() << " states)\n";
+    return 2;
+  }
+  CtlGraph g = graphOf(explorer, r);
+  sem::RuntimeError err;
+  auto atomValue = [&](const net::Expr *e, uint32_t s) {
+    return semantics.evalPredicate(e, explorer.store().state(s), err);
+  };
+  if (!traceDir.empty())
+    if (std::error_code ec = llvm::sys::fs::create_directories(traceDir)) {
+      diag.error(llvm::SMLoc(),
+                 "cannot create '" + traceDir + "': " + ec.message());
+      return 1;
+    }
+  // The label of a step: the first edge between its two states.
+  auto labelOf = [&](uint32_t from, uint32_t to) {
+    for (uint32_t k = g.succStart[from]; k < g.succStart[from + 1]; ++k)
+      if (g.succ[k] == to)
+        return g.succLabel[k];
+    return statespace::Explorer::kNone;
+  };
+  bool allHold = true;
+  unsigned index = 0;
+  for (const auto &f : formulas) {
+    ++index;
+    bool holds = evaluateCtl(*f, g, atomValue)[0];
+    allHold = allHold && holds;
+    out << ctlToString(*f) << ": " << (holds ? "holds" : "fails") << "\n";
+    std::optional<CtlTrace> trace = ctlTrace(*f, g, atomValue);
+    if (!trace)
+      continue;
+    std::vector<std::pair<uint32_t, uint32_t>> steps;
+    for (size_t i = 0; i < trace->states.size(); ++i)
+      steps.push_back({i ? labelOf(trace->states[i - 1], trace->states[i])
+                         : statespace::Explorer::kNone,
+                       trace->states[i]});
+    out << (trace->witness ? "witness: " : "counterexample: ") << trace->claim
+        << "\n";
+    uint32_t loopLabel =
+        trace->loopTo >= 0
+            ? labelOf(trace->states.back(), trace->states[trace->loopTo])
+            : statespace::Explorer::kNone;
+    statespace::writePath(explorer, semantics, steps, out, trace->loopTo,
+                          loopLabel);
+    if (!traceDir.empty()) {
+      statespace::TraceFileHeader h{ctlToString(*f), holds, trace->witness,
+                                    trace->claim};
+      if (!statespace::writeTraceFiles(traceDir + "/p" + std::to_string(index),
+                                       h, explorer, steps, trace->loopTo,
+                                       loopLabel, diag))
+        return 1;
+    }
+  }
+  if (!err.message.empty()) {
+    diag.error(llvm::SMLoc(), "runtime error in a property: " + err.message);
+    return 1;
+  }
+  return allHold ? 0 : 3;
+}

@@ -1,0 +1,104 @@
+//===- ExploredRegions.cpp - sr over an explored state space --------------===//
+#include "backends/structural/ExploredRegions.h"
+
+#include "backends/statespace/Writers.h"
+#include "ir/net/Parser.h"
+#include "ir/net/Verifier.h"
+
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Program.h"
+
+using namespace netlift;
+using namespace netlift::structural;
+
+bool structural::parseAttributes(llvm::ArrayRef<std::string> texts,
+                                 net::Design &design, DiagEngine &diag,
+                                 std::vector<Attribute> &out) {
+  for (const std::string &a : texts) {
+    auto [name, pred] = llvm::StringRef(a).split('=');
+    name = name.trim();
+    llvm::StringRef text = pred.empty() ? name : pred.trim();
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(text, "<attr " + name.str() + ">"),
+        llvm::SMLoc());
+    net::Expr *e = net::parseExpression(id, diag, design);
+    if (!e)
+      return false;
+    out.push_back({name.str(), e, pred.empty()});
+  }
+  return true;
+}
+
+bool structural::classifyExplored(statespace::ExplorationSetup &setup,
+                                  net::Design &design,
+                                  llvm::ArrayRef<Attribute> attrs,
+                                  bool collectExamples, Analysis &an,
+                                  ExploredRegions &out, DiagEngine &diag) {
+  for (const Attribute &a : attrs)
+    if (!net::verifyPredicate(design, setup.top(), a.predicate, diag))
+      return false;
+  sem::Semantics &semantics = setup.semantics();
+  statespace::ExploreOptions eo = setup.exploreOptions();
+  eo.recordEdges = true;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  bool started = explorer.run(r);
+  if (r.error) {
+    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+    return false;
+  }
+  out.complete = r.complete;
+  // Region of every state, then the counts (memory: one word per state
+  // here; the counts themselves are per region).
+  std::vector<Region> region(explorer.store().size());
+  for (uint32_t s = 0; s < region.size(); ++s)
+    for (size_t i = 0; i < attrs.size(); ++i) {
+      sem::RuntimeError err;
+      if (semantics.evalPredicate(attrs[i].predicate, explorer.store().state(s),
+                                  err))
+        region[s] |= Region(1) << i;
+    }
+  std::vector<char> dead(region.size(), 0);
+  for (uint32_t d : r.deadlocks)
+    dead[d] = 1;
+  for (uint32_t s = 0; s < region.size(); ++s)
+    an.addState(region[s], dead[s]);
+  for (const statespace::Edge &e : explorer.edges())
+    an.addEdge(region[e.from], region[e.to]);
+  if (collectExamples)
+    for (uint32_t s = 0; s < region.size(); ++s)
+      if (!out.examples.count(region[s]))
+        out.examples[region[s]] = statespace::describeState(
+            semantics, explorer.store().state(s), ", ");
+  return true;
+}
+
+std::string structural::renderAttributeGraphSvg(const Analysis &an,
+                                                bool allRegions) {
+  llvm::ErrorOr<std::string> dot = llvm::sys::findProgramByName("dot");
+  if (!dot)
+    return "";
+  llvm::SmallString<128> in, out;
+  if (llvm::sys::fs::createTemporaryFile("netlift-ag", "dot", in) ||
+      llvm::sys::fs::createTemporaryFile("netlift-ag", "svg", out))
+    return "";
+  {
+    std::error_code ec;
+    llvm::raw_fd_ostream os(in, ec);
+    if (ec)
+      return "";
+    an.writeDot(os, allRegions);
+  }
+  llvm::StringRef args[] = {*dot, "-Tsvg", in};
+  llvm::Optional<llvm::StringRef> redirects[] = {
+      llvm::None, llvm::StringRef(out), llvm::StringRef("")};
+  int rc = llvm::sys::ExecuteAndWait(*dot, args, llvm::None, redirects);
+  std::string svg;
+  if (rc == 0)
+    if (auto buf = llvm::MemoryBuffer::getFile(out))
+      svg = (*buf)->getBuffer().str();
+  llvm::sys::fs::remove(in);
+  llvm::sys::fs::remove(out);
+  return svg;
+}

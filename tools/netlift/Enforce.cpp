@@ -1,0 +1,157 @@
+//===- Enforce.cpp - edit-automaton and enforce ---------------------------===//
+#include "backends/enforce/Enforce.h"
+#include "backends/enforce/EditAutomatonJson.h"
+#include "ir/automata/EditAutomaton.h"
+#include "tools/netlift/Driver.h"
+
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
+
+using namespace netlift;
+using namespace netlift::driver;
+
+static cl::opt<std::string> eaInput(cl::Positional, cl::desc("<spec>"),
+                                    cl::Required,
+                                    cl::sub(editAutomatonCommand()));
+enum class EaFormat { Table, Dot, Json };
+static cl::opt<EaFormat> eaTo(
+    "to", cl::desc("Output format"), cl::init(EaFormat::Table),
+    cl::values(clEnumValN(EaFormat::Table, "table", "one transition a line"),
+               clEnumValN(EaFormat::Dot, "dot",
+                          "Graphviz (suppressions dashed, intermediate "
+                          "states shaded)"),
+               clEnumValN(EaFormat::Json, "json",
+                          "JSON, read back by enforce and edit-automaton")),
+    cl::sub(editAutomatonCommand()), cl::cat(category()));
+static cl::opt<bool> delayedOutputs(
+    "delayed-outputs",
+    cl::desc("Also tolerate outputs that appear one observation after the "
+             "inputs that caused them (docs/enforce.md)"),
+    cl::sub(editAutomatonCommand()), cl::sub(enforceCommand()),
+    cl::cat(category()));
+static cl::opt<bool> synchronisedInputs(
+    "synchronised-inputs",
+    cl::desc("Also tolerate two changes of different inputs read in one scan "
+             "(docs/enforce.md)"),
+    cl::sub(editAutomatonCommand()), cl::sub(enforceCommand()),
+    cl::cat(category()));
+static cl::list<std::string> enforceInputs(cl::Positional,
+                                           cl::desc("<spec> <trace.csv>"),
+                                           cl::OneOrMore,
+                                           cl::sub(enforceCommand()));
+
+/// An edit automaton written as JSON, or the one built from a Mealy
+/// specification.
+static bool specAutomaton(const std::string &path, DiagEngine &diag,
+                          automata::EditAutomaton &ea) {
+  if (inputFormat == "json" ||
+      (inputFormat.empty() && llvm::sys::path::extension(path) == ".json")) {
+    if (delayedOutputs || synchronisedInputs) {
+      diag.error(llvm::SMLoc(), path + " is a built edit automaton: the "
+                                       "phenomena it tolerates were chosen "
+                                       "when it was built");
+      return false;
+    }
+    unsigned id = addInputFile(diag.sourceMgr(), path);
+    return id && readEditAutomatonJson(id, diag, ea);
+  }
+  automata::MealyMachine m;
+  if (!readMealySpec(path, diag, m))
+    return false;
+  if (m.isSymbolic()) {
+    diag.error(llvm::SMLoc(), path + " reads input symbols, not Boolean "
+                                     "signals: the PLC's desynchronised "
+                                     "reading is defined per input signal");
+    return false;
+  }
+  automata::EditAutomatonOptions opts;
+  opts.delayedOutputs = delayedOutputs;
+  opts.synchronisedInputs = synchronisedInputs;
+  std::string why;
+  if (!automata::buildEditAutomaton(m, ea, why, opts)) {
+    diag.error(llvm::SMLoc(), why);
+    return false;
+  }
+  return true;
+}
+
+int driver::runEditAutomaton(DiagEngine &diag) {
+  automata::EditAutomaton ea;
+  if (!specAutomaton(eaInput, diag, ea))
+    return 1;
+  return writeResult(
+      outputFile,
+      [&](llvm::raw_ostream &os) {
+        if (eaTo == EaFormat::Dot)
+          writeEditAutomatonDot(ea, os);
+        else if (eaTo == EaFormat::Json)
+          writeEditAutomatonJson(ea, os);
+        else
+          writeEditAutomatonTable(ea, os);
+      },
+      diag);
+}
+
+/// Exit 0 conform, 3 not conform, 1 error.
+int driver::runEnforce(DiagEngine &diag) {
+  if (enforceInputs.size() != 2) {
+    diag.error(llvm::SMLoc(), "enforce needs a specification and a trace: "
+                              "netlift enforce SPEC.kiss2 TRACE.csv");
+    return 1;
+  }
+  automata::EditAutomaton ea;
+  if (!specAutomaton(enforceInputs[0], diag, ea))
+    return 1;
+  unsigned id = addInputFile(diag.sourceMgr(), enforceInputs[1]);
+  if (!id)
+    return 1;
+  EnforceResult r;
+  uint64_t emitted = 0;
+  llvm::raw_ostream &out = llvm::outs();
+  // Stream: each enforced vector is written as it is emitted, to stdout and
+  // to -o (a temporary renamed into place at the end).
+  auto run = [&](llvm::raw_ostream *csv) {
+    if (csv) {
+      for (size_t i = 0; i < ea.signals.size(); ++i)
+        *csv << (i ? "," : "") << ea.signals[i];
+      *csv << "\n";
+    }
+    auto vector = [&](const std::string &v) {
+      ++emitted;
+      out << v << "\n";
+      if (csv) {
+        for (size_t i = 0; i < v.size(); ++i)
+          *csv << (i ? "," : "") << v[i];
+        *csv << "\n";
+      }
+    };
+    return enforceTrace(ea, id, diag, vector, r);
+  };
+  bool ok = true;
+  if (outputFile == "-")
+    ok = run(nullptr);
+  else if (writeResult(
+               outputFile, [&](llvm::raw_ostream &os) { ok = run(&os); }, diag))
+    return 1;
+  if (!ok) {
+    if (outputFile != "-")
+      llvm::sys::fs::remove(outputFile);
+    return 1;
+  }
+  if (r.conform) {
+    out << "verdict: conform (" << r.vectors << " vectors read, " << emitted
+        << " emitted)\n";
+    return 0;
+  }
+  if (r.stopped) {
+    out << "verdict: not conform: stopped at vector " << r.stopIndex << " ("
+        << r.stopVector << "); expected one of:";
+    for (const std::string &e : r.expected)
+      out << ' ' << e;
+    out << "\n";
+  } else {
+    out << "verdict: not conform: the trace ends inside a desynchronised "
+           "reading (an intermediate state)\n";
+  }
+  return 3;
+}

@@ -1,0 +1,108 @@
+//===- Mealy.cpp - mealy: reading, extracting and comparing machines ------===//
+#include "backends/mealy/ExtractMealy.h"
+#include "backends/mealy/MealyWriters.h"
+#include "frontends/dot/DotMealyReader.h"
+#include "frontends/kiss2/Kiss2Reader.h"
+#include "ir/automata/Minimize.h"
+#include "tools/netlift/Driver.h"
+
+#include "llvm/Support/Path.h"
+
+using namespace netlift;
+using namespace netlift::driver;
+
+static cl::opt<std::string> mealyInput(cl::Positional, cl::desc("<input>"),
+                                       cl::Required, cl::sub(mealyCommand()));
+enum class MealyFormat { Kiss2, Dot };
+static cl::opt<MealyFormat> mealyTo(
+    "to", cl::desc("Output format"), cl::init(MealyFormat::Kiss2),
+    cl::values(clEnumValN(MealyFormat::Kiss2, "kiss2", "KISS2"),
+               clEnumValN(MealyFormat::Dot, "dot", "Graphviz (AALpy style)")),
+    cl::sub(mealyCommand()), cl::cat(category()));
+static cl::opt<bool> minimize("minimize",
+                              cl::desc("Write the minimal equivalent machine"),
+                              cl::sub(mealyCommand()), cl::cat(category()));
+static cl::opt<std::string>
+    equivTo("equiv",
+            cl::desc("Compare with machine B: exit 0 if equivalent, 3 and a "
+                     "shortest distinguishing input sequence if not"),
+            cl::value_desc("B"), cl::sub(mealyCommand()), cl::cat(category()));
+static cl::opt<bool> info("info",
+                          cl::desc("Print signals, states and how complete "
+                                   "the machine is"),
+                          cl::sub(mealyCommand()), cl::cat(category()));
+
+bool driver::readMealySpec(const std::string &path, DiagEngine &diag,
+                           automata::MealyMachine &m) {
+  llvm::SourceMgr &sm = diag.sourceMgr();
+  llvm::StringRef ext = llvm::sys::path::extension(path);
+  bool isKiss = inputFormat == "kiss2" ||
+                (inputFormat.empty() &&
+                 (ext == ".kiss2" || ext == ".kiss" || ext == ".kis"));
+  if (isKiss || inputFormat == "dot" ||
+      (inputFormat.empty() && ext == ".dot")) {
+    unsigned id = addInputFile(sm, path);
+    return id &&
+           (isKiss ? readKiss2(id, diag, m) : readMealyDot(id, diag, m)) &&
+           m.checkDeterminism(diag);
+  }
+  net::Design design;
+  std::vector<std::string> inputs{path};
+  statespace::ExplorationOptions xo;
+  if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+    return false;
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "mealy");
+  if (!setup)
+    return false;
+  MealyExtractOptions opts;
+  if (xo.maxStates)
+    opts.maxStates = uint32_t(std::min<uint64_t>(xo.maxStates, UINT32_MAX));
+  return extractMealy(setup->semantics(), opts, diag, m);
+}
+
+int driver::runMealy(DiagEngine &diag) {
+  automata::MealyMachine m;
+  if (!readMealySpec(mealyInput, diag, m))
+    return 1;
+  std::string why;
+  if (!equivTo.empty()) {
+    automata::MealyMachine other;
+    if (!readMealySpec(equivTo, diag, other))
+      return 1;
+    automata::EquivalenceResult r;
+    if (!automata::alignAlphabets(m, other, why) ||
+        !automata::checkEquivalence(m, other, r, why)) {
+      diag.error(llvm::SMLoc(), why);
+      return 1;
+    }
+    if (r.equivalent) {
+      llvm::outs() << "equivalent\n";
+      return 0;
+    }
+    llvm::outs() << "not equivalent: after the inputs";
+    for (const std::string &v : r.witness)
+      llvm::outs() << ' ' << m.inputLabel(v);
+    llvm::outs() << " the outputs are " << m.outputLabel(r.outputA) << " and "
+                 << m.outputLabel(r.outputB) << "\n";
+    return 3;
+  }
+  if (minimize) {
+    automata::MealyMachine minimal;
+    if (!automata::minimize(m, minimal, why)) {
+      diag.error(llvm::SMLoc(), why);
+      return 1;
+    }
+    m = std::move(minimal);
+  }
+  if (info)
+    writeMealyInfo(m, llvm::errs());
+  return writeResult(
+      outputFile,
+      [&](llvm::raw_ostream &os) {
+        if (mealyTo == MealyFormat::Kiss2)
+          writeKiss2(m, os);
+        else
+          writeMealyDot(m, os);
+      },
+      diag);
+}

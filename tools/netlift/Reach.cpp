@@ -1,0 +1,151 @@
+//===- Reach.cpp - reach: exploring a state space -------------------------===//
+#include "backends/statespace/Writers.h"
+#include "ir/net/Parser.h"
+#include "ir/net/Verifier.h"
+#include "tools/netlift/Driver.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+
+#include <algorithm>
+
+using namespace netlift;
+using namespace netlift::driver;
+
+static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
+                                       cl::Required, cl::sub(reachCommand()));
+enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
+static cl::opt<GraphFormat> graphFormat(
+    "format", cl::desc("Write the state space"), cl::init(GraphFormat::None),
+    cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
+               clEnumValN(GraphFormat::Dot, "dot", "Graphviz (small graphs)"),
+               clEnumValN(GraphFormat::Json, "json",
+                          "every state with its values, every edge"),
+               clEnumValN(GraphFormat::Csv, "csv",
+                          "every state with its values (edges: --edges)"),
+               clEnumValN(GraphFormat::Arc, "arc",
+                          "ViVe-style reachability graph text")),
+    cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<std::string>
+    summary("summary", cl::desc("Print a summary: 'json' or 'text' (default)"),
+            cl::init("text"), cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<std::string> findText(
+    "find", cl::desc("Find a shortest path to a state satisfying EXPR"),
+    cl::value_desc("EXPR"), cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<bool>
+    deadlockTrace("deadlock-trace",
+                  cl::desc("Print a shortest path to a deadlock"),
+                  cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<bool> depthFirst("dfs", cl::desc("Depth-first order"),
+                                cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<bool> noProgress("q", cl::desc("No progress output"),
+                                cl::sub(reachCommand()), cl::cat(category()));
+
+/// Exit codes (docs/reach.md): 0 complete, 1 error, 2 a limit stopped the
+/// search, 3 the property checked is violated.
+int driver::runReach(DiagEngine &diag) {
+  net::Design design;
+  std::vector<std::string> inputs{reachInput};
+  statespace::ExplorationOptions xo;
+  if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+    return 1;
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "reach");
+  if (!setup)
+    return 1;
+  sem::Semantics &semantics = setup->semantics();
+  net::Expr *findExpr = nullptr;
+  if (!findText.empty()) {
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(findText, "<find>"),
+        llvm::SMLoc());
+    findExpr = net::parseExpression(id, diag, design);
+    if (!findExpr ||
+        !net::verifyPredicate(design, setup->top(), findExpr, diag))
+      return 1;
+  }
+  statespace::ExploreOptions eo = setup->exploreOptions();
+  eo.depthFirst = depthFirst;
+  eo.recordEdges = graphFormat != GraphFormat::None || !edgesFile.empty();
+  eo.progress = !noProgress;
+  sem::RuntimeError findErr;
+  auto stop = [&](const uint64_t *s) {
+    return semantics.evalPredicate(findExpr, s, findErr);
+  };
+  if (findExpr)
+    eo.stopAt = stop;
+  statespace::Explorer explorer(semantics, eo);
+  statespace::ExploreResult r;
+  bool started = explorer.run(r);
+  if (r.error) {
+    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+    return 1;
+  }
+  if (writeResult(
+          outputFile,
+          [&](llvm::raw_ostream &os) {
+            switch (graphFormat) {
+            case GraphFormat::None:
+              break;
+            case GraphFormat::Aut:
+              statespace::writeAut(explorer, os);
+              break;
+            case GraphFormat::Dot:
+              statespace::writeDot(explorer, semantics, os);
+              break;
+            case GraphFormat::Json:
+              statespace::writeJson(explorer, semantics, r, os);
+              break;
+            case GraphFormat::Csv:
+              statespace::writeCsvStates(explorer, semantics, r, os);
+              break;
+            case GraphFormat::Arc:
+              statespace::writeArc(explorer, semantics, os);
+              break;
+            }
+          },
+          diag) ||
+      (!edgesFile.empty() && writeResult(
+                                 edgesFile,
+                                 [&](llvm::raw_ostream &os) {
+                                   statespace::writeCsvEdges(explorer, os);
+                                 },
+                                 diag)))
+    return 1;
+  llvm::raw_ostream &out = llvm::outs();
+  if (summary == "json") {
+    statespace::writeSummaryJson(explorer, r, out);
+  } else if (graphFormat == GraphFormat::None && !findExpr && !deadlockTrace) {
+    out << "states: " << explorer.store().size() << "\n"
+        << "transitions: " << r.edges << "\n"
+        << "deadlocks: " << r.deadlocks.size() << "\n"
+        << "dead states: " << r.deadStates << "\n"
+        << "complete: " << (r.complete ? "yes" : "no") << "\n";
+  }
+  int code = r.limitReached.empty() ? 0 : 2;
+  if (!r.limitReached.empty())
+    llvm::errs() << "netlift: the " << r.limitReached
+                 << " limit stopped the search; the result is incomplete\n";
+  if (findExpr) {
+    if (r.found) {
+      out << "found a state satisfying '" << findText << "' after "
+          << explorer.pathTo(*r.found).size() - 1 << " steps:\n";
+      statespace::writeTrace(explorer, semantics, *r.found, out);
+      return 0;
+    }
+    if (code == 0) {
+      out << "no reachable state satisfies '" << findText << "'\n";
+      return 3;
+    }
+  }
+  if (deadlockTrace) {
+    if (!r.deadlocks.empty()) {
+      // Breadth-first numbering: the smallest index is a closest deadlock.
+      uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+      out << "deadlock after " << explorer.pathTo(d).size() - 1 << " steps:\n";
+      statespace::writeTrace(explorer, semantics, d, out);
+      return 3;
+    }
+    if (code == 0)
+      out << "no deadlock\n";
+  }
+  return code;
+}

@@ -1,0 +1,191 @@
+//===- Sr.cpp - sr: structural reasoning over a state space ---------------===//
+#include "backends/structural/DensityChart.h"
+#include "backends/structural/EdwardsVenn.h"
+#include "backends/structural/ExploredRegions.h"
+#include "backends/structural/HtmlReport.h"
+#include "backends/structural/StateFile.h"
+#include "tools/netlift/Driver.h"
+
+#include "llvm/Support/Path.h"
+
+using namespace netlift;
+using namespace netlift::driver;
+
+static cl::opt<std::string> srInput(cl::Positional, cl::desc("<model>"),
+                                    cl::Required, cl::sub(srCommand()));
+static cl::list<std::string>
+    attrTexts("attr",
+              cl::desc("An attribute: a place or Boolean signal NAME, or "
+                       "NAME=PREDICATE (repeatable)"),
+              cl::value_desc("NAME[=PREDICATE]"), cl::sub(srCommand()),
+              cl::cat(category()));
+static cl::opt<bool> allRegions("all-regions",
+                                cl::desc("Also list regions that never occur"),
+                                cl::sub(srCommand()), cl::cat(category()));
+static cl::opt<std::string> report("report",
+                                   cl::desc("Report format: text, json or "
+                                            "html (one self-contained file)"),
+                                   cl::init("text"), cl::sub(srCommand()),
+                                   cl::cat(category()));
+static cl::opt<std::string>
+    agFile("ag",
+           cl::desc("Write the attribute graph as DOT, or as SVG (drawn by "
+                    "graphviz's dot) when FILE ends in .svg"),
+           cl::value_desc("FILE.dot|FILE.svg"), cl::sub(srCommand()),
+           cl::cat(category()));
+static cl::opt<std::string>
+    evFile("ev",
+           cl::desc("Write the Edwards-Venn diagram as SVG (at most 10 "
+                    "attributes)"),
+           cl::value_desc("FILE.svg"), cl::sub(srCommand()),
+           cl::cat(category()));
+static cl::opt<std::string>
+    curveOrder("order",
+               cl::desc("Edwards-Venn curves: gray (cos, neighbouring regions "
+                        "differ in one attribute) or binary (sin)"),
+               cl::init("gray"), cl::sub(srCommand()), cl::cat(category()));
+static cl::opt<std::string> densityFile(
+    "density",
+    cl::desc("Write the attribute densities and the necklace distribution "
+             "as SVG bar charts"),
+    cl::value_desc("FILE.svg"), cl::sub(srCommand()), cl::cat(category()));
+static cl::opt<bool>
+    evNecklaces("ev-necklaces",
+                cl::desc("Colour the Edwards-Venn regions by necklace"),
+                cl::sub(srCommand()), cl::cat(category()));
+
+static bool refuse(DiagEngine &diag, const llvm::Twine &msg) {
+  diag.error(llvm::SMLoc(), msg);
+  return false;
+}
+
+static bool checkOptions(DiagEngine &diag) {
+  if (attrTexts.empty() || attrTexts.size() > 20)
+    return refuse(diag, "sr needs 1 to 20 attributes (--attr)");
+  if (report != "text" && report != "json" && report != "html")
+    return refuse(diag, "--report is text, json or html");
+  if (curveOrder != "gray" && curveOrder != "binary")
+    return refuse(diag, "--order is gray or binary");
+  if (!evFile.empty() && attrTexts.size() > structural::kMaxVennAttributes)
+    return refuse(diag, "an Edwards-Venn diagram is drawn for at most " +
+                            llvm::Twine(structural::kMaxVennAttributes) +
+                            " attributes, not " +
+                            llvm::Twine(attrTexts.size()));
+  return true;
+}
+
+/// Exit 0, 1 on error, 2 when a limit stopped the exploration (docs/sr.md).
+int driver::runSr(DiagEngine &diag) {
+  net::Design design;
+  std::vector<structural::Attribute> attrs;
+  if (!checkOptions(diag) ||
+      !structural::parseAttributes(attrTexts, design, diag, attrs))
+    return 1;
+  std::vector<std::string> names;
+  for (const structural::Attribute &a : attrs)
+    names.push_back(a.name);
+  structural::Analysis an(names);
+  structural::HtmlReportInputs html;
+  html.title = llvm::sys::path::filename(srInput).str();
+  bool complete = true;
+  llvm::StringRef ext = llvm::sys::path::extension(srInput);
+  bool csv =
+      inputFormat == "states-csv" || (inputFormat.empty() && ext == ".csv");
+  bool stateFile =
+      csv || inputFormat == "states" || (inputFormat.empty() && ext == ".json");
+  if (!edgesFile.empty() && !csv)
+    return !refuse(diag, "--edges goes with a CSV state file");
+  if (stateFile) {
+    // A state space written by `reach --format json|csv`, streamed.
+    unsigned id = addInputFile(diag.sourceMgr(), srInput);
+    unsigned edgesID =
+        edgesFile.empty() ? 0 : addInputFile(diag.sourceMgr(), edgesFile);
+    if (!id || (!edgesFile.empty() && !edgesID))
+      return 1;
+    std::vector<structural::StateFileAttribute> fileAttrs;
+    for (const structural::Attribute &a : attrs)
+      fileAttrs.push_back({a.name, a.plain ? nullptr : a.predicate});
+    structural::StateFileResult sr;
+    sr.collectExamples = report == "html";
+    if (csv ? !structural::analyseStateCsv(id, edgesID, diag, fileAttrs, an, sr)
+            : !structural::analyseStateFile(id, diag, fileAttrs, an, sr))
+      return 1;
+    complete = sr.complete;
+    html.examples = std::move(sr.examples);
+  } else {
+    std::vector<std::string> inputs{srInput};
+    statespace::ExplorationOptions xo;
+    if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+      return 1;
+    auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
+    structural::ExploredRegions regions;
+    if (!setup ||
+        !structural::classifyExplored(*setup, design, attrs, report == "html",
+                                      an, regions, diag))
+      return 1;
+    complete = regions.complete;
+    html.examples = std::move(regions.examples);
+  }
+
+  if (!agFile.empty()) {
+    std::string svg;
+    if (llvm::StringRef(agFile).endswith(".svg")) {
+      svg = structural::renderAttributeGraphSvg(an, allRegions);
+      if (svg.empty())
+        return !refuse(diag, "--ag " + agFile +
+                                 ": drawing SVG needs graphviz's `dot` "
+                                 "(write .dot instead)");
+    }
+    if (writeResult(
+            agFile,
+            [&](llvm::raw_ostream &os) {
+              if (svg.empty())
+                an.writeDot(os, allRegions);
+              else
+                os << svg;
+            },
+            diag))
+      return 1;
+  }
+  if (!densityFile.empty() &&
+      writeResult(
+          densityFile,
+          [&](llvm::raw_ostream &os) { structural::writeDensityChart(an, os); },
+          diag))
+    return 1;
+  structural::VennOptions vo;
+  vo.grayOrder = curveOrder == "gray";
+  vo.necklaces = evNecklaces;
+  if (!evFile.empty()) {
+    if (writeResult(
+            evFile,
+            [&](llvm::raw_ostream &os) {
+              structural::writeEdwardsVenn(an, vo, os);
+            },
+            diag))
+      return 1;
+    for (structural::Region r : structural::undrawnRegions(an, vo.grayOrder))
+      diag.warning(llvm::SMLoc(),
+                   "the binary-order diagram has no area for region " +
+                       an.regionName(r) + " (" +
+                       llvm::Twine(an.regionCounts().at(r)) +
+                       " states); --order gray draws every region");
+  }
+  if (report == "html") {
+    html.venn = vo;
+    html.attributeGraphSvg = structural::renderAttributeGraphSvg(an, false);
+  }
+  if (writeResult(
+          outputFile,
+          [&](llvm::raw_ostream &os) {
+            if (report == "html")
+              structural::writeHtmlReport(an, html, os);
+            else if (report == "json")
+              an.writeJson(os, allRegions);
+            else
+              an.writeText(os, allRegions);
+          },
+          diag))
+    return 1;
+  return complete ? 0 : 2;
+}
