@@ -42,6 +42,11 @@ struct FrontendOptions {
   unsigned stGroupTokens = 4096;
 };
 
+/// A duration option such as `--timescale 10ms` into nanoseconds (empty
+/// text: left unset); false after reporting a malformed or non-positive one.
+bool parseDurationOption(llvm::StringRef flag, llvm::StringRef text,
+                         std::optional<int64_t> &ns, DiagEngine &diag);
+
 /// One reading of a set of input files: the options the driver set, and
 /// what frontends collect across files until every file is read (a PLC
 /// program and the function blocks it uses, an IEC 61499 network and its

@@ -42,6 +42,23 @@ std::unique_ptr<plc::Unit> FrontendContext::takePlcUnit() {
   return std::move(plc);
 }
 
+bool netlift::parseDurationOption(StringRef flag, StringRef text,
+                                  std::optional<int64_t> &out,
+                                  DiagEngine &diag) {
+  if (text.empty())
+    return true;
+  int64_t ns;
+  std::string error;
+  if (!st::parseDuration(("T#" + text).str(), ns, error) || ns <= 0) {
+    diag.error(SMLoc(), "--" + flag + "=" + text +
+                            ": expected a positive duration such as 10ms" +
+                            (error.empty() ? "" : " (" + error + ")"));
+    return false;
+  }
+  out = ns;
+  return true;
+}
+
 static st::ParseOptions parseOptions(const FrontendContext &ctx) {
   st::ParseOptions po;
   po.longPartTokens = ctx.options.stLongPartTokens;

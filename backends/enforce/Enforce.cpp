@@ -127,6 +127,45 @@ bool netlift::enforceTrace(const EditAutomaton &ea, unsigned bufferID,
   return true;
 }
 
+int netlift::enforceAndJudge(const EditAutomaton &ea, unsigned bufferID,
+                             DiagEngine &diag, llvm::raw_ostream &out,
+                             llvm::raw_ostream *csv) {
+  if (csv) {
+    for (size_t i = 0; i < ea.signals.size(); ++i)
+      *csv << (i ? "," : "") << ea.signals[i];
+    *csv << "\n";
+  }
+  EnforceResult r;
+  uint64_t emitted = 0;
+  auto vector = [&](const std::string &v) {
+    ++emitted;
+    out << v << "\n";
+    if (csv) {
+      for (size_t i = 0; i < v.size(); ++i)
+        *csv << (i ? "," : "") << v[i];
+      *csv << "\n";
+    }
+  };
+  if (!enforceTrace(ea, bufferID, diag, vector, r))
+    return 1;
+  if (r.conform) {
+    out << "verdict: conform (" << r.vectors << " vectors read, " << emitted
+        << " emitted)\n";
+    return 0;
+  }
+  if (r.stopped) {
+    out << "verdict: not conform: stopped at vector " << r.stopIndex << " ("
+        << r.stopVector << "); expected one of:";
+    for (const std::string &e : r.expected)
+      out << ' ' << e;
+    out << "\n";
+  } else {
+    out << "verdict: not conform: the trace ends inside a desynchronised "
+           "reading (an intermediate state)\n";
+  }
+  return 3;
+}
+
 void netlift::writeEditAutomatonDot(const EditAutomaton &ea,
                                     llvm::raw_ostream &os) {
   os << "digraph edit_automaton {\n";

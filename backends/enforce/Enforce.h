@@ -38,6 +38,15 @@ bool enforceTrace(const automata::EditAutomaton &ea, unsigned bufferID,
                   const std::function<void(const std::string &)> &emit,
                   EnforceResult &result);
 
+/// `netlift enforce`: enforces the trace, printing each emitted vector on
+/// `vectors` and, with `csv`, writing it there as CSV under a header of
+/// the automaton's signals; then prints the verdict on `vectors`. Returns
+/// the exit code: 0 conform, 3 not conform, 1 a malformed trace
+/// (reported).
+int enforceAndJudge(const automata::EditAutomaton &ea, unsigned bufferID,
+                    DiagEngine &diag, llvm::raw_ostream &vectors,
+                    llvm::raw_ostream *csv);
+
 void writeEditAutomatonDot(const automata::EditAutomaton &ea,
                            llvm::raw_ostream &os);
 void writeEditAutomatonTable(const automata::EditAutomaton &ea,

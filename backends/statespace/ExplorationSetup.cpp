@@ -10,6 +10,22 @@
 using namespace netlift;
 using namespace netlift::statespace;
 
+bool statespace::parseByteSize(llvm::StringRef text, uint64_t &out) {
+  uint64_t mult = 1;
+  if (text.endswith_insensitive("k"))
+    mult = 1ull << 10;
+  else if (text.endswith_insensitive("m"))
+    mult = 1ull << 20;
+  else if (text.endswith_insensitive("g"))
+    mult = 1ull << 30;
+  if (mult != 1)
+    text = text.drop_back();
+  if (text.getAsInteger(10, out))
+    return false;
+  out *= mult;
+  return true;
+}
+
 net::Module *statespace::explorableTop(net::Design &design,
                                        llvm::StringRef topName,
                                        DiagEngine &diag,

@@ -36,6 +36,10 @@ struct ExplorationOptions {
   double timeLimit = 0;
 };
 
+/// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for
+/// --max-memory; false if malformed.
+bool parseByteSize(llvm::StringRef text, uint64_t &bytes);
+
 /// The flat, discrete module a command explores: the design's top (or
 /// `topName`), flattened when it has instances. Null after reporting;
 /// `command` names the subcommand in the message.

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace netlift;
@@ -335,4 +336,43 @@ bool statespace::writeTraceFiles(
                           << label(loopLabel) << "\"," << loopTo << ")\n";
                    },
                    diag);
+}
+
+void statespace::writeSummaryText(const Explorer &x, const ExploreResult &r,
+                                  llvm::raw_ostream &os) {
+  os << "states: " << x.store().size() << "\n"
+     << "transitions: " << r.edges << "\n"
+     << "deadlocks: " << r.deadlocks.size() << "\n"
+     << "dead states: " << r.deadStates << "\n"
+     << "complete: " << (r.complete ? "yes" : "no") << "\n";
+}
+
+int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
+                             const ExploreResult &r, llvm::StringRef findText,
+                             bool deadlockTrace, int code,
+                             llvm::raw_ostream &out) {
+  if (!findText.empty()) {
+    if (r.found) {
+      out << "found a state satisfying '" << findText << "' after "
+          << x.pathTo(*r.found).size() - 1 << " steps:\n";
+      writeTrace(x, sem, *r.found, out);
+      return 0;
+    }
+    if (code == 0) {
+      out << "no reachable state satisfies '" << findText << "'\n";
+      return 3;
+    }
+  }
+  if (deadlockTrace) {
+    if (!r.deadlocks.empty()) {
+      // Breadth-first numbering: the smallest index is a closest deadlock.
+      uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+      out << "deadlock after " << x.pathTo(d).size() - 1 << " steps:\n";
+      writeTrace(x, sem, d, out);
+      return 3;
+    }
+    if (code == 0)
+      out << "no deadlock\n";
+  }
+  return code;
 }

@@ -37,6 +37,10 @@ void writeCsvStates(const Explorer &x, sem::Semantics &sem,
 void writeCsvEdges(const Explorer &x, llvm::raw_ostream &os);
 void writeSummaryJson(const Explorer &x, const ExploreResult &r,
                       llvm::raw_ostream &os);
+/// `reach`'s text summary: states, transitions, deadlocks, dead states,
+/// complete.
+void writeSummaryText(const Explorer &x, const ExploreResult &r,
+                      llvm::raw_ostream &os);
 /// The path to `target` as a table: the initial values, then for each step
 /// its label and the values it changed.
 void writeTrace(const Explorer &x, sem::Semantics &sem, uint32_t target,
@@ -48,6 +52,15 @@ void writePath(const Explorer &x, sem::Semantics &sem,
                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                llvm::raw_ostream &os, int64_t loopTo = -1,
                uint32_t loopLabel = Explorer::kNone);
+
+/// `reach --find` and `--deadlock-trace` after a run: the shortest path to
+/// the state found (or to a closest deadlock) or that there is none.
+/// Returns the exit code: 0 found / no deadlock, 3 not found / a deadlock,
+/// `limitCode` (2) when a limit stopped the search before either was
+/// decided.
+int reportSearch(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
+                 llvm::StringRef findText, bool deadlockTrace, int limitCode,
+                 llvm::raw_ostream &os);
 
 /// What a trace file says of the path it holds.
 struct TraceFileHeader {

@@ -2,6 +2,7 @@
 #include "backends/structural/ExploredRegions.h"
 
 #include "backends/statespace/Writers.h"
+#include "backends/structural/StateFile.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 
@@ -71,6 +72,29 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
       if (!out.examples.count(region[s]))
         out.examples[region[s]] = statespace::describeState(
             semantics, explorer.store().state(s), ", ");
+  return true;
+}
+
+bool structural::classifyStateFile(llvm::StringRef path,
+                                   llvm::StringRef edgesPath, bool csv,
+                                   llvm::ArrayRef<Attribute> attrs,
+                                   bool collectExamples, Analysis &an,
+                                   ExploredRegions &out, DiagEngine &diag) {
+  unsigned id = addInputFile(diag.sourceMgr(), path);
+  unsigned edgesID =
+      edgesPath.empty() ? 0 : addInputFile(diag.sourceMgr(), edgesPath);
+  if (!id || (!edgesPath.empty() && !edgesID))
+    return false;
+  std::vector<StateFileAttribute> fileAttrs;
+  for (const Attribute &a : attrs)
+    fileAttrs.push_back({a.name, a.plain ? nullptr : a.predicate});
+  StateFileResult sr;
+  sr.collectExamples = collectExamples;
+  if (csv ? !analyseStateCsv(id, edgesID, diag, fileAttrs, an, sr)
+          : !analyseStateFile(id, diag, fileAttrs, an, sr))
+    return false;
+  out.complete = sr.complete;
+  out.examples = std::move(sr.examples);
   return true;
 }
 

@@ -47,6 +47,13 @@ bool classifyExplored(statespace::ExplorationSetup &setup, net::Design &design,
                       llvm::ArrayRef<Attribute> attrs, bool collectExamples,
                       Analysis &an, ExploredRegions &out, DiagEngine &diag);
 
+/// The same over a state space `reach` wrote: `path` as JSON, or as CSV
+/// when `csv` (with the edges file `edgesPath` unless it is empty).
+bool classifyStateFile(llvm::StringRef path, llvm::StringRef edgesPath,
+                       bool csv, llvm::ArrayRef<Attribute> attrs,
+                       bool collectExamples, Analysis &an, ExploredRegions &out,
+                       DiagEngine &diag);
+
 /// The attribute graph as SVG drawn by graphviz's `dot`, or "" when it is
 /// not installed or fails (the HTML report then shows the DOT text).
 std::string renderAttributeGraphSvg(const Analysis &an, bool allRegions);

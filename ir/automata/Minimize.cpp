@@ -259,3 +259,17 @@ bool netlift::automata::checkEquivalence(const MealyMachine &a,
   }
   return true;
 }
+
+void automata::writeEquivalence(const MealyMachine &m,
+                                const EquivalenceResult &r,
+                                llvm::raw_ostream &os) {
+  if (r.equivalent) {
+    os << "equivalent\n";
+    return;
+  }
+  os << "not equivalent: after the inputs";
+  for (const std::string &v : r.witness)
+    os << ' ' << m.inputLabel(v);
+  os << " the outputs are " << m.outputLabel(r.outputA) << " and "
+     << m.outputLabel(r.outputB) << "\n";
+}

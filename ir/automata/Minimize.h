@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "llvm/Support/raw_ostream.h"
+
 namespace netlift::automata {
 
 constexpr unsigned kMaxEnumeratedInputs = 16;
@@ -42,6 +44,11 @@ struct EquivalenceResult {
 };
 bool checkEquivalence(const MealyMachine &a, const MealyMachine &b,
                       EquivalenceResult &result, std::string &why);
+
+/// `mealy --equiv`: "equivalent", or the shortest distinguishing input
+/// sequence and the two outputs it ends with.
+void writeEquivalence(const MealyMachine &a, const EquivalenceResult &r,
+                      llvm::raw_ostream &os);
 
 } // namespace netlift::automata
 

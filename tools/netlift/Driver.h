@@ -25,15 +25,9 @@ cl::OptionCategory &category();
 
 // The subcommands, made on first use so that options in any file can name
 // them.
-cl::SubCommand &translateCommand();
-cl::SubCommand &optCommand();
-cl::SubCommand &composeCommand();
-cl::SubCommand &emitCommand();
-cl::SubCommand &reachCommand();
-cl::SubCommand &checkCommand();
-cl::SubCommand &srCommand();
-cl::SubCommand &mealyCommand();
-cl::SubCommand &editAutomatonCommand();
+cl::SubCommand &translateCommand(), &optCommand(), &composeCommand();
+cl::SubCommand &emitCommand(), &reachCommand(), &checkCommand();
+cl::SubCommand &srCommand(), &mealyCommand(), &editAutomatonCommand();
 cl::SubCommand &enforceCommand();
 
 // Options several subcommands take.
@@ -73,16 +67,12 @@ bool readMealySpec(const std::string &path, DiagEngine &diag,
                    automata::MealyMachine &m);
 
 // The subcommands: the exit code.
-int runTranslate(DiagEngine &diag);
-int runOpt(DiagEngine &diag);
-int runCompose(DiagEngine &diag);
-int runEmit(DiagEngine &diag);
-int runReach(DiagEngine &diag);
-int runCheck(DiagEngine &diag);
-int runSr(DiagEngine &diag);
-int runMealy(DiagEngine &diag);
-int runEditAutomaton(DiagEngine &diag);
-int runEnforce(DiagEngine &diag);
+int runTranslate(DiagEngine &), runOpt(DiagEngine &), runCompose(DiagEngine &);
+int runEmit(DiagEngine &), runReach(DiagEngine &), runCheck(DiagEngine &);
+int runSr(DiagEngine &), runMealy(DiagEngine &), runEnforce(DiagEngine &);
+int runEditAutomaton(DiagEngine &);
+/// Puts the registry's formats into `emit --to`'s description.
+void describeEmitFormats();
 
 } // namespace netlift::driver
 

@@ -24,7 +24,7 @@ static cl::opt<bool>
                      "(FBNetwork)"),
             cl::sub(emitCommand()), cl::cat(category()));
 
-void describeEmitFormats() {
+void driver::describeEmitFormats() {
   static std::string text = [] {
     std::string s = "Output format:";
     for (const BackendInfo &b : backends())

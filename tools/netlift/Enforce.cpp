@@ -105,53 +105,19 @@ int driver::runEnforce(DiagEngine &diag) {
   unsigned id = addInputFile(diag.sourceMgr(), enforceInputs[1]);
   if (!id)
     return 1;
-  EnforceResult r;
-  uint64_t emitted = 0;
-  llvm::raw_ostream &out = llvm::outs();
-  // Stream: each enforced vector is written as it is emitted, to stdout and
+  // Streamed: each enforced vector is printed as it is emitted, and written
   // to -o (a temporary renamed into place at the end).
-  auto run = [&](llvm::raw_ostream *csv) {
-    if (csv) {
-      for (size_t i = 0; i < ea.signals.size(); ++i)
-        *csv << (i ? "," : "") << ea.signals[i];
-      *csv << "\n";
-    }
-    auto vector = [&](const std::string &v) {
-      ++emitted;
-      out << v << "\n";
-      if (csv) {
-        for (size_t i = 0; i < v.size(); ++i)
-          *csv << (i ? "," : "") << v[i];
-        *csv << "\n";
-      }
-    };
-    return enforceTrace(ea, id, diag, vector, r);
-  };
-  bool ok = true;
   if (outputFile == "-")
-    ok = run(nullptr);
-  else if (writeResult(
-               outputFile, [&](llvm::raw_ostream &os) { ok = run(&os); }, diag))
+    return enforceAndJudge(ea, id, diag, llvm::outs(), nullptr);
+  int code = 1;
+  if (writeResult(
+          outputFile,
+          [&](llvm::raw_ostream &os) {
+            code = enforceAndJudge(ea, id, diag, llvm::outs(), &os);
+          },
+          diag))
     return 1;
-  if (!ok) {
-    if (outputFile != "-")
-      llvm::sys::fs::remove(outputFile);
-    return 1;
-  }
-  if (r.conform) {
-    out << "verdict: conform (" << r.vectors << " vectors read, " << emitted
-        << " emitted)\n";
-    return 0;
-  }
-  if (r.stopped) {
-    out << "verdict: not conform: stopped at vector " << r.stopIndex << " ("
-        << r.stopVector << "); expected one of:";
-    for (const std::string &e : r.expected)
-      out << ' ' << e;
-    out << "\n";
-  } else {
-    out << "verdict: not conform: the trace ends inside a desynchronised "
-           "reading (an intermediate state)\n";
-  }
-  return 3;
+  if (code == 1)
+    llvm::sys::fs::remove(outputFile);
+  return code;
 }

@@ -75,16 +75,8 @@ int driver::runMealy(DiagEngine &diag) {
       diag.error(llvm::SMLoc(), why);
       return 1;
     }
-    if (r.equivalent) {
-      llvm::outs() << "equivalent\n";
-      return 0;
-    }
-    llvm::outs() << "not equivalent: after the inputs";
-    for (const std::string &v : r.witness)
-      llvm::outs() << ' ' << m.inputLabel(v);
-    llvm::outs() << " the outputs are " << m.outputLabel(r.outputA) << " and "
-                 << m.outputLabel(r.outputB) << "\n";
-    return 3;
+    automata::writeEquivalence(m, r, llvm::outs());
+    return r.equivalent ? 0 : 3;
   }
   if (minimize) {
     automata::MealyMachine minimal;

@@ -1,5 +1,4 @@
 //===- Options.cpp - the subcommands and the options they share -----------===//
-#include "frontends/st/StFrontend.h"
 #include "ir/net/Printer.h"
 #include "ir/support/OutputFile.h"
 #include "tools/netlift/Driver.h"
@@ -178,24 +177,8 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.fbSemantics = fbSemantics;
   fo.stLongPartTokens = stLongPartTokens;
   fo.stGroupTokens = stGroupTokens;
-  auto duration = [&](const char *flag, const std::string &text,
-                      std::optional<int64_t> &out) {
-    if (text.empty())
-      return true;
-    int64_t ns;
-    std::string error;
-    if (!st::parseDuration("T#" + text, ns, error) || ns <= 0) {
-      diag.error(llvm::SMLoc(), "--" + llvm::Twine(flag) + "=" + text +
-                                    ": expected a positive duration such as "
-                                    "10ms" +
-                                    (error.empty() ? "" : " (" + error + ")"));
-      return false;
-    }
-    out = ns;
-    return true;
-  };
-  return duration("timescale", timescale, fo.timescaleNs) &&
-         duration("scan-period", scanPeriod, fo.scanPeriodNs);
+  return parseDurationOption("timescale", timescale, fo.timescaleNs, diag) &&
+         parseDurationOption("scan-period", scanPeriod, fo.scanPeriodNs, diag);
 }
 
 bool driver::loadModels(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
@@ -203,22 +186,6 @@ bool driver::loadModels(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
   FrontendOptions fo;
   return frontendOptions(fo, diag) &&
          loadInputs(paths, inputFormat, fo, diag, design);
-}
-
-static bool parseSize(llvm::StringRef text, uint64_t &out) {
-  uint64_t mult = 1;
-  if (text.endswith_insensitive("k"))
-    mult = 1ull << 10;
-  else if (text.endswith_insensitive("m"))
-    mult = 1ull << 20;
-  else if (text.endswith_insensitive("g"))
-    mult = 1ull << 30;
-  if (mult != 1)
-    text = text.drop_back();
-  if (text.getAsInteger(10, out))
-    return false;
-  out *= mult;
-  return true;
 }
 
 bool driver::explorationOptions(statespace::ExplorationOptions &eo,
@@ -230,7 +197,8 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.semantics.compilePT = !interpreter;
   eo.maxStates = maxStates;
   eo.timeLimit = timeLimit;
-  if (!maxMemory.empty() && !parseSize(maxMemory, eo.maxMemory)) {
+  if (!maxMemory.empty() &&
+      !statespace::parseByteSize(maxMemory, eo.maxMemory)) {
     diag.error(llvm::SMLoc(), "--max-memory: '" + maxMemory +
                                   "' is not a size (e.g. 512M, 4G)");
     return false;

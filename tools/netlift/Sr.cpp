@@ -3,7 +3,6 @@
 #include "backends/structural/EdwardsVenn.h"
 #include "backends/structural/ExploredRegions.h"
 #include "backends/structural/HtmlReport.h"
-#include "backends/structural/StateFile.h"
 #include "tools/netlift/Driver.h"
 
 #include "llvm/Support/Path.h"
@@ -87,7 +86,6 @@ int driver::runSr(DiagEngine &diag) {
   structural::Analysis an(names);
   structural::HtmlReportInputs html;
   html.title = llvm::sys::path::filename(srInput).str();
-  bool complete = true;
   llvm::StringRef ext = llvm::sys::path::extension(srInput);
   bool csv =
       inputFormat == "states-csv" || (inputFormat.empty() && ext == ".csv");
@@ -95,37 +93,24 @@ int driver::runSr(DiagEngine &diag) {
       csv || inputFormat == "states" || (inputFormat.empty() && ext == ".json");
   if (!edgesFile.empty() && !csv)
     return !refuse(diag, "--edges goes with a CSV state file");
+  structural::ExploredRegions regions;
   if (stateFile) {
     // A state space written by `reach --format json|csv`, streamed.
-    unsigned id = addInputFile(diag.sourceMgr(), srInput);
-    unsigned edgesID =
-        edgesFile.empty() ? 0 : addInputFile(diag.sourceMgr(), edgesFile);
-    if (!id || (!edgesFile.empty() && !edgesID))
+    if (!structural::classifyStateFile(srInput, edgesFile, csv, attrs,
+                                       report == "html", an, regions, diag))
       return 1;
-    std::vector<structural::StateFileAttribute> fileAttrs;
-    for (const structural::Attribute &a : attrs)
-      fileAttrs.push_back({a.name, a.plain ? nullptr : a.predicate});
-    structural::StateFileResult sr;
-    sr.collectExamples = report == "html";
-    if (csv ? !structural::analyseStateCsv(id, edgesID, diag, fileAttrs, an, sr)
-            : !structural::analyseStateFile(id, diag, fileAttrs, an, sr))
-      return 1;
-    complete = sr.complete;
-    html.examples = std::move(sr.examples);
   } else {
     std::vector<std::string> inputs{srInput};
     statespace::ExplorationOptions xo;
     if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
       return 1;
     auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
-    structural::ExploredRegions regions;
     if (!setup ||
         !structural::classifyExplored(*setup, design, attrs, report == "html",
                                       an, regions, diag))
       return 1;
-    complete = regions.complete;
-    html.examples = std::move(regions.examples);
   }
+  html.examples = std::move(regions.examples);
 
   if (!agFile.empty()) {
     std::string svg;
@@ -187,5 +172,5 @@ int driver::runSr(DiagEngine &diag) {
           },
           diag))
     return 1;
-  return complete ? 0 : 2;
+  return regions.complete ? 0 : 2;
 }

@@ -16,8 +16,6 @@ using namespace netlift::driver;
 #define NETLIFT_VERSION "0.0.0"
 #endif
 
-void describeEmitFormats(); // Emit.cpp
-
 static const char *const overview =
     "netlift: lift industrial control software into formal models\n\n"
     "  netlift translate IN... [-o OUT] [--from FMT] [--top NAME] "

@@ -1,12 +1,11 @@
-//===- Reach.cpp - reach: exploring a state space -------------------------===//
+//===- Explore.cpp - reach and check: exploring a model -------------------===//
+#include "backends/checkers/CheckProperties.h"
 #include "backends/statespace/Writers.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 #include "tools/netlift/Driver.h"
 
 #include "llvm/Support/MemoryBuffer.h"
-
-#include <algorithm>
 
 using namespace netlift;
 using namespace netlift::driver;
@@ -114,38 +113,43 @@ int driver::runReach(DiagEngine &diag) {
   if (summary == "json") {
     statespace::writeSummaryJson(explorer, r, out);
   } else if (graphFormat == GraphFormat::None && !findExpr && !deadlockTrace) {
-    out << "states: " << explorer.store().size() << "\n"
-        << "transitions: " << r.edges << "\n"
-        << "deadlocks: " << r.deadlocks.size() << "\n"
-        << "dead states: " << r.deadStates << "\n"
-        << "complete: " << (r.complete ? "yes" : "no") << "\n";
+    statespace::writeSummaryText(explorer, r, out);
   }
   int code = r.limitReached.empty() ? 0 : 2;
   if (!r.limitReached.empty())
     llvm::errs() << "netlift: the " << r.limitReached
                  << " limit stopped the search; the result is incomplete\n";
-  if (findExpr) {
-    if (r.found) {
-      out << "found a state satisfying '" << findText << "' after "
-          << explorer.pathTo(*r.found).size() - 1 << " steps:\n";
-      statespace::writeTrace(explorer, semantics, *r.found, out);
-      return 0;
-    }
-    if (code == 0) {
-      out << "no reachable state satisfies '" << findText << "'\n";
-      return 3;
-    }
+  return statespace::reportSearch(explorer, semantics, r,
+                                  findExpr ? llvm::StringRef(findText) : "",
+                                  deadlockTrace, code, out);
+}
+
+static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
+                                       cl::Required, cl::sub(checkCommand()));
+static cl::opt<std::string>
+    traceDir("trace-dir",
+             cl::desc("Also write each property's trace as DIR/p<N>.json and "
+                      "DIR/p<N>.aut"),
+             cl::value_desc("DIR"), cl::sub(checkCommand()),
+             cl::cat(category()));
+
+/// Exit 0 all hold, 3 some fail, 2 the exploration was stopped by a limit,
+/// 1 an error (docs/check.md).
+int driver::runCheck(DiagEngine &diag) {
+  if (properties.empty()) {
+    diag.error(llvm::SMLoc(), "check needs a property (--ctl FORMULA)");
+    return 1;
   }
-  if (deadlockTrace) {
-    if (!r.deadlocks.empty()) {
-      // Breadth-first numbering: the smallest index is a closest deadlock.
-      uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
-      out << "deadlock after " << explorer.pathTo(d).size() - 1 << " steps:\n";
-      statespace::writeTrace(explorer, semantics, d, out);
-      return 3;
-    }
-    if (code == 0)
-      out << "no deadlock\n";
-  }
-  return code;
+  net::Design design;
+  std::vector<std::string> inputs{checkInput};
+  statespace::ExplorationOptions xo;
+  if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+    return 1;
+  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "check");
+  std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
+  if (!setup || !checkers::parseProperties(properties, design, setup->top(),
+                                           diag, formulas))
+    return 1;
+  return checkers::checkProperties(*setup, formulas, traceDir, llvm::outs(),
+                                   diag);
 }
