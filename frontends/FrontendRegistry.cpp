@@ -13,6 +13,7 @@
 
 using namespace netlift;
 using llvm::StringRef;
+using llvm::Twine;
 
 static const FrontendInfo registry[] = {
 #define NETLIFT_FRONTEND(ID, DESC, EXTS, LOAD, FINISH)                         \
@@ -83,16 +84,18 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
 }
 
 /// XML dialects share the extension .xml: the root element tells them
-/// apart (the first element after the prolog and comments).
-static const FrontendInfo *sniffXml(StringRef text) {
+/// apart (the first element after the prolog and comments). `root` is set
+/// to where it starts (empty when there is none).
+static const FrontendInfo *sniffXml(StringRef text, StringRef &root) {
   size_t pos = 0;
+  root = StringRef();
   while ((pos = text.find('<', pos)) != StringRef::npos) {
     StringRef rest = text.substr(pos + 1);
     if (rest.startswith("?") || rest.startswith("!")) {
       ++pos;
       continue;
     }
-    StringRef root = rest.take_while([](char c) {
+    root = rest.take_while([](char c) {
       return !isspace((unsigned char)c) && c != '>' && c != '/';
     });
     StringRef id =
@@ -141,14 +144,18 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
       return false;
     if (from.empty() &&
         llvm::sys::path::extension(path).equals_insensitive(".xml")) {
-      fe = sniffXml(diag.sourceMgr().getMemoryBuffer(id)->getBuffer());
+      StringRef text = diag.sourceMgr().getMemoryBuffer(id)->getBuffer();
+      StringRef root;
+      fe = sniffXml(text, root);
       if (!fe) {
-        llvm::errs() << "netlift: error: '" << path
-                     << "': XML input not recognised (known by their root "
-                        "element: PLCopen <project>, SpaceEx <sspaceex>, PNML "
-                        "<pnml>, IEC 61499 <FBType>/<System>/<SubAppType>); "
-                        "name the format with "
-                        "--from\n";
+        diag.error(llvm::SMLoc::getFromPointer(root.empty() ? text.data()
+                                                            : root.data()),
+                   (root.empty() ? Twine("no XML root element")
+                                 : "XML root element <" + root + ">") +
+                       " not recognised (known: PLCopen <project>, SpaceEx "
+                       "<sspaceex>, PNML <pnml>, IEC 61499 "
+                       "<FBType>/<System>/<SubAppType>); name the format "
+                       "with --from");
         return false;
       }
       allNet = false;

@@ -65,6 +65,8 @@ public:
   /// use; taken by the PLC frontends' finish phase.
   plc::Unit &plcUnit();
   std::unique_ptr<plc::Unit> takePlcUnit();
+  /// The buffer of the first PLC source read (0: none).
+  unsigned firstPlcFile = 0;
   /// IEC 61499 files read so far (buffer ids), translated together.
   std::vector<unsigned> iec61499Files;
 

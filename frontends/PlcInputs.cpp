@@ -38,6 +38,13 @@ plc::Unit &FrontendContext::plcUnit() {
   return *plc;
 }
 
+/// The unit PLC loaders append to; remembers where the first file starts.
+static plc::Unit &unitFor(FrontendContext &ctx, unsigned bufferID) {
+  if (!ctx.firstPlcFile)
+    ctx.firstPlcFile = bufferID;
+  return ctx.plcUnit();
+}
+
 std::unique_ptr<plc::Unit> FrontendContext::takePlcUnit() {
   return std::move(plc);
 }
@@ -69,17 +76,18 @@ static st::ParseOptions parseOptions(const FrontendContext &ctx) {
 bool netlift::loadStructuredText(FrontendContext &ctx, unsigned bufferID,
                                  DiagEngine &diag, net::Design &) {
   StringRef text = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
-  return st::parseStructuredText(text, diag, ctx.plcUnit(), parseOptions(ctx));
+  return st::parseStructuredText(text, diag, unitFor(ctx, bufferID),
+                                 parseOptions(ctx));
 }
 
 bool netlift::loadInstructionList(FrontendContext &ctx, unsigned bufferID,
                                   DiagEngine &diag, net::Design &) {
-  return il::parseInstructionList(bufferID, diag, ctx.plcUnit());
+  return il::parseInstructionList(bufferID, diag, unitFor(ctx, bufferID));
 }
 
 bool netlift::loadPlcOpen(FrontendContext &ctx, unsigned bufferID,
                           DiagEngine &diag, net::Design &) {
-  return plcopen::readPlcOpen(bufferID, diag, ctx.plcUnit());
+  return plcopen::readPlcOpen(bufferID, diag, unitFor(ctx, bufferID));
 }
 
 /// `--ranges FILE`: one `NAME LO..HI` per line; `#` or `//` start comments.
@@ -121,6 +129,8 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   opts.top = fo.top;
   opts.timescaleNs = fo.timescaleNs;
   opts.scanPeriodNs = fo.scanPeriodNs;
+  opts.unitStart = SMLoc::getFromPointer(
+      diag.sourceMgr().getMemoryBuffer(ctx.firstPlcFile)->getBufferStart());
   if (!fo.rangesFile.empty() && !readRanges(fo.rangesFile, diag, opts))
     return false;
   if (!st::addStandardLibrary(diag, *unit))
@@ -264,7 +274,7 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
                                 blanked + trailer, buf->getBufferIdentifier()),
                             SMLoc());
   return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
-                                 ctx.plcUnit(), parseOptions(ctx));
+                                 unitFor(ctx, bufferID), parseOptions(ctx));
 }
 
 //===----------------------------------------------------------------------===//

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Runs `netlift translate` (`netlift mealy` for automata) over every file of ../shared/corpus that a
 frontend exists for and prints, per format, how many files were translated,
-refused (grouped by reason, names and numbers elided) and crashed (any exit
-other than 0/1, or a hang). Exits 1 if anything crashed.
+refused (grouped by reason, names and numbers elided, most frequent first)
+and crashed (any exit other than 0/1, or a hang), and every refusal whose
+error does not say where (file:line:col: UNLOCATED). Exits 1 if anything
+crashed or a refusal is unlocated.
 
 usage: corpus-sweep.py NETLIFT [CORPUS_DIR [FORMAT...]]
 """
@@ -27,6 +29,17 @@ FORMATS = {
     "plcopen_xml": ((".xml",), None, (), "translate"),
     "iec61499": ((".fbt", ".sub", ".sys"), None, (), "translate"),
 }
+
+
+LOCATED = re.compile(r"^.+:\d+:\d+: error: ")
+
+
+def located(stderr):
+    """Does the first error say where (file:line:col)?"""
+    for line in stderr.splitlines():
+        if ": error: " in line:
+            return bool(LOCATED.match(line))
+    return False
 
 
 def reason(stderr):
@@ -54,7 +67,7 @@ def main():
         files = sorted(os.path.join(d, f)
                        for d, _, fs in os.walk(os.path.join(corpus, fmt))
                        for f in fs if f.endswith(exts) and f not in skip)
-        ok, refused, crashed = 0, collections.Counter(), []
+        ok, refused, crashed, unlocated = 0, collections.Counter(), [], []
         for f in files:
             try:
                 cmd = [netlift, command, f, "-o", os.devnull]
@@ -69,17 +82,23 @@ def main():
                 ok += 1
             elif r.returncode == 1:
                 refused[reason(r.stderr)] += 1
+                if not located(r.stderr):
+                    unlocated.append((f, reason(r.stderr)))
             else:
                 crashed.append((f, f"exit {r.returncode}"))
             if os.environ.get("SWEEP_VERBOSE") and r.returncode != 0:
                 print(f"    {f}: {reason(r.stderr)}")
         print(f"{fmt}: {len(files)} files, {ok} translated, "
               f"{sum(refused.values())} refused, {len(crashed)} crashed")
-        for why, n in refused.most_common():
+        # Most frequent first, ties by the reason's text: stable pins.
+        for why, n in sorted(refused.items(), key=lambda kv: (-kv[1], kv[0])):
             print(f"  {n:5}  {why}")
         for f, how in crashed:
             print(f"  CRASH {how}: {f}")
-        crashed_any |= bool(crashed)
+        # A refusal must say where: file:line:col.
+        for f, why in unlocated:
+            print(f"  UNLOCATED {os.path.relpath(f, corpus)}: {why}")
+        crashed_any |= bool(crashed) or bool(unlocated)
     return 1 if crashed_any else 0
 
 

@@ -16,6 +16,7 @@ config.test_exec_root = os.path.join(config.netlift_obj_root, "test")
 # split-file from LLVM 14.
 config.substitutions.append(
     ("%netlift", os.path.join(config.netlift_tools_dir, "netlift")))
+config.substitutions.append(("%lit", config.lit_script))
 config.substitutions.append(("%examples",
                              os.path.join(config.netlift_src_root, "examples")))
 config.substitutions.append(("%srcroot", config.netlift_src_root))
@@ -70,3 +71,8 @@ if os.path.isdir(os.path.join(corpus, "iec61499", "fb2smv", "tests", "smv")):
     config.available_features.add("fb2smv-corpus")
 if os.path.isdir(os.path.join(corpus, "spaceex")):
     config.available_features.add("spaceex-corpus")
+# One feature per corpus folder: each sweep runs when its own folder is here.
+if os.path.isdir(corpus):
+    for folder in sorted(os.listdir(corpus)):
+        if os.path.isdir(os.path.join(corpus, folder)):
+            config.available_features.add("corpus-" + folder)

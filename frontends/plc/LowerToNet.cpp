@@ -2254,8 +2254,17 @@ bool Lowering::run() {
           at = p->loc;
           break;
         }
-      diag.error(at, "no PROGRAM to translate (use --top NAME to translate "
-                     "a function block as the controller)");
+      if (at.isValid()) {
+        diag.error(at, "no PROGRAM to translate (use --top NAME to "
+                       "translate a function block as the controller)");
+        return false;
+      }
+      at = !unit.types.empty()     ? unit.types[0]->loc
+           : !unit.globals.empty() ? unit.globals[0]->loc
+                                   : opts.unitStart;
+      diag.error(at, "no PROGRAM to translate: the input declares no "
+                     "program, function block or function (only types or "
+                     "global variables)");
       return false;
     }
   }

@@ -41,6 +41,9 @@ struct LowerOptions {
   /// Durations used outside the PLC code (IEC 61499 parameters), counted
   /// when the tick is chosen.
   std::vector<int64_t> extraTimesNs;
+  /// Where the first input file starts: errors about the unit as a whole
+  /// (no program in it) point there when no declaration can be named.
+  llvm::SMLoc unitStart;
 };
 
 /// An IEC 61499 function block's reaction to one event input: `body` runs

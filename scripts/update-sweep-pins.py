@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""Rewrites the pinned counts of the corpus-sweep tests: the CHECK lines
+between `# BEGIN PINS` and `# END PINS` of each test below become the exact
+output of scripts/corpus-sweep.py for its formats (files, translated,
+refused per reason, crashed), so a change that moves a count fails its test
+until the pins are updated in the same commit, which says why.
+
+usage: update-sweep-pins.py NETLIFT [CORPUS_DIR]
+"""
+import os
+import re
+import subprocess
+import sys
+
+# Test file (relative to the source root) -> the formats it sweeps.
+TESTS = {
+    "test/frontends/pnml/corpus-sweep.test": ["pnml"],
+    "test/frontends/st/corpus-sweep.test": ["st"],
+    "test/frontends/il/corpus-sweep.test": ["il"],
+    "test/frontends/tcpou/corpus-sweep.test": ["tcpou"],
+    "test/frontends/plcopen/corpus-sweep.test": ["plcopen_xml"],
+    "test/frontends/iec61499/corpus-sweep.test": ["iec61499"],
+    "test/frontends/hybrid/corpus-sweep.test": ["spaceex"],
+}
+
+
+def escape(line):
+    # FileCheck reads {{...}} and [[...]] as patterns.
+    return line.replace("{{", "{{[{][{]}}").replace("[[", "{{[[][[]}}")
+
+
+def main():
+    netlift = os.path.abspath(sys.argv[1])
+    root = os.path.normpath(os.path.join(os.path.dirname(__file__), ".."))
+    corpus = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
+        root, "..", "shared", "corpus")
+    sweep = os.path.join(root, "scripts", "corpus-sweep.py")
+    for test, formats in TESTS.items():
+        out = subprocess.run([sys.executable, sweep, netlift, corpus] + formats,
+                             capture_output=True, text=True).stdout
+        lines = out.rstrip("\n").split("\n")
+        pins = ["# CHECK: " + escape(lines[0].strip())]
+        pins += ["# CHECK-NEXT: " + escape(l.strip()) for l in lines[1:]]
+        pins.append("# CHECK-NOT: {{.}}")
+        path = os.path.join(root, test)
+        text = open(path).read()
+        new = re.sub(r"(# BEGIN PINS[^\n]*\n).*?(# END PINS)",
+                     lambda m: m.group(1) + "\n".join(pins) + "\n" +
+                     m.group(2), text, flags=re.S)
+        if new != text:
+            open(path, "w").write(new)
+            print(f"updated {test}")
+
+
+if __name__ == "__main__":
+    main()
