@@ -336,28 +336,14 @@ bool netlift::composeSystem(Design &design, DiagEngine &diag,
   return Composer(design, diag, opts).run(report, stats);
 }
 
-bool netlift::parseComposeOptions(const PassOptions &opts, DiagEngine &diag,
+bool netlift::parseComposeOptions(const PassOptions &opts, DiagEngine &,
                                   ComposeOptions &out) {
-  if (auto it = opts.find("inst"); it != opts.end()) {
-    llvm::SmallVector<StringRef, 4> parts;
-    StringRef(it->second).split(parts, ',', -1, false);
-    for (StringRef p : parts)
-      out.instances.push_back(p.trim().str());
-  }
-  if (auto it = opts.find("connect"); it != opts.end())
-    out.connectFile = it->second;
-  if (auto it = opts.find("name"); it != opts.end())
-    out.systemName = it->second;
-  if (auto it = opts.find("match"); it != opts.end()) {
-    if (it->second == "names")
-      out.matchNames = true;
-    else if (it->second == "none")
-      out.matchNames = false;
-    else {
-      diag.error(SMLoc(), "compose: match= takes names or none");
-      return false;
-    }
-  }
+  out.instances = opts.list("inst");
+  out.connectFile = opts.text("connect");
+  if (opts.has("name"))
+    out.systemName = opts.text("name");
+  if (opts.has("match"))
+    out.matchNames = opts.text("match") == "names";
   return true;
 }
 

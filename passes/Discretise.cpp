@@ -1457,63 +1457,36 @@ public:
   explicit DiscretisePass(const PassOptions &opts) : opts(opts) {}
 
   bool parseOptions(DiagEngine &diag, GridSpec &spec) {
-    unsigned given =
-        opts.count("grid") + opts.count("points") + opts.count("step");
+    unsigned given = opts.has("grid") + opts.has("points") + opts.has("step");
     if (given != 1) {
       diag.error(llvm::SMLoc(), "discretise needs exactly one of grid=N, "
                                 "points=a,b,... or step=D");
       return false;
     }
-    if (opts.count("grid")) {
-      unsigned long long n;
-      if (StringRef(opts.at("grid")).getAsInteger(10, n) || n < 1 ||
-          n > 100000) {
+    if (opts.has("grid")) {
+      if (opts.count("grid") > 100000) {
         diag.error(llvm::SMLoc(),
                    "discretise: grid= needs a whole number from 1 to 100000");
         return false;
       }
       spec.mode = GridSpec::Mode::Count;
-      spec.count = unsigned(n);
-    } else if (opts.count("points")) {
+      spec.count = unsigned(opts.count("grid"));
+    } else if (opts.has("points")) {
       spec.mode = GridSpec::Mode::Points;
-      llvm::SmallVector<StringRef, 8> parts;
-      StringRef(opts.at("points")).split(parts, ',');
-      for (StringRef p : parts) {
-        double v;
-        if (p.trim().getAsDouble(v)) {
-          diag.error(llvm::SMLoc(), "discretise: '" + p.trim() +
-                                        "' in points= is not a number");
-          return false;
-        }
-        spec.points.push_back(v);
-      }
+      spec.points = opts.numbers("points");
     } else {
       spec.mode = GridSpec::Mode::Step;
-      if (StringRef(opts.at("step")).getAsDouble(spec.step) ||
-          !(spec.step > 0)) {
-        diag.error(llvm::SMLoc(),
-                   "discretise: step= needs a positive time in ticks");
-        return false;
-      }
+      spec.step = opts.number("step");
     }
     return true;
   }
 
   bool run(Design &design, DiagEngine &diag, Statistics &stats) override {
     GridSpec spec;
-    bool exact = false;
-    if (!parseOptions(diag, spec) ||
-        !parseBoolOption(opts, "discretise", "exact", diag, exact))
+    if (!parseOptions(diag, spec))
       return false;
-    bool numeric = false;
-    if (opts.count("solver")) {
-      if (opts.at("solver") == "numeric")
-        numeric = true;
-      else if (opts.at("solver") != "auto") {
-        diag.error(llvm::SMLoc(), "discretise: solver= takes auto or numeric");
-        return false;
-      }
-    }
+    bool exact = opts.flag("exact");
+    bool numeric = opts.text("solver", "auto") == "numeric";
     ReportStream reportStream;
     if (!reportStream.open(opts, "discretise", diag))
       return false;

@@ -326,11 +326,7 @@ bool Flattener::resolveEvents() {
 
 class FlattenPass : public Pass {
 public:
-  explicit FlattenPass(const PassOptions &opts) {
-    auto it = opts.find("top");
-    if (it != opts.end())
-      top = it->second;
-  }
+  explicit FlattenPass(const PassOptions &opts) : top(opts.text("top")) {}
   bool run(Design &d, DiagEngine &diag, Statistics &stats) override {
     std::string why;
     Module *t = d.findTop(top, why);

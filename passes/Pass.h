@@ -24,8 +24,54 @@
 
 namespace netlift {
 
-/// Option values given to one pass in a pipeline (`name{k=v,k2=v2}`).
-using PassOptions = std::map<std::string, std::string>;
+/// What an option's value must be (PassRegistry.def says which).
+enum class OptionKind {
+  Name,
+  Names,
+  Count,
+  Number,
+  Numbers,
+  PositiveNumber,
+  Bool,
+  File,
+  Choice,
+  Components
+};
+
+/// One option a pass takes, declared in PassRegistry.def.
+struct PassOptionInfo {
+  llvm::StringRef pass;
+  llvm::StringRef key;
+  OptionKind kind;
+  llvm::StringRef value;   // as the docs write it: NAME, N, a|b
+  llvm::StringRef meaning; // one line
+};
+
+/// The option values given to one pass (`name{k=v,k2=v2}`), checked
+/// against their kinds when the pipeline was parsed; passes read them
+/// typed.
+class PassOptions {
+public:
+  bool has(llvm::StringRef key) const { return values.count(key.str()); }
+  /// Name, File, Choice: the text (`dflt` when absent).
+  std::string text(llvm::StringRef key, llvm::StringRef dflt = "") const;
+  /// Names, Numbers, Components: the comma-separated items, trimmed.
+  std::vector<std::string> list(llvm::StringRef key) const;
+  /// Count.
+  uint64_t count(llvm::StringRef key) const;
+  /// Number, PositiveNumber.
+  double number(llvm::StringRef key) const;
+  std::vector<double> numbers(llvm::StringRef key) const;
+  /// Bool (`dflt` when absent).
+  bool flag(llvm::StringRef key, bool dflt = false) const;
+  /// Sets a value (a pass handing options on to the passes it runs).
+  void set(llvm::StringRef key, llvm::StringRef value) {
+    values[key.str()] = value.str();
+  }
+
+private:
+  std::map<std::string, std::string> values;
+};
 
 /// Named counters, printed by --stats in name order.
 class Statistics {
@@ -56,11 +102,6 @@ private:
   llvm::raw_ostream *os = nullptr;
 };
 
-/// Reads the Boolean option `key` (true/false/1/0) into `out` when it is
-/// given; false after reporting a malformed value.
-bool parseBoolOption(const PassOptions &opts, llvm::StringRef pass,
-                     llvm::StringRef key, DiagEngine &diag, bool &out);
-
 class Pass {
 public:
   virtual ~Pass();
@@ -72,10 +113,10 @@ public:
 struct PassInfo {
   llvm::StringRef name;
   llvm::StringRef summary;
-  llvm::StringRef options; // "key=VALUE: meaning; ..."
   std::unique_ptr<Pass> (*create)(const PassOptions &);
-  /// The option keys this pass accepts.
-  std::vector<std::string> optionKeys() const;
+  /// The options this pass takes, in registry order.
+  std::vector<const PassOptionInfo *> options() const;
+  const PassOptionInfo *option(llvm::StringRef key) const;
 };
 
 llvm::ArrayRef<PassInfo> passRegistry();

@@ -4,6 +4,8 @@
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
 
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
 
 #include <algorithm>
@@ -15,53 +17,166 @@ Pass::~Pass() = default;
 
 bool ReportStream::open(const PassOptions &opts, StringRef pass,
                         DiagEngine &diag) {
-  auto it = opts.find("report");
-  if (it == opts.end())
+  if (!opts.has("report"))
     return true;
-  if (it->second == "-") {
+  std::string path = opts.text("report");
+  if (path == "-") {
     os = &llvm::outs();
     return true;
   }
   std::error_code ec;
-  file = std::make_unique<llvm::raw_fd_ostream>(it->second, ec);
+  file = std::make_unique<llvm::raw_fd_ostream>(path, ec);
   if (ec) {
     diag.error(llvm::SMLoc(),
-               pass + ": cannot write '" + it->second + "': " + ec.message());
+               pass + ": cannot write '" + path + "': " + ec.message());
     return false;
   }
   os = file.get();
   return true;
 }
 
-bool netlift::parseBoolOption(const PassOptions &opts, StringRef pass,
-                              StringRef key, DiagEngine &diag, bool &out) {
-  auto it = opts.find(key.str());
-  if (it == opts.end())
-    return true;
-  if (it->second == "true" || it->second == "1")
-    out = true;
-  else if (it->second == "false" || it->second == "0")
-    out = false;
-  else {
-    diag.error(llvm::SMLoc(), pass + ": " + key + "= takes true or false");
-    return false;
+//===----------------------------------------------------------------------===//
+// Typed option values (checked by the pipeline parser)
+//===----------------------------------------------------------------------===//
+
+std::string PassOptions::text(StringRef key, StringRef dflt) const {
+  auto it = values.find(key.str());
+  return it == values.end() ? dflt.str() : it->second;
+}
+
+std::vector<std::string> PassOptions::list(StringRef key) const {
+  std::vector<std::string> items;
+  llvm::SmallVector<StringRef, 8> parts;
+  StringRef(text(key)).split(parts, ',', -1, false);
+  for (StringRef p : parts)
+    if (!p.trim().empty())
+      items.push_back(p.trim().str());
+  return items;
+}
+
+uint64_t PassOptions::count(StringRef key) const {
+  uint64_t n = 0;
+  StringRef(text(key)).trim().getAsInteger(10, n);
+  return n;
+}
+
+double PassOptions::number(StringRef key) const {
+  double d = 0;
+  StringRef(text(key)).trim().getAsDouble(d);
+  return d;
+}
+
+std::vector<double> PassOptions::numbers(StringRef key) const {
+  std::vector<double> out;
+  for (const std::string &item : list(key)) {
+    double d = 0;
+    StringRef(item).getAsDouble(d);
+    out.push_back(d);
   }
-  return true;
+  return out;
+}
+
+bool PassOptions::flag(StringRef key, bool dflt) const {
+  if (!has(key))
+    return dflt;
+  std::string v = text(key);
+  return v == "true" || v == "1";
+}
+
+/// Why `value` is not of `info`'s kind, or "" when it is.
+static std::string checkOptionValue(const PassOptionInfo &info,
+                                    StringRef value) {
+  auto items = [&] {
+    llvm::SmallVector<StringRef, 8> parts;
+    value.split(parts, ',', -1, true);
+    return parts;
+  };
+  // Names are checked against the model by the pass; here they only must
+  // be one word each.
+  auto isName = [](StringRef n) {
+    n = n.trim();
+    return !n.empty() && llvm::none_of(n, [](char c) {
+      return isspace((unsigned char)c) || c == ',' || c == '{' || c == '}' ||
+             c == '=';
+    });
+  };
+  switch (info.kind) {
+  case OptionKind::Name:
+    return isName(value) ? "" : "a name";
+  case OptionKind::Names:
+    for (StringRef n : items())
+      if (!isName(n))
+        return "names separated by commas";
+    return "";
+  case OptionKind::Count: {
+    uint64_t n;
+    return !value.getAsInteger(10, n) && n >= 1 ? "" : "a whole number from 1";
+  }
+  case OptionKind::Number:
+  case OptionKind::PositiveNumber: {
+    double d;
+    if (value.getAsDouble(d))
+      return "a number";
+    return info.kind == OptionKind::PositiveNumber && !(d > 0)
+               ? "a positive number"
+               : "";
+  }
+  case OptionKind::Numbers:
+    for (StringRef n : items()) {
+      double d;
+      if (n.trim().getAsDouble(d))
+        return "numbers separated by commas";
+    }
+    return "";
+  case OptionKind::Bool:
+    return value == "true" || value == "false" || value == "1" || value == "0"
+               ? ""
+               : "true or false";
+  case OptionKind::File:
+    return "";
+  case OptionKind::Choice: {
+    llvm::SmallVector<StringRef, 4> words;
+    info.value.split(words, '|');
+    return llvm::is_contained(words, value)
+               ? ""
+               : "one of " + llvm::join(words, ", ");
+  }
+  case OptionKind::Components:
+    for (StringRef c : items()) {
+      auto [n, m] = c.trim().split(':');
+      if (!isName(n) || !isName(m))
+        return "NAME:MODULE items separated by commas";
+    }
+    return "";
+  }
+  return "";
 }
 
 // Pass factories, one per registry line, defined in the pass's own file.
 namespace netlift {
-#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                            \
+#define NETLIFT_PASS(NAME, CLASS, SUMMARY)                                     \
   std::unique_ptr<Pass> create##CLASS(const PassOptions &);
+#define NETLIFT_PASS_OPTION(PASS, KEY, KIND, VALUE, MEANING)
 #include "passes/PassRegistry.def"
 #undef NETLIFT_PASS
+#undef NETLIFT_PASS_OPTION
 } // namespace netlift
 
 static const PassInfo registry[] = {
-#define NETLIFT_PASS(NAME, CLASS, SUMMARY, OPTIONS)                            \
-  {#NAME, SUMMARY, OPTIONS, create##CLASS},
+#define NETLIFT_PASS(NAME, CLASS, SUMMARY) {#NAME, SUMMARY, create##CLASS},
+#define NETLIFT_PASS_OPTION(PASS, KEY, KIND, VALUE, MEANING)
 #include "passes/PassRegistry.def"
 #undef NETLIFT_PASS
+#undef NETLIFT_PASS_OPTION
+};
+
+static const PassOptionInfo optionRegistry[] = {
+#define NETLIFT_PASS(NAME, CLASS, SUMMARY)
+#define NETLIFT_PASS_OPTION(PASS, KEY, KIND, VALUE, MEANING)                   \
+  {#PASS, #KEY, OptionKind::KIND, VALUE, MEANING},
+#include "passes/PassRegistry.def"
+#undef NETLIFT_PASS
+#undef NETLIFT_PASS_OPTION
 };
 
 llvm::ArrayRef<PassInfo> netlift::passRegistry() { return registry; }
@@ -73,13 +188,19 @@ const PassInfo *netlift::lookupPass(StringRef name) {
   return nullptr;
 }
 
-std::vector<std::string> PassInfo::optionKeys() const {
-  std::vector<std::string> keys;
-  llvm::SmallVector<StringRef, 4> parts;
-  options.split(parts, ';', -1, false);
-  for (StringRef p : parts)
-    keys.push_back(p.trim().split('=').first.trim().str());
-  return keys;
+std::vector<const PassOptionInfo *> PassInfo::options() const {
+  std::vector<const PassOptionInfo *> out;
+  for (const PassOptionInfo &o : optionRegistry)
+    if (o.pass == name)
+      out.push_back(&o);
+  return out;
+}
+
+const PassOptionInfo *PassInfo::option(StringRef key) const {
+  for (const PassOptionInfo &o : optionRegistry)
+    if (o.pass == name && o.key == key)
+      return &o;
+  return nullptr;
 }
 
 void netlift::printPassList(llvm::raw_ostream &os, bool markdown) {
@@ -89,23 +210,23 @@ void netlift::printPassList(llvm::raw_ostream &os, bool markdown) {
           "`passes/PassRegistry.def`;\na test keeps this page in sync. Run "
           "passes with `netlift opt IN -p 'a,b{key=value}'`.\n\n";
   for (const PassInfo &p : registry) {
-    llvm::SmallVector<StringRef, 4> opts;
-    p.options.split(opts, ';', -1, false);
+    std::vector<const PassOptionInfo *> opts = p.options();
     if (markdown) {
       os << "## `" << p.name << "`\n\n" << p.summary << ".\n\n";
       if (!opts.empty()) {
         os << "Options:\n\n";
-        for (StringRef o : opts)
-          os << "- `" << o.trim().split(':').first
-             << "`:" << o.trim().split(':').second << "\n";
+        for (const PassOptionInfo *o : opts)
+          os << "- `" << o->key << "=" << o->value << "`: " << o->meaning
+             << "\n";
         os << "\n";
       }
     } else {
       os << "  " << p.name;
       os.indent(p.name.size() < 14 ? 14 - p.name.size() : 1);
       os << p.summary << "\n";
-      for (StringRef o : opts)
-        os.indent(18) << "{" << o.trim() << "}\n";
+      for (const PassOptionInfo *o : opts)
+        os.indent(18) << "{" << o->key << "=" << o->value << ": " << o->meaning
+                      << "}\n";
     }
   }
 }
@@ -183,14 +304,14 @@ bool PipelineParser::parse(
     skipSpace();
     if (pos < text.size() && text[pos] == '{') {
       ++pos;
-      std::vector<std::string> keys = info->optionKeys();
       for (;;) {
         skipSpace();
         size_t kat = pos;
         StringRef key = word();
         if (key.empty())
           return error(kat, "expected an option name");
-        if (std::find(keys.begin(), keys.end(), key.str()) == keys.end())
+        const PassOptionInfo *option = info->option(key);
+        if (!option)
           return error(kat,
                        "unknown option '" + key + "' for pass '" + name + "'");
         skipSpace();
@@ -221,9 +342,14 @@ bool PipelineParser::parse(
         StringRef value = text.slice(vstart, pos).trim();
         if (value.empty())
           return error(vstart, "expected a value for option '" + key + "'");
-        if (opts.count(key.str()))
+        if (opts.has(key))
           return error(kat, "option '" + key + "' given twice");
-        opts[key.str()] = value.str();
+        std::string want = checkOptionValue(*option, value);
+        if (!want.empty())
+          return error(value.data() - text.data(), name + ": " + key +
+                                                       "= takes " + want +
+                                                       ", not '" + value + "'");
+        opts.set(key, value);
         if (pos >= text.size())
           return error(pos,
                        "expected '}' to close the options of '" + name + "'");

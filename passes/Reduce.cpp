@@ -41,8 +41,8 @@ public:
     if (!report.open(opts, "reduce", diag))
       return false;
     PassOptions sub;
-    if (opts.count("top"))
-      sub["top"] = opts.at("top");
+    if (opts.has("top"))
+      sub.set("top", opts.text("top"));
     std::vector<std::unique_ptr<Pass>> passes;
     for (const char *name :
          {"reduce-coi", "reduce-consts", "reduce-dead", "reduce-ranges",
@@ -50,9 +50,9 @@ public:
       PassOptions o = sub;
       if (llvm::StringRef(name) == "reduce-coi" ||
           llvm::StringRef(name) == "reduce-chains") {
-        if (!opts.count("observe"))
+        if (!opts.has("observe"))
           continue;
-        o["observe"] = opts.at("observe");
+        o.set("observe", opts.text("observe"));
       }
       passes.push_back(lookupPass(name)->create(o));
     }

@@ -16,8 +16,7 @@ Module *reduce::flatTop(Design &d, DiagEngine &diag, const PassOptions &opts,
   if (!reverify(d, diag, pass))
     return nullptr;
   std::string why;
-  auto it = opts.find("top");
-  Module *m = d.findTop(it == opts.end() ? "" : it->second, why);
+  Module *m = d.findTop(opts.text("top"), why);
   if (!m) {
     llvm::errs() << "netlift: error: " << pass << ": " << why << "\n";
     return nullptr;
@@ -354,16 +353,13 @@ reduce::observedElements(const Module &m, const PassOptions &opts,
   o.var.assign(m.vars.size(), false);
   o.port.assign(m.ports.size(), false);
   o.trans.assign(m.transitions.size(), false);
-  auto it = opts.find("observe");
-  if (it == opts.end()) {
+  if (!opts.has("observe")) {
     for (uint32_t p = 0; p < m.ports.size(); ++p)
       o.port[p] = m.ports[p].isOutput();
     return o;
   }
-  llvm::SmallVector<StringRef, 8> names;
-  StringRef(it->second).split(names, ',', -1, false);
-  for (StringRef n : names) {
-    n = n.trim();
+  for (const std::string &name : opts.list("observe")) {
+    StringRef n = name;
     Symbol s = m.lookup(n);
     if (s.kind == SymKind::Place)
       o.place[s.index] = true;
