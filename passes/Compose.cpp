@@ -16,6 +16,7 @@
 #include "passes/Compose.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Names.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Types.h"
 #include "ir/net/Verifier.h"

@@ -532,7 +532,7 @@ private:
     for (uint32_t v = 0; v < m.vars.size(); ++v) {
       const Var &var = m.vars[v];
       if (var.type->isBool()) {
-        auto init = reduce::initialValue(var);
+        auto init = net::initialValue(var);
         bits.push_back({{SymKind::Var, v}, var.name, var.loc, init && *init});
         continue;
       }
@@ -576,8 +576,8 @@ private:
   /// (under interleaving); the original reports that as a write conflict.
   bool checkWriters(const Module &m, DiagEngine &diag) {
     std::vector<std::vector<uint32_t>> writers(bits.size());
-    reduce::forEachAssign(m, [&](const AssignStmt *a, int t) {
-      Symbol s = reduce::targetRoot(a->target);
+    net::forEachAssign(m, [&](const AssignStmt *a, int t) {
+      Symbol s = net::targetRoot(a->target);
       auto it = atomIndex.find(uint64_t(s.kind) << 32 | s.index);
       if (it == atomIndex.end())
         return;

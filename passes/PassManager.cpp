@@ -46,8 +46,9 @@ std::string PassOptions::text(StringRef key, StringRef dflt) const {
 
 std::vector<std::string> PassOptions::list(StringRef key) const {
   std::vector<std::string> items;
+  std::string value = text(key); // the parts point into it
   llvm::SmallVector<StringRef, 8> parts;
-  StringRef(text(key)).split(parts, ',', -1, false);
+  StringRef(value).split(parts, ',', -1, false);
   for (StringRef p : parts)
     if (!p.trim().empty())
       items.push_back(p.trim().str());

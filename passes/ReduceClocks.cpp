@@ -45,8 +45,8 @@ public:
                  ? int(r->sym.index)
                  : -1;
     };
-    reduce::forEachRead(*m, [&](const Expr *root, int) {
-      reduce::walkExpr(root, [&](const Expr *e) {
+    net::forEachRead(*m, [&](const Expr *root, int) {
+      net::walkExpr(root, [&](const Expr *e) {
         auto *b = dyn_cast<BinaryExpr>(e);
         if (!b || b->op < BinaryOp::Eq || b->op > BinaryOp::Ge)
           return;
@@ -64,16 +64,16 @@ public:
       });
     });
     // Any other read disqualifies.
-    reduce::forEachRead(*m, [&](const Expr *root, int) {
-      reduce::walkExpr(root, [&](const Expr *e) {
+    net::forEachRead(*m, [&](const Expr *root, int) {
+      net::walkExpr(root, [&](const Expr *e) {
         int c = isClockRef(e);
         if (c >= 0 &&
             std::find(compared.begin(), compared.end(), e) == compared.end())
           usable[c] = false;
       });
     });
-    reduce::forEachAssign(*m, [&](const AssignStmt *a, int) {
-      Symbol s = reduce::targetRoot(a->target);
+    net::forEachAssign(*m, [&](const AssignStmt *a, int) {
+      Symbol s = net::targetRoot(a->target);
       if (s.kind != SymKind::Var || !m->vars[s.index].type->isClock())
         return;
       int64_t k;

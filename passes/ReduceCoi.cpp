@@ -54,7 +54,7 @@ public:
     }
   }
   void readExpr(const Expr *e) {
-    reduce::walkExpr(e, [&](const Expr *x) {
+    net::walkExpr(e, [&](const Expr *x) {
       auto *r = dyn_cast<Ref>(x);
       if (!r)
         return;
@@ -67,7 +67,7 @@ public:
     });
   }
   bool targetRelevant(const AssignStmt *a) const {
-    Symbol s = reduce::targetRoot(a->target);
+    Symbol s = net::targetRoot(a->target);
     return (s.kind == SymKind::Var && var[s.index]) ||
            (s.kind == SymKind::Port && port[s.index]);
   }
@@ -105,8 +105,8 @@ public:
   }
   bool writesRelevant(const Transition &t) const {
     bool any = false;
-    reduce::forEachAssign(
-        t.action(), [&](const AssignStmt *a) { any |= targetRelevant(a); });
+    net::forEachAssign(t.action(),
+                       [&](const AssignStmt *a) { any |= targetRelevant(a); });
     return any;
   }
 
@@ -191,9 +191,10 @@ public:
     b.setModule(m);
     for (Transition &t : m->transitions)
       if (t.extras && t.extras->hasAction)
-        t.extras->action = reduce::dropAssignments(
-            b, t.extras->action,
-            [&](const AssignStmt *a) { return cone.targetRelevant(a); });
+        t.extras->action =
+            net::dropAssignments(b, t.extras->action, [&](const AssignStmt *a) {
+              return cone.targetRelevant(a);
+            });
     reduce::removePorts(d, *m, cone.port);
     reduce::compactModule(*m, cone.place, cone.trans, cone.var);
     return reduce::reverify(d, diag, "reduce-coi");

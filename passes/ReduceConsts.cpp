@@ -310,8 +310,8 @@ public:
     unsigned consts = 0, unused = 0;
     // Assignments whose value is a constant within the range.
     std::vector<bool> safeWrites(nv, true);
-    reduce::forEachAssign(*m, [&](const AssignStmt *a, int) {
-      Symbol s = reduce::targetRoot(a->target);
+    net::forEachAssign(*m, [&](const AssignStmt *a, int) {
+      Symbol s = net::targetRoot(a->target);
       if (s.kind != SymKind::Var)
         return;
       const Type *t = m->vars[s.index].type;
@@ -326,7 +326,7 @@ public:
       if (!t->isScalar() || t->isClock() || t->isReal())
         continue;
       if (uses.writers[v].empty()) {
-        if (auto x = reduce::initialValue(var)) {
+        if (auto x = net::initialValue(var)) {
           cf.constVars[v] = *x;
           keepVar[v] = false;
           ++consts;
@@ -374,9 +374,9 @@ public:
         tr.extras->guard = g;
       }
       if (tr.extras->hasAction)
-        tr.extras->action = cf.foldBlock(reduce::dropAssignments(
+        tr.extras->action = cf.foldBlock(net::dropAssignments(
             b, tr.extras->action, [&](const AssignStmt *a) {
-              Symbol s = reduce::targetRoot(a->target);
+              Symbol s = net::targetRoot(a->target);
               return !(s.kind == SymKind::Var && dropWrites[s.index]);
             }));
     }

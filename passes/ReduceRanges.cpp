@@ -154,7 +154,7 @@ public:
       const Var &var = m->vars[v];
       if (!candidate(var))
         continue;
-      std::optional<int64_t> init = reduce::initialValue(var);
+      std::optional<int64_t> init = net::initialValue(var);
       if (!init)
         continue;
       usable[v] = true;
@@ -165,8 +165,8 @@ public:
     std::vector<bool> wraps(nv);
     for (unsigned round = 0;; ++round) {
       bool changed = false;
-      reduce::forEachAssign(*m, [&](const AssignStmt *a, int) {
-        Symbol s = reduce::targetRoot(a->target);
+      net::forEachAssign(*m, [&](const AssignStmt *a, int) {
+        Symbol s = net::targetRoot(a->target);
         if (s.kind != SymKind::Var || !usable[s.index])
           return;
         const Type *t = m->vars[s.index].type;
@@ -218,7 +218,7 @@ public:
       if (got.lo == decl.lo && got.hi == decl.hi)
         continue;
       bitsSaved += bits(decl.lo, decl.hi) - bits(got.lo, got.hi);
-      int64_t init = *reduce::initialValue(var);
+      int64_t init = *net::initialValue(var);
       var.type = d.types.getRange(got.lo, got.hi);
       var.init = b.intLit(init, var.loc); // the new type's default may differ
       ++narrowed;

@@ -5,13 +5,15 @@
 // all need the same few things: which module that is, who reads and who
 // writes each variable, a way to remove entities while keeping every index
 // consistent, and a re-verification afterwards so that the next pass sees
-// resolved names again. They live here, written once.
+// resolved names again. They live here, written once; the walks over what
+// a module reads and writes are NetIR's own (ir/net/Walk.h).
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_PASSES_REDUCESUPPORT_H
 #define NETLIFT_PASSES_REDUCESUPPORT_H
 
 #include "ir/net/Builder.h"
+#include "ir/net/Walk.h"
 #include "passes/Pass.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
@@ -26,39 +28,6 @@ namespace netlift::reduce {
 /// first). Null after reporting (naming `pass`).
 net::Module *flatTop(net::Design &d, DiagEngine &diag, const PassOptions &opts,
                      llvm::StringRef pass);
-
-/// Calls `f` on `e` and every sub-expression.
-void walkExpr(const net::Expr *e,
-              llvm::function_ref<void(const net::Expr *)> f);
-
-/// Every expression the module evaluates, with the transition it belongs to
-/// (-1: an output definition or initial value): guards, condition arcs,
-/// and in actions the conditions, selectors, labels, loop bounds, values
-/// assigned and indices of assignment targets.
-void forEachRead(const net::Module &m,
-                 llvm::function_ref<void(const net::Expr *, int)> f);
-
-/// Every assignment in every action, with its transition.
-void forEachAssign(const net::Module &m,
-                   llvm::function_ref<void(const net::AssignStmt *, int)> f);
-
-/// Every assignment in `block`, nested ones included.
-void forEachAssign(net::Block block,
-                   llvm::function_ref<void(const net::AssignStmt *)> f);
-
-/// `block` without the assignments `keep` rejects (nested ones included).
-net::Block
-dropAssignments(net::Builder &b, net::Block block,
-                llvm::function_ref<bool(const net::AssignStmt *)> keep);
-
-/// The initial value of a scalar variable (its `init` or the type's
-/// default: false, the low bound of a range, 0), or nullopt if the
-/// initialiser is not a constant.
-std::optional<int64_t> initialValue(const net::Var &v);
-
-/// The variable or port an assignment target writes (through indices and
-/// fields).
-net::Symbol targetRoot(const net::Expr *target);
 
 /// Per variable: the transitions writing it, and whether anything reads
 /// it. Per place: whether an expression mentions it.

@@ -17,6 +17,7 @@
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StdLib.h"
 #include "ir/net/Builder.h"
+#include "ir/net/Names.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 #include "ir/support/XmlEscape.h"

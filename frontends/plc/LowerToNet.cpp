@@ -25,6 +25,7 @@
 #include "frontends/plc/Sema.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Names.h"
 #include "ir/net/Parser.h"
 
 #include "llvm/ADT/STLExtras.h"

@@ -18,6 +18,7 @@
 #include "frontends/XmlSupport.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Names.h"
 #include "ir/net/Parser.h"
 
 #include "llvm/ADT/StringMap.h"

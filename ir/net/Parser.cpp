@@ -1,5 +1,6 @@
 //===- Parser.cpp - NetIR text parser -------------------------------------===//
 #include "ir/net/Parser.h"
+#include "ir/net/Names.h"
 
 #include "ir/net/Builder.h"
 #include "ir/net/Lexer.h"
@@ -16,28 +17,6 @@ using namespace netlift;
 using namespace netlift::net;
 using llvm::SMLoc;
 using llvm::StringRef;
-
-bool netlift::net::isReservedWord(StringRef n) {
-  return llvm::StringSwitch<bool>(n)
-      .Cases("and", "or", "xor", "not", "true", "false", "inf", true)
-      .Cases("if", "elif", "else", "case", "for", "in", true)
-      .Default(false);
-}
-
-bool netlift::net::isIdentifier(StringRef n) { return toIdentifier(n) == n; }
-
-std::string netlift::net::toIdentifier(StringRef name, bool keepDots) {
-  std::string out;
-  for (char c : name)
-    out += (isalnum((unsigned char)c) || c == '_' || (keepDots && c == '.'))
-               ? c
-               : '_';
-  if (out.empty() || isdigit((unsigned char)out[0]))
-    out = "_" + out;
-  if (isReservedWord(out))
-    out += "_";
-  return out;
-}
 
 namespace netlift::net::detail {
 

@@ -27,20 +27,6 @@ bool parseNetIR(unsigned bufferID, DiagEngine &diag, Design &design);
 /// the command line). Null after reporting an error.
 Expr *parseExpression(unsigned bufferID, DiagEngine &diag, Design &design);
 
-/// Is `name` a reserved word of the expression language (and so not usable
-/// as a NetIR identifier)?
-bool isReservedWord(llvm::StringRef name);
-
-/// Is `name` a simple NetIR identifier (letters, digits and '_', not
-/// starting with a digit, not reserved)?
-bool isIdentifier(llvm::StringRef name);
-
-/// A NetIR identifier made from a foreign name (a PNML id, a PLC variable,
-/// a SpaceEx label): every other character becomes '_' ('.' is kept when
-/// `keepDots`), a leading digit or an empty name gets a '_' in front, and
-/// a reserved word a '_' after.
-std::string toIdentifier(llvm::StringRef name, bool keepDots = false);
-
 namespace detail {
 class Parser;
 }
