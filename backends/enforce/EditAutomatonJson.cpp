@@ -7,6 +7,7 @@
 #include <map>
 
 using namespace netlift;
+using namespace netlift::enforce;
 using namespace netlift::automata;
 using llvm::StringRef;
 
@@ -19,8 +20,8 @@ static void quoted(llvm::raw_ostream &os, StringRef s) {
 
 // Written by hand rather than through json::OStream so that each
 // transition is one line: the files are read by people and diffed.
-void netlift::writeEditAutomatonJson(const EditAutomaton &ea,
-                                     llvm::raw_ostream &os) {
+void netlift::enforce::writeEditAutomatonJson(const EditAutomaton &ea,
+                                              llvm::raw_ostream &os) {
   os << "{\n  \"format\": \"" << kFormat << "\",\n  \"version\": 1,\n"
      << "  \"inputs\": [";
   for (size_t i = 0; i < ea.signals.size(); ++i) {
@@ -89,8 +90,9 @@ public:
 };
 } // namespace
 
-bool netlift::readEditAutomatonJson(unsigned bufferID, DiagEngine &diag,
-                                    EditAutomaton &ea) {
+bool netlift::enforce::readEditAutomatonJson(unsigned bufferID,
+                                             DiagEngine &diag,
+                                             EditAutomaton &ea) {
   StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
   JsonReader r(buf, diag);
   llvm::Expected<llvm::json::Value> parsed = llvm::json::parse(buf);

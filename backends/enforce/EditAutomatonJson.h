@@ -18,7 +18,7 @@
 
 #include "llvm/Support/raw_ostream.h"
 
-namespace netlift {
+namespace netlift::enforce {
 
 void writeEditAutomatonJson(const automata::EditAutomaton &ea,
                             llvm::raw_ostream &os);
@@ -28,6 +28,6 @@ void writeEditAutomatonJson(const automata::EditAutomaton &ea,
 bool readEditAutomatonJson(unsigned bufferID, DiagEngine &diag,
                            automata::EditAutomaton &ea);
 
-} // namespace netlift
+} // namespace netlift::enforce
 
 #endif

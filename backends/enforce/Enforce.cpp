@@ -8,13 +8,13 @@
 #include <algorithm>
 
 using namespace netlift;
+using namespace netlift::enforce;
 using namespace netlift::automata;
 using llvm::StringRef;
 
-bool netlift::enforceTrace(const EditAutomaton &ea, unsigned bufferID,
-                           DiagEngine &diag,
-                           const std::function<void(const std::string &)> &emit,
-                           EnforceResult &r) {
+bool netlift::enforce::enforceTrace(
+    const EditAutomaton &ea, unsigned bufferID, DiagEngine &diag,
+    const std::function<void(const std::string &)> &emit, EnforceResult &r) {
   StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
   auto loc = [](StringRef s) { return llvm::SMLoc::getFromPointer(s.data()); };
   StringRef rest = buf;
@@ -127,9 +127,10 @@ bool netlift::enforceTrace(const EditAutomaton &ea, unsigned bufferID,
   return true;
 }
 
-int netlift::enforceAndJudge(const EditAutomaton &ea, unsigned bufferID,
-                             DiagEngine &diag, llvm::raw_ostream &out,
-                             llvm::raw_ostream *csv) {
+int netlift::enforce::enforceAndJudge(const EditAutomaton &ea,
+                                      unsigned bufferID, DiagEngine &diag,
+                                      llvm::raw_ostream &out,
+                                      llvm::raw_ostream *csv) {
   if (csv) {
     for (size_t i = 0; i < ea.signals.size(); ++i)
       *csv << (i ? "," : "") << ea.signals[i];
@@ -166,8 +167,8 @@ int netlift::enforceAndJudge(const EditAutomaton &ea, unsigned bufferID,
   return 3;
 }
 
-void netlift::writeEditAutomatonDot(const EditAutomaton &ea,
-                                    llvm::raw_ostream &os) {
+void netlift::enforce::writeEditAutomatonDot(const EditAutomaton &ea,
+                                             llvm::raw_ostream &os) {
   os << "digraph edit_automaton {\n";
   for (size_t s = 0; s < ea.states.size(); ++s)
     os << "  q" << s << " [shape=circle, label=\"" << ea.states[s].name << "\""
@@ -183,8 +184,8 @@ void netlift::writeEditAutomatonDot(const EditAutomaton &ea,
   os << "}\n";
 }
 
-void netlift::writeEditAutomatonTable(const EditAutomaton &ea,
-                                      llvm::raw_ostream &os) {
+void netlift::enforce::writeEditAutomatonTable(const EditAutomaton &ea,
+                                               llvm::raw_ostream &os) {
   os << "signals:";
   for (const std::string &s : ea.signals)
     os << ' ' << s;

@@ -18,7 +18,7 @@
 
 #include <functional>
 
-namespace netlift {
+namespace netlift::enforce {
 
 struct EnforceResult {
   bool conform = false;
@@ -52,6 +52,6 @@ void writeEditAutomatonDot(const automata::EditAutomaton &ea,
 void writeEditAutomatonTable(const automata::EditAutomaton &ea,
                              llvm::raw_ostream &os);
 
-} // namespace netlift
+} // namespace netlift::enforce
 
 #endif

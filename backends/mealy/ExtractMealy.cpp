@@ -7,6 +7,7 @@
 #include "llvm/ADT/SmallVector.h"
 
 using namespace netlift;
+using namespace netlift::mealy;
 using namespace netlift::net;
 
 namespace {
@@ -52,8 +53,10 @@ static bool collectSignals(const Module &m, const MealyExtractOptions &opts,
   return ok;
 }
 
-bool netlift::extractMealy(sem::Semantics &sem, const MealyExtractOptions &opts,
-                           DiagEngine &diag, automata::MealyMachine &out) {
+bool netlift::mealy::extractMealy(sem::Semantics &sem,
+                                  const MealyExtractOptions &opts,
+                                  DiagEngine &diag,
+                                  automata::MealyMachine &out) {
   const Module &m = sem.module();
   const sem::StateLayout &layout = sem.layout();
   Signals sig;

@@ -21,7 +21,7 @@
 #include "ir/semantics/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
-namespace netlift {
+namespace netlift::mealy {
 
 struct MealyExtractOptions {
   /// Refuse machines with more states (the extraction is exhaustive).
@@ -40,6 +40,6 @@ struct MealyExtractOptions {
 bool extractMealy(sem::Semantics &semantics, const MealyExtractOptions &opts,
                   DiagEngine &diag, automata::MealyMachine &out);
 
-} // namespace netlift
+} // namespace netlift::mealy
 
 #endif

@@ -2,6 +2,7 @@
 #include "backends/mealy/MealyWriters.h"
 
 using namespace netlift;
+using namespace netlift::mealy;
 using namespace netlift::automata;
 
 static bool defaultNames(const std::vector<std::string> &names, char prefix) {
@@ -11,7 +12,7 @@ static bool defaultNames(const std::vector<std::string> &names, char prefix) {
   return true;
 }
 
-void netlift::writeKiss2(const MealyMachine &m, llvm::raw_ostream &os) {
+void netlift::mealy::writeKiss2(const MealyMachine &m, llvm::raw_ostream &os) {
   os << ".i " << m.inputs.size() << "\n.o " << m.outputs.size() << "\n";
   if (!defaultNames(m.inputs, 'i')) {
     os << ".ilb";
@@ -49,7 +50,8 @@ static void quoted(llvm::raw_ostream &os, llvm::StringRef text) {
   os << '"';
 }
 
-void netlift::writeMealyDot(const MealyMachine &m, llvm::raw_ostream &os) {
+void netlift::mealy::writeMealyDot(const MealyMachine &m,
+                                   llvm::raw_ostream &os) {
   os << "digraph mealy {\n";
   for (const std::string &s : m.states) {
     os << "  ";
@@ -91,8 +93,8 @@ void netlift::writeMealyDot(const MealyMachine &m, llvm::raw_ostream &os) {
   os << "}\n";
 }
 
-void netlift::writeMealyInfo(const automata::MealyMachine &m,
-                             llvm::raw_ostream &os) {
+void netlift::mealy::writeMealyInfo(const automata::MealyMachine &m,
+                                    llvm::raw_ostream &os) {
   std::vector<int64_t> missing = m.unspecifiedVectors();
   int64_t incomplete = 0;
   for (int64_t n : missing)

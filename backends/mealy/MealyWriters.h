@@ -13,7 +13,7 @@
 
 #include "llvm/Support/raw_ostream.h"
 
-namespace netlift {
+namespace netlift::mealy {
 
 void writeKiss2(const automata::MealyMachine &m, llvm::raw_ostream &os);
 void writeMealyDot(const automata::MealyMachine &m, llvm::raw_ostream &os);
@@ -21,6 +21,6 @@ void writeMealyDot(const automata::MealyMachine &m, llvm::raw_ostream &os);
 /// leave input vectors (or symbols) unspecified.
 void writeMealyInfo(const automata::MealyMachine &m, llvm::raw_ostream &os);
 
-} // namespace netlift
+} // namespace netlift::mealy
 
 #endif

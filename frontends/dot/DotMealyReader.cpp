@@ -9,6 +9,7 @@
 #include <tuple>
 
 using namespace netlift;
+using namespace netlift::dot;
 using namespace netlift::automata;
 using llvm::SMLoc;
 using llvm::StringRef;
@@ -529,8 +530,8 @@ bool isCube(StringRef s) {
 
 } // namespace
 
-bool netlift::readMealyDot(unsigned bufferID, DiagEngine &diag,
-                           MealyMachine &m) {
+bool netlift::dot::readMealyDot(unsigned bufferID, DiagEngine &diag,
+                                MealyMachine &m) {
   StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
   DotGraph g;
   if (!DotParser(buf, diag, g).parse())

@@ -21,11 +21,11 @@
 #include "ir/automata/Mealy.h"
 #include "ir/support/Diagnostics.h"
 
-namespace netlift {
+namespace netlift::dot {
 
 bool readMealyDot(unsigned bufferID, DiagEngine &diag,
                   automata::MealyMachine &machine);
 
-} // namespace netlift
+} // namespace netlift::dot
 
 #endif

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 using namespace netlift;
+using namespace netlift::kiss2;
 using namespace netlift::automata;
 using llvm::StringRef;
 
@@ -31,7 +32,8 @@ void splitFields(StringRef line, llvm::SmallVectorImpl<Field> &out) {
 }
 } // namespace
 
-bool netlift::readKiss2(unsigned bufferID, DiagEngine &diag, MealyMachine &m) {
+bool netlift::kiss2::readKiss2(unsigned bufferID, DiagEngine &diag,
+                               MealyMachine &m) {
   StringRef buf = diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer();
   auto err = [&](llvm::SMLoc loc, const llvm::Twine &msg) {
     diag.error(loc, msg);

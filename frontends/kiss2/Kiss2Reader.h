@@ -14,11 +14,11 @@
 #include "ir/automata/Mealy.h"
 #include "ir/support/Diagnostics.h"
 
-namespace netlift {
+namespace netlift::kiss2 {
 
 bool readKiss2(unsigned bufferID, DiagEngine &diag,
                automata::MealyMachine &machine);
 
-} // namespace netlift
+} // namespace netlift::kiss2
 
 #endif

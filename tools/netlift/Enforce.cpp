@@ -53,7 +53,7 @@ static bool specAutomaton(const std::string &path, DiagEngine &diag,
       return false;
     }
     unsigned id = addInputFile(diag.sourceMgr(), path);
-    return id && readEditAutomatonJson(id, diag, ea);
+    return id && enforce::readEditAutomatonJson(id, diag, ea);
   }
   automata::MealyMachine m;
   if (!readMealySpec(path, diag, m))
@@ -83,11 +83,11 @@ int driver::runEditAutomaton(DiagEngine &diag) {
       outputFile,
       [&](llvm::raw_ostream &os) {
         if (eaTo == EaFormat::Dot)
-          writeEditAutomatonDot(ea, os);
+          enforce::writeEditAutomatonDot(ea, os);
         else if (eaTo == EaFormat::Json)
-          writeEditAutomatonJson(ea, os);
+          enforce::writeEditAutomatonJson(ea, os);
         else
-          writeEditAutomatonTable(ea, os);
+          enforce::writeEditAutomatonTable(ea, os);
       },
       diag);
 }
@@ -108,12 +108,12 @@ int driver::runEnforce(DiagEngine &diag) {
   // Streamed: each enforced vector is printed as it is emitted, and written
   // to -o (a temporary renamed into place at the end).
   if (outputFile == "-")
-    return enforceAndJudge(ea, id, diag, llvm::outs(), nullptr);
+    return enforce::enforceAndJudge(ea, id, diag, llvm::outs(), nullptr);
   int code = 1;
   if (writeResult(
           outputFile,
           [&](llvm::raw_ostream &os) {
-            code = enforceAndJudge(ea, id, diag, llvm::outs(), &os);
+            code = enforce::enforceAndJudge(ea, id, diag, llvm::outs(), &os);
           },
           diag))
     return 1;

@@ -43,7 +43,8 @@ bool driver::readMealySpec(const std::string &path, DiagEngine &diag,
       (inputFormat.empty() && ext == ".dot")) {
     unsigned id = addInputFile(sm, path);
     return id &&
-           (isKiss ? readKiss2(id, diag, m) : readMealyDot(id, diag, m)) &&
+           (isKiss ? kiss2::readKiss2(id, diag, m)
+                   : dot::readMealyDot(id, diag, m)) &&
            m.checkDeterminism(diag);
   }
   net::Design design;
@@ -54,10 +55,10 @@ bool driver::readMealySpec(const std::string &path, DiagEngine &diag,
   auto setup = statespace::ExplorationSetup::create(design, xo, diag, "mealy");
   if (!setup)
     return false;
-  MealyExtractOptions opts;
+  mealy::MealyExtractOptions opts;
   if (xo.maxStates)
     opts.maxStates = uint32_t(std::min<uint64_t>(xo.maxStates, UINT32_MAX));
-  return extractMealy(setup->semantics(), opts, diag, m);
+  return mealy::extractMealy(setup->semantics(), opts, diag, m);
 }
 
 int driver::runMealy(DiagEngine &diag) {
@@ -87,14 +88,14 @@ int driver::runMealy(DiagEngine &diag) {
     m = std::move(minimal);
   }
   if (info)
-    writeMealyInfo(m, llvm::errs());
+    mealy::writeMealyInfo(m, llvm::errs());
   return writeResult(
       outputFile,
       [&](llvm::raw_ostream &os) {
         if (mealyTo == MealyFormat::Kiss2)
-          writeKiss2(m, os);
+          mealy::writeKiss2(m, os);
         else
-          writeMealyDot(m, os);
+          mealy::writeMealyDot(m, os);
       },
       diag);
 }
