@@ -1,0 +1,192 @@
+//===- LowerCalls.cpp - PLC function and FB calls inlined
+//-------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Calls
+//===----------------------------------------------------------------------===//
+
+NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
+  Pou *fn = call->callee;
+  std::string prefix =
+      unique(sanitize(fn->name) + "_" + std::to_string(++callSites)) + ".";
+  Frame nf;
+  nf.pou = fn;
+  nf.prefix = prefix;
+  nf.external = false;
+  if (mayJump(fn->body, false)) {
+    nf.returnFlag = prefix + "_return";
+    declareTemp(nf.returnFlag, elementaryType("BOOL"), call->loc);
+    pre.push_back(b.assign(b.ref(nf.returnFlag, call->loc),
+                           b.boolLit(false, call->loc), call->loc));
+  }
+  // Locals and the result live in variables of this call site, reset at
+  // the end of the scan (functions have no memory).
+  std::vector<VarDecl *> locals = fn->vars;
+  locals.push_back(fn->resultVar);
+  std::map<std::string, CallArg *> byName;
+  for (CallArg &a : call->args)
+    byName[StringRef(a.name).upper()] = &a;
+  for (VarDecl *v : locals) {
+    if (v->section == VarSection::External)
+      continue;
+    auto given = byName.find(StringRef(v->name).upper());
+    if (v->section == VarSection::InOut) {
+      nf.aliases[v] = lvalue(given->second->value, f, pre);
+      continue;
+    }
+    std::string name = prefix + sanitize(v->name);
+    declareTemp(name, v->type, v->loc);
+    NExpr *init;
+    if (given != byName.end() && !given->second->isOutput)
+      init = expr(given->second->value, f, pre);
+    else
+      init = initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr,
+                          v->type);
+    if (init)
+      assign(b.ref(name, v->loc), init, v->type,
+             given != byName.end() && !given->second->isOutput
+                 ? given->second->value
+                 : nullptr,
+             pre, call->loc);
+  }
+  enabledBody(fn, prefix, call, nf, pre);
+  for (CallArg &a : call->args)
+    if (a.isOutput) {
+      NExpr *v = b.ref(prefix + sanitize(a.name), a.loc);
+      if (a.negated)
+        v = b.unary(net::UnaryOp::Not, v, a.loc);
+      pre.push_back(b.assign(lvalue(a.value, f, pre), v, a.loc));
+    }
+  return b.ref(prefix + sanitize(fn->name), call->loc);
+}
+
+/// The body of a called function or FB under IEC's EN/ENO rule: with EN
+/// FALSE the body does not run and ENO is FALSE; otherwise ENO starts TRUE
+/// and the body may clear it. EN is TRUE when the call does not give it.
+void Lowering::enabledBody(Pou *callee, const std::string &prefix, Expr *call,
+                           Frame &nf, Sink &out) {
+  VarDecl *en = callee->find("EN"), *eno = callee->find("ENO");
+  if (en && en->section != VarSection::Input)
+    en = nullptr;
+  if (eno && eno->section != VarSection::Output)
+    eno = nullptr;
+  SMLoc at = call->loc;
+  if (en) {
+    bool given = false;
+    for (CallArg &a : call->args)
+      given |= !a.isOutput && sameName(a.name, "EN");
+    if (!given)
+      out.push_back(
+          b.assign(b.ref(prefix + "EN", at), b.boolLit(true, at), at));
+  }
+  if (eno)
+    out.push_back(b.assign(b.ref(prefix + "ENO", at),
+                           en ? b.ref(prefix + "EN", at) : b.boolLit(true, at),
+                           at));
+  if (!en) {
+    body(callee->body, nf, out, {});
+    return;
+  }
+  Sink guarded;
+  body(callee->body, nf, guarded, {});
+  net::IfArm arm{b.ref(prefix + "EN", at),
+                 design.copy(llvm::ArrayRef<NStmt *>(guarded))};
+  out.push_back(b.ifStmt({arm}, false, {}, at));
+}
+
+void Lowering::noteClockBound(const std::string &member, Expr *value, Frame &f,
+                              SMLoc at) {
+  // A timer's bounding input (PT) must be a constant wherever it is set:
+  // its largest value is the cap of the timer's clock.
+  auto it = clockOfBound.find(member);
+  if (it == clockOfBound.end())
+    return;
+  ClockUse &cu = clocks[it->second];
+  std::optional<int64_t> c = constValue(value, f);
+  if (!c)
+    refuse(at, cu.member + " of timer '" + cu.path +
+                   "' must be a constant (it bounds the timer's clock)");
+  cu.cap = std::max(cu.cap, *c);
+}
+
+void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
+  Expr callee(ExprKind::Name, call->loc);
+  callee.var = call->var;
+  callee.name = call->name;
+  std::string path = instancePath(&callee, f);
+  Pou *fb = call->var->type->fb;
+  InstanceUse &use = instanceUses[path];
+  ++use.calls;
+  Frame nf;
+  nf.pou = fb;
+  nf.prefix = path + ".";
+  if (mayJump(fb->body, false)) {
+    nf.returnFlag = path + "._return";
+    if (mod->lookup(nf.returnFlag).kind == net::SymKind::None)
+      declareTemp(nf.returnFlag, elementaryType("BOOL"), call->loc);
+    out.push_back(b.assign(b.ref(nf.returnFlag, call->loc),
+                           b.boolLit(false, call->loc), call->loc));
+  }
+  for (CallArg &a : call->args) {
+    if (a.isOutput)
+      continue;
+    VarDecl *p = fb->find(a.name);
+    if (p->section == VarSection::InOut) {
+      nf.aliases[p] = lvalue(a.value, f, out);
+      continue;
+    }
+    ++use.given[sanitize(p->name)];
+    std::string member = path + "." + sanitize(p->name);
+    NExpr *v = expr(a.value, f, out);
+    if (p->edge) {
+      // x : BOOL R_EDGE sees TRUE only at a rising edge of the argument.
+      NExpr *prev = b.ref(member + ".prev", a.loc);
+      NExpr *edge =
+          p->edge == 'R'
+              ? b.binary(net::BinaryOp::And, v,
+                         b.unary(net::UnaryOp::Not, prev, a.loc), a.loc)
+              : b.binary(net::BinaryOp::And,
+                         b.unary(net::UnaryOp::Not, v, a.loc),
+                         b.ref(member + ".prev", a.loc), a.loc);
+      out.push_back(b.assign(b.ref(member, a.loc), edge, a.loc));
+      out.push_back(b.assign(b.ref(member + ".prev", a.loc), v, a.loc));
+      continue;
+    }
+    assign(b.ref(member, a.loc), v, p->type, a.value, out, a.loc);
+    noteClockBound(member, a.value, f, a.loc);
+  }
+  for (VarDecl *v : fb->vars)
+    if (v->edge) {
+      bool given = false;
+      for (CallArg &a : call->args)
+        given |= !a.isOutput && sameName(a.name, v->name);
+      // No new value: no edge.
+      if (!given)
+        out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
+                               b.boolLit(false, v->loc), v->loc));
+    }
+  for (VarDecl *v : fb->vars)
+    if (v->section == VarSection::Temp &&
+        v->type->kind != PTypeKind::FunctionBlock)
+      if (NExpr *init = defaultValue(v->type, v->loc))
+        out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
+                               init, v->loc));
+  enabledBody(fb, path + ".", call, nf, out);
+  for (CallArg &a : call->args)
+    if (a.isOutput) {
+      std::string member = path + "." + sanitize(a.name);
+      externallyRead.insert(member);
+      NExpr *v = b.ref(member, a.loc);
+      if (a.negated)
+        v = b.unary(net::UnaryOp::Not, v, a.loc);
+      out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));
+    }
+}

@@ -1,0 +1,406 @@
+//===- LowerDecls.cpp - PLC types and declarations in NetIR
+//-----------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Types and declarations
+//===----------------------------------------------------------------------===//
+
+std::string Lowering::sanitize(StringRef name) {
+  std::string bare;
+  for (char c : name)
+    if (c != '%')
+      bare += c;
+  return net::toIdentifier(bare);
+}
+
+std::string Lowering::unique(std::string name) {
+  std::string n = name;
+  for (unsigned i = 2; mod->lookup(n).kind != net::SymKind::None; ++i)
+    n = name + "_" + std::to_string(i);
+  return n;
+}
+
+const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
+  auto it = typeCache.find(t);
+  if (it != typeCache.end())
+    return it->second;
+  net::TypeTable &tt = design.types;
+  const net::Type *r = nullptr;
+  switch (t->kind) {
+  case PTypeKind::Bool:
+  case PTypeKind::AnyInt:
+  case PTypeKind::Time:
+    r = scalarNetType(t, tt);
+    break;
+  case PTypeKind::Int:
+    if (t->width == 64 && !t->isSigned && !t->isSubrange)
+      refuse(at, "64-bit unsigned type " + t->str() + " of " + what +
+                     " is not supported (values are held in 64 signed bits)");
+    r = scalarNetType(t, tt);
+    break;
+  case PTypeKind::Real:
+    refuse(at, t->str() + " " + what +
+                   ": REAL arithmetic is not supported (it cannot be "
+                   "modelled exactly)");
+  case PTypeKind::String:
+    refuse(at, t->str() + " " + what + ": strings are not supported");
+  case PTypeKind::Date:
+    refuse(at, t->str() + " " + what +
+                   ": dates and times of day are not supported");
+  case PTypeKind::Enum: {
+    std::string name = sanitize(t->name.empty() ? "Enum" : t->name);
+    if (const net::Type *existing = tt.lookup(name)) {
+      r = existing;
+      break;
+    }
+    std::vector<StringRef> names;
+    for (auto &e : t->enumerators)
+      names.push_back(design.save(sanitize(e)));
+    r = tt.createEnum(design.save(name), names);
+    break;
+  }
+  case PTypeKind::Array: {
+    const net::Type *elem = netType(t->elem, at, what);
+    for (size_t d = t->dims.size(); d-- > 0;)
+      elem = tt.getArray(elem, t->dims[d].first, t->dims[d].second);
+    r = elem;
+    break;
+  }
+  case PTypeKind::Struct: {
+    std::string name = sanitize(t->name.empty() ? "Struct" : t->name);
+    if (const net::Type *existing = tt.lookup(name)) {
+      r = existing;
+      break;
+    }
+    std::vector<net::Field> fields;
+    for (VarDecl *f : t->fields)
+      fields.push_back({design.save(sanitize(f->name)),
+                        netType(f->type, f->loc, "field " + f->name)});
+    r = tt.createRecord(design.save(name), fields);
+    break;
+  }
+  case PTypeKind::FunctionBlock:
+  case PTypeKind::Void:
+    refuse(at, "internal: no NetIR type for " + t->str());
+  }
+  typeCache[t] = r;
+  return r;
+}
+
+const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
+  switch (t->kind) {
+  case PTypeKind::Bool:
+    return tt.getBool();
+  case PTypeKind::Int:
+    if (t->isSubrange)
+      return tt.getRange(t->lo, t->hi);
+    if (t->width == 64 && !t->isSigned)
+      return nullptr;
+    return tt.getInt(t->width, t->isSigned, net::Overflow::Wrap);
+  case PTypeKind::AnyInt:
+    return tt.getInt(64, true, net::Overflow::Wrap);
+  case PTypeKind::Time:
+    return tt.getInt(64, true, net::Overflow::Error);
+  default:
+    return nullptr;
+  }
+}
+
+NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
+  switch (t->kind) {
+  case PTypeKind::Bool:
+    return b.boolLit(false, at);
+  case PTypeKind::Int:
+    return b.intLit(t->isSubrange ? t->lo : 0, at);
+  case PTypeKind::Time:
+  case PTypeKind::AnyInt:
+    return b.intLit(0, at);
+  case PTypeKind::Enum:
+    return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[0]), at);
+  default:
+    return nullptr; // aggregates: NetIR's defaults match IEC's
+  }
+}
+
+/// Whether a value of type `t` starts anywhere else than at IEC's default
+/// (a structure field with its own initial value).
+static bool hasDeclaredInitial(const PType *t) {
+  if (t->kind == PTypeKind::Array)
+    return hasDeclaredInitial(t->elem);
+  if (t->kind == PTypeKind::Struct)
+    for (VarDecl *f : t->fields)
+      if ((f->typeSyntax && f->typeSyntax->init) || hasDeclaredInitial(f->type))
+        return true;
+  return false;
+}
+
+NExpr *Lowering::aggregateValue(VarDecl *v, Initializer *init, const PType *t,
+                                size_t dim, SMLoc at) {
+  // Sema has checked the initialiser's shape against the type (array list
+  // for an array, field list for a structure, one dimension); the count is
+  // checked here.
+  std::vector<NExpr *> elems;
+  std::vector<StringRef> names;
+  if (t->kind == PTypeKind::Array) {
+    auto [lo, hi] = t->dims[dim];
+    size_t n = size_t(hi - lo + 1);
+    auto element = [&](Initializer *e) {
+      return dim + 1 < t->dims.size() ? aggregateValue(v, e, t, dim + 1, at)
+                                      : initialValue(v, e, t->elem, at);
+    };
+    if (init) {
+      for (auto &[count, inner] : init->elems)
+        for (int64_t k = 0; k < count; ++k) {
+          if (elems.size() == n)
+            refuse(init->loc, "the initialiser of '" + v->name +
+                                  "' has more than the " + Twine(n) +
+                                  " elements of its array");
+          elems.push_back(element(inner));
+        }
+    }
+    // IEC 61131-3: elements the list does not reach keep their default.
+    while (elems.size() < n)
+      elems.push_back(element(nullptr));
+  } else {
+    for (VarDecl *f : t->fields) {
+      Initializer *given = f->typeSyntax ? f->typeSyntax->init : nullptr;
+      if (init)
+        for (auto &[name, inner] : init->fields)
+          if (sameName(name, f->name))
+            given = inner;
+      elems.push_back(initialValue(f, given, f->type, at));
+      names.push_back(design.save(sanitize(f->name)));
+    }
+  }
+  return b.aggregate(elems, names, init ? init->loc : at);
+}
+
+NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
+                              std::optional<SMLoc> at) {
+  SMLoc loc = at ? *at : v->loc;
+  if (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct) {
+    // Aggregates start at IEC's defaults unless something says otherwise,
+    // and NetIR's defaults are the same: no initial value needed then.
+    if (!init && !at && !hasDeclaredInitial(t))
+      return nullptr;
+    return aggregateValue(v, init, t, 0, loc);
+  }
+  if (!init)
+    return defaultValue(t, loc);
+  if (init->kind != Initializer::Value)
+    refuse(init->loc, "an array or structure initialiser for '" + v->name +
+                          "' of type " + t->str());
+  Frame none;
+  Expr *e = init->value;
+  if (t->kind == PTypeKind::Enum) {
+    if (e->enumValue < 0)
+      refuse(e->loc, "initial value must be an enumerator");
+    return b.ref(sanitize(t->name) + "#" +
+                     sanitize(t->enumerators[e->enumValue]),
+                 e->loc);
+  }
+  if (e->kind == ExprKind::StringLit)
+    refuse(e->loc, "STRING variable '" + v->name +
+                       "' is not supported (string operations beyond "
+                       "constants are refused)");
+  std::optional<int64_t> c = constValue(e, none);
+  if (!c)
+    refuse(e->loc, "initial value of '" + v->name + "' must be a constant");
+  if (t->kind == PTypeKind::Bool)
+    return b.boolLit(*c != 0, e->loc);
+  return b.intLit(*c, e->loc);
+}
+
+std::optional<std::pair<int64_t, int64_t>> Lowering::inputRange(VarDecl *v) {
+  auto parse = [](StringRef s) -> std::optional<std::pair<int64_t, int64_t>> {
+    s = s.trim().trim("'\"").trim();
+    auto [a, c] = s.split("..");
+    int64_t lo, hi;
+    if (a.trim().getAsInteger(10, lo) || c.trim().getAsInteger(10, hi) ||
+        lo > hi)
+      return std::nullopt;
+    return std::make_pair(lo, hi);
+  };
+  for (auto &a : v->attrs) {
+    StringRef t(a.text);
+    t.consume_front("netlift");
+    t = t.trim();
+    // `{range 0..100}`, `{netlift range 0..100}`,
+    // `{attribute 'range' := '0..100'}`.
+    if (t.consume_front("range")) {
+      if (auto r = parse(t))
+        return r;
+      refuse(a.loc, "malformed range pragma (write {range LO..HI})");
+    }
+    if (t.consume_front("attribute") && t.trim().consume_front("'range'")) {
+      StringRef rest = t.trim();
+      rest.consume_front("'range'");
+      rest = rest.trim();
+      rest.consume_front(":=");
+      if (auto r = parse(rest))
+        return r;
+      refuse(a.loc, "malformed range attribute (write {attribute 'range' := "
+                    "'LO..HI'})");
+    }
+  }
+  auto it = opts.ranges.find(StringRef(v->name).upper());
+  if (it != opts.ranges.end())
+    return it->second;
+  if (!v->location.empty()) {
+    it = opts.ranges.find(StringRef(v->location).upper());
+    if (it != opts.ranges.end())
+      return it->second;
+  }
+  return std::nullopt;
+}
+
+void Lowering::declareProgramVar(VarDecl *v) {
+  if (!v->type)
+    refuse(v->loc, "internal: untyped variable");
+  const PType *t = v->type;
+  if (v->section == VarSection::External)
+    return; // the global is declared once
+  std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
+  if (t->kind == PTypeKind::FunctionBlock) {
+    keepPragmas(name, v->attrs);
+    declareInstance(name, t->fb, v->typeSyntax ? v->typeSyntax->init : nullptr);
+    return;
+  }
+  if (v->section == VarSection::InOut)
+    refuse(v->loc, "VAR_IN_OUT of the translated program '" +
+                       currentProgram->name + "' has nothing to refer to");
+  keepPragmas(name, v->attrs);
+  // An input bound to a global by a program argument is fed from it.
+  bool isInput = (v->area() == 'I' || v->section == VarSection::Input) &&
+                 !boundInputs.count(v);
+  bool isOutput = v->area() == 'Q' || v->section == VarSection::Output;
+  varTypes[name] = t;
+  if (isInput) {
+    if (t->kind == PTypeKind::Bool) {
+      b.addPort(name, net::PortKind::Cond, net::PortDir::In, nullptr, v->loc);
+      return;
+    }
+    const net::Type *nt = nullptr;
+    if (auto r = inputRange(v)) {
+      if (t->kind != PTypeKind::Int && t->kind != PTypeKind::Time)
+        refuse(v->loc,
+               "a range is given for non-integer input '" + v->name + "'");
+      if (r->first < t->lo || r->second > t->hi)
+        if (t->kind == PTypeKind::Int)
+          refuse(v->loc, "range " + Twine(r->first) + ".." + Twine(r->second) +
+                             " of input '" + v->name + "' exceeds " + t->str());
+      nt = design.types.getRange(r->first, r->second);
+      inputRanges[v] = *r;
+    } else if (eventDriven || t->kind == PTypeKind::Enum ||
+               (t->kind == PTypeKind::Int && t->isSubrange)) {
+      nt = netType(t, v->loc, "input " + v->name);
+    } else if (t->kind == PTypeKind::Int || t->kind == PTypeKind::Time) {
+      refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
+                         " is unbounded: give its range with a pragma "
+                         "{range LO..HI} before the declaration, a subrange "
+                         "type, or --ranges FILE");
+    } else {
+      nt = netType(t, v->loc, "input " + v->name);
+    }
+    if (!nt->isScalar())
+      refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
+                         ": inputs must be scalars");
+    b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, v->loc);
+    return;
+  }
+  if (v->section == VarSection::Temp) {
+    declareTemp(name, t, v->loc);
+    return;
+  }
+  NExpr *init =
+      initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr, t);
+  if (isOutput) {
+    const net::Type *nt = netType(t, v->loc, "output " + v->name);
+    uint32_t p = t->kind == PTypeKind::Bool
+                     ? b.addPort(name, net::PortKind::Cond, net::PortDir::Out,
+                                 nullptr, v->loc)
+                     : b.addPort(name, net::PortKind::Data, net::PortDir::Out,
+                                 nt, v->loc);
+    mod->ports[p].init = init;
+    return;
+  }
+  b.addVar(name, netType(t, v->loc, "variable " + v->name), init, v->loc);
+}
+
+void Lowering::declareInstance(const std::string &path, Pou *fb,
+                               Initializer *init) {
+  instanceTypes[path] = fb;
+  // The block type's pragmas go to the instance, as flatten would carry a
+  // module's. netlift's own blocks' pragmas are directives to netlift.
+  if (!fb->isLibrary)
+    keepPragmas(path, fb->attrs);
+  for (VarDecl *m : fb->vars) {
+    if (m->section == VarSection::External)
+      continue;
+    std::string name = path + "." + sanitize(m->name);
+    if (!fb->isLibrary)
+      keepPragmas(name, m->attrs);
+    Initializer *mi = m->typeSyntax ? m->typeSyntax->init : nullptr;
+    if (init && init->kind == Initializer::Struct)
+      for (auto &[fname, finit] : init->fields)
+        if (sameName(fname, m->name))
+          mi = finit;
+    if (m->type->kind == PTypeKind::FunctionBlock) {
+      declareInstance(name, m->type->fb, mi);
+      continue;
+    }
+    if (m->section == VarSection::InOut)
+      continue; // an alias of the caller's variable at each call
+    varTypes[name] = m->type;
+    bool isClock = false;
+    std::string bound;
+    for (auto &a : m->attrs) {
+      StringRef t(a.text);
+      if (t.consume_front("netlift clock")) {
+        isClock = true;
+        bound = t.trim().str();
+      }
+    }
+    if (isClock) {
+      // The cap is fixed once every call is lowered (see run()).
+      b.addVar(name, design.types.getClock(1), nullptr, m->loc);
+      ClockUse &cu = clocks[name];
+      cu.var = name;
+      cu.member = bound;
+      cu.path = path;
+      clockOfBound[path + "." + sanitize(bound)] = name;
+      for (VarDecl *o : fb->vars)
+        if (o->type && o->type->kind == PTypeKind::Time && o != m)
+          cu.timeMembers.push_back(path + "." + sanitize(o->name));
+      continue;
+    }
+    if (m->section == VarSection::Temp) {
+      declareTemp(name, m->type, m->loc);
+      continue;
+    }
+    b.addVar(name, netType(m->type, m->loc, "member " + m->name),
+             initialValue(m, mi, m->type), m->loc);
+    instanceMembers.push_back(name);
+    if (m->edge) // what the caller passed last time
+      b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
+               m->loc);
+  }
+}
+
+uint32_t Lowering::declareTemp(const std::string &name, const PType *t,
+                               SMLoc at) {
+  varTypes[name] = t;
+  NExpr *init = defaultValue(t, at);
+  uint32_t x = b.addVar(name, netType(t, at, "variable " + name), init, at);
+  if (resetNames.insert(name).second && init)
+    resets.push_back({name, init});
+  return x;
+}

@@ -1,0 +1,525 @@
+//===- LowerExprs.cpp - PLC expressions in NetIR
+//----------------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Expressions
+//===----------------------------------------------------------------------===//
+
+std::optional<int64_t> Lowering::constValue(Expr *e, Frame &f) {
+  if (!e)
+    return std::nullopt;
+  switch (e->kind) {
+  case ExprKind::IntLit:
+  case ExprKind::BoolLit:
+    return e->intValue;
+  case ExprKind::TimeLit:
+    return ticks(e->intValue, e->loc);
+  case ExprKind::Unary: {
+    auto a = constValue(e->operands[0], f);
+    if (!a)
+      return a;
+    if (e->op == Op::Neg)
+      return -*a;
+    if (e->op == Op::Not && e->type && e->type->kind == PTypeKind::Bool)
+      return int64_t(!*a);
+    if (e->op == Op::Plus)
+      return a;
+    return std::nullopt;
+  }
+  case ExprKind::Binary: {
+    auto a = constValue(e->operands[0], f), c = constValue(e->operands[1], f);
+    if (!a || !c)
+      return std::nullopt;
+    switch (e->op) {
+    case Op::Add:
+      return *a + *c;
+    case Op::Sub:
+      return *a - *c;
+    case Op::Mul:
+      return *a * *c;
+    case Op::Div:
+      return *c ? std::optional<int64_t>(*a / *c) : std::nullopt;
+    case Op::Mod:
+      return *c ? std::optional<int64_t>(*a % *c) : std::nullopt;
+    default:
+      return std::nullopt;
+    }
+  }
+  case ExprKind::Name: {
+    // A constant, or a variable nobody ever writes, has its initial value.
+    VarDecl *v = e->var;
+    if (!v || v->section == VarSection::Input || v->area() == 'I' ||
+        v->section == VarSection::InOut || written.count(v) ||
+        (v->owner && v->owner->kind != PouKind::Program && !v->constant))
+      return std::nullopt;
+    if (!v->type ||
+        (v->type->kind != PTypeKind::Int && v->type->kind != PTypeKind::Time &&
+         v->type->kind != PTypeKind::Bool))
+      return std::nullopt;
+    Initializer *init = v->typeSyntax ? v->typeSyntax->init : nullptr;
+    if (!init)
+      return v->type->isSubrange ? v->type->lo : 0;
+    if (init->kind != Initializer::Value)
+      return std::nullopt;
+    return constValue(init->value, f);
+  }
+  default:
+    return std::nullopt;
+  }
+}
+
+Range Lowering::rangeOf(Expr *e) {
+  const PType *t = e->type;
+  Range full{0, 0, false};
+  if (t && t->kind == PTypeKind::Bool)
+    full = {0, 1, true};
+  else if (t && t->kind == PTypeKind::Int)
+    full = {t->lo, t->hi, true};
+  switch (e->kind) {
+  case ExprKind::IntLit:
+    return {e->intValue, e->intValue, true};
+  case ExprKind::Name:
+  case ExprKind::Field:
+  case ExprKind::Index:
+    if (auto it = inputRanges.find(e->var); it != inputRanges.end())
+      return {it->second.first, it->second.second, true};
+    if (e->var && e->var->type && e->var->type->kind == PTypeKind::Int)
+      return {e->var->type->lo, e->var->type->hi, true};
+    return full;
+  case ExprKind::Unary:
+    if (e->op == Op::Neg) {
+      Range a = rangeOf(e->operands[0]);
+      if (a.exact && a.lo != INT64_MIN)
+        return {-a.hi, -a.lo, true};
+      return {0, 0, false};
+    }
+    return e->op == Op::Plus ? rangeOf(e->operands[0]) : full;
+  case ExprKind::Binary: {
+    Range a = rangeOf(e->operands[0]), c = rangeOf(e->operands[1]);
+    if (!a.exact || !c.exact)
+      return {0, 0, false};
+    auto fits = [](__int128 v) {
+      return v >= INT64_MIN / 4 && v <= INT64_MAX / 4;
+    };
+    __int128 lo, hi;
+    switch (e->op) {
+    case Op::Add:
+      lo = __int128(a.lo) + c.lo;
+      hi = __int128(a.hi) + c.hi;
+      break;
+    case Op::Sub:
+      lo = __int128(a.lo) - c.hi;
+      hi = __int128(a.hi) - c.lo;
+      break;
+    case Op::Mul: {
+      __int128 p[] = {__int128(a.lo) * c.lo, __int128(a.lo) * c.hi,
+                      __int128(a.hi) * c.lo, __int128(a.hi) * c.hi};
+      lo = *std::min_element(p, p + 4);
+      hi = *std::max_element(p, p + 4);
+      break;
+    }
+    default:
+      return full;
+    }
+    if (!fits(lo) || !fits(hi))
+      return {0, 0, false};
+    return {int64_t(lo), int64_t(hi), true};
+  }
+  default:
+    return full;
+  }
+}
+
+NExpr *Lowering::maskTo(NExpr *v, const PType *t, SMLoc at) {
+  if (t->width >= 64)
+    return v;
+  int64_t mask = (int64_t(1) << t->width) - 1;
+  return b.binary(net::BinaryOp::BitAnd, v, b.intLit(mask, at), at);
+}
+
+NExpr *Lowering::wrapTo(NExpr *v, const PType *t, Range r, SMLoc at) {
+  t = t && t->isSubrange ? t->base : t;
+  if (!t || t->kind != PTypeKind::Int || t->width >= 64)
+    return v;
+  if (r.exact && r.lo >= t->lo && r.hi <= t->hi)
+    return v;
+  if (!t->isSigned)
+    return maskTo(v, t, at);
+  int64_t half = int64_t(1) << (t->width - 1);
+  NExpr *shifted = b.binary(net::BinaryOp::Add, v, b.intLit(half, at), at);
+  return b.binary(net::BinaryOp::Sub, maskTo(shifted, t, at),
+                  b.intLit(half, at), at);
+}
+
+std::string Lowering::instancePath(Expr *e, Frame &f) {
+  // An FB instance is a Name (a variable of this frame or a global).
+  if (e->kind != ExprKind::Name || !e->var)
+    refuse(e->loc, "function block instances must be named directly (arrays "
+                   "and structures of instances are not supported)");
+  VarDecl *v = e->var;
+  if (!v->owner)
+    return sanitize(v->name);
+  return f.prefix + sanitize(v->name);
+}
+
+NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
+  auto alias = f.aliases.find(v);
+  if (alias != f.aliases.end())
+    return alias->second;
+  if (!v->owner) // a global
+    return b.ref(sanitize(v->name), at);
+  return b.ref(f.prefix + sanitize(v->name), at);
+}
+
+NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
+  switch (e->kind) {
+  case ExprKind::Name:
+    if (!e->var)
+      refuse(e->loc, "cannot assign to '" + e->name + "'");
+    return varRef(e->var, f, e->loc);
+  case ExprKind::Field: {
+    Expr *base = e->base();
+    if (base->type && base->type->kind == PTypeKind::FunctionBlock) {
+      std::string path = instancePath(base, f) + "." + sanitize(e->var->name);
+      if (f.external)
+        externallyRead.insert(path);
+      return b.ref(path, e->loc);
+    }
+    return b.field(lvalue(base, f, pre), sanitize(e->name), e->loc);
+  }
+  case ExprKind::Index: {
+    NExpr *r = lvalue(e->base(), f, pre);
+    for (size_t i = 1; i < e->operands.size(); ++i)
+      r = b.index(r, expr(e->operands[i], f, pre), e->loc);
+    return r;
+  }
+  default:
+    refuse(e->loc, "cannot assign to this expression");
+  }
+}
+
+NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
+  if (e->type && e->type->kind == PTypeKind::Real)
+    refuse(e->loc, "REAL arithmetic is not supported (it cannot be modelled "
+                   "exactly)");
+  if (e->type && e->type->kind == PTypeKind::String)
+    refuse(e->loc, "string operations are not supported");
+  if (e->type && e->type->kind == PTypeKind::Date)
+    refuse(e->loc, "dates and times of day are not supported");
+  switch (e->kind) {
+  case ExprKind::IntLit:
+    if (e->type && e->type->kind == PTypeKind::Bool)
+      return b.boolLit(e->intValue != 0, e->loc);
+    return b.intLit(e->intValue, e->loc);
+  case ExprKind::BoolLit:
+    return b.boolLit(e->intValue != 0, e->loc);
+  case ExprKind::TimeLit:
+    return b.intLit(ticks(e->intValue, e->loc), e->loc);
+  case ExprKind::RealLit:
+    refuse(e->loc, "REAL values are not supported");
+  case ExprKind::StringLit:
+    refuse(e->loc, "string literals are not supported");
+  case ExprKind::DateLit:
+    refuse(e->loc, "date and time-of-day literals are not supported");
+  case ExprKind::EnumLit:
+    return b.ref(sanitize(e->type->name) + "#" +
+                     sanitize(e->type->enumerators[e->enumValue]),
+                 e->loc);
+  case ExprKind::Name:
+    if (!e->var && e->enumValue >= 0)
+      return b.ref(sanitize(e->type->name) + "#" +
+                       sanitize(e->type->enumerators[e->enumValue]),
+                   e->loc);
+    if (e->var && e->var->type &&
+        e->var->type->kind == PTypeKind::FunctionBlock)
+      refuse(e->loc, "a function block instance is not a value");
+    return lvalue(e, f, pre);
+  case ExprKind::Field:
+  case ExprKind::Index:
+    return lvalue(e, f, pre);
+  case ExprKind::BitAccess: {
+    NExpr *base = expr(e->base(), f, pre);
+    NExpr *shifted = b.binary(net::BinaryOp::Shr, base,
+                              b.intLit(e->intValue, e->loc), e->loc);
+    NExpr *bit =
+        b.binary(net::BinaryOp::BitAnd, shifted, b.intLit(1, e->loc), e->loc);
+    return b.binary(net::BinaryOp::Ne, bit, b.intLit(0, e->loc), e->loc);
+  }
+  case ExprKind::Deref:
+    refuse(e->loc, "dereference is not supported");
+  case ExprKind::Unary: {
+    NExpr *a = expr(e->operands[0], f, pre);
+    switch (e->op) {
+    case Op::Plus:
+      return a;
+    case Op::Neg:
+      return wrapTo(b.unary(net::UnaryOp::Neg, a, e->loc), e->type, rangeOf(e),
+                    e->loc);
+    default: {
+      const PType *t = e->type->isSubrange ? e->type->base : e->type;
+      if (t->kind == PTypeKind::Bool)
+        return b.unary(net::UnaryOp::Not, a, e->loc);
+      NExpr *n = b.unary(net::UnaryOp::BitNot, a, e->loc);
+      return t->kind == PTypeKind::Int && !t->isSigned ? maskTo(n, t, e->loc)
+                                                       : n;
+    }
+    }
+  }
+  case ExprKind::Binary: {
+    if (e->op == Op::Pow)
+      refuse(e->loc, "'**' (EXPT) is REAL arithmetic, which is not "
+                     "supported");
+    NExpr *l = expr(e->operands[0], f, pre);
+    NExpr *r = expr(e->operands[1], f, pre);
+    const PType *lt = e->operands[0]->type;
+    bool logical = lt && (lt->kind == PTypeKind::Bool);
+    net::BinaryOp op;
+    switch (e->op) {
+    case Op::Or:
+    case Op::OrElse:
+      op = logical ? net::BinaryOp::Or : net::BinaryOp::BitOr;
+      break;
+    case Op::Xor:
+      op = logical ? net::BinaryOp::Xor : net::BinaryOp::BitXor;
+      break;
+    case Op::And:
+    case Op::AndThen:
+      op = logical ? net::BinaryOp::And : net::BinaryOp::BitAnd;
+      break;
+    case Op::Eq:
+      op = net::BinaryOp::Eq;
+      break;
+    case Op::Ne:
+      op = net::BinaryOp::Ne;
+      break;
+    case Op::Lt:
+      op = net::BinaryOp::Lt;
+      break;
+    case Op::Le:
+      op = net::BinaryOp::Le;
+      break;
+    case Op::Gt:
+      op = net::BinaryOp::Gt;
+      break;
+    case Op::Ge:
+      op = net::BinaryOp::Ge;
+      break;
+    case Op::Add:
+      op = net::BinaryOp::Add;
+      break;
+    case Op::Sub:
+      op = net::BinaryOp::Sub;
+      break;
+    case Op::Mul:
+      op = net::BinaryOp::Mul;
+      break;
+    case Op::Div:
+      op = net::BinaryOp::Div;
+      break;
+    case Op::Mod:
+      op = net::BinaryOp::Mod;
+      break;
+    default:
+      refuse(e->loc, "unsupported operator");
+    }
+    // Booleans compared for order (FALSE < TRUE) become integers in NetIR.
+    if (logical && (op == net::BinaryOp::Lt || op == net::BinaryOp::Le ||
+                    op == net::BinaryOp::Gt || op == net::BinaryOp::Ge)) {
+      l = b.cond(l, b.intLit(1, e->loc), b.intLit(0, e->loc), e->loc);
+      r = b.cond(r, b.intLit(1, e->loc), b.intLit(0, e->loc), e->loc);
+    }
+    NExpr *v = b.binary(op, l, r, e->loc);
+    if (op == net::BinaryOp::Add || op == net::BinaryOp::Sub ||
+        op == net::BinaryOp::Mul || op == net::BinaryOp::Div)
+      v = wrapTo(v, e->type, rangeOf(e), e->loc);
+    return v;
+  }
+  case ExprKind::Call:
+    if (e->callee)
+      return functionCall(e, f, pre);
+    return stdCall(e, f, pre);
+  }
+  refuse(e->loc, "unsupported expression");
+}
+
+NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
+                         SMLoc at) {
+  from = from && from->isSubrange ? from->base : from;
+  to = to && to->isSubrange ? to->base : to;
+  if (!from || from->kind == PTypeKind::AnyInt)
+    from = to;
+  if (to->kind == PTypeKind::Bool) {
+    if (from->kind == PTypeKind::Bool)
+      return v;
+    return b.binary(net::BinaryOp::Ne, v, b.intLit(0, at), at);
+  }
+  if (from->kind == PTypeKind::Bool && to->kind == PTypeKind::Int)
+    return b.cond(v, b.intLit(1, at), b.intLit(0, at), at);
+  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Int)
+    return wrapTo(v, to, {from->lo, from->hi, true}, at);
+  if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int) {
+    // TIME converts to milliseconds.
+    if (tickNs % 1000000 != 0)
+      refuse(at, "TIME to integer conversion gives milliseconds, but a tick "
+                 "is not a whole number of milliseconds (choose "
+                 "--timescale)");
+    NExpr *ms =
+        b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs / 1000000, at), at);
+    return wrapTo(ms, to, {0, 0, false}, at);
+  }
+  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time) {
+    if (1000000 % tickNs != 0)
+      refuse(at, "integer to TIME conversion reads milliseconds, but a "
+                 "millisecond is not a whole number of ticks");
+    return b.binary(net::BinaryOp::Mul, v, b.intLit(1000000 / tickNs, at), at);
+  }
+  if (from->kind == to->kind && from->kind == PTypeKind::Time)
+    return v;
+  refuse(at, "conversion from " + from->str() + " to " + to->str() +
+                 " is not supported");
+}
+
+NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
+  StdFnInfo info = lookupStdFunction(e->name);
+  std::vector<NExpr *> a;
+  std::vector<Expr *> src;
+  for (CallArg &arg : e->args) {
+    a.push_back(expr(arg.value, f, pre));
+    src.push_back(arg.value);
+  }
+  SMLoc at = e->loc;
+  auto chain = [&](net::BinaryOp op, size_t from, bool wrap) {
+    NExpr *r = a[from];
+    for (size_t i = from + 1; i < a.size(); ++i)
+      r = b.binary(op, r, a[i], at);
+    return wrap ? wrapTo(r, e->type, {0, 0, false}, at) : r;
+  };
+  bool logical =
+      !src.empty() && src[0]->type && src[0]->type->kind == PTypeKind::Bool;
+  switch (info.fn) {
+  case StdFn::Abs:
+    return wrapTo(b.call(net::Builtin::Abs, {a[0]}, at), e->type, {0, 0, false},
+                  at);
+  case StdFn::Min:
+  case StdFn::Max: {
+    net::Builtin fn =
+        info.fn == StdFn::Min ? net::Builtin::Min : net::Builtin::Max;
+    NExpr *r = a[0];
+    for (size_t i = 1; i < a.size(); ++i)
+      r = b.call(fn, {r, a[i]}, at);
+    return r;
+  }
+  case StdFn::Limit:
+    return b.call(net::Builtin::Max,
+                  {a[0], b.call(net::Builtin::Min, {a[1], a[2]}, at)}, at);
+  case StdFn::Sel:
+    return b.cond(a[0], a[2], a[1], at);
+  case StdFn::Mux: {
+    // An out-of-range K is an error (IEC): storing it into a variable of
+    // range 0..n-1 makes the model report it.
+    std::string k = unique("MUX_" + std::to_string(++callSites) + ".K");
+    PType *range = unit.make<PType>(*elementaryType("DINT"));
+    range->name.clear();
+    range->isSubrange = true;
+    range->base = elementaryType("DINT");
+    range->lo = 0;
+    range->hi = int64_t(a.size()) - 2;
+    declareTemp(k, range, at);
+    pre.push_back(b.assign(b.ref(k, at), a[0], at));
+    NExpr *r = a.back();
+    for (size_t i = a.size() - 1; i-- > 1;)
+      r = b.cond(b.binary(net::BinaryOp::Eq, b.ref(k, at),
+                          b.intLit(int64_t(i) - 1, at), at),
+                 a[i], r, at);
+    return r;
+  }
+  case StdFn::Move:
+    return a[0];
+  case StdFn::Add:
+    return chain(net::BinaryOp::Add, 0, true);
+  case StdFn::Mul:
+    return chain(net::BinaryOp::Mul, 0, true);
+  case StdFn::Sub:
+    return chain(net::BinaryOp::Sub, 0, true);
+  case StdFn::Div:
+    return chain(net::BinaryOp::Div, 0, true);
+  case StdFn::Mod:
+    return chain(net::BinaryOp::Mod, 0, false);
+  case StdFn::And:
+    return chain(logical ? net::BinaryOp::And : net::BinaryOp::BitAnd, 0,
+                 false);
+  case StdFn::Or:
+    return chain(logical ? net::BinaryOp::Or : net::BinaryOp::BitOr, 0, false);
+  case StdFn::Xor:
+    return chain(logical ? net::BinaryOp::Xor : net::BinaryOp::BitXor, 0,
+                 false);
+  case StdFn::Not: {
+    if (logical)
+      return b.unary(net::UnaryOp::Not, a[0], at);
+    const PType *t = e->type;
+    NExpr *n = b.unary(net::UnaryOp::BitNot, a[0], at);
+    return t->kind == PTypeKind::Int && !t->isSigned ? maskTo(n, t, at) : n;
+  }
+  case StdFn::Shl:
+  case StdFn::Shr:
+  case StdFn::Rol:
+  case StdFn::Ror: {
+    const PType *t = e->type->isSubrange ? e->type->base : e->type;
+    NExpr *x =
+        t->isSigned && info.fn != StdFn::Shl ? maskTo(a[0], t, at) : a[0];
+    if (info.fn == StdFn::Shl)
+      return wrapTo(b.binary(net::BinaryOp::Shl, x, a[1], at), t, {0, 0, false},
+                    at);
+    if (info.fn == StdFn::Shr)
+      return wrapTo(b.binary(net::BinaryOp::Shr, x, a[1], at), t, {0, 0, false},
+                    at);
+    // Rotations by n mod width.
+    NExpr *n = b.binary(net::BinaryOp::Mod, a[1], b.intLit(t->width, at), at);
+    NExpr *back = b.binary(net::BinaryOp::Sub, b.intLit(t->width, at), n, at);
+    NExpr *left = info.fn == StdFn::Rol ? n : back;
+    NExpr *right = info.fn == StdFn::Rol ? back : n;
+    NExpr *r =
+        b.binary(net::BinaryOp::BitOr,
+                 maskTo(b.binary(net::BinaryOp::Shl, x, left, at), t, at),
+                 b.binary(net::BinaryOp::Shr, maskTo(x, t, at), right, at), at);
+    return wrapTo(r, t, {0, 0, false}, at);
+  }
+  case StdFn::Gt:
+  case StdFn::Ge:
+  case StdFn::Eq:
+  case StdFn::Le:
+  case StdFn::Lt:
+  case StdFn::Ne: {
+    net::BinaryOp op = info.fn == StdFn::Gt   ? net::BinaryOp::Gt
+                       : info.fn == StdFn::Ge ? net::BinaryOp::Ge
+                       : info.fn == StdFn::Eq ? net::BinaryOp::Eq
+                       : info.fn == StdFn::Le ? net::BinaryOp::Le
+                       : info.fn == StdFn::Lt ? net::BinaryOp::Lt
+                                              : net::BinaryOp::Ne;
+    NExpr *r = b.binary(op, a[0], a[1], at);
+    for (size_t i = 2; i < a.size(); ++i)
+      r = b.binary(net::BinaryOp::And, r, b.binary(op, a[i - 1], a[i], at), at);
+    return r;
+  }
+  case StdFn::Convert:
+    return convert(a[0], src[0]->type, info.to, at);
+  case StdFn::RealMath:
+    refuse(at, "'" + e->name +
+                   "' is REAL arithmetic, which is not "
+                   "supported");
+  case StdFn::StringOp:
+    refuse(at, "string function '" + e->name + "' is not supported");
+  case StdFn::Refused:
+  case StdFn::None:
+    break;
+  }
+  refuse(at, "standard function '" + e->name + "' is not supported");
+}

@@ -1,0 +1,471 @@
+//===- LowerStmts.cpp - PLC statements and loops in NetIR
+//-------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Statements
+//===----------------------------------------------------------------------===//
+
+bool Lowering::mayJump(const StmtList &l, bool loopLevel) {
+  for (Stmt *s : l) {
+    switch (s->kind) {
+    case StmtKind::Return:
+      return true;
+    case StmtKind::Exit:
+    case StmtKind::Continue:
+      if (loopLevel)
+        return true;
+      break;
+    case StmtKind::If:
+      for (auto &[c, body] : s->arms)
+        if (mayJump(body, loopLevel))
+          return true;
+      if (mayJump(s->elseBody, loopLevel))
+        return true;
+      break;
+    case StmtKind::Case:
+      for (auto &arm : s->caseArms)
+        if (mayJump(arm.body, loopLevel))
+          return true;
+      if (mayJump(s->elseBody, loopLevel))
+        return true;
+      break;
+    case StmtKind::For:
+    case StmtKind::While:
+    case StmtKind::Repeat:
+      // EXIT/CONTINUE inside bind to the inner loop; RETURN still escapes.
+      if (mayJump(s->body, false))
+        return true;
+      break;
+    default:
+      break;
+    }
+  }
+  return false;
+}
+
+void Lowering::assign(NExpr *target, NExpr *value, const PType *targetType,
+                      Expr *valueExpr, Sink &out, SMLoc at) {
+  if (targetType && targetType->kind == PTypeKind::Bool && valueExpr &&
+      valueExpr->type && valueExpr->type->kind == PTypeKind::AnyInt)
+    value = b.boolLit(valueExpr->intValue != 0, at);
+  out.push_back(b.assign(target, value, at));
+}
+
+void Lowering::body(StmtList &list, Frame &f, Sink &out,
+                    const std::vector<LoopCtx> &loops) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    Stmt *s = list[i];
+    previous = i ? list[i - 1] : nullptr;
+    stmt(s, f, out, loops);
+    if (i + 1 == list.size())
+      break;
+    StmtList one{s};
+    if (!mayJump(one, !loops.empty()))
+      continue;
+    // The rest runs only if no RETURN/EXIT/CONTINUE has been taken.
+    NExpr *taken = nullptr;
+    auto add = [&](const std::string &flag) {
+      if (flag.empty())
+        return;
+      NExpr *r = b.ref(flag, s->loc);
+      taken = taken ? b.binary(net::BinaryOp::Or, taken, r, s->loc) : r;
+    };
+    add(f.returnFlag);
+    if (!loops.empty()) {
+      add(loops.back().exitFlag);
+      add(loops.back().continueFlag);
+    }
+    Sink rest;
+    StmtList tail(list.begin() + i + 1, list.end());
+    body(tail, f, rest, loops);
+    if (!taken) {
+      out.insert(out.end(), rest.begin(), rest.end());
+      return;
+    }
+    net::IfArm arm{b.unary(net::UnaryOp::Not, taken, s->loc),
+                   design.copy(llvm::ArrayRef<NStmt *>(rest))};
+    out.push_back(b.ifStmt({arm}, false, {}, s->loc));
+    return;
+  }
+}
+
+/// An upper bound on the iterations of a WHILE or REPEAT loop of the form
+///   i := c0;  WHILE i < C DO ... i := i + s; ... END_WHILE
+///   i := c0;  REPEAT ... i := i + s; ... UNTIL i >= C END_REPEAT
+/// (any of < <= > >= <>, the counter on either side, s of either sign):
+/// the counter is set to a constant just before the loop, changed by
+/// exactly one top-level `i := i +/- s` in the body and written nowhere
+/// else in it, and compared with a constant. Null when no bound is proved.
+std::optional<int64_t> Lowering::loopBound(Stmt *loop, Stmt *before, Frame &f) {
+  Expr *cond = loop->value;
+  if (!cond || cond->kind != ExprKind::Binary)
+    return std::nullopt;
+  Op op = cond->op;
+  Expr *lhs = cond->operands[0], *rhs = cond->operands[1];
+  if (lhs->kind != ExprKind::Name || !lhs->var) {
+    std::swap(lhs, rhs);
+    static const std::map<Op, Op> mirror = {{Op::Lt, Op::Gt}, {Op::Gt, Op::Lt},
+                                            {Op::Le, Op::Ge}, {Op::Ge, Op::Le},
+                                            {Op::Ne, Op::Ne}, {Op::Eq, Op::Eq}};
+    auto m = mirror.find(op);
+    if (m == mirror.end())
+      return std::nullopt;
+    op = m->second;
+  }
+  if (lhs->kind != ExprKind::Name || !lhs->var)
+    return std::nullopt;
+  VarDecl *i = lhs->var;
+  std::optional<int64_t> limit = constValue(rhs, f);
+  if (!limit)
+    return std::nullopt;
+  // The constant start.
+  if (!before || before->kind != StmtKind::Assign ||
+      before->target->kind != ExprKind::Name || before->target->var != i)
+    return std::nullopt;
+  std::optional<int64_t> start = constValue(before->value, f);
+  if (!start)
+    return std::nullopt;
+  // The one step.
+  std::optional<int64_t> step;
+  StmtList others;
+  for (Stmt *st : loop->body) {
+    if (st->kind == StmtKind::Assign && st->target->kind == ExprKind::Name &&
+        st->target->var == i && st->value->kind == ExprKind::Binary &&
+        (st->value->op == Op::Add || st->value->op == Op::Sub) &&
+        st->value->operands[0]->kind == ExprKind::Name &&
+        st->value->operands[0]->var == i && !step) {
+      step = constValue(st->value->operands[1], f);
+      if (!step)
+        return std::nullopt;
+      if (st->value->op == Op::Sub)
+        step = -*step;
+      continue;
+    }
+    others.push_back(st);
+  }
+  if (!step || *step == 0)
+    return std::nullopt;
+  std::set<VarDecl *> w;
+  collectWritten(others, w);
+  if (w.count(i))
+    return std::nullopt;
+  // Iterations while the condition holds (WHILE) or until it holds
+  // (REPEAT, at least one).
+  bool isWhile = loop->kind == StmtKind::While;
+  auto holds = [&](int64_t v) {
+    switch (op) {
+    case Op::Lt:
+      return v < *limit;
+    case Op::Le:
+      return v <= *limit;
+    case Op::Gt:
+      return v > *limit;
+    case Op::Ge:
+      return v >= *limit;
+    case Op::Ne:
+      return v != *limit;
+    case Op::Eq:
+      return v == *limit;
+    default:
+      return false;
+    }
+  };
+  const int64_t kMax = 100000;
+  int64_t v = *start;
+  for (int64_t n = 0; n <= kMax; ++n) {
+    if (isWhile ? !holds(v) : (n > 0 && holds(v)))
+      return n;
+    v += *step;
+  }
+  return std::nullopt;
+}
+
+void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
+                    const std::vector<LoopCtx> &loops) {
+  auto flagVar = [&](const char *what) {
+    std::string name =
+        unique(std::string("_") + what + std::to_string(++flags));
+    declareTemp(name, elementaryType("BOOL"), s->loc);
+    return name;
+  };
+  switch (s->kind) {
+  case StmtKind::Assign: {
+    NExpr *value = expr(s->value, f, out);
+    if (s->target->kind == ExprKind::BitAccess) {
+      // x.3 := v  is  x := v ? x | 8 : x & ~8  (masked to x's width).
+      Expr *base = s->target->base();
+      NExpr *target = lvalue(base, f, out);
+      const PType *t = base->type->isSubrange ? base->type->base : base->type;
+      int64_t bit = int64_t(1) << s->target->intValue;
+      NExpr *set = b.binary(net::BinaryOp::BitOr, lvalue(base, f, out),
+                            b.intLit(bit, s->loc), s->loc);
+      NExpr *clear = b.binary(net::BinaryOp::BitAnd, lvalue(base, f, out),
+                              b.intLit(~bit, s->loc), s->loc);
+      NExpr *r =
+          b.cond(value, wrapTo(set, t, {0, 0, false}, s->loc), clear, s->loc);
+      out.push_back(b.assign(target, r, s->loc));
+      return;
+    }
+    NExpr *target = lvalue(s->target, f, out);
+    if (auto *r = llvm::dyn_cast<net::Ref>(target))
+      noteClockBound(r->name.str(), s->value, f, s->loc);
+    assign(target, value, s->target->type, s->value, out, s->loc);
+    return;
+  }
+  case StmtKind::Call: {
+    Expr *c = s->value;
+    if (c->var) {
+      fbCall(c, f, out);
+      return;
+    }
+    if (c->callee) {
+      functionCall(c, f, out);
+      return;
+    }
+    Sink pre;
+    expr(c, f, pre); // a standard function whose result is dropped
+    out.insert(out.end(), pre.begin(), pre.end());
+    return;
+  }
+  case StmtKind::If: {
+    // Conditions after the first that need hoisted calls start a nested IF
+    // in the ELSE branch, so their calls run only when reached.
+    std::function<void(size_t, Sink &)> build = [&](size_t from, Sink &dst) {
+      std::vector<net::IfArm> arms;
+      for (size_t k = from; k < s->arms.size(); ++k) {
+        Sink pre;
+        NExpr *c = expr(s->arms[k].first, f, pre);
+        if (!pre.empty() && k != from) {
+          // Finish this IF with an ELSE holding the rest.
+          Sink elseBody;
+          build(k, elseBody);
+          dst.push_back(b.ifStmt(arms, true,
+                                 design.copy(llvm::ArrayRef<NStmt *>(elseBody)),
+                                 s->loc));
+          return;
+        }
+        dst.insert(dst.end(), pre.begin(), pre.end());
+        Sink armBody;
+        body(s->arms[k].second, f, armBody, loops);
+        arms.push_back({c, design.copy(llvm::ArrayRef<NStmt *>(armBody))});
+      }
+      Sink elseBody;
+      body(s->elseBody, f, elseBody, loops);
+      dst.push_back(b.ifStmt(arms, s->hasElse && !elseBody.empty(),
+                             design.copy(llvm::ArrayRef<NStmt *>(elseBody)),
+                             s->loc));
+    };
+    build(0, out);
+    return;
+  }
+  case StmtKind::Case: {
+    NExpr *sel = expr(s->value, f, out);
+    std::vector<net::CaseArm> arms;
+    for (auto &arm : s->caseArms) {
+      std::vector<net::CaseLabel> labels;
+      for (auto &l : arm.labels) {
+        auto label = [&](Expr *e) -> NExpr * {
+          if (e->enumValue >= 0)
+            return b.ref(sanitize(e->type->name) + "#" +
+                             sanitize(e->type->enumerators[e->enumValue]),
+                         e->loc);
+          std::optional<int64_t> c = constValue(e, f);
+          if (!c)
+            refuse(e->loc, "CASE label must be a constant");
+          return b.intLit(*c, e->loc);
+        };
+        labels.push_back({label(l.lo), l.hi ? label(l.hi) : nullptr});
+      }
+      Sink armBody;
+      body(arm.body, f, armBody, loops);
+      arms.push_back({design.copy(llvm::ArrayRef<net::CaseLabel>(labels)),
+                      design.copy(llvm::ArrayRef<NStmt *>(armBody))});
+    }
+    Sink elseBody;
+    body(s->elseBody, f, elseBody, loops);
+    out.push_back(b.caseStmt(sel, arms, s->hasElse,
+                             design.copy(llvm::ArrayRef<NStmt *>(elseBody)),
+                             s->loc));
+    return;
+  }
+  case StmtKind::For: {
+    std::optional<int64_t> from = constValue(s->from, f);
+    std::optional<int64_t> to = constValue(s->to, f);
+    std::optional<int64_t> by = s->by ? constValue(s->by, f) : int64_t(1);
+    if (!from || !to || !by)
+      refuse(s->loc, "FOR loop bounds must be constants (netlift unrolls "
+                     "nothing it cannot bound)");
+    if (*by == 0)
+      refuse(s->by->loc, "FOR loop step is 0");
+    // Assigning the loop variable inside the body is not allowed (IEC).
+    int64_t n = *by > 0 ? (*to >= *from ? (*to - *from) / *by + 1 : 0)
+                        : (*from >= *to ? (*from - *to) / -*by + 1 : 0);
+    LoopCtx loop;
+    if (mayJump(s->body, true)) {
+      loop.exitFlag = flagVar("exit");
+      loop.continueFlag = flagVar("continue");
+      out.push_back(b.assign(b.ref(loop.exitFlag, s->loc),
+                             b.boolLit(false, s->loc), s->loc));
+    }
+    std::vector<LoopCtx> inner = loops;
+    inner.push_back(loop);
+    NExpr *var = lvalue(s->target, f, out);
+    std::string k = "_k" + std::to_string(++loopVars);
+    Sink iter;
+    NExpr *value = b.binary(net::BinaryOp::Add, b.intLit(*from, s->loc),
+                            b.binary(net::BinaryOp::Mul, b.ref(k, s->loc),
+                                     b.intLit(*by, s->loc), s->loc),
+                            s->loc);
+    iter.push_back(b.assign(var, value, s->loc));
+    if (!loop.continueFlag.empty())
+      iter.push_back(b.assign(b.ref(loop.continueFlag, s->loc),
+                              b.boolLit(false, s->loc), s->loc));
+    body(s->body, f, iter, inner);
+    Sink loopBody;
+    NExpr *stop = nullptr;
+    if (!loop.exitFlag.empty())
+      stop = b.ref(loop.exitFlag, s->loc);
+    if (!f.returnFlag.empty())
+      stop = stop ? b.binary(net::BinaryOp::Or, stop,
+                             b.ref(f.returnFlag, s->loc), s->loc)
+                  : b.ref(f.returnFlag, s->loc);
+    if (stop) {
+      net::IfArm arm{b.unary(net::UnaryOp::Not, stop, s->loc),
+                     design.copy(llvm::ArrayRef<NStmt *>(iter))};
+      loopBody.push_back(b.ifStmt({arm}, false, {}, s->loc));
+    } else {
+      loopBody = iter;
+    }
+    if (n > 0)
+      out.push_back(b.forStmt(k, b.intLit(0, s->loc), b.intLit(n - 1, s->loc),
+                              loopBody, s->loc));
+    // After a loop that ran to its end the variable is one step past it.
+    NExpr *final = b.intLit(*from + n * *by, s->loc);
+    NStmt *after = b.assign(lvalue(s->target, f, out), final, s->loc);
+    if (stop) {
+      net::IfArm arm{b.unary(net::UnaryOp::Not, stop, s->loc),
+                     design.copy(llvm::ArrayRef<NStmt *>(after))};
+      out.push_back(b.ifStmt({arm}, false, {}, s->loc));
+    } else {
+      out.push_back(after);
+    }
+    return;
+  }
+  case StmtKind::While:
+  case StmtKind::Repeat: {
+    bool isWhile = s->kind == StmtKind::While;
+    std::optional<int64_t> n = loopBound(s, previous, f);
+    if (!n)
+      refuse(s->loc, Twine(isWhile ? "WHILE" : "REPEAT") +
+                         " loop refused: netlift cannot prove a bound on its "
+                         "iterations (it proves `i := c; WHILE i < C DO ... "
+                         "i := i + s; END_WHILE` and the like; otherwise use "
+                         "FOR with constant bounds)");
+    // for k in 0..n-1 { if <still looping> { body } }: the bound is an
+    // upper bound, the condition keeps the iteration count exact.
+    LoopCtx loop;
+    loop.exitFlag = flagVar("exit");
+    if (mayJump(s->body, true))
+      loop.continueFlag = flagVar("continue");
+    out.push_back(b.assign(b.ref(loop.exitFlag, s->loc),
+                           b.boolLit(false, s->loc), s->loc));
+    std::vector<LoopCtx> inner = loops;
+    inner.push_back(loop);
+    Sink iter;
+    if (isWhile) {
+      // Leaving the loop is an EXIT at the top of the iteration.
+      Sink cond;
+      NExpr *c = expr(s->value, f, cond);
+      iter.insert(iter.end(), cond.begin(), cond.end());
+      net::IfArm stop{
+          b.unary(net::UnaryOp::Not, c, s->loc),
+          design.copy(llvm::ArrayRef<NStmt *>(b.assign(
+              b.ref(loop.exitFlag, s->loc), b.boolLit(true, s->loc), s->loc)))};
+      iter.push_back(b.ifStmt({stop}, false, {}, s->loc));
+    }
+    Sink bodyStmts;
+    if (!loop.continueFlag.empty())
+      bodyStmts.push_back(b.assign(b.ref(loop.continueFlag, s->loc),
+                                   b.boolLit(false, s->loc), s->loc));
+    body(s->body, f, bodyStmts, inner);
+    if (!isWhile) {
+      Sink cond;
+      NExpr *c = expr(s->value, f, cond);
+      bodyStmts.insert(bodyStmts.end(), cond.begin(), cond.end());
+      net::IfArm stop{c, design.copy(llvm::ArrayRef<NStmt *>(
+                             b.assign(b.ref(loop.exitFlag, s->loc),
+                                      b.boolLit(true, s->loc), s->loc)))};
+      bodyStmts.push_back(b.ifStmt({stop}, false, {}, s->loc));
+    }
+    NExpr *running =
+        b.unary(net::UnaryOp::Not, b.ref(loop.exitFlag, s->loc), s->loc);
+    if (!f.returnFlag.empty())
+      running = b.binary(
+          net::BinaryOp::And, running,
+          b.unary(net::UnaryOp::Not, b.ref(f.returnFlag, s->loc), s->loc),
+          s->loc);
+    net::IfArm run{running, design.copy(llvm::ArrayRef<NStmt *>(bodyStmts))};
+    iter.push_back(b.ifStmt({run}, false, {}, s->loc));
+    std::string k = "_k" + std::to_string(++loopVars);
+    if (*n > 0)
+      out.push_back(b.forStmt(k, b.intLit(0, s->loc), b.intLit(*n - 1, s->loc),
+                              iter, s->loc));
+    return;
+  }
+  case StmtKind::Exit:
+  case StmtKind::Continue: {
+    const LoopCtx &loop = loops.back();
+    const std::string &flag =
+        s->kind == StmtKind::Exit ? loop.exitFlag : loop.continueFlag;
+    out.push_back(
+        b.assign(b.ref(flag, s->loc), b.boolLit(true, s->loc), s->loc));
+    return;
+  }
+  case StmtKind::Return:
+    if (f.returnFlag.empty())
+      refuse(s->loc, "internal: RETURN without a flag");
+    out.push_back(
+        b.assign(b.ref(f.returnFlag, s->loc), b.boolLit(true, s->loc), s->loc));
+    return;
+  }
+}
+
+//===----------------------------------------------------------------------===//
+// What statements write
+//===----------------------------------------------------------------------===//
+
+static void writtenBy(Expr *target, std::set<VarDecl *> &w) {
+  while (target && target->kind != ExprKind::Name)
+    target = target->base();
+  if (target && target->var)
+    w.insert(target->var);
+}
+
+void netlift::plc::detail::collectWritten(StmtList &l, std::set<VarDecl *> &w) {
+  for (Stmt *s : l) {
+    if (s->kind == StmtKind::Assign || s->kind == StmtKind::For)
+      writtenBy(s->target, w);
+    if (s->kind == StmtKind::Call)
+      for (CallArg &a : s->value->args)
+        if (a.isOutput)
+          writtenBy(a.value, w);
+    for (auto &[c, body] : s->arms)
+      collectWritten(body, w);
+    for (auto &arm : s->caseArms)
+      collectWritten(arm.body, w);
+    collectWritten(s->elseBody, w);
+    collectWritten(s->body, w);
+  }
+}
+
+/// Names read anywhere in NetIR statements (assignment targets excluded,
+/// except the bases of indexed or field targets, which are read-modify-
+/// write).

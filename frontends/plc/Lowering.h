@@ -1,0 +1,230 @@
+//===- Lowering.h - the PLC lowering's shared state -------------*- C++ -*-===//
+//
+// Internal to frontends/plc: the Lowering class that turns a checked PLC
+// unit into NetIR, shared by the files that implement it by concept —
+// LowerToNet.cpp (time, modules, the entry points), LowerDecls.cpp (types
+// and declarations), LowerExprs.cpp (expressions and standard functions),
+// LowerCalls.cpp (function and function block calls), LowerStmts.cpp
+// (statements and loops). LowerToNet.h is the API.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_PLC_LOWERING_H
+#define NETLIFT_FRONTENDS_PLC_LOWERING_H
+
+#include "frontends/plc/LowerToNet.h"
+#include "frontends/plc/Sema.h"
+
+#include "ir/net/Builder.h"
+#include "ir/net/Names.h"
+#include "ir/net/Parser.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringSet.h"
+
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+
+namespace netlift::plc::detail {
+
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+using NExpr = net::Expr;
+using NStmt = net::Stmt;
+using Sink = std::vector<NStmt *>;
+
+/// Thrown to abandon the translation after the first refusal; caught in
+/// lowerToNet. (One refusal per run: later ones would mostly be echoes.)
+struct Refusal {};
+
+struct Range {
+  int64_t lo, hi;
+  bool exact; // false: unknown (treat as unbounded)
+};
+
+/// The lowering of one POU body invocation: whose names, under which
+/// prefix, with which VAR_IN_OUT aliases, and the control flags in force.
+struct Frame {
+  Pou *pou = nullptr;
+  std::string prefix; // "" for the top program, "t1." for an instance
+  std::map<VarDecl *, NExpr *> aliases; // VAR_IN_OUT -> caller's lvalue
+  std::string returnFlag;               // set when the body has RETURN
+  bool external = false; // program frame: reads of FB members count as
+                         // reads from outside the instance
+};
+
+struct LoopCtx {
+  std::string exitFlag, continueFlag;
+};
+
+struct InstanceUse {
+  unsigned calls = 0;
+  std::map<std::string, unsigned> given; // input member -> calls giving it
+};
+
+struct ClockUse {
+  std::string var;    // the clock variable
+  std::string member; // the FB input bounding it (PT)
+  std::string path;   // the instance path
+  int64_t cap = 0;
+  std::vector<std::string> timeMembers; // TIME members retyped 0..cap
+};
+
+class Lowering {
+public:
+  Lowering(Unit &u, const LowerOptions &o, DiagEngine &d, net::Design &des)
+      : unit(u), opts(o), diag(d), design(des), b(des) {}
+  bool run();
+  bool runEventDriven(std::vector<EventDrivenBlock> &blocks);
+
+private:
+  [[noreturn]] void refuse(SMLoc at, const Twine &msg) {
+    diag.error(at, msg);
+    throw Refusal{};
+  }
+
+  // Time.
+  void collectTimes(Pou *p, std::set<Pou *> &seen, std::vector<int64_t> &ns);
+  void collectTimesExpr(Expr *e, std::set<Pou *> &seen,
+                        std::vector<int64_t> &ns);
+  void collectTimesStmts(StmtList &l, std::set<Pou *> &seen,
+                         std::vector<int64_t> &ns);
+  int64_t ticks(int64_t ns, SMLoc at);
+
+  // Types and declarations.
+  const net::Type *netType(const PType *t, SMLoc at, StringRef what);
+  /// `v`'s initial value (`init`, else its type's); inside an aggregate
+  /// (`at` given) every element is spelt out, defaults included.
+  NExpr *initialValue(VarDecl *v, Initializer *init, const PType *t,
+                      std::optional<SMLoc> at = std::nullopt);
+  /// An array (from dimension `dim` on) or structure initial value.
+  NExpr *aggregateValue(VarDecl *v, Initializer *init, const PType *t,
+                        size_t dim, SMLoc at);
+  NExpr *defaultValue(const PType *t, SMLoc at);
+  std::string unique(std::string name);
+  static std::string sanitize(StringRef name);
+  void declareProgramVar(VarDecl *v);
+  void declareInstance(const std::string &path, Pou *fb, Initializer *init);
+  uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
+  std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
+
+  /// Picks the tick from the durations `ns` (and the options, or a model
+  /// read before) and sets the design's timescale.
+  void chooseTick(std::vector<int64_t> ns);
+
+  // Bodies.
+  /// One program of a module: the prefix of its own names ("" when the
+  /// module is the program's alone), the scan it runs in, and what its
+  /// lowering produces.
+  struct ProgramRun {
+    Pou *pou = nullptr;
+    std::string prefix;
+    std::string scan, cycle; // the scan transition and its place
+    int64_t period = 1;
+    Sink action;
+    std::vector<std::pair<std::string, NExpr *>> resets; // end of its scan
+    size_t membersBegin = 0, membersEnd = 0;             // its FB members
+  };
+  /// The globals `program` reads or writes (its body, the FBs and
+  /// functions it calls, its instance's arguments).
+  std::set<VarDecl *> globalsUsedBy(Pou *program);
+  /// While one program's declarations or body are lowered: its names'
+  /// prefix is in force and end-of-scan resets go to it.
+  struct InProgram {
+    Lowering &L;
+    ProgramRun &run;
+    InProgram(Lowering &l, ProgramRun &r) : L(l), run(r) {
+      L.currentProgram = r.pou;
+      L.programPrefix = r.prefix;
+      std::swap(L.resets, r.resets);
+    }
+    ~InProgram() { std::swap(L.resets, run.resets); }
+  };
+  void startModule(const std::string &name, SMLoc loc);
+  void declareProgram(ProgramRun &run);
+  void lowerProgramBody(ProgramRun &run);
+  void deadValueResets(ProgramRun &run);
+  /// One module holding `runs`; runs with the same scan share it, in
+  /// order.
+  void lowerPrograms(const std::string &name, SMLoc loc,
+                     std::vector<ProgramRun> &runs);
+  void capClocks();
+  /// Pragmas become `pragma` attributes of what they annotate (see
+  /// attachPragmas).
+  void keepPragmas(const std::string &target,
+                   const std::vector<Attribute> &attrs) {
+    for (const Attribute &a : attrs)
+      pendingPragmas.push_back({target, &a});
+  }
+  void attachPragmas();
+  std::vector<std::pair<std::string, const Attribute *>> pendingPragmas;
+  void lowerEventBlock(EventDrivenBlock &block);
+  void body(StmtList &list, Frame &f, Sink &out,
+            const std::vector<LoopCtx> &loops);
+  void stmt(Stmt *s, Frame &f, Sink &out, const std::vector<LoopCtx> &loops);
+  NExpr *expr(Expr *e, Frame &f, Sink &pre);
+  NExpr *lvalue(Expr *e, Frame &f, Sink &pre);
+  NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
+  std::string instancePath(Expr *e, Frame &f);
+  void fbCall(Expr *call, Frame &f, Sink &out);
+  void enabledBody(Pou *callee, const std::string &prefix, Expr *call,
+                   Frame &nf, Sink &out);
+  void noteClockBound(const std::string &member, Expr *value, Frame &f,
+                      SMLoc at);
+  NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
+  NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
+  NExpr *convert(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
+  NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
+  Range rangeOf(Expr *e);
+  std::optional<int64_t> constValue(Expr *e, Frame &f);
+  bool mayJump(const StmtList &l, bool loopLevel);
+  std::optional<int64_t> loopBound(Stmt *loop, Stmt *before, Frame &f);
+  Stmt *previous = nullptr; // the statement before the one being lowered
+  void assign(NExpr *target, NExpr *value, const PType *targetType,
+              Expr *valueExpr, Sink &out, SMLoc at);
+
+  Unit &unit;
+  const LowerOptions &opts;
+  DiagEngine &diag;
+  net::Design &design;
+  net::Builder b;
+  int64_t tickNs = 0;
+
+  // Per module.
+  net::Module *mod = nullptr;
+  std::map<const PType *, const net::Type *> typeCache;
+  std::vector<std::pair<std::string, NExpr *>> resets; // end-of-scan
+  std::set<std::string> resetNames;
+  std::vector<std::string> instanceMembers; // FB member variables
+  std::set<std::string> externallyRead;     // `inst.member` read by caller
+  std::map<std::string, InstanceUse> instanceUses;
+  std::map<std::string, ClockUse> clocks;          // by clock variable name
+  std::map<std::string, std::string> clockOfBound; // `t.PT` -> clock var
+  std::map<std::string, Pou *> instanceTypes;
+  std::map<std::string, const PType *> varTypes; // NetIR var -> PLC type
+  std::set<VarDecl *> written;
+  std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
+  unsigned callSites = 0, flags = 0, loopVars = 0;
+  /// The configuration's instance of each translated program.
+  std::map<Pou *, std::pair<ProgramInstance *, Configuration *>> instanceOf;
+  /// The instance whose arguments bind a program's inputs and outputs.
+  std::map<Pou *, ProgramInstance *> argumentsOf;
+  /// Inputs of the program being lowered that an argument feeds.
+  std::set<VarDecl *> boundInputs;
+  Pou *currentProgram = nullptr;
+  /// The prefix of the current program's own names (see ProgramRun).
+  std::string programPrefix;
+  /// Lowering an event-driven block: inputs take their full types.
+  bool eventDriven = false;
+};
+
+/// The variables a statement list assigns (through fields and indices),
+/// nested statements included.
+void collectWritten(StmtList &l, std::set<VarDecl *> &w);
+
+} // namespace netlift::plc::detail
+
+#endif
