@@ -1,0 +1,384 @@
+//===- SemaCalls.cpp - checking PLC calls
+//-----------------------------------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+void Checker::functionArgs(Expr *e, Pou *fn) {
+  std::vector<VarDecl *> params;
+  for (VarDecl *v : fn->vars)
+    if (v->section == VarSection::Input || v->section == VarSection::InOut ||
+        v->section == VarSection::Output)
+      params.push_back(v);
+  size_t positional = 0;
+  for (CallArg &a : e->args) {
+    VarDecl *p = nullptr;
+    if (a.name.empty()) {
+      // Positional arguments bind the inputs (and in-outs) in order.
+      while (positional < params.size() &&
+             params[positional]->section == VarSection::Output)
+        ++positional;
+      if (positional >= params.size()) {
+        error(a.loc, "too many arguments for '" + fn->name + "'");
+        return;
+      }
+      p = params[positional++];
+    } else {
+      p = fn->find(a.name);
+      if (!p)
+        p = enEno(fn, a.name);
+      if (!p ||
+          (p->section != VarSection::Input && p->section != VarSection::InOut &&
+           p->section != VarSection::Output)) {
+        // Through an instance, say its type: `PT c` on a CTU named c.
+        error(a.loc, (e->var ? "'" + e->name + "' (" + fn->name + ")"
+                             : "'" + fn->name + "'") +
+                         " has no parameter '" + a.name + "'");
+        return;
+      }
+    }
+    if (a.isOutput != (p->section == VarSection::Output)) {
+      error(a.loc, a.isOutput
+                       ? "'=>' binds outputs; '" + p->name + "' is a " +
+                             spelling(p->section)
+                       : "output '" + p->name + "' must be bound with '=>'");
+      return;
+    }
+    if (a.isOutput || p->section == VarSection::InOut) {
+      const PType *t = lvalue(a.value);
+      if (t && p->type &&
+          (p->section == VarSection::InOut
+               ? baseOf(t) != baseOf(p->type) &&
+                     !(t->kind == p->type->kind && t->kind != PTypeKind::Int)
+               : false)) {
+        error(a.loc, "VAR_IN_OUT '" + p->name + "' of type " + p->type->str() +
+                         " bound to a " + t->str());
+        return;
+      }
+      if (a.isOutput && t && p->type) {
+        Expr probe(ExprKind::Name, a.loc);
+        probe.type = p->type;
+        assignable(t, &probe, a.loc, "output '" + p->name + "'");
+      }
+    } else if (expr(a.value)) {
+      assignable(p->type, a.value, a.loc, "argument '" + p->name + "'");
+    }
+    a.name = p->name; // canonical spelling for the lowering
+  }
+  for (VarDecl *p : params)
+    if (p->section == VarSection::InOut) {
+      bool given = false;
+      for (CallArg &a : e->args)
+        given |= sameName(a.name, p->name);
+      if (!given)
+        error(e->loc, "VAR_IN_OUT '" + p->name + "' of '" + fn->name +
+                          "' must be given");
+    }
+}
+
+/// Puts the named inputs of a standard function call in parameter order
+/// (IEC names: IN; IN1..INn; MN, IN, MX for LIMIT; G, IN0, IN1 for SEL;
+/// K, IN0..INn for MUX; IN, N for shifts). All arguments are named or none.
+bool Checker::orderStdArgs(Expr *e, StdFn fn) {
+  size_t named = 0;
+  for (CallArg &a : e->args)
+    named += !a.name.empty();
+  if (named == 0)
+    return true;
+  if (named != e->args.size()) {
+    error(e->loc, "'" + e->name + "': give all arguments by name or none");
+    return false;
+  }
+  auto position = [&](StringRef n) -> int {
+    std::string u = n.upper();
+    StringRef up(u);
+    unsigned k;
+    switch (fn) {
+    case StdFn::Limit:
+      return up == "MN" ? 0 : up == "IN" ? 1 : up == "MX" ? 2 : -1;
+    case StdFn::Sel:
+      return up == "G" ? 0 : up == "IN0" ? 1 : up == "IN1" ? 2 : -1;
+    case StdFn::Mux:
+      if (up == "K")
+        return 0;
+      return up.consume_front("IN") && !up.getAsInteger(10, k) ? int(k) + 1
+                                                               : -1;
+    case StdFn::Shl:
+    case StdFn::Shr:
+    case StdFn::Rol:
+    case StdFn::Ror:
+      return up == "IN" ? 0 : up == "N" ? 1 : -1;
+    default:
+      if (up == "IN")
+        return 0;
+      return up.consume_front("IN") && !up.getAsInteger(10, k) && k >= 1
+                 ? int(k) - 1
+                 : -1;
+    }
+  };
+  std::vector<CallArg> ordered(e->args.size());
+  std::vector<bool> filled(e->args.size(), false);
+  for (CallArg &a : e->args) {
+    int p = position(a.name);
+    if (p < 0 || size_t(p) >= ordered.size() || filled[p]) {
+      error(a.loc, "'" + e->name + "' has no parameter '" + a.name + "' here");
+      return false;
+    }
+    ordered[p] = a;
+    filled[p] = true;
+  }
+  e->args = std::move(ordered);
+  return true;
+}
+
+static const char *withArticle(VarSection s) {
+  switch (s) {
+  case VarSection::Input:
+    return "an input";
+  case VarSection::Output:
+    return "an output";
+  case VarSection::InOut:
+    return "an in-out parameter";
+  default:
+    return "a local variable";
+  }
+}
+
+/// Holds a graphical block against the type it calls: the type it is drawn
+/// as must be the one its instance is declared with, and each pin must be a
+/// parameter of that type in the group it is drawn in.
+bool Checker::drawnAsDeclared(Expr *e, Pou *type) {
+  const DrawnBlock &d = *e->drawn;
+  if (!d.instanceName.empty() && !sameName(d.typeName, type->name)) {
+    error(e->loc, "block '" + d.instanceName + "' is drawn as " + d.typeName +
+                      " but declared " + type->name);
+    return false;
+  }
+  std::string block = d.instanceName.empty() ? "block " + type->name
+                                             : "block '" + d.instanceName +
+                                                   "' (" + type->name + ")";
+  for (const DrawnPin &pin : d.pins) {
+    VarDecl *p = type->find(pin.name);
+    if (!p)
+      p = enEno(type, pin.name);
+    // A function's result leaves through the output pin OUT.
+    if (!p && type->kind == PouKind::Function && pin.name.size() == 3 &&
+        sameName(pin.name, "OUT") && pin.drawnAs == VarSection::Output)
+      continue;
+    if (!p ||
+        (p->section != VarSection::Input && p->section != VarSection::Output &&
+         p->section != VarSection::InOut)) {
+      error(pin.loc, block + " has no parameter '" + pin.name + "'");
+      return false;
+    }
+    if (p->section != pin.drawnAs) {
+      error(pin.loc, block + ": '" + p->name + "' is " +
+                         withArticle(p->section) + ", drawn as " +
+                         withArticle(pin.drawnAs));
+      return false;
+    }
+  }
+  return true;
+}
+
+const PType *Checker::call(Expr *e, bool asStatement) {
+  // An FB instance call (statement only).
+  if (VarDecl *v = lookupVar(e->name)) {
+    if (!v->type)
+      return nullptr;
+    if (v->type->kind != PTypeKind::FunctionBlock) {
+      error(e->loc, "'" + e->name + "' is a variable of type " +
+                        v->type->str() + ", not a function block instance");
+      return nullptr;
+    }
+    if (!asStatement) {
+      error(e->loc, "function block instance '" + e->name +
+                        "' cannot be called inside an expression");
+      return nullptr;
+    }
+    e->var = v;
+    if (e->drawn && !drawnAsDeclared(e, v->type->fb))
+      return nullptr;
+    functionArgs(e, v->type->fb);
+    return voidType();
+  }
+  if (e->drawn && !e->drawn->instanceName.empty()) {
+    error(e->loc, "block '" + e->drawn->instanceName + "' (" +
+                      e->drawn->typeName + "): no variable '" +
+                      e->drawn->instanceName + "' is declared");
+    return nullptr;
+  }
+  if (Pou *p = unit.findPou(e->name)) {
+    if (p->kind != PouKind::Function) {
+      if (e->drawn)
+        error(e->loc, noInstanceMessage(e->name));
+      else
+        error(e->loc, "'" + e->name + "' is a " + spelling(p->kind) +
+                          "; only functions and function block instances "
+                          "can be called");
+      return nullptr;
+    }
+    if (p == current) {
+      error(e->loc, "recursive call of function '" + p->name + "'");
+      return nullptr;
+    }
+    e->callee = p;
+    if (e->drawn && !drawnAsDeclared(e, p))
+      return nullptr;
+    functionArgs(e, p);
+    return p->resultType;
+  }
+  StdFnInfo info = lookupStdFunction(e->name);
+  if (info.fn == StdFn::None) {
+    error(e->loc, "unknown function '" + e->name + "'");
+    return nullptr;
+  }
+  if (!orderStdArgs(e, info.fn))
+    return nullptr;
+  std::vector<const PType *> types;
+  for (CallArg &a : e->args) {
+    if (a.isOutput) {
+      error(a.loc, "standard function '" + e->name + "' has no outputs");
+      return nullptr;
+    }
+    const PType *t = expr(a.value);
+    if (!t)
+      return nullptr;
+    types.push_back(t);
+  }
+  auto arity = [&](size_t lo, size_t hi) {
+    if (types.size() < lo || types.size() > hi) {
+      error(e->loc, "'" + e->name + "' takes " +
+                        (lo == hi ? Twine(lo) : Twine(lo) + " or more") +
+                        " argument(s), given " + Twine(types.size()));
+      return false;
+    }
+    return true;
+  };
+  auto numericOf = [&](size_t from) -> const PType * {
+    const PType *t = types[from];
+    for (size_t i = from + 1; i < types.size() && t; ++i) {
+      Expr probe(ExprKind::Binary, e->loc);
+      probe.op = Op::Add;
+      if (baseOf(t)->kind == PTypeKind::Time &&
+          baseOf(types[i])->kind == PTypeKind::Time)
+        continue;
+      if (baseOf(t)->kind == PTypeKind::Bool &&
+          baseOf(types[i])->kind == PTypeKind::Bool)
+        continue;
+      if (baseOf(t)->kind == PTypeKind::Enum && baseOf(types[i]) == baseOf(t))
+        continue;
+      t = commonNumeric(t, types[i], &probe);
+    }
+    return t ? baseOf(t) : nullptr;
+  };
+  e->callee = nullptr;
+  switch (info.fn) {
+  case StdFn::Abs:
+  case StdFn::Move:
+    if (!arity(1, 1))
+      return nullptr;
+    return baseOf(types[0]);
+  case StdFn::Min:
+  case StdFn::Max:
+  case StdFn::Add:
+  case StdFn::Mul:
+    if (!arity(2, 64))
+      return nullptr;
+    return numericOf(0);
+  case StdFn::Sub:
+  case StdFn::Div:
+  case StdFn::Mod:
+    if (!arity(2, 2))
+      return nullptr;
+    return numericOf(0);
+  case StdFn::Limit:
+    if (!arity(3, 3))
+      return nullptr;
+    return numericOf(0);
+  case StdFn::Sel:
+    if (!arity(3, 3))
+      return nullptr;
+    if (baseOf(types[0])->kind != PTypeKind::Bool) {
+      error(e->args[0].loc, "SEL selector G must be BOOL");
+      return nullptr;
+    }
+    return numericOf(1);
+  case StdFn::Mux:
+    if (!arity(2, 64))
+      return nullptr;
+    if (!baseOf(types[0])->isInteger()) {
+      error(e->args[0].loc, "MUX selector K must be an integer");
+      return nullptr;
+    }
+    return numericOf(1);
+  case StdFn::And:
+  case StdFn::Or:
+  case StdFn::Xor:
+    if (!arity(2, 64))
+      return nullptr;
+    for (const PType *t : types)
+      if (!baseOf(t)->isAnyBit() && !baseOf(t)->isInteger()) {
+        error(e->loc, "'" + e->name + "' needs BOOL or bit-string inputs");
+        return nullptr;
+      }
+    return numericOf(0);
+  case StdFn::Not:
+    if (!arity(1, 1))
+      return nullptr;
+    return baseOf(types[0]);
+  case StdFn::Shl:
+  case StdFn::Shr:
+  case StdFn::Rol:
+  case StdFn::Ror:
+    if (!arity(2, 2))
+      return nullptr;
+    if (baseOf(types[0])->kind != PTypeKind::Int ||
+        !baseOf(types[1])->isInteger()) {
+      error(e->loc, "'" + e->name + "' shifts a bit string by an integer");
+      return nullptr;
+    }
+    return baseOf(types[0]);
+  case StdFn::Gt:
+  case StdFn::Ge:
+  case StdFn::Eq:
+  case StdFn::Le:
+  case StdFn::Lt:
+    if (!arity(2, 64) || !numericOf(0))
+      return nullptr;
+    return boolType();
+  case StdFn::Ne:
+    if (!arity(2, 2) || !numericOf(0))
+      return nullptr;
+    return boolType();
+  case StdFn::Convert: {
+    if (!arity(1, 1))
+      return nullptr;
+    const PType *src = baseOf(types[0]);
+    if (info.from && src->kind != PTypeKind::AnyInt && src != info.from &&
+        !(src->kind == info.from->kind && src->kind != PTypeKind::Int)) {
+      error(e->args[0].loc, "'" + e->name + "' converts from " +
+                                info.from->str() + ", given " + src->str());
+      return nullptr;
+    }
+    return info.to;
+  }
+  case StdFn::RealMath:
+    return elementaryType("LREAL");
+  case StdFn::StringOp:
+    return elementaryType("STRING");
+  case StdFn::Refused:
+    error(e->loc, "'" + e->name +
+                      "' is not supported (BCD conversions are "
+                      "refused)");
+    return nullptr;
+  case StdFn::None:
+    break;
+  }
+  return nullptr;
+}

@@ -1,0 +1,90 @@
+//===- SemaChecker.h - the PLC checker's shared state -----------*- C++ -*-===//
+//
+// Internal to frontends/plc: the Checker that resolves names and types of
+// a PLC unit, shared by the files that implement it by construct family —
+// Sema.cpp (declarations, POUs, the entry point), SemaStmts.cpp
+// (statements, assignability), SemaExprs.cpp (expressions), SemaCalls.cpp
+// (calls of functions and function blocks); SemaTypes.cpp has the
+// elementary types and standard functions. Sema.h is the API.
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_FRONTENDS_PLC_SEMACHECKER_H
+#define NETLIFT_FRONTENDS_PLC_SEMACHECKER_H
+
+#include "frontends/plc/Sema.h"
+
+#include "llvm/ADT/StringMap.h"
+#include "llvm/ADT/StringSwitch.h"
+
+#include <map>
+#include <set>
+
+namespace netlift::plc::detail {
+
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+// The types every check needs (SemaTypes.cpp).
+const PType *anyIntType();
+const PType *voidType();
+const PType *boolType();
+/// Strips a subrange to its elementary type.
+const PType *baseOf(const PType *t);
+
+class Checker {
+public:
+  Checker(Unit &u, DiagEngine &d) : unit(u), diag(d) {}
+  bool run();
+
+private:
+  void error(SMLoc at, const Twine &msg) { diag.error(at, msg); }
+
+  // Types.
+  const PType *resolve(TypeSyntax *ts, StringRef ownerName);
+  const PType *resolveNamed(StringRef name, SMLoc at);
+  bool constInt(Expr *e, int64_t &v);
+  void checkInitializer(Initializer *init, const PType *t);
+
+  // Declarations.
+  void declareVars(std::vector<VarDecl *> &vars, Pou *owner);
+
+  // Bodies.
+  void checkPou(Pou *pou);
+  void stmts(StmtList &list);
+  void stmt(Stmt *s);
+  const PType *expr(Expr *e);
+  const PType *lvalue(Expr *e);
+  const PType *call(Expr *e, bool asStatement);
+  void functionArgs(Expr *e, Pou *fn);
+  bool drawnAsDeclared(Expr *e, Pou *type);
+  bool assignable(const PType *to, Expr *from, SMLoc at, const Twine &what);
+  void checkProgramArgs(ProgramInstance &pi, Pou *p);
+  const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
+  VarDecl *lookupVar(StringRef name);
+  int64_t lookupEnumerator(StringRef name, const PType *&type);
+  VarDecl *enEno(Pou *p, StringRef name);
+  bool orderStdArgs(Expr *e, StdFn fn);
+  // The enumerated type an ambiguous enumerator resolves to (assignment
+  // target, CASE selector), if any.
+  const PType *expectedEnum = nullptr;
+  void indexEnum(const PType *t);
+  // Enumerators by upper-case name: every enumerated type of the unit.
+  llvm::StringMap<std::vector<std::pair<const PType *, int64_t>>> enumsByName;
+  std::set<const PType *> indexedEnums;
+
+  Unit &unit;
+  DiagEngine &diag;
+  std::map<std::string, const PType *> named; // user types, upper-case key
+  std::map<std::string, int> resolving;       // cycle detection
+  std::vector<VarDecl *> allGlobals;
+  Pou *current = nullptr;
+  unsigned loopDepth = 0;
+
+  // Types live as long as the unit: the lowering reads them after Sema.
+  PType *make(PTypeKind k) { return unit.make<PType>(PType{k}); }
+};
+
+} // namespace netlift::plc::detail
+
+#endif

@@ -1,0 +1,404 @@
+//===- SemaExprs.cpp - checking PLC expressions
+//-----------------------------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+const PType *Checker::lvalue(Expr *e) {
+  const PType *t = expr(e);
+  if (!t)
+    return nullptr;
+  Expr *root = e;
+  while (root->kind != ExprKind::Name && root->base())
+    root = root->base();
+  if (root->kind != ExprKind::Name || !root->var) {
+    error(e->loc, "cannot assign to this expression");
+    return nullptr;
+  }
+  VarDecl *v = root->var;
+  if (v->constant) {
+    error(e->loc, "assignment to constant '" + v->name + "'");
+    return nullptr;
+  }
+  if (v->area() == 'I') {
+    error(e->loc, "assignment to input '" + v->name + "' (located at " +
+                      v->location + ")");
+    return nullptr;
+  }
+  if (v->section == VarSection::Input && v->owner &&
+      v->owner->kind == PouKind::Program && root == e) {
+    error(e->loc, "assignment to input '" + v->name + "' of program '" +
+                      v->owner->name + "'");
+    return nullptr;
+  }
+  // `fb.Q := x` writes an instance's output from outside.
+  if (e->kind == ExprKind::Field && e->base()->type &&
+      e->base()->type->kind == PTypeKind::FunctionBlock && e->var &&
+      e->var->section == VarSection::Output) {
+    error(e->loc,
+          "assignment to output '" + e->name + "' of function block instance");
+    return nullptr;
+  }
+  return t;
+}
+
+const PType *Checker::expr(Expr *e) {
+  if (!e)
+    return nullptr;
+  const PType *t = nullptr;
+  switch (e->kind) {
+  case ExprKind::IntLit:
+    if (!e->typeName.empty()) {
+      t = elementaryType(e->typeName);
+      if (!t) {
+        // `Color#3`? Not IEC.
+        error(e->loc, "unknown type '" + e->typeName + "' in typed literal");
+        return nullptr;
+      }
+      if (t->kind == PTypeKind::Int &&
+          (e->intValue < t->lo || e->intValue > t->hi) && !t->isBits) {
+        error(e->loc, "value " + Twine(e->intValue) + " is out of range for " +
+                          t->str());
+        return nullptr;
+      }
+      if (t->kind == PTypeKind::Bool && e->intValue != 0 && e->intValue != 1) {
+        error(e->loc, "BOOL literal must be 0 or 1");
+        return nullptr;
+      }
+    } else {
+      t = anyIntType();
+    }
+    break;
+  case ExprKind::RealLit:
+    t = elementaryType(e->typeName.empty() ? "LREAL" : e->typeName);
+    if (!t || t->kind != PTypeKind::Real) {
+      error(e->loc, "a real number cannot be a " + e->typeName);
+      return nullptr;
+    }
+    break;
+  case ExprKind::BoolLit:
+    t = boolType();
+    break;
+  case ExprKind::TimeLit:
+    t = elementaryType("TIME");
+    break;
+  case ExprKind::DateLit:
+    t = elementaryType("DATE");
+    break;
+  case ExprKind::StringLit:
+    t = elementaryType("STRING");
+    break;
+  case ExprKind::EnumLit: {
+    const PType *et = resolveNamed(e->typeName, e->loc);
+    if (!et)
+      return nullptr;
+    if (et->kind != PTypeKind::Enum) {
+      error(e->loc, "'" + e->typeName + "' is not an enumerated type");
+      return nullptr;
+    }
+    for (size_t i = 0; i < et->enumerators.size(); ++i)
+      if (sameName(et->enumerators[i], e->name))
+        e->enumValue = int64_t(i);
+    if (e->enumValue < 0) {
+      error(e->loc, "'" + e->typeName + "' has no value '" + e->name + "'");
+      return nullptr;
+    }
+    t = et;
+    break;
+  }
+  case ExprKind::Name: {
+    if (e->name[0] == '%') {
+      // A direct address used without a declaration: an input, output or
+      // memory bit/word of the program.
+      for (VarDecl *v : current ? current->vars : std::vector<VarDecl *>{})
+        if (sameName(v->location, e->name))
+          e->var = v;
+      for (VarDecl *g : allGlobals)
+        if (!e->var && sameName(g->location, e->name))
+          e->var = g;
+      if (!e->var && current && current->kind == PouKind::Program) {
+        // IEC lets a program use %IX0.1 without declaring it: an implicit
+        // variable of the size the address names, located there.
+        StringRef addr(e->name);
+        char size = addr.size() > 2 ? char(std::toupper(addr[2])) : 'X';
+        const char *typeName = size == 'B'   ? "BYTE"
+                               : size == 'W' ? "WORD"
+                               : size == 'D' ? "DWORD"
+                               : size == 'L' ? "LWORD"
+                                             : "BOOL";
+        VarDecl *v = unit.make<VarDecl>();
+        v->name = e->name;
+        v->loc = e->loc;
+        v->location = e->name;
+        v->owner = current;
+        v->type = elementaryType(typeName);
+        current->vars.push_back(v);
+        e->var = v;
+      }
+      if (!e->var) {
+        error(e->loc, "direct address " + e->name +
+                          " is not declared (declare it with AT)");
+        return nullptr;
+      }
+      t = e->var->type;
+      break;
+    }
+    if (VarDecl *v = lookupVar(e->name)) {
+      e->var = v;
+      t = v->type;
+      break;
+    }
+    if (VarDecl *v = enEno(current, e->name)) {
+      e->var = v;
+      t = v->type;
+      break;
+    }
+    if (current && current->resultVar && sameName(current->name, e->name)) {
+      e->var = current->resultVar;
+      t = current->resultType;
+      break;
+    }
+    const PType *et = nullptr;
+    int64_t ev = lookupEnumerator(e->name, et);
+    if (ev == -2 && expectedEnum)
+      for (size_t i = 0; i < expectedEnum->enumerators.size(); ++i)
+        if (sameName(expectedEnum->enumerators[i], e->name)) {
+          ev = int64_t(i);
+          et = expectedEnum;
+        }
+    if (ev == -2) {
+      error(e->loc, "'" + e->name +
+                        "' names a value of several enumerated "
+                        "types; write TYPE#" +
+                        e->name);
+      return nullptr;
+    }
+    if (ev >= 0) {
+      e->enumValue = ev;
+      t = et;
+      break;
+    }
+    error(e->loc, "unknown variable '" + e->name + "'");
+    return nullptr;
+  }
+  case ExprKind::Field: {
+    const PType *bt = expr(e->base());
+    if (!bt)
+      return nullptr;
+    if (bt->kind == PTypeKind::Struct) {
+      for (VarDecl *f : bt->fields)
+        if (sameName(f->name, e->name)) {
+          e->var = f;
+          t = f->type;
+        }
+      if (!t) {
+        error(e->loc, "'" + bt->str() + "' has no field '" + e->name + "'");
+        return nullptr;
+      }
+      break;
+    }
+    if (bt->kind == PTypeKind::FunctionBlock) {
+      VarDecl *m = bt->fb->find(e->name);
+      if (!m)
+        m = enEno(bt->fb, e->name);
+      if (!m || (m->section != VarSection::Input &&
+                 m->section != VarSection::Output &&
+                 m->section != VarSection::InOut)) {
+        error(e->loc, "'" + e->name + "' is not an input or output of " +
+                          "function block " + bt->fb->name);
+        return nullptr;
+      }
+      e->var = m;
+      t = m->type;
+      break;
+    }
+    error(e->loc, "'.'" + Twine(" applied to a value of type ") + bt->str());
+    return nullptr;
+  }
+  case ExprKind::BitAccess: {
+    const PType *bt = expr(e->base());
+    if (!bt)
+      return nullptr;
+    const PType *b = baseOf(bt);
+    if (b->kind != PTypeKind::Int) {
+      error(e->loc, "bit access on a value of type " + bt->str());
+      return nullptr;
+    }
+    if (e->intValue < 0 || e->intValue >= int64_t(b->width)) {
+      error(e->loc,
+            "bit " + Twine(e->intValue) + " does not exist in " + b->str());
+      return nullptr;
+    }
+    t = boolType();
+    break;
+  }
+  case ExprKind::Index: {
+    const PType *bt = expr(e->base());
+    if (!bt)
+      return nullptr;
+    if (bt->kind != PTypeKind::Array) {
+      error(e->loc, "indexing a value of type " + bt->str());
+      return nullptr;
+    }
+    if (e->operands.size() - 1 != bt->dims.size()) {
+      error(e->loc, "array has " + Twine(bt->dims.size()) +
+                        " dimension(s), indexed with " +
+                        Twine(e->operands.size() - 1));
+      return nullptr;
+    }
+    for (size_t i = 1; i < e->operands.size(); ++i) {
+      const PType *it = expr(e->operands[i]);
+      if (it && !baseOf(it)->isInteger()) {
+        error(e->operands[i]->loc, "array index must be an integer");
+        return nullptr;
+      }
+    }
+    t = bt->elem;
+    break;
+  }
+  case ExprKind::Deref:
+    error(e->loc, "dereference is not supported");
+    return nullptr;
+  case ExprKind::Unary: {
+    const PType *a = expr(e->operands[0]);
+    if (!a)
+      return nullptr;
+    const PType *b = baseOf(a);
+    if (e->op == Op::Not) {
+      if (!b->isAnyBit() && !(b->kind == PTypeKind::Int) &&
+          b->kind != PTypeKind::AnyInt) {
+        error(e->loc, "NOT applied to " + a->str());
+        return nullptr;
+      }
+      t = b;
+    } else {
+      if (!b->isInteger() && b->kind != PTypeKind::Time &&
+          b->kind != PTypeKind::Real) {
+        error(e->loc, "'" + spelling(e->op) + "' applied to " + a->str());
+        return nullptr;
+      }
+      if (e->op == Op::Neg && b->kind == PTypeKind::Int && !b->isSigned) {
+        error(e->loc, "negation of unsigned " + a->str());
+        return nullptr;
+      }
+      t = b;
+    }
+    break;
+  }
+  case ExprKind::Binary: {
+    const PType *a = expr(e->operands[0]);
+    const PType *b = expr(e->operands[1]);
+    if (!a || !b)
+      return nullptr;
+    const PType *ab = baseOf(a), *bb = baseOf(b);
+    switch (e->op) {
+    case Op::And:
+    case Op::Or:
+    case Op::Xor:
+    case Op::AndThen:
+    case Op::OrElse:
+      if (ab->kind == PTypeKind::Bool && bb->kind == PTypeKind::Bool) {
+        t = boolType();
+        break;
+      }
+      if (e->op == Op::AndThen || e->op == Op::OrElse) {
+        error(e->loc, spelling(e->op) + " needs BOOL operands");
+        return nullptr;
+      }
+      if (ab->isInteger() && bb->isInteger()) {
+        t = commonNumeric(a, b, e);
+        break;
+      }
+      error(e->loc, "operands of " + spelling(e->op) +
+                        " must both be BOOL "
+                        "or both bit strings, "
+                        "not " +
+                        a->str() + " and " + b->str());
+      return nullptr;
+    case Op::Eq:
+    case Op::Ne:
+    case Op::Lt:
+    case Op::Le:
+    case Op::Gt:
+    case Op::Ge: {
+      bool ok = false;
+      if ((ab->isInteger() || ab->kind == PTypeKind::Real) &&
+          (bb->isInteger() || bb->kind == PTypeKind::Real))
+        ok = commonNumeric(a, b, e) != nullptr;
+      else if (ab->kind == bb->kind &&
+               (ab->kind == PTypeKind::Bool || ab->kind == PTypeKind::Time ||
+                ab->kind == PTypeKind::String || ab->kind == PTypeKind::Date))
+        ok = true;
+      else if (ab->kind == PTypeKind::Enum && ab == bb)
+        ok = true;
+      if (!ok) {
+        error(e->loc, "cannot compare " + a->str() + " with " + b->str());
+        return nullptr;
+      }
+      t = boolType();
+      break;
+    }
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
+    case Op::Div:
+    case Op::Mod:
+      if (ab->kind == PTypeKind::Time || bb->kind == PTypeKind::Time) {
+        bool ok = false;
+        if (e->op == Op::Add || e->op == Op::Sub)
+          ok = ab->kind == PTypeKind::Time && bb->kind == PTypeKind::Time;
+        else if (e->op == Op::Mul)
+          ok = (ab->kind == PTypeKind::Time && bb->isInteger()) ||
+               (bb->kind == PTypeKind::Time && ab->isInteger());
+        else if (e->op == Op::Div)
+          ok = ab->kind == PTypeKind::Time && bb->isInteger();
+        if (!ok) {
+          error(e->loc, "'" + spelling(e->op) + "' on " + a->str() + " and " +
+                            b->str());
+          return nullptr;
+        }
+        t = elementaryType("TIME");
+        break;
+      }
+      if ((ab->isInteger() || ab->kind == PTypeKind::Real) &&
+          (bb->isInteger() || bb->kind == PTypeKind::Real)) {
+        if (e->op == Op::Mod &&
+            (ab->kind == PTypeKind::Real || bb->kind == PTypeKind::Real)) {
+          error(e->loc, "MOD needs integer operands");
+          return nullptr;
+        }
+        t = commonNumeric(a, b, e);
+        if (!t)
+          return nullptr;
+        break;
+      }
+      error(e->loc,
+            "'" + spelling(e->op) + "' on " + a->str() + " and " + b->str());
+      return nullptr;
+    case Op::Pow:
+      if ((ab->isInteger() || ab->kind == PTypeKind::Real) &&
+          (bb->isInteger() || bb->kind == PTypeKind::Real)) {
+        t = elementaryType("LREAL");
+        break;
+      }
+      error(e->loc, "'**' on " + a->str() + " and " + b->str());
+      return nullptr;
+    default:
+      return nullptr;
+    }
+    break;
+  }
+  case ExprKind::Call:
+    t = call(e, false);
+    if (!t)
+      return nullptr;
+    break;
+  }
+  e->type = t;
+  return t;
+}

@@ -1,0 +1,204 @@
+//===- SemaStmts.cpp - checking PLC statements
+//------------------------------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+void Checker::stmts(StmtList &list) {
+  for (Stmt *s : list)
+    stmt(s);
+}
+
+void Checker::stmt(Stmt *s) {
+  switch (s->kind) {
+  case StmtKind::Assign: {
+    if (s->target->kind == ExprKind::Name) {
+      VarDecl *v = lookupVar(s->target->name);
+      if (v && v->inferType && !v->type) {
+        const PType *vt = expr(s->value);
+        if (!vt)
+          return;
+        vt = baseOf(vt);
+        v->type = vt->kind == PTypeKind::AnyInt ? elementaryType("DINT") : vt;
+      }
+    }
+    const PType *t = lvalue(s->target);
+    // An enumerator several types share takes the target's type.
+    expectedEnum = t && t->kind == PTypeKind::Enum ? t : nullptr;
+    const PType *vt = expr(s->value);
+    expectedEnum = nullptr;
+    if (vt && t)
+      assignable(t, s->value, s->loc, "assignment");
+    return;
+  }
+  case StmtKind::Call:
+    call(s->value, true);
+    return;
+  case StmtKind::If:
+    for (auto &[cond, body] : s->arms) {
+      if (const PType *t = expr(cond); t && t->kind != PTypeKind::Bool)
+        error(cond->loc, "condition must be BOOL, not " + t->str());
+      stmts(body);
+    }
+    stmts(s->elseBody);
+    return;
+  case StmtKind::Case: {
+    const PType *sel = expr(s->value);
+    if (sel && !sel->isInteger() && sel->kind != PTypeKind::Enum) {
+      error(s->value->loc, "CASE selector must be an integer or an "
+                           "enumeration, not " +
+                               sel->str());
+      sel = nullptr;
+    }
+    for (auto &arm : s->caseArms) {
+      for (auto &l : arm.labels)
+        for (Expr *b : {l.lo, l.hi}) {
+          if (!b)
+            continue;
+          expectedEnum = sel && sel->kind == PTypeKind::Enum ? sel : nullptr;
+          const PType *lt = expr(b);
+          expectedEnum = nullptr;
+          int64_t v;
+          if (lt && sel && sel->kind == PTypeKind::Enum) {
+            if (lt != sel && baseOf(lt) != sel)
+              error(b->loc, "CASE label of type " + lt->str() +
+                                " for a selector of type " + sel->str());
+          } else if (lt && !constInt(b, v)) {
+            error(b->loc, "CASE label must be a constant");
+          }
+        }
+      stmts(arm.body);
+    }
+    stmts(s->elseBody);
+    return;
+  }
+  case StmtKind::For: {
+    const PType *t = lvalue(s->target);
+    if (t && !t->isInteger())
+      error(s->target->loc, "FOR variable must be an integer");
+    for (Expr *e : {s->from, s->to, s->by})
+      if (e && expr(e) && t)
+        assignable(t, e, e->loc, "FOR bound");
+    ++loopDepth;
+    stmts(s->body);
+    --loopDepth;
+    return;
+  }
+  case StmtKind::While:
+  case StmtKind::Repeat:
+    if (const PType *t = expr(s->value); t && t->kind != PTypeKind::Bool)
+      error(s->value->loc, "condition must be BOOL, not " + t->str());
+    ++loopDepth;
+    stmts(s->body);
+    --loopDepth;
+    return;
+  case StmtKind::Exit:
+  case StmtKind::Continue:
+    if (!loopDepth)
+      error(s->loc, Twine(s->kind == StmtKind::Exit ? "EXIT" : "CONTINUE") +
+                        " outside a loop");
+    return;
+  case StmtKind::Return:
+    return;
+  }
+}
+
+bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
+                         const Twine &what) {
+  const PType *ft = from ? from->type : nullptr;
+  if (!to || !ft)
+    return true; // already reported
+  const PType *tb = baseOf(to), *fb = baseOf(ft);
+  auto mismatch = [&] {
+    error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
+                  " to " + to->str());
+    return false;
+  };
+  switch (tb->kind) {
+  case PTypeKind::Bool:
+    if (fb->kind == PTypeKind::Bool)
+      return true;
+    // `x := 1` for a BOOL is common IEC practice for BOOL#1.
+    if (fb->kind == PTypeKind::AnyInt && from->kind == ExprKind::IntLit &&
+        (from->intValue == 0 || from->intValue == 1))
+      return true;
+    return mismatch();
+  case PTypeKind::Int: {
+    if (fb->kind == PTypeKind::AnyInt) {
+      int64_t v;
+      if (constInt(from, v) && (v < to->lo || v > to->hi)) {
+        error(at, "value " + Twine(v) + " is out of range for " + to->str());
+        return false;
+      }
+      return true;
+    }
+    if (fb->kind != PTypeKind::Int)
+      return mismatch();
+    if (fb == tb || to->isSubrange)
+      return true;
+    bool widening = fb->width < tb->width && (tb->isSigned || !fb->isSigned);
+    bool sameWidth = fb->width == tb->width &&
+                     (fb->isSigned == tb->isSigned || fb->isBits || tb->isBits);
+    if (widening || sameWidth)
+      return true;
+    error(at, "type mismatch in " + what + ": " + ft->str() +
+                  " does not "
+                  "convert implicitly to " +
+                  to->str() + " (use " + fb->str() + "_TO_" + tb->str() + ")");
+    return false;
+  }
+  case PTypeKind::Real:
+    if (fb->kind == PTypeKind::Real || fb->isInteger())
+      return true;
+    return mismatch();
+  default:
+    if (tb->kind == fb->kind &&
+        (tb == fb ||
+         (tb->kind != PTypeKind::Enum && tb->kind != PTypeKind::Struct &&
+          tb->kind != PTypeKind::Array &&
+          tb->kind != PTypeKind::FunctionBlock) ||
+         (!tb->name.empty() && tb->name == fb->name)))
+      return true;
+    return mismatch();
+  }
+}
+
+const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
+  a = baseOf(a);
+  b = baseOf(b);
+  if (a->kind == PTypeKind::AnyInt)
+    return b;
+  if (b->kind == PTypeKind::AnyInt)
+    return a;
+  if (a == b)
+    return a;
+  if (a->kind == PTypeKind::Int && b->kind == PTypeKind::Int) {
+    const PType *wide = a->width >= b->width ? a : b;
+    const PType *narrow = wide == a ? b : a;
+    if (wide->width > narrow->width && (wide->isSigned || !narrow->isSigned))
+      return wide;
+    if (wide->width == narrow->width &&
+        (wide->isSigned == narrow->isSigned || wide->isBits || narrow->isBits))
+      return wide;
+    error(e->loc, "operands of '" + spelling(e->op) +
+                      "' have incompatible "
+                      "types " +
+                      a->str() + " and " + b->str());
+    return nullptr;
+  }
+  if (a->kind == PTypeKind::Real || b->kind == PTypeKind::Real) {
+    if ((a->kind == PTypeKind::Real || a->isInteger()) &&
+        (b->kind == PTypeKind::Real || b->isInteger()))
+      return a->kind == PTypeKind::Real ? a : b;
+  }
+  error(e->loc, "operands of '" + spelling(e->op) +
+                    "' have incompatible "
+                    "types " +
+                    a->str() + " and " + b->str());
+  return nullptr;
+}

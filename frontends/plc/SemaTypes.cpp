@@ -1,0 +1,202 @@
+//===- SemaTypes.cpp - PLC elementary types and standard functions
+//----------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Types
+//===----------------------------------------------------------------------===//
+
+std::string PType::str() const {
+  if (!name.empty())
+    return name;
+  switch (kind) {
+  case PTypeKind::AnyInt:
+    return "ANY_INT";
+  case PTypeKind::Array: {
+    std::string r = "ARRAY[";
+    for (size_t d = 0; d < dims.size(); ++d)
+      r += (d ? "," : "") + std::to_string(dims[d].first) + ".." +
+           std::to_string(dims[d].second);
+    return r + "] OF " + (elem ? elem->str() : "?");
+  }
+  case PTypeKind::Enum:
+    return "enumeration";
+  case PTypeKind::Struct:
+    return "STRUCT";
+  case PTypeKind::Void:
+    return "no value";
+  default:
+    return "?";
+  }
+}
+
+namespace {
+
+struct Elementary {
+  const char *name;
+  PTypeKind kind;
+  unsigned width;
+  bool isSigned;
+  bool isBits;
+};
+
+const Elementary kElementary[] = {
+    {"BOOL", PTypeKind::Bool, 1, false, true},
+    {"SINT", PTypeKind::Int, 8, true, false},
+    {"INT", PTypeKind::Int, 16, true, false},
+    {"DINT", PTypeKind::Int, 32, true, false},
+    {"LINT", PTypeKind::Int, 64, true, false},
+    {"USINT", PTypeKind::Int, 8, false, false},
+    {"UINT", PTypeKind::Int, 16, false, false},
+    {"UDINT", PTypeKind::Int, 32, false, false},
+    {"ULINT", PTypeKind::Int, 64, false, false},
+    {"BYTE", PTypeKind::Int, 8, false, true},
+    {"WORD", PTypeKind::Int, 16, false, true},
+    {"DWORD", PTypeKind::Int, 32, false, true},
+    {"LWORD", PTypeKind::Int, 64, false, true},
+    {"TIME", PTypeKind::Time, 64, true, false},
+    {"LTIME", PTypeKind::Time, 64, true, false},
+    {"REAL", PTypeKind::Real, 32, true, false},
+    {"LREAL", PTypeKind::Real, 64, true, false},
+    {"STRING", PTypeKind::String, 0, false, false},
+    {"WSTRING", PTypeKind::String, 0, false, false},
+    {"CHAR", PTypeKind::String, 0, false, false},
+    {"WCHAR", PTypeKind::String, 0, false, false},
+    {"DATE", PTypeKind::Date, 0, false, false},
+    {"TOD", PTypeKind::Date, 0, false, false},
+    {"TIME_OF_DAY", PTypeKind::Date, 0, false, false},
+    {"DT", PTypeKind::Date, 0, false, false},
+    {"DATE_AND_TIME", PTypeKind::Date, 0, false, false},
+    {"LDATE", PTypeKind::Date, 0, false, false},
+    {"LTOD", PTypeKind::Date, 0, false, false},
+    {"LDT", PTypeKind::Date, 0, false, false},
+};
+
+/// The elementary types, held by value (StringMap entries do not move).
+const llvm::StringMap<PType> &elementaryTable() {
+  static const llvm::StringMap<PType> table = [] {
+    llvm::StringMap<PType> t;
+    for (const Elementary &e : kElementary) {
+      PType *ty = &t.try_emplace(e.name, PType{e.kind}).first->second;
+      ty->name = e.name;
+      ty->width = e.width;
+      ty->isSigned = e.isSigned;
+      ty->isBits = e.isBits && e.kind == PTypeKind::Int;
+      if (e.kind == PTypeKind::Int) {
+        if (e.width == 64) {
+          ty->lo = e.isSigned ? INT64_MIN : 0;
+          ty->hi = INT64_MAX;
+        } else if (e.isSigned) {
+          ty->lo = -(int64_t(1) << (e.width - 1));
+          ty->hi = (int64_t(1) << (e.width - 1)) - 1;
+        } else {
+          ty->lo = 0;
+          ty->hi = (int64_t(1) << e.width) - 1;
+        }
+      }
+      if (e.kind == PTypeKind::Bool)
+        ty->hi = 1;
+    }
+    return t;
+  }();
+  return table;
+}
+
+} // namespace
+
+namespace netlift::plc::detail {
+
+const PType *anyIntType() {
+  static const PType t{PTypeKind::AnyInt};
+  return &t;
+}
+const PType *voidType() {
+  static const PType t{PTypeKind::Void};
+  return &t;
+}
+const PType *boolType() { return elementaryType("BOOL"); }
+
+const PType *baseOf(const PType *t) {
+  return t && t->isSubrange && t->base ? t->base : t;
+}
+
+} // namespace netlift::plc::detail
+
+const PType *plc::elementaryType(StringRef name) {
+  auto it = elementaryTable().find(name.upper());
+  return it == elementaryTable().end() ? nullptr : &it->second;
+}
+
+StdFnInfo plc::lookupStdFunction(StringRef name) {
+  std::string up = name.upper();
+  StdFnInfo info;
+  info.fn = llvm::StringSwitch<StdFn>(up)
+                .Case("ABS", StdFn::Abs)
+                .Case("MIN", StdFn::Min)
+                .Case("MAX", StdFn::Max)
+                .Case("LIMIT", StdFn::Limit)
+                .Case("SEL", StdFn::Sel)
+                .Case("MUX", StdFn::Mux)
+                .Case("MOVE", StdFn::Move)
+                .Case("ADD", StdFn::Add)
+                .Case("SUB", StdFn::Sub)
+                .Case("MUL", StdFn::Mul)
+                .Case("DIV", StdFn::Div)
+                .Case("MOD", StdFn::Mod)
+                .Case("AND", StdFn::And)
+                .Case("OR", StdFn::Or)
+                .Case("XOR", StdFn::Xor)
+                .Case("NOT", StdFn::Not)
+                .Case("SHL", StdFn::Shl)
+                .Case("SHR", StdFn::Shr)
+                .Case("ROL", StdFn::Rol)
+                .Case("ROR", StdFn::Ror)
+                .Case("GT", StdFn::Gt)
+                .Case("GE", StdFn::Ge)
+                .Case("EQ", StdFn::Eq)
+                .Case("LE", StdFn::Le)
+                .Case("LT", StdFn::Lt)
+                .Case("NE", StdFn::Ne)
+                .Cases("SQRT", "LN", "LOG", "EXP", "SIN", "COS", "TAN",
+                       StdFn::RealMath)
+                .Cases("ASIN", "ACOS", "ATAN", "ATAN2", "EXPT", "TRUNC",
+                       StdFn::RealMath)
+                .Cases("LEN", "LEFT", "RIGHT", "MID", "CONCAT", "INSERT",
+                       StdFn::StringOp)
+                .Cases("DELETE", "REPLACE", "FIND", StdFn::StringOp)
+                .Default(StdFn::None);
+  if (info.fn != StdFn::None)
+    return info;
+  // Conversions: TO_INT, INT_TO_BOOL, TRUNC_INT, BCD_TO_INT, ...
+  StringRef u(up);
+  if (u.startswith("TO_")) {
+    if (const PType *to = elementaryType(u.drop_front(3))) {
+      info.fn = StdFn::Convert;
+      info.to = to;
+    }
+    return info;
+  }
+  size_t pos = u.find("_TO_");
+  if (pos != StringRef::npos) {
+    StringRef from = u.substr(0, pos), to = u.substr(pos + 4);
+    if (from == "BCD" || to == "BCD" || from.endswith("_BCD") ||
+        to.startswith("BCD_")) {
+      info.fn = StdFn::Refused;
+      return info;
+    }
+    const PType *f = elementaryType(from), *t = elementaryType(to);
+    if (f && t) {
+      info.fn = StdFn::Convert;
+      info.from = f;
+      info.to = t;
+    }
+  }
+  return info;
+}
