@@ -1,0 +1,389 @@
+//===- DiscretiseTransitions.cpp - timed transitions of positions
+//-----------===//
+#include "passes/Discretiser.h"
+
+using namespace netlift;
+using namespace netlift::net;
+using namespace netlift::discretise;
+using llvm::StringRef;
+
+//===----------------------------------------------------------------------===//
+// Transitions
+//===----------------------------------------------------------------------===//
+
+void Discretiser::emitTransitions(Real &r) {
+  size_t ri = &r - reals.data();
+  unsigned numOriginal = m.transitions.size();
+  // What each original transition does to x and to x's location (the
+  // place of its state machine component it moves the token between).
+  struct Effect {
+    int leaves = -1, enters = -1;
+    std::optional<double> assign;
+    int locFrom = -1, locTo = -1; // component places; -1: not touched
+    bool touchesOtherReal = false;
+    bool relevant() const { return leaves >= 0 || enters >= 0 || assign; }
+  };
+  std::vector<Effect> effects(numOriginal);
+  std::vector<bool> isEventSource(numOriginal);
+  for (uint32_t ti = 0; ti < numOriginal; ++ti)
+    for (const EventSource &es : m.transitions[ti].events())
+      if (!es.fromPort)
+        isEventSource[es.index] = true;
+  for (uint32_t ti = 0; ti < numOriginal; ++ti) {
+    Transition &t = m.transitions[ti];
+    Effect &e = effects[ti];
+    std::set<uint32_t> pre, post;
+    for (const PreArc &a : t.pre()) {
+      pre.insert(a.place);
+      if (r.component.count(a.place))
+        e.locFrom = a.place;
+    }
+    for (const PostArc &a : t.post()) {
+      post.insert(a.place);
+      if (r.component.count(a.place))
+        e.locTo = a.place;
+    }
+    for (uint32_t pl : pre)
+      if (!post.count(pl) && r.flowOfPlace.count(pl))
+        e.leaves = r.flowOfPlace[pl];
+    for (uint32_t pl : post)
+      if (!pre.count(pl) && r.flowOfPlace.count(pl))
+        e.enters = r.flowOfPlace[pl];
+    auto it = assigns.find({ti, ri});
+    if (it != assigns.end())
+      e.assign = it->second;
+    for (size_t rj = 0; rj < reals.size(); ++rj) {
+      if (rj == ri)
+        continue;
+      if (assigns.count({ti, rj}))
+        e.touchesOtherReal = true;
+      for (uint32_t pl : pre)
+        if (reals[rj].flowOfPlace.count(pl) && !post.count(pl))
+          e.touchesOtherReal = true;
+      for (uint32_t pl : post)
+        if (reals[rj].flowOfPlace.count(pl) && !pre.count(pl))
+          e.touchesOtherReal = true;
+    }
+  }
+  auto valueIndex = [&](double c) {
+    return unsigned(std::lower_bound(r.grid.begin(), r.grid.end(),
+                                     c - 1e-12 * std::max(1.0, std::fabs(c))) -
+                    r.grid.begin());
+  };
+  // Where the token goes when t fires from form f (clockZero: the form's
+  // place clock is 0, i.e. a moving token is exactly at its entry point).
+  auto targetOf = [&](uint32_t ti, Form f,
+                      bool clockZero) -> std::optional<Form> {
+    const Effect &e = effects[ti];
+    int flowAfter = e.enters >= 0                         ? e.enters
+                    : (f.flow >= 0 && e.leaves != f.flow) ? f.flow
+                                                          : -1;
+    if (flowAfter == f.flow && !e.assign)
+      return f;
+    Value v = e.assign ? Value{true, valueIndex(*e.assign)}
+                       : valueOf(r, f, clockZero);
+    if (flowAfter < 0)
+      return global(v);
+    return entry(r, flowAfter, v);
+  };
+  auto guardMayHold = [&](uint32_t ti, Form f) {
+    const Expr *g = m.transitions[ti].guard();
+    std::optional<bool> a = truthAt(g, r, valueOf(r, f, false));
+    std::optional<bool> z = truthAt(g, r, valueOf(r, f, true));
+    return !(a && !*a && z && !*z);
+  };
+  // Fusable transitions: urgent, spontaneous, no condition arcs, not an
+  // event source, consuming exactly one flow place of x, enabled by nothing
+  // but a guard over x, producing only into x's component (so it always
+  // fits), and not touching another real.
+  std::vector<bool> fusable(numOriginal);
+  for (uint32_t ti = 0; ti < numOriginal; ++ti) {
+    Transition &t = m.transitions[ti];
+    const Effect &e = effects[ti];
+    bool ok = t.urgent && !t.isForced() && t.conds().empty() && t.guard() &&
+              e.leaves >= 0 && !e.touchesOtherReal && !isEventSource[ti] &&
+              t.pre().size() == 1 && t.pre()[0].weight == 1 &&
+              t.pre()[0].time.isTrivial();
+    for (const PostArc &a : t.post())
+      ok &= r.component.count(a.place) && a.weight == 1;
+    for (unsigned k = 0; ok && k < r.grid.size(); ++k) {
+      ok &= truthAt(t.guard(), r, {true, k}).has_value();
+      if (k > 0)
+        ok &= truthAt(t.guard(), r, {false, k}).has_value();
+    }
+    fusable[ti] = ok;
+  }
+  auto fusionFor = [&](Form f, const Motion &mo) -> std::optional<uint32_t> {
+    for (uint32_t ti = 0; ti < numOriginal; ++ti) {
+      if (!fusable[ti] || effects[ti].leaves != f.flow)
+        continue;
+      const Expr *g = m.transitions[ti].guard();
+      if (!*truthAt(g, r, valueOf(r, f, false)) &&
+          *truthAt(g, r, valueOf(r, mo.to, false)))
+        return ti;
+    }
+    return std::nullopt;
+  };
+
+  // Joint reachability of (location in x's component, form), over-
+  // approximating everything else (data, conditions, other components):
+  // only the forms and location changes it finds are coded.
+  using AState = std::pair<int, Form>;
+  std::set<AState> seen;
+  std::deque<AState> work;
+  std::set<std::pair<uint32_t, Form>> fires; // (t, form) pairs to code
+  std::vector<Form> forms; // in the order found, for a readable output
+  std::set<Form> formSet;
+  int loc0 = -1;
+  for (uint32_t p : r.component)
+    if (m.places[p].tokens)
+      loc0 = p;
+  for (auto &[f, p] : r.places) {
+    seen.insert({loc0, f});
+    work.push_back({loc0, f});
+  }
+  bool failed = false;
+  auto add = [&](int loc, std::optional<Form> f) {
+    if (!f) {
+      failed = true;
+      return;
+    }
+    if (seen.insert({loc, *f}).second)
+      work.push_back({loc, *f});
+  };
+  while (!work.empty() && !failed) {
+    auto [loc, f] = work.front();
+    work.pop_front();
+    if (formSet.insert(f).second)
+      forms.push_back(f);
+    for (Motion &mo : motionsOf(r, f)) {
+      if (auto ti = fusionFor(f, mo))
+        add(effects[*ti].locTo, targetOf(*ti, mo.to, true));
+      else
+        add(loc, mo.to);
+    }
+    for (uint32_t ti = 0; ti < numOriginal; ++ti) {
+      const Effect &e = effects[ti];
+      if (e.locFrom >= 0 ? e.locFrom != loc : e.locTo >= 0)
+        continue;
+      if (!guardMayHold(ti, f))
+        continue;
+      int locAfter = e.locFrom >= 0 ? e.locTo : loc;
+      if (!e.relevant()) {
+        add(locAfter, f);
+        continue;
+      }
+      fires.insert({ti, f});
+      add(locAfter, targetOf(ti, f, false));
+      if (f.kind == FormKind::Up || f.kind == FormKind::Down)
+        add(locAfter, targetOf(ti, f, true));
+    }
+  }
+  if (failed)
+    return;
+
+  for (Form f : forms)
+    placeOf(r, f);
+
+  // Motions, fused with the transition their arrival enables where there is
+  // one.
+  for (Form f : forms) {
+    for (Motion &mo : motionsOf(r, f)) {
+      ++numSegments;
+      PreArc pre{placeOf(r, f), 1, Interval{mo.lo, mo.hi}};
+      std::optional<uint32_t> fuseWith = fusionFor(f, mo);
+      if (!fuseWith) {
+        uint32_t t = b.addTransition(d.save(fresh(mo.name)), {pre},
+                                     {PostArc{placeOf(r, mo.to), 1}});
+        b.setUrgent(t, mo.urgent);
+        ++numTransitions;
+        continue;
+      }
+      // The arrival and the transition it enables, as one.
+      uint32_t ti = *fuseWith;
+      std::optional<Form> to = targetOf(ti, mo.to, true);
+      Transition src = m.transitions[ti];
+      std::vector<PreArc> pres(src.pre().begin(), src.pre().end());
+      pres.push_back(pre);
+      std::vector<PostArc> posts(src.post().begin(), src.post().end());
+      posts.push_back({placeOf(r, *to), 1});
+      uint32_t t =
+          b.addTransition(d.save(fresh(src.name.str() + "_" + formName(r, f))),
+                          pres, posts, src.loc);
+      b.setUrgent(t, mo.urgent);
+      if (!src.emits().empty())
+        b.setEmits(t, src.emits());
+      if (src.hasAction())
+        b.setAction(t, src.action());
+      ++numTransitions;
+      ++numFused;
+    }
+  }
+
+  // The position follows location changes and resets in the same step.
+  for (auto &[ti, f] : fires) {
+    bool split = f.kind == FormKind::Up || f.kind == FormKind::Down;
+    Form later = *targetOf(ti, f, false);
+    Form now = split ? *targetOf(ti, f, true) : later;
+    auto emit = [&, ti = ti, f = f](Form to, Interval iv, StringRef suffix) {
+      if (to == f)
+        return;
+      std::string name =
+          m.transitions[ti].name.str() + "_" + formName(r, f) + suffix.str();
+      uint32_t t =
+          b.addTransition(d.save(fresh(name)), {PreArc{placeOf(r, f), 1, iv}},
+                          {PostArc{placeOf(r, to), 1}});
+      b.setEvents(t, {EventSource{ti, false}});
+      ++numTransitions;
+    };
+    if (now == later) {
+      emit(later, Interval{}, "");
+    } else {
+      emit(now, Interval{0, 0}, "_now");
+      emit(later, Interval{1, kInf}, "");
+    }
+  }
+}
+
+//===----------------------------------------------------------------------===//
+// Rewriting guards and sensors
+//===----------------------------------------------------------------------===//
+
+/// Replaces every comparison of a real with a constant by the disjunction
+/// of the position places where it holds.
+Expr *Discretiser::rewrite(Expr *e, Real *only) {
+  if (!e)
+    return e;
+  switch (e->getKind()) {
+  case ExprKind::Binary: {
+    auto *bin = llvm::cast<BinaryExpr>(e);
+    if (bin->op >= BinaryOp::Eq && bin->op <= BinaryOp::Ge) {
+      for (Real &r : reals) {
+        auto isX = [&](Expr *x) {
+          auto *ref = llvm::dyn_cast<Ref>(x);
+          return ref && ref->sym.kind == SymKind::Var &&
+                 ref->sym.index == r.var;
+        };
+        if (!isX(bin->lhs) && !isX(bin->rhs))
+          continue;
+        Expr *out = nullptr;
+        for (auto &[f, p] : r.places) {
+          if (!*truthAt(e, r, valueOf(r, f, false)))
+            continue;
+          Expr *ref = b.ref(m.places[p].name, e->loc);
+          out = out ? b.binary(BinaryOp::Or, out, ref, e->loc) : ref;
+        }
+        return out ? out : b.boolLit(false, e->loc);
+      }
+      return e;
+    }
+    bin->lhs = rewrite(bin->lhs, only);
+    bin->rhs = rewrite(bin->rhs, only);
+    return e;
+  }
+  case ExprKind::Unary: {
+    auto *u = llvm::cast<UnaryExpr>(e);
+    u->operand = rewrite(u->operand, only);
+    return e;
+  }
+  case ExprKind::Cond: {
+    auto *c = llvm::cast<CondExpr>(e);
+    c->cond = rewrite(c->cond, only);
+    c->thenExpr = rewrite(c->thenExpr, only);
+    c->elseExpr = rewrite(c->elseExpr, only);
+    return e;
+  }
+  default:
+    return e;
+  }
+}
+
+static bool readsOnlySignals(const Expr *e, const Module &m) {
+  switch (e->getKind()) {
+  case ExprKind::BoolLit:
+    return true;
+  case ExprKind::Ref: {
+    auto *r = llvm::cast<Ref>(e);
+    return r->sym.kind == SymKind::Place ||
+           (r->sym.kind == SymKind::Port &&
+            m.ports[r->sym.index].kind == PortKind::Cond);
+  }
+  case ExprKind::Unary:
+    return llvm::cast<UnaryExpr>(e)->op == UnaryOp::Not &&
+           readsOnlySignals(llvm::cast<UnaryExpr>(e)->operand, m);
+  case ExprKind::Binary: {
+    auto *b = llvm::cast<BinaryExpr>(e);
+    return (b->op == BinaryOp::And || b->op == BinaryOp::Or ||
+            b->op == BinaryOp::Xor) &&
+           readsOnlySignals(b->lhs, m) && readsOnlySignals(b->rhs, m);
+  }
+  default:
+    return false;
+  }
+}
+
+void Discretiser::finish() {
+  // Guards and definitions: comparisons become position places. New place
+  // references are unresolved (sym None) until the verifier runs; a guard
+  // that compared only reals becomes a condition arc.
+  for (Port &p : m.ports)
+    if (p.definition)
+      p.definition = rewrite(p.definition);
+  unsigned n = m.transitions.size();
+  for (uint32_t ti = 0; ti < n; ++ti) {
+    Transition &t = m.transitions[ti];
+    if (!t.guard())
+      continue;
+    const Expr *where = nullptr;
+    if (!mentionsReal(t.guard(), realOfVar, where))
+      continue;
+    Expr *g = rewrite(t.guard());
+    // Resolve the fresh references enough to classify them.
+    std::function<void(Expr *)> resolve = [&](Expr *e) {
+      if (auto *r = llvm::dyn_cast<Ref>(e)) {
+        if (r->sym.kind == SymKind::None)
+          r->sym = m.lookup(r->name);
+      } else if (auto *u = llvm::dyn_cast<UnaryExpr>(e)) {
+        resolve(u->operand);
+      } else if (auto *bb = llvm::dyn_cast<BinaryExpr>(e)) {
+        resolve(bb->lhs);
+        resolve(bb->rhs);
+      }
+    };
+    resolve(g);
+    if (readsOnlySignals(g, m)) {
+      std::vector<Expr *> conds(t.conds().begin(), t.conds().end());
+      conds.push_back(g);
+      b.setConds(ti, conds);
+      b.setGuard(ti, nullptr);
+    } else {
+      b.setGuard(ti, g);
+    }
+  }
+  // Actions lose their `x := c` (the forced transitions moved the token).
+  for (uint32_t ti = 0; ti < n; ++ti) {
+    Transition &t = m.transitions[ti];
+    if (!t.hasAction())
+      continue;
+    std::vector<Stmt *> kept;
+    bool changed = false;
+    for (Stmt *s : t.action()) {
+      if (auto *a = llvm::dyn_cast<AssignStmt>(s))
+        if (auto *r = llvm::dyn_cast<Ref>(a->target))
+          if (r->sym.kind == SymKind::Var && realOfVar.count(r->sym.index)) {
+            changed = true;
+            continue;
+          }
+      kept.push_back(s);
+    }
+    if (changed)
+      b.setAction(ti, kept);
+  }
+  m.flows.clear();
+  Module::Table<Var> vars;
+  for (Var &v : m.vars)
+    if (!v.type->isReal())
+      vars.push_back(v);
+  m.vars = std::move(vars);
+  m.rebuildSymbols();
+}

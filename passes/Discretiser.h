@@ -1,0 +1,274 @@
+//===- Discretiser.h - the discretise pass's engine -------------*- C++ -*-===//
+//
+// Internal to passes/: the Discretiser that turns one hybrid module's real
+// variables and flows into timed chains of position places (see
+// Discretise.cpp for the method), shared by the files that implement it
+// by concept — Discretise.cpp (the pass, what is hybrid, the driver and
+// report), DiscretiseGrid.cpp (the grid, its times, position forms) and
+// DiscretiseTransitions.cpp (transitions, rewritten guards and sensors).
+//
+//===----------------------------------------------------------------------===//
+#ifndef NETLIFT_PASSES_DISCRETISER_H
+#define NETLIFT_PASSES_DISCRETISER_H
+
+#include "passes/Pass.h"
+
+#include "ir/hybrid/FlowSolver.h"
+#include "ir/net/Builder.h"
+#include "ir/net/Printer.h"
+#include "ir/net/Verifier.h"
+
+#include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/SmallString.h"
+#include "llvm/ADT/StringSet.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/FormatVariadic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace netlift::discretise {
+
+using namespace netlift::net;
+using llvm::StringRef;
+
+inline std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v == 0 ? 0.0 : v);
+  return buf;
+}
+
+/// How the grid is chosen (the pass options).
+struct GridSpec {
+  enum class Mode { Count, Points, Step } mode = Mode::Count;
+  unsigned count = 0;
+  std::vector<double> points;
+  double step = 0;
+};
+
+/// Evaluates a real-valued expression of one variable; fails on anything
+/// else and names what it met.
+class RealEval {
+public:
+  explicit RealEval(uint32_t var) : var(var) {}
+  std::optional<double> eval(const Expr *e, double x) {
+    switch (e->getKind()) {
+    case ExprKind::IntLit:
+      return double(llvm::cast<IntLit>(e)->value);
+    case ExprKind::RealLit:
+      return llvm::cast<RealLit>(e)->value;
+    case ExprKind::Ref: {
+      auto *r = llvm::cast<Ref>(e);
+      if (r->sym.kind == SymKind::Var && r->sym.index == var &&
+          r->fields.empty()) {
+        readsVar = true;
+        return x;
+      }
+      bad = e;
+      return std::nullopt;
+    }
+    case ExprKind::Unary: {
+      auto *u = llvm::cast<UnaryExpr>(e);
+      auto a = eval(u->operand, x);
+      if (!a || u->op != UnaryOp::Neg) {
+        bad = bad ? bad : e;
+        return std::nullopt;
+      }
+      return -*a;
+    }
+    case ExprKind::Binary: {
+      auto *bin = llvm::cast<BinaryExpr>(e);
+      auto a = eval(bin->lhs, x), b = eval(bin->rhs, x);
+      if (!a || !b)
+        return std::nullopt;
+      switch (bin->op) {
+      case BinaryOp::Add:
+        return *a + *b;
+      case BinaryOp::Sub:
+        return *a - *b;
+      case BinaryOp::Mul:
+        return *a * *b;
+      case BinaryOp::Div:
+        return *a / *b;
+      default:
+        bad = e;
+        return std::nullopt;
+      }
+    }
+    case ExprKind::Call: {
+      auto *c = llvm::cast<CallExpr>(e);
+      std::vector<double> args;
+      for (const Expr *a : c->args) {
+        auto v = eval(a, x);
+        if (!v)
+          return std::nullopt;
+        args.push_back(*v);
+      }
+      switch (c->fn) {
+      case Builtin::Abs:
+        return std::fabs(args[0]);
+      case Builtin::Min:
+        return *std::min_element(args.begin(), args.end());
+      case Builtin::Max:
+        return *std::max_element(args.begin(), args.end());
+      }
+      return std::nullopt;
+    }
+    default:
+      bad = e;
+      return std::nullopt;
+    }
+  }
+  uint32_t var;
+  bool readsVar = false;
+  const Expr *bad = nullptr;
+};
+
+/// Where a real variable is: a grid point or an open segment, and which
+/// flow place (if any) is acting on it. See the file comment for the names.
+enum class FormKind : uint8_t {
+  At,
+  In,
+  Up,
+  Down,
+  UpMid,
+  DownMid,
+  Rest,
+  RestIn
+};
+
+struct Form {
+  FormKind kind;
+  int flow; // index into Real::flows; -1 for At/In
+  unsigned k;
+  bool operator<(const Form &o) const {
+    return std::tie(kind, flow, k) < std::tie(o.kind, o.flow, o.k);
+  }
+  bool operator==(const Form &o) const {
+    return kind == o.kind && flow == o.flow && k == o.k;
+  }
+  bool atPoint() const {
+    return kind == FormKind::At || kind == FormKind::Rest;
+  }
+  bool moving() const {
+    return kind == FormKind::Up || kind == FormKind::Down ||
+           kind == FormKind::UpMid || kind == FormKind::DownMid;
+  }
+};
+
+/// One place's flow for one variable.
+struct FlowOf {
+  uint32_t place;
+  const Flow::Equation *eq;
+  hybrid::Rate rate;
+  std::function<double(double)> fn; // in units per tick
+};
+
+/// A value state of x: a grid point or an open segment.
+struct Value {
+  bool atPoint;
+  unsigned k;
+};
+
+struct Real {
+  uint32_t var;
+  std::string name;      // the variable's name
+  std::string shortName; // its last name component (for place names)
+  double lo, hi, init;
+  std::vector<double> grid;
+  std::vector<FlowOf> flows;
+  llvm::DenseMap<uint32_t, int> flowOfPlace;
+  std::set<double> thresholds, assigned;
+  std::set<uint32_t> component; // the exclusive places holding its flows
+  std::map<Form, uint32_t> places;
+};
+
+class Discretiser {
+public:
+  Discretiser(Design &d, Module &m, DiagEngine &diag, const GridSpec &spec,
+              bool exact, bool numeric, llvm::raw_ostream *report)
+      : d(d), m(m), diag(diag), b(d), spec(spec), exact(exact),
+        numeric(numeric), report(report) {
+    b.setModule(&m);
+  }
+  bool run();
+  unsigned numSegments = 0, numPlaces = 0, numTransitions = 0, numFused = 0;
+
+private:
+  bool error(llvm::SMLoc loc, const llvm::Twine &msg) {
+    diag.error(loc, msg);
+    return false;
+  }
+  bool collectReals();
+  bool collectUses();
+  bool scanExpr(Expr *e);
+  bool collectAssignments();
+  bool buildGrid(Real &r);
+  bool checkExclusive(Real &r);
+  bool computeTimes(Real &r);
+  bool buildForms(Real &r);
+  void emitTransitions(Real &r);
+  Expr *rewrite(Expr *e, Real *only = nullptr);
+  void finish();
+
+  // Form semantics.
+  Value valueOf(const Real &r, Form f, bool clockZero) const;
+  std::optional<Form> entry(Real &r, int flow, Value v);
+  Form global(Value v) const {
+    return {v.atPoint ? FormKind::At : FormKind::In, -1, v.k};
+  }
+  uint32_t placeOf(Real &r, Form f);
+  std::string formName(const Real &r, Form f) const;
+  std::string fresh(const std::string &base);
+  /// Three-valued truth of `e` when x has value v: nullopt = depends on
+  /// something else.
+  std::optional<bool> truthAt(const Expr *e, const Real &r, Value v) const;
+  bool compareHolds(BinaryOp op, double a, double b) const;
+
+  // Motion of x under flow f from a moving form: (duration, target).
+  struct Motion {
+    Form from, to;
+    uint32_t lo, hi; // interval in ticks
+    bool urgent;
+    std::string name;
+  };
+  std::vector<Motion> motionsOf(Real &r, Form f);
+  /// Grid-time table: duration in ticks from g_a to g_b under flow `fl`.
+  struct Segment {
+    bool reached;
+    double time;    // model time units (ticks)
+    uint32_t ticks; // rounded
+    std::string why;
+  };
+  Segment segment(Real &r, int fl, unsigned a, unsigned b);
+  std::map<std::tuple<uint32_t, int, unsigned, unsigned>, Segment> segCache;
+
+  Design &d;
+  Module &m;
+  DiagEngine &diag;
+  Builder b;
+  const GridSpec &spec;
+  bool exact, numeric;
+  llvm::raw_ostream *report;
+  std::vector<Real> reals;
+  llvm::DenseMap<uint32_t, size_t> realOfVar;
+  // Per transition and real: `x := c` assigned at the top of its action.
+  std::map<std::pair<uint32_t, size_t>, double> assigns;
+  llvm::StringSet<> taken;
+  double ticksPerUnit = 1; // model time units per second or tick
+  std::string timeUnit = "tick";
+  double worstRounding = 0;
+};
+
+/// Does `e` read a real variable (`where`: the first such read)?
+bool mentionsReal(const Expr *e,
+                  const llvm::DenseMap<uint32_t, size_t> &realOfVar,
+                  const Expr *&where);
+
+} // namespace netlift::discretise
+
+#endif
