@@ -36,10 +36,34 @@ static const FrontendInfo *byExtension(StringRef path) {
   return nullptr;
 }
 
+/// Does `text` read like IEC 61131-3 source (a line opening a POU, a
+/// declaration block or a configuration)?
+static bool looksLikePlcSource(StringRef text) {
+  while (!text.empty()) {
+    auto [line, rest] = text.split('\n');
+    text = rest;
+    StringRef word = line.ltrim().take_while(
+        [](char c) { return isalpha((unsigned char)c) || c == '_'; });
+    std::string up = word.upper();
+    if (up == "PROGRAM" || up == "FUNCTION_BLOCK" || up == "FUNCTION" ||
+        up == "VAR" || up == "VAR_INPUT" || up == "VAR_GLOBAL" ||
+        up == "TYPE" || up == "CONFIGURATION")
+      return true;
+  }
+  return false;
+}
+
 bool netlift::loadNetIR(FrontendContext &, unsigned bufferID, DiagEngine &diag,
                         net::Design &design) {
-  if (!net::parseNetIR(bufferID, diag, design))
+  if (!net::parseNetIR(bufferID, diag, design)) {
+    // A .txt file or standard input is read as NetIR by default.
+    const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
+    if (looksLikePlcSource(buf->getBuffer()))
+      diag.note(llvm::SMLoc::getFromPointer(buf->getBufferStart()),
+                "this reads as IEC 61131-3 text, not NetIR: name the format "
+                "with --from st (or --from il for Instruction List)");
     return false;
+  }
   if (design.modules.empty()) {
     const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
     diag.error(llvm::SMLoc::getFromPointer(buf->getBufferStart()),

@@ -114,7 +114,8 @@ static bool readRanges(StringRef path, DiagEngine &diag,
                  "expected 'NAME LO..HI' with LO <= HI");
       return false;
     }
-    opts.ranges[name.upper()] = {l, h};
+    opts.ranges[name.upper()] = {l, h, name.str(),
+                                 SMLoc::getFromPointer(name.data())};
   }
   return true;
 }

@@ -3,6 +3,7 @@
 
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/StringExtras.h"
@@ -298,9 +299,16 @@ bool PipelineParser::parse(
     if (name.empty())
       return error(at, "expected a pass name");
     const PassInfo *info = lookupPass(name);
-    if (!info)
-      return error(at, "unknown pass '" + name +
-                           "' (netlift opt --list-passes lists them)");
+    if (!info) {
+      std::vector<std::string> names;
+      for (const PassInfo &p : registry)
+        names.push_back(p.name.str());
+      std::string hint = closestName(name, names);
+      return error(at,
+                   "unknown pass '" + name + "' (" +
+                       (hint.empty() ? "" : "did you mean '" + hint + "'? ") +
+                       "netlift opt --list-passes lists them)");
+    }
     PassOptions opts;
     skipSpace();
     if (pos < text.size() && text[pos] == '{') {
@@ -312,9 +320,13 @@ bool PipelineParser::parse(
         if (key.empty())
           return error(kat, "expected an option name");
         const PassOptionInfo *option = info->option(key);
-        if (!option)
-          return error(kat,
-                       "unknown option '" + key + "' for pass '" + name + "'");
+        if (!option) {
+          std::vector<std::string> keys;
+          for (const PassOptionInfo *o : info->options())
+            keys.push_back(o->key.str());
+          return error(kat, "unknown option '" + key + "' for pass '" + name +
+                                "'" + didYouMean(key, keys));
+        }
         skipSpace();
         if (pos >= text.size() || text[pos] != '=')
           return error(pos, "expected '=' after option '" + key + "'");

@@ -86,7 +86,8 @@ public:
     toks = tokenize(text, bad);
     if (bad != StringRef::npos)
       return fail(bad, "unexpected character '" + text.substr(bad, 1) +
-                           "' in the property");
+                           "' in the property" +
+                           (text[bad] == '=' ? "; use == to compare" : ""));
     auto f = implies();
     if (f && peek().kind != Token::End)
       return fail(peek().offset, "expected the end of the property, found '" +

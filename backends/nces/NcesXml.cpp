@@ -73,18 +73,43 @@ void writeHeader(const Module &m, llvm::raw_ostream &os) {
   section("OutputVars", "VarDeclaration", PortKind::Cond, false);
   os << "  </InterfaceList>\n";
 }
+/// The hint for data NCES cannot hold: lower-data when it can lower all of
+/// the module's data (Boolean only), else the exports that keep data, so
+/// that following the hint leads somewhere.
+std::string noDataHint(const Module &m) {
+  auto notBool = [](const Type *t) { return t && t->kind != TypeKind::Bool; };
+  for (const Var &v : m.vars)
+    if (notBool(v.type))
+      return "NCES has no data, and lower-data turns only Boolean data into "
+             "places (variable '" +
+             v.name.str() + "' is " + v.type->str() +
+             "); write this model with --to smv or --to promela, which keep "
+             "its data";
+  for (const Port &p : m.ports)
+    if (p.kind == PortKind::Data && notBool(p.type))
+      return "NCES has no data, and lower-data turns only Boolean data into "
+             "places (port '" +
+             p.name.str() + "' is " + p.type->str() +
+             "); write this model with --to smv or --to promela, which keep "
+             "its data";
+  return kNoData;
+}
+
 } // namespace
 
 bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
                         llvm::raw_ostream &os) {
+  std::string noData = noDataHint(m);
   for (const Var &v : m.vars)
-    return refuse(diag, v.loc, "variable '" + v.name.str() + "'", kNoData);
+    return refuse(diag, v.loc, "variable '" + v.name.str() + "'",
+                  noData.c_str());
   for (const Port &p : m.ports) {
     if (p.kind == PortKind::Data)
-      return refuse(diag, p.loc, "data port '" + p.name.str() + "'", kNoData);
+      return refuse(diag, p.loc, "data port '" + p.name.str() + "'",
+                    noData.c_str());
     if (p.isStored())
       return refuse(diag, p.loc, "stored output '" + p.name.str() + "'",
-                    kNoData);
+                    noData.c_str());
     if (p.definition && signalSource(m, p.definition).empty())
       return refuse(diag, p.definitionLoc,
                     "output '" + p.name.str() +
@@ -96,7 +121,7 @@ bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
       return refuse(diag, t.loc,
                     "transition '" + t.name.str() + "' with " +
                         (t.guard() ? "a guard" : "an action"),
-                    kNoData);
+                    noData.c_str());
     for (const Expr *c : t.conds())
       if (signalSource(m, c).empty())
         return refuse(diag, c->loc,

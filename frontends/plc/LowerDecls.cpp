@@ -251,13 +251,15 @@ std::optional<std::pair<int64_t, int64_t>> Lowering::inputRange(VarDecl *v) {
                     "'LO..HI'})");
     }
   }
-  auto it = opts.ranges.find(StringRef(v->name).upper());
-  if (it != opts.ranges.end())
-    return it->second;
-  if (!v->location.empty()) {
-    it = opts.ranges.find(StringRef(v->location).upper());
-    if (it != opts.ranges.end())
-      return it->second;
+  for (const std::string &key : {v->name, v->location}) {
+    if (key.empty())
+      continue;
+    rangeCandidates.push_back(key);
+    auto it = opts.ranges.find(StringRef(key).upper());
+    if (it != opts.ranges.end()) {
+      rangesUsed.insert(it->first);
+      return std::make_pair(it->second.lo, it->second.hi);
+    }
   }
   return std::nullopt;
 }

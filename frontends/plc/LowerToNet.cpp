@@ -449,6 +449,18 @@ void Lowering::chooseTick(std::vector<int64_t> ns) {
   }
 }
 
+/// A --ranges entry no input took is a misspelt or stale name; ignored, it
+/// would leave the input it meant unbounded (refused) or let the reader
+/// believe a range holds that does not.
+void Lowering::checkRangesUsed() {
+  for (const auto &[key, entry] : opts.ranges)
+    if (!rangesUsed.count(key))
+      diag.error(entry.loc, "--ranges: '" + entry.name +
+                                "' names no integer input of the translated "
+                                "program" +
+                                didYouMean(entry.name, rangeCandidates));
+}
+
 bool Lowering::run() {
   // Which programs.
   std::vector<std::pair<Pou *, Task *>> tops;
@@ -625,6 +637,7 @@ bool Lowering::run() {
         }
       lowerPrograms(name, at, runs);
     }
+    checkRangesUsed();
   } catch (Refusal &) {
     return false;
   }

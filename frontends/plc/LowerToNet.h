@@ -35,9 +35,16 @@ struct LowerOptions {
   std::optional<int64_t> timescaleNs;
   /// Scan period; default: the task's INTERVAL, else one tick.
   std::optional<int64_t> scanPeriodNs;
-  /// Value ranges of integer inputs by (upper-case) variable name, from
-  /// --ranges; pragmas `{range lo..hi}` on the declaration also work.
-  std::map<std::string, std::pair<int64_t, int64_t>> ranges;
+  /// Value ranges of integer inputs by (upper-case) variable name or
+  /// location, from --ranges (where each line is, for errors); pragmas
+  /// `{range lo..hi}` on the declaration also work. An entry that names no
+  /// integer input of the translated programs is an error.
+  struct RangeEntry {
+    int64_t lo, hi;
+    std::string name;
+    llvm::SMLoc loc;
+  };
+  std::map<std::string, RangeEntry> ranges;
   /// Durations used outside the PLC code (IEC 61499 parameters), counted
   /// when the tick is chosen.
   std::vector<int64_t> extraTimesNs;

@@ -17,6 +17,7 @@
 #include "ir/net/Builder.h"
 #include "ir/net/Names.h"
 #include "ir/net/Parser.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/StringSet.h"
@@ -219,6 +220,11 @@ private:
   std::string programPrefix;
   /// Lowering an event-driven block: inputs take their full types.
   bool eventDriven = false;
+  /// --ranges entries some input took, and every name an input could have
+  /// taken one by (for the error about the others).
+  std::set<std::string> rangesUsed;
+  std::vector<std::string> rangeCandidates;
+  void checkRangesUsed();
 };
 
 /// The variables a statement list assigns (through fields and indices),

@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/SemaChecker.h"
+#include "ir/support/Suggest.h"
 
 using namespace netlift;
 using namespace netlift::plc;
@@ -118,7 +119,7 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
     error(at, "'" + name + "' is a " + spelling(p->kind) + ", not a type");
     return nullptr;
   }
-  error(at, "unknown type '" + name + "'");
+  error(at, "unknown type '" + name + "'" + suggestType(name));
   return nullptr;
 }
 
@@ -309,6 +310,39 @@ VarDecl *Checker::lookupVar(StringRef name) {
     if (sameName(g->name, name))
       return g;
   return nullptr;
+}
+
+std::string Checker::suggestVar(StringRef name) {
+  std::vector<std::string> names;
+  if (current)
+    for (VarDecl *v : current->vars)
+      names.push_back(v->name);
+  for (VarDecl *g : allGlobals)
+    names.push_back(g->name);
+  return didYouMean(name, names);
+}
+
+std::string Checker::suggestType(StringRef name) {
+  std::vector<std::string> names = elementaryTypeNames();
+  for (TypeDecl *td : unit.types)
+    names.push_back(td->name);
+  for (Pou *p : unit.pous)
+    if (p->kind == PouKind::FunctionBlock)
+      names.push_back(p->name);
+  return didYouMean(name, names);
+}
+
+std::string Checker::suggestFunction(StringRef name) {
+  std::vector<std::string> names;
+  for (Pou *p : unit.pous)
+    if (p->kind == PouKind::Function)
+      names.push_back(p->name);
+  for (const char *f :
+       {"ABS", "MIN", "MAX", "LIMIT", "SEL", "MUX", "MOVE", "ADD", "SUB",
+        "MUL", "DIV", "MOD", "AND",   "OR",  "XOR", "NOT",  "SHL", "SHR",
+        "ROL", "ROR", "GT",  "GE",    "EQ",  "LE",  "LT",   "NE"})
+    names.push_back(f);
+  return didYouMean(name, names);
 }
 
 void Checker::indexEnum(const PType *t) {

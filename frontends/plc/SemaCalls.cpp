@@ -235,7 +235,8 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   }
   StdFnInfo info = lookupStdFunction(e->name);
   if (info.fn == StdFn::None) {
-    error(e->loc, "unknown function '" + e->name + "'");
+    error(e->loc,
+          "unknown function '" + e->name + "'" + suggestFunction(e->name));
     return nullptr;
   }
   if (!orderStdArgs(e, info.fn))

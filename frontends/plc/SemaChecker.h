@@ -31,6 +31,7 @@ const PType *voidType();
 const PType *boolType();
 /// Strips a subrange to its elementary type.
 const PType *baseOf(const PType *t);
+std::vector<std::string> elementaryTypeNames();
 
 class Checker {
 public:
@@ -62,6 +63,10 @@ private:
   void checkProgramArgs(ProgramInstance &pi, Pou *p);
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
   VarDecl *lookupVar(StringRef name);
+  // "; did you mean 'x'?" for an unknown variable, type or function.
+  std::string suggestVar(StringRef name);
+  std::string suggestType(StringRef name);
+  std::string suggestFunction(StringRef name);
   int64_t lookupEnumerator(StringRef name, const PType *&type);
   VarDecl *enEno(Pou *p, StringRef name);
   bool orderStdArgs(Expr *e, StdFn fn);

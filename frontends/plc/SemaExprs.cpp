@@ -183,7 +183,7 @@ const PType *Checker::expr(Expr *e) {
       t = et;
       break;
     }
-    error(e->loc, "unknown variable '" + e->name + "'");
+    error(e->loc, "unknown variable '" + e->name + "'" + suggestVar(e->name));
     return nullptr;
   }
   case ExprKind::Field: {

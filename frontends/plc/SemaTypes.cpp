@@ -123,6 +123,13 @@ const PType *voidType() {
 }
 const PType *boolType() { return elementaryType("BOOL"); }
 
+std::vector<std::string> elementaryTypeNames() {
+  std::vector<std::string> names;
+  for (const Elementary &e : kElementary)
+    names.push_back(e.name);
+  return names;
+}
+
 const PType *baseOf(const PType *t) {
   return t && t->isSubrange && t->base ? t->base : t;
 }

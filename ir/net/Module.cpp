@@ -1,5 +1,6 @@
 //===- Module.cpp - NetIR modules, nets and designs -----------------------===//
 #include "ir/net/Module.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/DenseSet.h"
 #include "llvm/ADT/STLExtras.h"
@@ -182,11 +183,29 @@ bool Design::renameModule(Module *m, StringRef newName) {
   return true;
 }
 
+std::vector<std::string> Module::declaredNames() const {
+  std::vector<std::string> names;
+  for (const Port &p : ports)
+    names.push_back(p.name.str());
+  for (const Place &p : places)
+    names.push_back(p.name.str());
+  for (const Transition &t : transitions)
+    names.push_back(t.name.str());
+  for (const Var &v : vars)
+    names.push_back(v.name.str());
+  for (const Instance &i : instances)
+    names.push_back(i.name.str());
+  return names;
+}
+
 Module *Design::findTop(StringRef name, std::string &why) const {
   if (!name.empty()) {
     if (Module *m = lookupModule(name))
       return m;
-    why = ("no module named '" + name + "'").str();
+    std::vector<std::string> names;
+    for (auto &m : modules)
+      names.push_back(m->name.str());
+    why = ("no module named '" + name + "'" + didYouMean(name, names)).str();
     return nullptr;
   }
   std::vector<Module *> systems;

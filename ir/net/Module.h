@@ -275,6 +275,8 @@ public:
   /// One namespace for ports, places, transitions, variables and instances.
   /// Returns SymKind::None if absent.
   Symbol lookup(llvm::StringRef n) const { return symbols.lookup(n, *this); }
+  /// Every name of that namespace (for "did you mean" in messages).
+  std::vector<std::string> declaredNames() const;
   /// Registers a name; false if it is taken.
   bool declare(llvm::StringRef n, Symbol s) {
     return symbols.insert(n, s, *this);

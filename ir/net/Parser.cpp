@@ -879,7 +879,8 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
   case FixKind::PostPlace:
   case FixKind::FlowPlace: {
     if (s.kind == SymKind::None)
-      return error(f.loc, "unknown place '" + f.name + "'");
+      return error(f.loc, "unknown place '" + f.name + "'" +
+                              didYouMean(f.name, m->declaredNames()));
     if (s.kind != SymKind::Place) {
       StringRef role = f.kind == FixKind::FlowPlace ? "a flow" : "a flow arc";
       return error(f.loc, role + " needs a place, but '" + f.name + "' is " +
@@ -898,7 +899,8 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
   }
   case FixKind::Event: {
     if (s.kind == SymKind::None)
-      return error(f.loc, "unknown event source '" + f.name + "'");
+      return error(f.loc, "unknown event source '" + f.name + "'" +
+                              didYouMean(f.name, m->declaredNames()));
     EventSource src;
     if (s.kind == SymKind::Transition) {
       src = {s.index, false};
@@ -917,7 +919,8 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
   }
   case FixKind::Emit: {
     if (s.kind == SymKind::None)
-      return error(f.loc, "unknown event output '" + f.name + "'");
+      return error(f.loc, "unknown event output '" + f.name + "'" +
+                              didYouMean(f.name, m->declaredNames()));
     if (!(s.kind == SymKind::Port &&
           m->ports[s.index].kind == PortKind::Event &&
           m->ports[s.index].isOutput()))

@@ -13,6 +13,7 @@
 #include "ir/net/Lexer.h"
 #include "ir/net/Names.h"
 #include "ir/net/Parser.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringSwitch.h"
@@ -51,7 +52,9 @@ public:
   Expr *parseWholeExpression() {
     Expr *e = parseExpr();
     if (e && !tok.is(Tok::Eof)) {
-      errorHere("unexpected " + describe() + " after the expression");
+      // `x = 1` is the commonest slip in a property or predicate.
+      errorHere("unexpected " + describe() + " after the expression" +
+                (tok.is(Tok::Equal) ? "; use == to compare" : ""));
       return nullptr;
     }
     return e;

@@ -2,6 +2,7 @@
 #include "ir/net/Verifier.h"
 
 #include "ir/net/Printer.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/DenseSet.h"
@@ -47,6 +48,12 @@ public:
 private:
   void error(SMLoc loc, const Twine &msg) { diag.error(loc, msg); }
   std::string typeName(const Type *t) { return t->str(); }
+  std::vector<std::string> moduleNames() const {
+    std::vector<std::string> names;
+    for (auto &mod : d.modules)
+      names.push_back(mod->name.str());
+    return names;
+  }
   SMLoc locOf(Symbol s);
   void checkNames();
   void checkAttributes();
@@ -415,7 +422,8 @@ const Type *ModuleVerifier::checkRef(Ref *r, Ctx ctx) {
       r->sym = {SymKind::EnumLit, uint32_t(idx)};
       return r->type = found;
     }
-    error(r->loc, "unknown name '" + name + "' in module '" + m.name + "'");
+    error(r->loc, "unknown name '" + name + "' in module '" + m.name + "'" +
+                      didYouMean(name, m.declaredNames()));
     return nullptr;
   }
   if (ctx == Ctx::Constant) {
@@ -927,7 +935,8 @@ void ModuleVerifier::checkInstancesAndConnections() {
     i.module = d.lookupModule(i.moduleName);
     if (!i.module)
       error(i.moduleLoc.isValid() ? i.moduleLoc : i.loc,
-            "unknown module '" + i.moduleName + "'");
+            "unknown module '" + i.moduleName + "'" +
+                didYouMean(i.moduleName, moduleNames()));
     else if (i.module->isSystem)
       error(i.moduleLoc.isValid() ? i.moduleLoc : i.loc,
             "'" + i.moduleName + "' is a system and cannot be instantiated");

@@ -93,6 +93,11 @@ int driver::runSr(DiagEngine &diag) {
       csv || inputFormat == "states" || (inputFormat.empty() && ext == ".json");
   if (!edgesFile.empty() && !csv)
     return !refuse(diag, "--edges goes with a CSV state file");
+  if (csv && edgesFile.empty())
+    diag.warning(llvm::SMLoc(),
+                 "a CSV state file has no edges: without --edges FILE (from "
+                 "reach --edges) the attribute graph has no edges and regions "
+                 "never left are not found");
   structural::ExploredRegions regions;
   if (stateFile) {
     // A state space written by `reach --format json|csv`, streamed.

@@ -5,9 +5,13 @@
 // parses the command line and dispatches.
 //
 //===----------------------------------------------------------------------===//
+#include "ir/support/Suggest.h"
 #include "tools/netlift/Driver.h"
 
 #include "llvm/Support/InitLLVM.h"
+#include "llvm/Support/Signals.h"
+
+#include <csignal>
 
 using namespace netlift;
 using namespace netlift::driver;
@@ -39,32 +43,50 @@ static const char *const overview =
     "weak|strong alike.\n"
     "Run 'netlift <subcommand> --help' for a subcommand's options.\n";
 
+static const struct {
+  cl::SubCommand &(*command)();
+  int (*run)(DiagEngine &);
+} commands[] = {
+    {translateCommand, runTranslate},
+    {optCommand, runOpt},
+    {composeCommand, runCompose},
+    {emitCommand, runEmit},
+    {reachCommand, runReach},
+    {mealyCommand, runMealy},
+    {editAutomatonCommand, runEditAutomaton},
+    {enforceCommand, runEnforce},
+    {srCommand, runSr},
+    {checkCommand, runCheck},
+};
+
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
+  // A reader that closes the pipe (`| head`) ends netlift as it ends other
+  // Unix tools: quietly, by SIGPIPE (LLVM's default exits 74).
+  llvm::sys::SetOneShotPipeSignalFunction([] {
+    std::signal(SIGPIPE, SIG_DFL);
+    std::raise(SIGPIPE);
+  });
   cl::SetVersionPrinter([](llvm::raw_ostream &os) {
     os << "netlift " << NETLIFT_VERSION << "\n";
   });
   describeEmitFormats();
   cl::HideUnrelatedOptions({&category()});
-  if (!cl::ParseCommandLineOptions(argc, argv, overview, &llvm::errs()))
-    return 1;
-  static const struct {
-    cl::SubCommand &(*command)();
-    int (*run)(DiagEngine &);
-  } commands[] = {
-      {translateCommand, runTranslate},
-      {optCommand, runOpt},
-      {composeCommand, runCompose},
-      {emitCommand, runEmit},
-      {reachCommand, runReach},
-      {mealyCommand, runMealy},
-      {editAutomatonCommand, runEditAutomaton},
-      {enforceCommand, runEnforce},
-      {srCommand, runSr},
-      {checkCommand, runCheck},
-  };
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const auto &c : commands)
+      names.push_back(c.command().getName().str());
+    if (!llvm::is_contained(names, argv[1])) {
+      diag.error(llvm::SMLoc(), "unknown subcommand '" + llvm::Twine(argv[1]) +
+                                    "'" + didYouMean(argv[1], names) +
+                                    " (netlift --help lists them)");
+      return 1;
+    }
+  }
+  if (!cl::ParseCommandLineOptions(argc, argv, overview, &llvm::errs()))
+    return 1;
   for (const auto &c : commands)
     if (c.command())
       return c.run(diag);
