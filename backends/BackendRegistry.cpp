@@ -63,6 +63,13 @@ const BackendInfo *netlift::findBackend(llvm::StringRef id) {
   return nullptr;
 }
 
+std::string netlift::describeBackends() {
+  std::string s = "Output format:";
+  for (const BackendInfo &b : registry)
+    s += "\n    " + b.id.str() + " - " + b.summary.str();
+  return s;
+}
+
 void netlift::printBackendTable(llvm::raw_ostream &os) {
   os << "| `emit --to` | extension | takes | what it writes |\n"
      << "|---|---|---|---|\n";

@@ -47,6 +47,9 @@ llvm::ArrayRef<BackendInfo> backends();
 /// The backend named `id`, or null.
 const BackendInfo *findBackend(llvm::StringRef id);
 
+/// One line per backend, `id - summary`, for `emit --to`'s help.
+std::string describeBackends();
+
 /// The table of docs/formats.md's "Output formats of emit" section.
 void printBackendTable(llvm::raw_ostream &os);
 

@@ -301,3 +301,14 @@ bool nces::writeNcesModules(const Module &top, llvm::StringRef dir,
   }
   return true;
 }
+
+bool nces::writeNcesModules(const Design &design, llvm::StringRef topName,
+                            llvm::StringRef dir, DiagEngine &diag) {
+  std::string why;
+  Module *top = design.findTop(topName, why);
+  if (!top) {
+    diag.error(llvm::SMLoc(), "emit: " + why);
+    return false;
+  }
+  return writeNcesModules(*top, dir, diag);
+}

@@ -43,6 +43,9 @@ bool writePnt(const net::Module &m, DiagEngine &diag, llvm::raw_ostream &os);
 /// file is built before any is written: an error leaves nothing.
 bool writeNcesModules(const net::Module &top, llvm::StringRef dir,
                       DiagEngine &diag);
+/// The same for the design's top module (or `topName`).
+bool writeNcesModules(const net::Design &design, llvm::StringRef topName,
+                      llvm::StringRef dir, DiagEngine &diag);
 
 } // namespace netlift::nces
 

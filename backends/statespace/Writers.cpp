@@ -376,3 +376,27 @@ int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
   }
   return code;
 }
+
+void statespace::writeStateSpace(GraphFormat format, const Explorer &x,
+                                 sem::Semantics &sem, const ExploreResult &r,
+                                 llvm::raw_ostream &os) {
+  switch (format) {
+  case GraphFormat::None:
+    break;
+  case GraphFormat::Aut:
+    writeAut(x, os);
+    break;
+  case GraphFormat::Dot:
+    writeDot(x, sem, os);
+    break;
+  case GraphFormat::Json:
+    writeJson(x, sem, r, os);
+    break;
+  case GraphFormat::Csv:
+    writeCsvStates(x, sem, r, os);
+    break;
+  case GraphFormat::Arc:
+    writeArc(x, sem, os);
+    break;
+  }
+}

@@ -18,6 +18,12 @@
 
 namespace netlift::statespace {
 
+/// The formats `reach --format` writes a state space in.
+enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
+/// Writes the state space in `format` (None: nothing).
+void writeStateSpace(GraphFormat format, const Explorer &x, sem::Semantics &sem,
+                     const ExploreResult &r, llvm::raw_ostream &os);
+
 void writeAut(const Explorer &x, llvm::raw_ostream &os);
 /// A state's values as `name=value` items joined by `separator`: marked
 /// places only, then clocks, variables and outputs.

@@ -25,12 +25,7 @@ static cl::opt<bool>
             cl::sub(emitCommand()), cl::cat(category()));
 
 void driver::describeEmitFormats() {
-  static std::string text = [] {
-    std::string s = "Output format:";
-    for (const BackendInfo &b : backends())
-      s += "\n    " + b.id.str() + " - " + b.summary.str();
-    return s;
-  }();
+  static std::string text = describeBackends();
   format.setDescription(text);
 }
 
@@ -70,15 +65,8 @@ int driver::runEmit(DiagEngine &diag) {
   if ((whole && !topUsable(inputs, "emit", diag)) ||
       !loadModels(inputs, diag, design))
     return 1;
-  if (modular) {
-    std::string why;
-    net::Module *top = design.findTop(topName, why);
-    if (!top) {
-      diag.error(llvm::SMLoc(), "emit: " + why);
-      return 1;
-    }
-    return nces::writeNcesModules(*top, outputFile, diag) ? 0 : 1;
-  }
+  if (modular)
+    return nces::writeNcesModules(design, topName, outputFile, diag) ? 0 : 1;
   EmitInput in;
   in.design = &design;
   std::unique_ptr<statespace::ExplorationSetup> setup;

@@ -12,7 +12,7 @@ using namespace netlift::driver;
 
 static cl::opt<std::string> reachInput(cl::Positional, cl::desc("<input>"),
                                        cl::Required, cl::sub(reachCommand()));
-enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
+using statespace::GraphFormat;
 static cl::opt<GraphFormat> graphFormat(
     "format", cl::desc("Write the state space"), cl::init(GraphFormat::None),
     cl::values(clEnumValN(GraphFormat::Aut, "aut", "Aldebaran .aut"),
@@ -24,9 +24,12 @@ static cl::opt<GraphFormat> graphFormat(
                clEnumValN(GraphFormat::Arc, "arc",
                           "ViVe-style reachability graph text")),
     cl::sub(reachCommand()), cl::cat(category()));
-static cl::opt<std::string>
-    summary("summary", cl::desc("Print a summary: 'json' or 'text' (default)"),
-            cl::init("text"), cl::sub(reachCommand()), cl::cat(category()));
+enum class Summary { Text, Json };
+static cl::opt<Summary>
+    summary("summary", cl::desc("The summary printed"), cl::init(Summary::Text),
+            cl::values(clEnumValN(Summary::Text, "text", "text (the default)"),
+                       clEnumValN(Summary::Json, "json", "one JSON object")),
+            cl::sub(reachCommand()), cl::cat(category()));
 static cl::opt<std::string> findText(
     "find", cl::desc("Find a shortest path to a state satisfying EXPR"),
     cl::value_desc("EXPR"), cl::sub(reachCommand()), cl::cat(category()));
@@ -81,25 +84,8 @@ int driver::runReach(DiagEngine &diag) {
   if (writeResult(
           outputFile,
           [&](llvm::raw_ostream &os) {
-            switch (graphFormat) {
-            case GraphFormat::None:
-              break;
-            case GraphFormat::Aut:
-              statespace::writeAut(explorer, os);
-              break;
-            case GraphFormat::Dot:
-              statespace::writeDot(explorer, semantics, os);
-              break;
-            case GraphFormat::Json:
-              statespace::writeJson(explorer, semantics, r, os);
-              break;
-            case GraphFormat::Csv:
-              statespace::writeCsvStates(explorer, semantics, r, os);
-              break;
-            case GraphFormat::Arc:
-              statespace::writeArc(explorer, semantics, os);
-              break;
-            }
+            statespace::writeStateSpace(graphFormat, explorer, semantics, r,
+                                        os);
           },
           diag) ||
       (!edgesFile.empty() && writeResult(
@@ -110,7 +96,7 @@ int driver::runReach(DiagEngine &diag) {
                                  diag)))
     return 1;
   llvm::raw_ostream &out = llvm::outs();
-  if (summary == "json") {
+  if (summary == Summary::Json) {
     statespace::writeSummaryJson(explorer, r, out);
   } else if (graphFormat == GraphFormat::None && !findExpr && !deadlockTrace) {
     statespace::writeSummaryText(explorer, r, out);

@@ -21,11 +21,14 @@ static cl::list<std::string>
 static cl::opt<bool> allRegions("all-regions",
                                 cl::desc("Also list regions that never occur"),
                                 cl::sub(srCommand()), cl::cat(category()));
-static cl::opt<std::string> report("report",
-                                   cl::desc("Report format: text, json or "
-                                            "html (one self-contained file)"),
-                                   cl::init("text"), cl::sub(srCommand()),
-                                   cl::cat(category()));
+enum class Report { Text, Json, Html };
+static cl::opt<Report>
+    report("report", cl::desc("Report format"), cl::init(Report::Text),
+           cl::values(clEnumValN(Report::Text, "text", "text"),
+                      clEnumValN(Report::Json, "json", "JSON"),
+                      clEnumValN(Report::Html, "html",
+                                 "one self-contained HTML file")),
+           cl::sub(srCommand()), cl::cat(category()));
 static cl::opt<std::string>
     agFile("ag",
            cl::desc("Write the attribute graph as DOT, or as SVG (drawn by "
@@ -38,11 +41,13 @@ static cl::opt<std::string>
                     "attributes)"),
            cl::value_desc("FILE.svg"), cl::sub(srCommand()),
            cl::cat(category()));
-static cl::opt<std::string>
-    curveOrder("order",
-               cl::desc("Edwards-Venn curves: gray (cos, neighbouring regions "
-                        "differ in one attribute) or binary (sin)"),
-               cl::init("gray"), cl::sub(srCommand()), cl::cat(category()));
+enum class CurveOrder { Gray, Binary };
+static cl::opt<CurveOrder> curveOrder(
+    "order", cl::desc("Edwards-Venn curves"), cl::init(CurveOrder::Gray),
+    cl::values(clEnumValN(CurveOrder::Gray, "gray",
+                          "cos: neighbouring regions differ in one attribute"),
+               clEnumValN(CurveOrder::Binary, "binary", "sin")),
+    cl::sub(srCommand()), cl::cat(category()));
 static cl::opt<std::string> densityFile(
     "density",
     cl::desc("Write the attribute densities and the necklace distribution "
@@ -61,10 +66,6 @@ static bool refuse(DiagEngine &diag, const llvm::Twine &msg) {
 static bool checkOptions(DiagEngine &diag) {
   if (attrTexts.empty() || attrTexts.size() > 20)
     return refuse(diag, "sr needs 1 to 20 attributes (--attr)");
-  if (report != "text" && report != "json" && report != "html")
-    return refuse(diag, "--report is text, json or html");
-  if (curveOrder != "gray" && curveOrder != "binary")
-    return refuse(diag, "--order is gray or binary");
   if (!evFile.empty() && attrTexts.size() > structural::kMaxVennAttributes)
     return refuse(diag, "an Edwards-Venn diagram is drawn for at most " +
                             llvm::Twine(structural::kMaxVennAttributes) +
@@ -102,7 +103,8 @@ int driver::runSr(DiagEngine &diag) {
   if (stateFile) {
     // A state space written by `reach --format json|csv`, streamed.
     if (!structural::classifyStateFile(srInput, edgesFile, csv, attrs,
-                                       report == "html", an, regions, diag))
+                                       report == Report::Html, an, regions,
+                                       diag))
       return 1;
   } else {
     std::vector<std::string> inputs{srInput};
@@ -110,9 +112,9 @@ int driver::runSr(DiagEngine &diag) {
     if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
       return 1;
     auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
-    if (!setup ||
-        !structural::classifyExplored(*setup, design, attrs, report == "html",
-                                      an, regions, diag))
+    if (!setup || !structural::classifyExplored(*setup, design, attrs,
+                                                report == Report::Html, an,
+                                                regions, diag))
       return 1;
   }
   html.examples = std::move(regions.examples);
@@ -144,7 +146,7 @@ int driver::runSr(DiagEngine &diag) {
           diag))
     return 1;
   structural::VennOptions vo;
-  vo.grayOrder = curveOrder == "gray";
+  vo.grayOrder = curveOrder == CurveOrder::Gray;
   vo.necklaces = evNecklaces;
   if (!evFile.empty()) {
     if (writeResult(
@@ -161,16 +163,16 @@ int driver::runSr(DiagEngine &diag) {
                        llvm::Twine(an.regionCounts().at(r)) +
                        " states); --order gray draws every region");
   }
-  if (report == "html") {
+  if (report == Report::Html) {
     html.venn = vo;
     html.attributeGraphSvg = structural::renderAttributeGraphSvg(an, false);
   }
   if (writeResult(
           outputFile,
           [&](llvm::raw_ostream &os) {
-            if (report == "html")
+            if (report == Report::Html)
               structural::writeHtmlReport(an, html, os);
-            else if (report == "json")
+            else if (report == Report::Json)
               an.writeJson(os, allRegions);
             else
               an.writeText(os, allRegions);

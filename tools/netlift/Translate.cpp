@@ -19,12 +19,14 @@ static cl::list<std::string> composeInputs(cl::Positional,
 static cl::opt<std::string> connectFile(
     "connect", cl::desc("Connections 'a.out -> b.in', one per line"),
     cl::value_desc("FILE"), cl::sub(composeCommand()), cl::cat(category()));
-static cl::opt<std::string> matchNames(
-    "match",
-    cl::desc("names: wire inputs still undriven to outputs of the same name "
-             "(default without --connect); none: do not"),
-    cl::value_desc("names|none"), cl::sub(composeCommand()),
-    cl::cat(category()));
+enum class Match { Default, Names, None };
+static cl::opt<Match> matchNames(
+    "match", cl::desc("Wire inputs still undriven to outputs of the same name"),
+    cl::init(Match::Default),
+    cl::values(clEnumValN(Match::Names, "names",
+                          "yes (the default without --connect)"),
+               clEnumValN(Match::None, "none", "no")),
+    cl::sub(composeCommand()), cl::cat(category()));
 static cl::list<std::string>
     components("inst",
                cl::desc("A component NAME:MODULE (repeatable; default: every "
@@ -82,14 +84,8 @@ int driver::runCompose(DiagEngine &diag) {
   co.instances = components;
   co.connectFile = connectFile;
   co.systemName = systemName;
-  if (matchNames == "names")
-    co.matchNames = true;
-  else if (matchNames == "none")
-    co.matchNames = false;
-  else if (!matchNames.empty()) {
-    diag.error(llvm::SMLoc(), "--match takes names or none");
-    return 1;
-  }
+  if (matchNames != Match::Default)
+    co.matchNames = matchNames == Match::Names;
   net::Design design;
   Statistics stats;
   if (!loadModels(composeInputs, diag, design) ||
