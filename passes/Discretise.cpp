@@ -44,7 +44,6 @@
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::discretise;
-using llvm::StringRef;
 
 //===----------------------------------------------------------------------===//
 // Collecting what is hybrid

@@ -5,7 +5,6 @@
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::discretise;
-using llvm::StringRef;
 
 //===----------------------------------------------------------------------===//
 // Transitions

@@ -58,11 +58,8 @@ int checkers::checkProperties(
   eo.recordEdges = true;
   statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  bool started = explorer.run(r);
-  if (r.error) {
-    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+  if (!setup.explore(explorer, r, diag))
     return 1;
-  }
   if (!r.complete) {
     out << "undecided: the exploration stopped at a limit ("
         << explorer.store().size() << " states)\n";

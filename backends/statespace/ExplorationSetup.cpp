@@ -78,6 +78,15 @@ ExploreOptions ExplorationSetup::exploreOptions() const {
   return eo;
 }
 
+bool ExplorationSetup::explore(Explorer &explorer, ExploreResult &r,
+                               DiagEngine &diag) {
+  bool started = explorer.run(r);
+  if (!r.error)
+    return true;
+  reportRuntimeError(r, started, explorer, *sem, diag);
+  return false;
+}
+
 void statespace::reportRuntimeError(const ExploreResult &r, bool started,
                                     Explorer &explorer,
                                     sem::Semantics &semantics,

@@ -62,6 +62,10 @@ public:
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
 
+  /// Runs `explorer` (made on this set-up's semantics) into `result`;
+  /// false after reporting a runtime error of the model with its trace.
+  bool explore(Explorer &explorer, ExploreResult &result, DiagEngine &diag);
+
 private:
   ExplorationSetup(net::Module &top, const ExplorationOptions &options);
   net::Module *module;

@@ -44,11 +44,8 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
   eo.recordEdges = true;
   statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  bool started = explorer.run(r);
-  if (r.error) {
-    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+  if (!setup.explore(explorer, r, diag))
     return false;
-  }
   out.complete = r.complete;
   // Region of every state, then the counts (memory: one word per state
   // here; the counts themselves are per region).

@@ -5,9 +5,6 @@
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
-using llvm::Twine;
 
 //===----------------------------------------------------------------------===//
 // Statements

@@ -26,9 +26,6 @@
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
-using llvm::Twine;
 
 //===----------------------------------------------------------------------===//
 // Time

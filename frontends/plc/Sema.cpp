@@ -15,9 +15,6 @@
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
-using llvm::Twine;
 
 bool Checker::constInt(Expr *e, int64_t &v) {
   if (!e)

@@ -9,8 +9,6 @@
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::net::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
 
 //===----------------------------------------------------------------------===//
 // Expressions

@@ -9,8 +9,6 @@
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::net::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
 
 bool Parser::parseInt(int64_t &v, StringRef what) {
   if (!tok.is(Tok::Int))

@@ -76,11 +76,8 @@ int driver::runReach(DiagEngine &diag) {
     eo.stopAt = stop;
   statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  bool started = explorer.run(r);
-  if (r.error) {
-    statespace::reportRuntimeError(r, started, explorer, semantics, diag);
+  if (!setup->explore(explorer, r, diag))
     return 1;
-  }
   if (writeResult(
           outputFile,
           [&](llvm::raw_ostream &os) {
