@@ -54,12 +54,11 @@ int checkers::checkProperties(
     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
     const std::string &traceDir, llvm::raw_ostream &out, DiagEngine &diag) {
   sem::Semantics &semantics = setup.semantics();
-  statespace::ExploreOptions eo = setup.exploreOptions();
-  eo.recordEdges = true;
-  statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  if (!setup.explore(explorer, r, diag))
+  std::unique_ptr<statespace::Explorer> graph = setup.exploreGraph(r, diag);
+  if (!graph)
     return 1;
+  statespace::Explorer &explorer = *graph;
   if (!r.complete) {
     out << "undecided: the exploration stopped at a limit ("
         << explorer.store().size() << " states)\n";

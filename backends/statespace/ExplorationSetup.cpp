@@ -87,6 +87,16 @@ bool ExplorationSetup::explore(Explorer &explorer, ExploreResult &r,
   return false;
 }
 
+std::unique_ptr<Explorer> ExplorationSetup::exploreGraph(ExploreResult &r,
+                                                         DiagEngine &diag) {
+  ExploreOptions eo = exploreOptions();
+  eo.recordEdges = true;
+  auto explorer = std::make_unique<Explorer>(*sem, eo);
+  if (!explore(*explorer, r, diag))
+    return nullptr;
+  return explorer;
+}
+
 void statespace::reportRuntimeError(const ExploreResult &r, bool started,
                                     Explorer &explorer,
                                     sem::Semantics &semantics,

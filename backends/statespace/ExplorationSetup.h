@@ -65,6 +65,10 @@ public:
   /// Runs `explorer` (made on this set-up's semantics) into `result`;
   /// false after reporting a runtime error of the model with its trace.
   bool explore(Explorer &explorer, ExploreResult &result, DiagEngine &diag);
+  /// Explores the whole graph (edges recorded, the set-up's limits) for
+  /// the analyses over it (check, sr); null after a runtime error.
+  std::unique_ptr<Explorer> exploreGraph(ExploreResult &result,
+                                         DiagEngine &diag);
 
 private:
   ExplorationSetup(net::Module &top, const ExplorationOptions &options);

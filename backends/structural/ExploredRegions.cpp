@@ -40,12 +40,11 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
     if (!net::verifyPredicate(design, setup.top(), a.predicate, diag))
       return false;
   sem::Semantics &semantics = setup.semantics();
-  statespace::ExploreOptions eo = setup.exploreOptions();
-  eo.recordEdges = true;
-  statespace::Explorer explorer(semantics, eo);
   statespace::ExploreResult r;
-  if (!setup.explore(explorer, r, diag))
+  std::unique_ptr<statespace::Explorer> graph = setup.exploreGraph(r, diag);
+  if (!graph)
     return false;
+  statespace::Explorer &explorer = *graph;
   out.complete = r.complete;
   // Region of every state, then the counts (memory: one word per state
   // here; the counts themselves are per region).
