@@ -322,6 +322,26 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   for (auto &[v, g] : argIn)
     action.push_back(b.assign(b.ref(run.prefix + sanitize(v->name), v->loc),
                               b.ref(sanitize(g->name), v->loc), v->loc));
+  // An input the program writes is read through a copy the scan samples
+  // first; what the program writes stands until the next scan samples it.
+  std::vector<VarDecl *> inputs(program->vars.begin(), program->vars.end());
+  for (VarDecl *g : globalsUsedBy(program))
+    inputs.push_back(g);
+  std::set<VarDecl *> bound;
+  for (auto &[v, g] : argIn)
+    bound.insert(v);
+  for (VarDecl *v : inputs) {
+    if (!v->writtenInput || v->section == VarSection::External ||
+        bound.count(v) ||
+        !(v->area() == 'I' || v->section == VarSection::Input))
+      continue;
+    std::string port = (v->owner ? run.prefix : "") + sanitize(v->name);
+    std::string image = unique(run.prefix + "_in_" + sanitize(v->name));
+    declareTemp(image, v->type, v->loc);
+    top.aliases[v] = b.ref(image, v->loc);
+    action.push_back(
+        b.assign(b.ref(image, v->loc), b.ref(port, v->loc), v->loc));
+  }
   body(program->body, top, action, {});
   for (auto &[v, g] : argOut)
     action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),

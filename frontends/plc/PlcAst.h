@@ -229,6 +229,10 @@ struct VarDecl {
   // Filled in by Sema.
   const PType *type = nullptr;
   Pou *owner = nullptr;
+  /// A program input (or `AT %I` variable) the program writes: the written
+  /// value stands until the next scan samples the input again, as matiec
+  /// and CODESYS run it.
+  bool writtenInput = false;
 
   /// `AT %I...` / `%Q...` / `%M...`: 'I', 'Q', 'M' or 0.
   char area() const { return location.size() > 1 ? location[1] : 0; }

@@ -22,17 +22,11 @@ const PType *Checker::lvalue(Expr *e) {
     error(e->loc, "assignment to constant '" + v->name + "'");
     return nullptr;
   }
-  if (v->area() == 'I') {
-    error(e->loc, "assignment to input '" + v->name + "' (located at " +
-                      v->location + ")");
-    return nullptr;
-  }
-  if (v->section == VarSection::Input && v->owner &&
-      v->owner->kind == PouKind::Program && root == e) {
-    error(e->loc, "assignment to input '" + v->name + "' of program '" +
-                      v->owner->name + "'");
-    return nullptr;
-  }
+  // A program's input image may be written (matiec and CODESYS accept
+  // it); the lowering gives such an input a scan-local copy.
+  if (v->area() == 'I' || (v->section == VarSection::Input && v->owner &&
+                           v->owner->kind == PouKind::Program))
+    v->writtenInput = true;
   // `fb.Q := x` writes an instance's output from outside.
   if (e->kind == ExprKind::Field && e->base()->type &&
       e->base()->type->kind == PTypeKind::FunctionBlock && e->var &&

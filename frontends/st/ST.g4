@@ -261,6 +261,9 @@ expression
 primary
   : literal                                                     # literalPrimary
   | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN   # callPrimary
+  // Operators written as standard functions (the ST OpenPLC writes for
+  // FBD): AND(a, b, c), XOR(a, b), MOD(a, b). NOT(x) is the unary form.
+  | op=(AND | OR | XOR | MOD) LPAREN callArg (COMMA callArg)* RPAREN # operatorCallPrimary
   | variable                                                    # variablePrimary
   | LPAREN expression RPAREN                                    # parenPrimary
   ;

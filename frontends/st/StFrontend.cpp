@@ -962,6 +962,12 @@ Expr *AstBuilder::primary(P::PrimaryContext *c) {
     return expr(p->expression());
   if (auto *v = alt<P::VariablePrimaryContext>(c))
     return variable(v->variable());
+  if (auto *o = alt<P::OperatorCallPrimaryContext>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::Call, loc(o));
+    e->name = StringRef(o->op->getText()).upper();
+    callArgs(o->callArg(), e->args);
+    return failed ? nullptr : e;
+  }
   auto *call = static_cast<P::CallPrimaryContext *>(c);
   Expr *callee = variable(call->callee);
   if (!callee)
