@@ -67,6 +67,21 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   net::Module *top = explorableTop(design, options.top, diag, command);
   if (!top)
     return nullptr;
+  if (options.enumeratesInputs)
+    for (const net::Attribute &a : top->attributes) {
+      if (a.key != net::kNeedsRangeAttribute)
+        continue;
+      net::Symbol s = top->lookup(a.target);
+      if (s.kind != net::SymKind::Port || !top->ports[s.index].isInput())
+        continue; // connected in a closed loop: no longer free
+      auto [source, type] = a.value.split(" : ");
+      diag.error(a.loc, "input '" + source + "' of type " + type +
+                            " has no range: " + command +
+                            " would enumerate every value at every step; give "
+                            "its range with a pragma {range LO..HI} before the "
+                            "declaration, a subrange type, or --ranges FILE");
+      return nullptr;
+    }
   return std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
 }
 

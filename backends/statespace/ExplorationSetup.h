@@ -34,6 +34,9 @@ struct ExplorationOptions {
   uint64_t maxStates = 0;
   uint64_t maxMemory = 0;
   double timeLimit = 0;
+  /// The command enumerates the free inputs' values (explicit-state
+  /// exploration): an input that still needs a range is refused.
+  bool enumeratesInputs = true;
 };
 
 /// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for

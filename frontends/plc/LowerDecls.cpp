@@ -302,10 +302,12 @@ void Lowering::declareProgramVar(VarDecl *v) {
                (t->kind == PTypeKind::Int && t->isSubrange)) {
       nt = netType(t, v->loc, "input " + v->name);
     } else if (t->kind == PTypeKind::Int || t->kind == PTypeKind::Time) {
-      refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
-                         " is unbounded: give its range with a pragma "
-                         "{range LO..HI} before the declaration, a subrange "
-                         "type, or --ranges FILE");
+      // A free input of its full type: translation needs no range, but an
+      // exploration would enumerate every value at every step, so the
+      // exploring commands ask for one (ExplorationSetup).
+      nt = netType(t, v->loc, "input " + v->name);
+      b.addAttribute(name, net::kNeedsRangeAttribute,
+                     design.save(v->name + " : " + t->str()), v->loc);
     } else {
       nt = netType(t, v->loc, "input " + v->name);
     }

@@ -241,6 +241,14 @@ struct Connection {
 /// than in them because few entities have any; passes keep them with their
 /// entity (flatten qualifies the target; an entity a pass removes takes its
 /// attributes with it).
+/// `attr x needs_range = "x : INT";`: free input `x` (its source name and
+/// type in the value) has its source type's
+/// full range because the source gave none (a PLC integer input without a
+/// `{range}`). Translating needs no range; the commands that enumerate
+/// inputs (reach, check, sr, mealy) refuse such an input at its
+/// declaration and ask for one.
+inline constexpr llvm::StringLiteral kNeedsRangeAttribute = "needs_range";
+
 struct Attribute {
   /// An entity or instance of the module, a scope of its qualified names
   /// (`c` of `c.scan`, after flatten), or empty: the module itself.

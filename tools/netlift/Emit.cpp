@@ -77,6 +77,7 @@ int driver::runEmit(DiagEngine &diag) {
     return 1;
   if (backend->input == EmitInputKind::Steps) {
     statespace::ExplorationOptions xo;
+    xo.enumeratesInputs = false; // the checkers take the input's type
     if (!explorationOptions(xo, diag) ||
         !(setup =
               statespace::ExplorationSetup::create(design, xo, diag, "emit")) ||
