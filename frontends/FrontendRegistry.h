@@ -37,6 +37,9 @@ struct FrontendOptions {
   std::vector<std::string> typeLibraries;
   /// --fb-semantics: the IEC 61499 execution model (empty: the default).
   std::string fbSemantics;
+  /// -Wunused-refused: warn about refused constructs in PLC POUs the
+  /// translation does not use.
+  bool warnUnusedRefused = false;
   /// How ST parses long bodies and VAR blocks (hidden knobs for tests).
   unsigned stLongPartTokens = 16384;
   unsigned stGroupTokens = 4096;

@@ -136,7 +136,10 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
     return false;
   if (!st::addStandardLibrary(diag, *unit))
     return false;
-  if (!plc::checkUnit(*unit, diag))
+  plc::CheckOptions co;
+  co.top = fo.top;
+  co.warnUnusedRefused = fo.warnUnusedRefused;
+  if (!plc::checkUnit(*unit, diag, co))
     return false;
   return plc::lowerToNet(*unit, opts, diag, design);
 }

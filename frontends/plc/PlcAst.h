@@ -131,7 +131,7 @@ enum class TypeSyntaxKind : uint8_t {
   Enum,     // (a, b := 2, c)
   Struct,   // STRUCT ... END_STRUCT
   String,   // STRING[20]
-  Refused,  // POINTER TO, REFERENCE TO, UNION: `refused` names it
+  Refused,  // POINTER TO, REFERENCE TO, UNION: `refused` is the message
 };
 
 struct Initializer;
@@ -302,6 +302,11 @@ struct Pou {
   std::vector<Attribute> attrs;
   /// Part of netlift's standard library (TON, CTU, ...), not the user's.
   bool isLibrary = false;
+  /// The first construct netlift refuses in this POU (its message and
+  /// place); reported only if the POU is translated, so a library's unused
+  /// POUs may hold what netlift does not model.
+  std::string refusal;
+  llvm::SMLoc refusalLoc;
 
   // Filled in by Sema.
   const PType *resultType = nullptr;

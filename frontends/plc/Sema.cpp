@@ -211,7 +211,7 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
     return t;
   }
   case TypeSyntaxKind::Refused:
-    error(ts->loc, ts->refused + " is not supported");
+    error(ts->loc, ts->refused);
     return nullptr;
   }
   return nullptr;
@@ -467,7 +467,27 @@ bool Checker::run() {
     }
     if (elementaryType(td->name))
       error(td->loc, "'" + td->name + "' is an elementary type name");
-    resolveNamed(td->name, td->loc);
+    // A type holding what netlift refuses is reported where a checked POU
+    // uses it; the others are resolved now (their enumerators are names).
+    if (!holdsRefused(td->type))
+      resolveNamed(td->name, td->loc);
+  }
+  // Only what the translation reaches is checked; a POU holding a refused
+  // construct is reported if it is reached.
+  std::vector<Pou *> checked;
+  std::vector<Pou *> reached = reachedPous(unit, options.top);
+  std::set<Pou *> isReached(reached.begin(), reached.end());
+  for (Pou *p : unit.pous) {
+    if (p->refusal.empty()) {
+      if (isReached.count(p))
+        checked.push_back(p);
+    } else if (isReached.count(p)) {
+      error(p->refusalLoc, p->refusal);
+    } else if (options.warnUnusedRefused) {
+      diag.warning(p->refusalLoc, p->refusal + " (in '" + p->name +
+                                      "', which the translation does not "
+                                      "use)");
+    }
   }
   for (size_t i = 0; i < unit.pous.size(); ++i)
     for (size_t j = 0; j < i; ++j)
@@ -482,7 +502,7 @@ bool Checker::run() {
   for (Configuration *c : unit.configs)
     for (VarDecl *g : c->globals)
       checkInitializer(g->typeSyntax ? g->typeSyntax->init : nullptr, g->type);
-  for (Pou *p : unit.pous) {
+  for (Pou *p : checked) {
     current = p;
     declareVars(p->vars, p);
     if (p->kind == PouKind::Function) {
@@ -500,10 +520,10 @@ bool Checker::run() {
     indexEnum(t);
   for (VarDecl *g : allGlobals)
     indexEnum(g->type);
-  for (Pou *p : unit.pous)
+  for (Pou *p : checked)
     for (VarDecl *v : p->vars)
       indexEnum(v->type);
-  for (Pou *p : unit.pous)
+  for (Pou *p : checked)
     checkPou(p);
   for (Configuration *c : unit.configs) {
     current = nullptr;
@@ -559,7 +579,21 @@ void Checker::checkPou(Pou *p) {
   stmts(p->body);
 }
 
-bool plc::checkUnit(Unit &unit, DiagEngine &diag) {
-  Checker c(unit, diag);
+/// Does the type as written hold a construct netlift refuses?
+bool Checker::holdsRefused(TypeSyntax *ts) {
+  if (!ts)
+    return false;
+  if (ts->kind == TypeSyntaxKind::Refused)
+    return true;
+  if (holdsRefused(ts->elem))
+    return true;
+  for (VarDecl *f : ts->fields)
+    if (holdsRefused(f->typeSyntax))
+      return true;
+  return false;
+}
+
+bool plc::checkUnit(Unit &unit, DiagEngine &diag, const CheckOptions &options) {
+  Checker c(unit, diag, options);
   return c.run();
 }

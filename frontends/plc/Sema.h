@@ -107,8 +107,23 @@ struct StdFnInfo {
 
 StdFnInfo lookupStdFunction(llvm::StringRef name);
 
-/// Checks the whole unit. Returns false after reporting errors.
-bool checkUnit(Unit &unit, DiagEngine &diag);
+struct CheckOptions {
+  /// The program, program instance or function block translated (--top);
+  /// empty: the configuration's programs, else every program.
+  std::string top;
+  /// Warn about the constructs netlift refuses in POUs nothing translated
+  /// uses (-Wunused-refused); they are not errors.
+  bool warnUnusedRefused = false;
+};
+
+/// Checks the POUs the translation reaches from its top (every POU when
+/// there is no program and no --top: a library, each of whose POUs that
+/// cannot be modelled is reported). Returns false after reporting errors.
+bool checkUnit(Unit &unit, DiagEngine &diag, const CheckOptions &options = {});
+
+/// The POUs a translation reaches from its top (see CheckOptions::top), in
+/// unit order; every POU when there is no top.
+std::vector<Pou *> reachedPous(const Unit &unit, llvm::StringRef top);
 
 /// The PLC type of an elementary type name (BOOL, INT, TIME...), or null.
 const PType *elementaryType(llvm::StringRef name);

@@ -35,7 +35,8 @@ std::vector<std::string> elementaryTypeNames();
 
 class Checker {
 public:
-  Checker(Unit &u, DiagEngine &d) : unit(u), diag(d) {}
+  Checker(Unit &u, DiagEngine &d, const CheckOptions &o)
+      : unit(u), diag(d), options(o) {}
   bool run();
 
 private:
@@ -80,6 +81,8 @@ private:
 
   Unit &unit;
   DiagEngine &diag;
+  const CheckOptions &options;
+  static bool holdsRefused(TypeSyntax *ts);
   std::map<std::string, const PType *> named; // user types, upper-case key
   std::map<std::string, int> resolving;       // cycle detection
   std::vector<VarDecl *> allGlobals;

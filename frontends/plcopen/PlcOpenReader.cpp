@@ -136,8 +136,9 @@ TypeSyntax *Reader::type(pugi::xml_node holder) {
     return variables(t, VarSection::Var, ts->fields) ? ts : nullptr;
   }
   auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Refused, at);
-  ts->refused = kind == "pointer" ? "POINTER TO (<pointer>)"
-                                  : "the PLCopen type <" + kind.str() + ">";
+  ts->refused = kind == "pointer"
+                    ? "POINTER TO (<pointer>) is not supported"
+                    : "the PLCopen type <" + kind.str() + "> is not supported";
   return ts;
 }
 

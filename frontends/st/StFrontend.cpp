@@ -387,10 +387,25 @@ private:
   SMLoc loc(antlr4::ParserRuleContext *c) const { return loc(c->getStart()); }
   SMLoc loc(antlr4::tree::TerminalNode *n) const { return loc(n->getSymbol()); }
   std::nullptr_t refuse(SMLoc at, const llvm::Twine &what) {
-    if (!failed)
-      diag.error(at, what);
+    if (!failed) {
+      if (deferring)
+        deferred = {at, what.str()};
+      else
+        diag.error(at, what);
+    }
     failed = true;
     return nullptr;
+  }
+  // Building a POU, a refusal is kept on it (reported if it is translated)
+  // instead of stopping the file.
+  bool deferring = false;
+  std::pair<SMLoc, std::string> deferred;
+  template <typename Ctx, typename Build>
+  void deferRefusals(PouKind kind, Ctx *c, Build build);
+  TypeSyntax *refusedType(SMLoc at, const std::string &what) {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Refused, at);
+    ts->refused = what;
+    return ts;
   }
   std::vector<Attribute> pragmasBefore(antlr4::Token *t);
   std::nullptr_t refuseMember(P::FbMemberContext *m, StringRef where) {
@@ -445,11 +460,11 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
     if (failed)
       return false;
     if (auto *p = el->programDecl())
-      program(p);
+      deferRefusals(PouKind::Program, p, [&] { program(p); });
     else if (auto *fb = el->functionBlockDecl())
-      functionBlock(fb);
+      deferRefusals(PouKind::FunctionBlock, fb, [&] { functionBlock(fb); });
     else if (auto *f = el->functionDecl())
-      function(f);
+      deferRefusals(PouKind::Function, f, [&] { function(f); });
     else if (auto *t = el->typeDecl())
       typeDecl(t);
     else if (auto *c = el->configurationDecl())
@@ -462,6 +477,34 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
                              "extensions are refused)");
   }
   return !failed;
+}
+
+/// Builds one POU; a construct netlift refuses in it is kept on the POU
+/// (`refusal`) and the file goes on, so a library's POUs nobody translates
+/// may hold what netlift does not model. Syntax errors are the parser's
+/// and stop the file as before.
+template <typename Ctx, typename Build>
+void AstBuilder::deferRefusals(PouKind kind, Ctx *c, Build build) {
+  size_t before = unit.pous.size();
+  deferring = true;
+  deferred = {};
+  build();
+  deferring = false;
+  if (!failed)
+    return;
+  if (!deferred.first.isValid())
+    return; // an error reported where it is (a grouped body's syntax)
+  failed = false;
+  Pou *pou = unit.pous.size() > before ? unit.pous.back() : nullptr;
+  if (!pou) {
+    pou = unit.make<Pou>();
+    pou->kind = kind;
+    pou->name = c->name->getText();
+    pou->loc = loc(c->name);
+    unit.pous.push_back(pou);
+  }
+  pou->refusalLoc = deferred.first;
+  pou->refusal = deferred.second;
 }
 
 /// The parts every POU has: name, pragmas, variable blocks, body.
@@ -712,12 +755,14 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     }
     return t;
   }
+  // Refused where a translated POU uses the type, not where it is written:
+  // a library's unused POUs may hold what netlift does not model.
   if (auto *u = alt<P::UnionTypeContext>(c))
-    return refuse(loc(u), "UNION types are not supported");
+    return refusedType(loc(u), "UNION types are not supported");
   if (auto *p = alt<P::PointerTypeContext>(c))
-    return refuse(loc(p), llvm::Twine(p->getStart()->getText()) +
-                              " types (pointers and references) are not "
-                              "supported");
+    return refusedType(loc(p), p->getStart()->getText() +
+                                   " types (pointers and references) are not "
+                                   "supported");
   if (auto *e = alt<P::EnumTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
     if (e->base)

@@ -1,9 +1,8 @@
 //===- Driver.h - what the netlift subcommands share ------------*- C++ -*-===//
 //
-// The driver is option parsing and dispatch: one file per subcommand
-// family declares its options and hands the work to the libraries. This
-// header names the subcommands, the options several of them take
-// (Options.cpp) and the entry point of each.
+// The driver is option parsing and dispatch: a file per subcommand family
+// declares its options and hands the work to the libraries. Here: the
+// subcommands, the options several take (Options.cpp), each entry point.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_TOOLS_NETLIFT_DRIVER_H

@@ -35,13 +35,11 @@ NETLIFT_SUBCOMMAND(checkCommand, "check",
                    "Check CTL properties on a model's state space "
                    "(docs/check.md)")
 NETLIFT_SUBCOMMAND(srCommand, "sr",
-                   "Structural reasoning over a model's state space: "
-                   "regions of selected attributes, attribute graph, "
-                   "densities, necklaces, key attributes")
+                   "Structural reasoning over a model's state space (regions, "
+                   "attribute graph, densities, key attributes)")
 NETLIFT_SUBCOMMAND(mealyCommand, "mealy",
-                   "Read a Mealy machine (KISS2, DOT) or extract one from a "
-                   "controller model (PLC program, NetIR), check that it is "
-                   "deterministic, and write it as KISS2 or DOT")
+                   "Read a Mealy machine (KISS2, DOT) or extract a "
+                   "controller's, check it, minimise or compare it")
 NETLIFT_SUBCOMMAND(editAutomatonCommand, "edit-automaton",
                    "Build the edit automaton of a Mealy specification "
                    "(desynchronised reading of simultaneous input changes)")
@@ -114,6 +112,11 @@ static cl::list<std::string>
                            "subdirectories) for the .fbt/.sub types a "
                            "network uses"),
                   cl::value_desc("DIR"), cl::Prefix, NETLIFT_READING);
+static cl::opt<bool> warnUnusedRefused(
+    "Wunused-refused",
+    cl::desc("PLC input: warn about constructs netlift refuses in POUs the "
+             "translation does not use"),
+    NETLIFT_READING);
 static cl::opt<std::string> fbSemantics(
     "fb-semantics",
     cl::desc("IEC 61499 input: the execution model, forte (default: one "
@@ -175,6 +178,7 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.rangesFile = ranges;
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
+  fo.warnUnusedRefused = warnUnusedRefused;
   fo.stLongPartTokens = stLongPartTokens;
   fo.stGroupTokens = stGroupTokens;
   return parseDurationOption("timescale", timescale, fo.timescaleNs, diag) &&
