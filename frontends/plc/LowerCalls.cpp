@@ -99,18 +99,113 @@ void Lowering::enabledBody(Pou *callee, const std::string &prefix, Expr *call,
   out.push_back(b.ifStmt({arm}, false, {}, at));
 }
 
+void Lowering::collectAssignments(StmtList &l) {
+  for (Stmt *s : l) {
+    // `v := e`, and `inst.in := e` for a function block's input.
+    if (s->kind == StmtKind::Assign && s->target->var &&
+        (s->target->kind == ExprKind::Name ||
+         (s->target->kind == ExprKind::Field &&
+          s->target->var->section == VarSection::Input)))
+      assignedValues[s->target->var].push_back(s->value);
+    else if (s->kind == StmtKind::Assign || s->kind == StmtKind::For) {
+      std::set<VarDecl *> w;
+      StmtList one{s};
+      collectWritten(one, w);
+      writtenOtherwise.insert(w.begin(), w.end());
+    }
+    // A function block call passes values to the type's inputs.
+    if (s->kind == StmtKind::Call && s->value->var && s->value->var->type &&
+        s->value->var->type->kind == PTypeKind::FunctionBlock)
+      for (CallArg &a : s->value->args)
+        if (!a.isOutput)
+          if (VarDecl *p = s->value->var->type->fb->find(a.name))
+            assignedValues[p].push_back(a.value);
+    if (s->kind == StmtKind::Call)
+      for (CallArg &a : s->value->args)
+        if (a.isOutput) {
+          std::set<VarDecl *> w;
+          StmtList one{s};
+          collectWritten(one, w);
+          writtenOtherwise.insert(w.begin(), w.end());
+        }
+    for (auto &[c, body] : s->arms)
+      collectAssignments(body);
+    for (auto &arm : s->caseArms)
+      collectAssignments(arm.body);
+    collectAssignments(s->elseBody);
+    collectAssignments(s->body);
+  }
+}
+
+std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
+                                            std::set<VarDecl *> &visiting) {
+  if (auto c = constValue(e, f))
+    return c;
+  if (Range r = rangeOf(e); r.exact)
+    return r.hi;
+  if (e->kind == ExprKind::Call) {
+    // SEL, MUX, MAX, MIN, LIMIT and MOVE yield one of their value inputs.
+    StdFnInfo info = e->callee ? StdFnInfo{} : lookupStdFunction(e->name);
+    size_t first = info.fn == StdFn::Sel || info.fn == StdFn::Mux ? 1
+                   : info.fn == StdFn::Limit                      ? 2
+                                                                  : 0;
+    if (info.fn != StdFn::Sel && info.fn != StdFn::Mux &&
+        info.fn != StdFn::Max && info.fn != StdFn::Min &&
+        info.fn != StdFn::Limit && info.fn != StdFn::Move)
+      return std::nullopt;
+    std::optional<int64_t> best;
+    for (size_t i = first; i < e->args.size(); ++i) {
+      auto b = upperBound(e->args[i].value, f, visiting);
+      if (!b)
+        return std::nullopt;
+      best = std::max(best.value_or(*b), *b);
+    }
+    return best;
+  }
+  // A function block's input takes what its calls pass (any instance's:
+  // an upper bound is all the clock needs); a program's input is free.
+  VarDecl *v = e->kind == ExprKind::Name ? e->var : nullptr;
+  if (!v || v->area() == 'I' || v->section == VarSection::InOut ||
+      (v->section == VarSection::Input &&
+       (!v->owner || v->owner->kind != PouKind::FunctionBlock)) ||
+      writtenOtherwise.count(v) || !visiting.insert(v).second)
+    return std::nullopt;
+  // A variable only ever assigned bounded values (and initialised to one).
+  Initializer *init = v->typeSyntax ? v->typeSyntax->init : nullptr;
+  int64_t best = 0;
+  if (init) {
+    if (init->kind != Initializer::Value)
+      return std::nullopt;
+    auto i = upperBound(init->value, f, visiting);
+    if (!i)
+      return std::nullopt;
+    best = *i;
+  }
+  for (Expr *value : assignedValues[v]) {
+    auto b = upperBound(value, f, visiting);
+    if (!b)
+      return std::nullopt;
+    best = std::max(best, *b);
+  }
+  return best;
+}
+
 void Lowering::noteClockBound(const std::string &member, Expr *value, Frame &f,
                               SMLoc at) {
-  // A timer's bounding input (PT) must be a constant wherever it is set:
-  // its largest value is the cap of the timer's clock.
+  // The largest value a timer's bounding input (PT) can take wherever it
+  // is set is the cap of the timer's clock; PT itself is read at every
+  // call, as on a PLC.
   auto it = clockOfBound.find(member);
   if (it == clockOfBound.end())
     return;
   ClockUse &cu = clocks[it->second];
-  std::optional<int64_t> c = constValue(value, f);
+  std::set<VarDecl *> visiting;
+  std::optional<int64_t> c = upperBound(value, f, visiting);
   if (!c)
     refuse(at, cu.member + " of timer '" + cu.path +
-                   "' must be a constant (it bounds the timer's clock)");
+                   "' has no bound netlift can find (it bounds the timer's "
+                   "clock): set it from constants, or give the input it "
+                   "comes from a range");
   cu.cap = std::max(cu.cap, *c);
 }
 

@@ -564,6 +564,8 @@ bool Lowering::run() {
     }
 
   try {
+    for (Pou *p : unit.pous)
+      collectAssignments(p->body);
     // Variables written anywhere are not constants.
     for (Pou *p : unit.pous)
       collectWritten(p->body, written);
@@ -592,6 +594,13 @@ bool Lowering::run() {
           refuse(task->interval->loc, "task INTERVAL must be a duration "
                                       "literal");
         period = ticks(task->interval->intValue, task->interval->loc);
+      } else if (tickNs > 0) {
+        // A silent default would be a trap: the same logic in two
+        // languages differs only because their literals' GCD differs.
+        diag.note(at, "the scan period of '" + p->name + "' is one tick, " +
+                          formatDuration(tickNs) +
+                          " (the greatest common divisor of its durations): "
+                          "no task INTERVAL or --scan-period fixes it");
       }
       if (task && task->single)
         refuse(task->single->loc, "event tasks (SINGLE) are not supported");

@@ -207,6 +207,15 @@ private:
   std::map<std::string, Pou *> instanceTypes;
   std::map<std::string, const PType *> varTypes; // NetIR var -> PLC type
   std::set<VarDecl *> written;
+  /// The values each variable is assigned directly (`v := e`), and the
+  /// variables also written otherwise (an output binding, a field).
+  std::map<VarDecl *, std::vector<Expr *>> assignedValues;
+  std::set<VarDecl *> writtenOtherwise;
+  void collectAssignments(StmtList &l);
+  /// The largest value `e` can take, if netlift can bound it: a constant,
+  /// an exact interval, or a variable only ever assigned such values.
+  std::optional<int64_t> upperBound(Expr *e, Frame &f,
+                                    std::set<VarDecl *> &visiting);
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
   /// The configuration's instance of each translated program.
