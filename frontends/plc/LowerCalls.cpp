@@ -32,8 +32,8 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
   for (CallArg &a : call->args)
     byName[StringRef(a.name).upper()] = &a;
   for (VarDecl *v : locals) {
-    if (v->section == VarSection::External)
-      continue;
+    if (v->section == VarSection::External || v->section == VarSection::Stat)
+      continue; // a global's; kept across calls (staticVar)
     auto given = byName.find(StringRef(v->name).upper());
     if (v->section == VarSection::InOut) {
       nf.aliases[v] = lvalue(given->second->value, f, pre);

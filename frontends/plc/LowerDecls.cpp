@@ -344,8 +344,8 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
   if (!fb->isLibrary)
     keepPragmas(path, fb->attrs);
   for (VarDecl *m : fb->vars) {
-    if (m->section == VarSection::External)
-      continue;
+    if (m->section == VarSection::External || m->section == VarSection::Stat)
+      continue; // a global's; the block type's (staticVar)
     std::string name = path + "." + sanitize(m->name);
     if (!fb->isLibrary)
       keepPragmas(name, m->attrs);
@@ -394,6 +394,22 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
                m->loc);
   }
+}
+
+/// VAR_STAT of a function block or function: one variable for every
+/// instance and call, kept from scan to scan (CODESYS's static variables),
+/// declared where it is first used.
+std::string Lowering::staticVar(VarDecl *v, SMLoc at) {
+  std::string name =
+      "static." + sanitize(v->owner->name) + "." + sanitize(v->name);
+  if (mod->lookup(name).kind == net::SymKind::None) {
+    varTypes[name] = v->type;
+    b.addVar(
+        name, netType(v->type, v->loc, "variable " + v->name),
+        initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr, v->type),
+        v->loc);
+  }
+  return name;
 }
 
 uint32_t Lowering::declareTemp(const std::string &name, const PType *t,

@@ -173,6 +173,8 @@ NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
     return alias->second;
   if (!v->owner) // a global
     return b.ref(sanitize(v->name), at);
+  if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
+    return b.ref(staticVar(v, at), at);
   return b.ref(f.prefix + sanitize(v->name), at);
 }
 

@@ -594,7 +594,7 @@ bool Lowering::run() {
           refuse(task->interval->loc, "task INTERVAL must be a duration "
                                       "literal");
         period = ticks(task->interval->intValue, task->interval->loc);
-      } else if (tickNs > 0) {
+      } else if (tickNs > 0 && design.timescale) {
         // A silent default would be a trap: the same logic in two
         // languages differs only because their literals' GCD differs.
         diag.note(at, "the scan period of '" + p->name + "' is one tick, " +

@@ -108,6 +108,7 @@ private:
   static std::string sanitize(StringRef name);
   void declareProgramVar(VarDecl *v);
   void declareInstance(const std::string &path, Pou *fb, Initializer *init);
+  std::string staticVar(VarDecl *v, SMLoc at);
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
 

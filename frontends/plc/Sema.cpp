@@ -237,15 +237,21 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
       error(init->loc, "an array initialiser for a " + t->str());
       return;
     }
+    if (t->dims.size() > 1) {
+      // Rows: nested lists, or one flat list in row-major order (IEC
+      // 61131-3), which is cut into rows here.
+      reshapeRowMajor(init, t, 0);
+      PType *row = make(PTypeKind::Array);
+      row->dims.assign(t->dims.begin() + 1, t->dims.end());
+      row->elem = t->elem;
+      for (auto &[count, inner] : init->elems)
+        if (inner)
+          checkInitializer(inner, row);
+      return;
+    }
     for (auto &[count, inner] : init->elems)
-      if (inner) {
-        if (t->dims.size() > 1) {
-          error(inner->loc, "initialisers of multi-dimensional arrays are "
-                            "not supported");
-          return;
-        }
+      if (inner)
         checkInitializer(inner, t->elem);
-      }
     return;
   case Initializer::Struct: {
     if (t->kind != PTypeKind::Struct && t->kind != PTypeKind::FunctionBlock) {
@@ -271,6 +277,32 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
     return;
   }
   }
+}
+
+/// A flat list initialising dimensions `dim...` of `t` (every element a
+/// value, repeats expanded) becomes one nested list per row.
+void Checker::reshapeRowMajor(Initializer *init, const PType *t, size_t dim) {
+  if (dim + 1 >= t->dims.size())
+    return;
+  std::vector<Initializer *> flat;
+  for (auto &[count, inner] : init->elems) {
+    if (!inner || inner->kind != Initializer::Value)
+      return; // nested already (or empty): rows as written
+    for (int64_t k = 0; k < count; ++k)
+      flat.push_back(inner);
+  }
+  size_t rowSize = 1;
+  for (size_t d = dim + 1; d < t->dims.size(); ++d)
+    rowSize *= size_t(t->dims[d].second - t->dims[d].first + 1);
+  std::vector<std::pair<int64_t, Initializer *>> rows;
+  for (size_t i = 0; i < flat.size(); i += rowSize) {
+    Initializer *row = unit.make<Initializer>(Initializer::Array, flat[i]->loc);
+    for (size_t k = i; k < std::min(flat.size(), i + rowSize); ++k)
+      row->elems.push_back({1, flat[k]});
+    reshapeRowMajor(row, t, dim + 1);
+    rows.push_back({1, row});
+  }
+  init->elems = std::move(rows);
 }
 
 void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {

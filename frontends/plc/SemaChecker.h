@@ -47,6 +47,7 @@ private:
   const PType *resolveNamed(StringRef name, SMLoc at);
   bool constInt(Expr *e, int64_t &v);
   void checkInitializer(Initializer *init, const PType *t);
+  void reshapeRowMajor(Initializer *init, const PType *t, size_t dim);
 
   // Declarations.
   void declareVars(std::vector<VarDecl *> &vars, Pou *owner);

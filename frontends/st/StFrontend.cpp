@@ -648,10 +648,15 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
   case P::VAR_TEMP:
     section = VarSection::Temp;
     break;
+  case P::VAR_STAT:
+    section = VarSection::Stat; // one variable for every instance and call
+    break;
+  case P::VAR_INST:
+    // CODESYS: a method's variable kept in the instance; in a POU body it
+    // is an ordinary variable.
+    break;
   case P::VAR_ACCESS:
   case P::VAR_CONFIG:
-  case P::VAR_STAT:
-  case P::VAR_INST:
     refuse(loc(c->kind), c->kind->getText() + " is not supported");
     return;
   default:

@@ -209,6 +209,7 @@ bool StLexer::skipTrivia() {
     } else if (c == '(' && pos + 1 < text.size() && text[pos + 1] == '*') {
       // IEC 61131-3 3rd edition: comments nest.
       size_t start = pos;
+      size_t startLine = line, startLineStart = lineStart;
       unsigned depth = 0;
       while (pos < text.size()) {
         if (text[pos] == '(' && pos + 1 < text.size() && text[pos + 1] == '*') {
@@ -228,8 +229,23 @@ bool StLexer::skipTrivia() {
         }
       }
       if (depth != 0) {
-        fail(start, "unterminated comment '(*'");
-        return false;
+        // Nesting leaves it open to the end; read without nesting (the 2nd
+        // edition's reading, matiec's, common in libraries ported from
+        // it) it ends at its first '*)'.
+        size_t end = text.find("*)", start + 2);
+        if (end == StringRef::npos) {
+          fail(start, "unterminated comment '(*'");
+          return false;
+        }
+        line = startLine;
+        lineStart = startLineStart;
+        newlinesIn(start, end);
+        pos = end + 2;
+        if (!silent)
+          diag.note(locAt(start),
+                    "this comment holds an unclosed '(*', so nested it would "
+                    "run to the end of the text; it is read without nesting, "
+                    "ending at its first '*)'");
       }
     } else if (c == '/' && pos + 1 < text.size() && text[pos + 1] == '*') {
       size_t start = pos;
