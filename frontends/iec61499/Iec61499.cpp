@@ -759,18 +759,7 @@ void Translator::rename(Expr *e) {
 }
 
 void Translator::rename(StmtList &l) {
-  for (Stmt *s : l) {
-    for (Expr *e : {s->target, s->value, s->from, s->to, s->by})
-      rename(e);
-    for (auto &[c, body] : s->arms) {
-      rename(c);
-      rename(body);
-    }
-    for (auto &arm : s->caseArms)
-      rename(arm.body);
-    rename(s->elseBody);
-    rename(s->body);
-  }
+  plc::forEachStmt(l, nullptr, [&](Expr *e) { rename(e); });
 }
 
 TypeSyntax *Translator::typeOf(FbType &t, pugi::xml_node decl) {

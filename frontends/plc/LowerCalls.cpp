@@ -99,44 +99,6 @@ void Lowering::enabledBody(Pou *callee, const std::string &prefix, Expr *call,
   out.push_back(b.ifStmt({arm}, false, {}, at));
 }
 
-void Lowering::collectAssignments(StmtList &l) {
-  for (Stmt *s : l) {
-    // `v := e`, and `inst.in := e` for a function block's input.
-    if (s->kind == StmtKind::Assign && s->target->var &&
-        (s->target->kind == ExprKind::Name ||
-         (s->target->kind == ExprKind::Field &&
-          s->target->var->section == VarSection::Input)))
-      assignedValues[s->target->var].push_back(s->value);
-    else if (s->kind == StmtKind::Assign || s->kind == StmtKind::For) {
-      std::set<VarDecl *> w;
-      StmtList one{s};
-      collectWritten(one, w);
-      writtenOtherwise.insert(w.begin(), w.end());
-    }
-    // A function block call passes values to the type's inputs.
-    if (s->kind == StmtKind::Call && s->value->var && s->value->var->type &&
-        s->value->var->type->kind == PTypeKind::FunctionBlock)
-      for (CallArg &a : s->value->args)
-        if (!a.isOutput)
-          if (VarDecl *p = s->value->var->type->fb->find(a.name))
-            assignedValues[p].push_back(a.value);
-    if (s->kind == StmtKind::Call)
-      for (CallArg &a : s->value->args)
-        if (a.isOutput) {
-          std::set<VarDecl *> w;
-          StmtList one{s};
-          collectWritten(one, w);
-          writtenOtherwise.insert(w.begin(), w.end());
-        }
-    for (auto &[c, body] : s->arms)
-      collectAssignments(body);
-    for (auto &arm : s->caseArms)
-      collectAssignments(arm.body);
-    collectAssignments(s->elseBody);
-    collectAssignments(s->body);
-  }
-}
-
 std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
                                             std::set<VarDecl *> &visiting) {
   if (auto c = constValue(e, f))

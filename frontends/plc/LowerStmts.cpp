@@ -447,20 +447,38 @@ static void writtenBy(Expr *target, std::set<VarDecl *> &w) {
 }
 
 void netlift::plc::detail::collectWritten(StmtList &l, std::set<VarDecl *> &w) {
-  for (Stmt *s : l) {
+  forEachStmt(l, [&](Stmt *s) {
     if (s->kind == StmtKind::Assign || s->kind == StmtKind::For)
       writtenBy(s->target, w);
     if (s->kind == StmtKind::Call)
       for (CallArg &a : s->value->args)
         if (a.isOutput)
           writtenBy(a.value, w);
-    for (auto &[c, body] : s->arms)
-      collectWritten(body, w);
-    for (auto &arm : s->caseArms)
-      collectWritten(arm.body, w);
-    collectWritten(s->elseBody, w);
-    collectWritten(s->body, w);
-  }
+  });
+}
+
+void Lowering::collectAssignments(StmtList &l) {
+  forEachStmt(l, [&](Stmt *s) {
+    // `v := e`, and `inst.in := e` for a function block's input.
+    if (s->kind == StmtKind::Assign && s->target->var &&
+        (s->target->kind == ExprKind::Name ||
+         (s->target->kind == ExprKind::Field &&
+          s->target->var->section == VarSection::Input)))
+      assignedValues[s->target->var].push_back(s->value);
+    else if (s->kind == StmtKind::Assign || s->kind == StmtKind::For)
+      writtenBy(s->target, writtenOtherwise);
+    if (s->kind != StmtKind::Call)
+      return;
+    // A function block call passes values to the type's inputs.
+    VarDecl *inst = s->value->var;
+    for (CallArg &a : s->value->args)
+      if (a.isOutput)
+        writtenBy(a.value, writtenOtherwise);
+      else if (inst && inst->type &&
+               inst->type->kind == PTypeKind::FunctionBlock)
+        if (VarDecl *p = inst->type->fb->find(a.name))
+          assignedValues[p].push_back(a.value);
+  });
 }
 
 /// Names read anywhere in NetIR statements (assignment targets excluded,

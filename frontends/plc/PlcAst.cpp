@@ -122,3 +122,25 @@ TypeDecl *Unit::findType(StringRef n) const {
       return t;
   return nullptr;
 }
+
+void netlift::plc::forEachStmt(StmtList &l,
+                               llvm::function_ref<void(Stmt *)> stmt,
+                               llvm::function_ref<void(Expr *)> expr) {
+  for (Stmt *s : l) {
+    if (stmt)
+      stmt(s);
+    if (expr)
+      for (Expr *e : {s->target, s->value, s->from, s->to, s->by})
+        if (e)
+          expr(e);
+    for (auto &[c, body] : s->arms) {
+      if (expr && c)
+        expr(c);
+      forEachStmt(body, stmt, expr);
+    }
+    for (CaseArmSyntax &arm : s->caseArms)
+      forEachStmt(arm.body, stmt, expr);
+    forEachStmt(s->elseBody, stmt, expr);
+    forEachStmt(s->body, stmt, expr);
+  }
+}

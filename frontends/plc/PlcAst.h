@@ -16,6 +16,7 @@
 #ifndef NETLIFT_FRONTENDS_PLC_PLCAST_H
 #define NETLIFT_FRONTENDS_PLC_PLCAST_H
 
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/SMLoc.h"
@@ -385,6 +386,13 @@ private:
 
 /// IEC identifiers are case-insensitive.
 bool sameName(llvm::StringRef a, llvm::StringRef b);
+
+/// Visits every statement of `l`, nested ones included: `stmt` on the
+/// statement, then `expr` on each expression it holds directly (target,
+/// value, FOR bounds, IF conditions; not their sub-expressions), then the
+/// statements nested in it.
+void forEachStmt(StmtList &l, llvm::function_ref<void(Stmt *)> stmt,
+                 llvm::function_ref<void(Expr *)> expr = nullptr);
 
 } // namespace netlift::plc
 

@@ -74,21 +74,7 @@ private:
       expr(a.value);
   }
   void stmts(StmtList &list) {
-    for (Stmt *s : list) {
-      expr(s->target);
-      expr(s->value);
-      expr(s->from);
-      expr(s->to);
-      expr(s->by);
-      for (auto &[c, body] : s->arms) {
-        expr(c);
-        stmts(body);
-      }
-      for (CaseArmSyntax &arm : s->caseArms)
-        stmts(arm.body);
-      stmts(s->elseBody);
-      stmts(s->body);
-    }
+    forEachStmt(list, nullptr, [&](Expr *e) { expr(e); });
   }
 
   const Unit &unit;
