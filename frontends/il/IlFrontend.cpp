@@ -705,7 +705,7 @@ bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
       return false;
     if (!listener.seen)
       break;
-    diag.error(lexer.locAt(listener.offset), listener.text);
+    diag.syntaxError(lexer.locAt(listener.offset), listener.text);
     if (++reported >= st::kMaxSyntaxErrors ||
         !hideLine(tokens, listener.tokenIndex))
       break;

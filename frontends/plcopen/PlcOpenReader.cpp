@@ -429,9 +429,33 @@ bool Reader::project(pugi::xml_node root) {
         return false;
     unit.types.push_back(td);
   }
-  for (pugi::xml_node p : child(types, "pous").children())
-    if (localName(p) == "pou" && !pou(p))
-      return false;
+  // A POU holding a construct netlift refuses is kept with its refusal,
+  // reported only if the translation reaches it (Sema).
+  for (pugi::xml_node p : child(types, "pous").children()) {
+    if (localName(p) != "pou")
+      continue;
+    size_t before = unit.pous.size();
+    diag.beginDeferral();
+    bool ok = pou(p);
+    std::optional<DiagEngine::Deferred> refusal = diag.endDeferral();
+    if (ok)
+      continue;
+    if (!refusal)
+      return false; // a syntax error, reported where it is
+    Pou *stub = unit.pous.size() > before ? unit.pous.back() : nullptr;
+    if (!stub) {
+      stub = unit.make<Pou>();
+      StringRef kind = p.attribute("pouType").value();
+      stub->kind = kind == "program"         ? PouKind::Program
+                   : kind == "functionBlock" ? PouKind::FunctionBlock
+                                             : PouKind::Function;
+      stub->name = p.attribute("name").value();
+      stub->loc = src.locOf(p);
+      unit.pous.push_back(stub);
+    }
+    stub->refusal = refusal->message;
+    stub->refusalLoc = refusal->loc;
+  }
   pugi::xml_node configs = child(child(root, "instances"), "configurations");
   for (pugi::xml_node c : configs.children())
     if (localName(c) == "configuration" && !configuration(c))

@@ -1199,7 +1199,7 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
       return nullptr;
     if (!listener.seen)
       break;
-    diag.error(lexer.locAt(listener.offset), listener.message);
+    diag.syntaxError(lexer.locAt(listener.offset), listener.message);
     tokens.fill(); // the parse stopped at the error: the rest is unread
     if (++reported >= maxErrors || listener.atEof ||
         !hideStatement(tokens, parser.getVocabulary(), listener.tokenIndex))

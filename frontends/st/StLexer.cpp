@@ -189,7 +189,7 @@ std::unique_ptr<antlr4::Token> StLexer::make(size_t type, size_t start,
 std::unique_ptr<antlr4::Token> StLexer::fail(size_t at,
                                              const llvm::Twine &msg) {
   if (!silent)
-    diag.error(locAt(at), msg);
+    diag.syntaxError(locAt(at), msg);
   failed = true;
   pos = text.size();
   return make(antlr4::Token::EOF, pos);

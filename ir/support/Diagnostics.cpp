@@ -47,6 +47,11 @@ void DiagEngine::print(llvm::SMLoc loc, llvm::SourceMgr::DiagKind kind,
 }
 
 void DiagEngine::error(llvm::SMLoc loc, const llvm::Twine &msg) {
+  if (deferring) {
+    if (!deferred)
+      deferred = Deferred{loc, msg.str()};
+    return;
+  }
   ++errors;
   if (errors > limit) {
     if (!suppressing)
@@ -62,7 +67,16 @@ void DiagEngine::warning(llvm::SMLoc loc, const llvm::Twine &msg) {
     print(loc, llvm::SourceMgr::DK_Warning, msg);
 }
 
+void DiagEngine::syntaxError(llvm::SMLoc loc, const llvm::Twine &msg) {
+  bool was = deferring;
+  deferring = false;
+  error(loc, msg);
+  deferring = was;
+}
+
 void DiagEngine::note(llvm::SMLoc loc, const llvm::Twine &msg) {
+  if (deferring && deferred)
+    return; // belongs to the held-back error
   if (!suppressing)
     print(loc, llvm::SourceMgr::DK_Note, msg);
 }

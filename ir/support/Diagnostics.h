@@ -14,6 +14,9 @@
 #include "llvm/Support/SMLoc.h"
 #include "llvm/Support/SourceMgr.h"
 
+#include <optional>
+#include <string>
+
 namespace netlift {
 
 /// Reads `path` ("-": standard input, named "<stdin>") into the SourceMgr
@@ -26,8 +29,27 @@ public:
   explicit DiagEngine(llvm::SourceMgr &sm) : sm(sm) {}
 
   void error(llvm::SMLoc loc, const llvm::Twine &msg);
+  /// A syntax error: reported even while errors are deferred.
+  void syntaxError(llvm::SMLoc loc, const llvm::Twine &msg);
   void warning(llvm::SMLoc loc, const llvm::Twine &msg);
   void note(llvm::SMLoc loc, const llvm::Twine &msg);
+
+  /// Between beginDeferral and endDeferral, errors are held back and the
+  /// first is kept (with the notes after it dropped): a construct netlift
+  /// refuses inside a POU is reported only if the POU is translated.
+  /// Syntax errors are never held back.
+  struct Deferred {
+    llvm::SMLoc loc;
+    std::string message;
+  };
+  void beginDeferral() {
+    deferring = true;
+    deferred.reset();
+  }
+  std::optional<Deferred> endDeferral() {
+    deferring = false;
+    return std::move(deferred);
+  }
 
   unsigned numErrors() const { return errors; }
   bool hadError() const { return errors != 0; }
@@ -42,6 +64,8 @@ private:
   unsigned errors = 0;
   unsigned limit = 20;
   bool suppressing = false;
+  bool deferring = false;
+  std::optional<Deferred> deferred;
 };
 
 } // namespace netlift
