@@ -2,6 +2,8 @@
 //-------------------===//
 #include "frontends/plc/Lowering.h"
 
+#include "llvm/ADT/ScopeExit.h"
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -131,7 +133,10 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
       (v->section == VarSection::Input &&
        (!v->owner || v->owner->kind != PouKind::FunctionBlock)) ||
       writtenOtherwise.count(v) || !visiting.insert(v).second)
-    return std::nullopt;
+    return std::nullopt; // (a cycle through v: no bound from it)
+  // The variables being bounded form a path, not a set of visited ones: v
+  // may be reached again through another value (`MAX(d, d)`).
+  auto leave = llvm::make_scope_exit([&] { visiting.erase(v); });
   // A variable only ever assigned bounded values (and initialised to one).
   Initializer *init = v->typeSyntax ? v->typeSyntax->init : nullptr;
   int64_t best = 0;

@@ -215,6 +215,8 @@ private:
   void collectAssignments(StmtList &l);
   /// The largest value `e` can take, if netlift can bound it: a constant,
   /// an exact interval, or a variable only ever assigned such values.
+  /// `visiting` holds the variables on the current path (cycles give no
+  /// bound).
   std::optional<int64_t> upperBound(Expr *e, Frame &f,
                                     std::set<VarDecl *> &visiting);
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
