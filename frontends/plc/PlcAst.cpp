@@ -144,3 +144,18 @@ void netlift::plc::forEachStmt(StmtList &l,
     forEachStmt(s->body, stmt, expr);
   }
 }
+
+void netlift::plc::keepRefusedPou(Unit &unit, size_t pousBefore, PouKind kind,
+                                  StringRef name, llvm::SMLoc loc,
+                                  llvm::SMLoc refusalLoc, std::string refusal) {
+  Pou *pou = unit.pous.size() > pousBefore ? unit.pous.back() : nullptr;
+  if (!pou) {
+    pou = unit.make<Pou>();
+    pou->kind = kind;
+    pou->name = name.str();
+    pou->loc = loc;
+    unit.pous.push_back(pou);
+  }
+  pou->refusalLoc = refusalLoc;
+  pou->refusal = std::move(refusal);
+}

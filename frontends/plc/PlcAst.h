@@ -387,6 +387,14 @@ private:
 /// IEC identifiers are case-insensitive.
 bool sameName(llvm::StringRef a, llvm::StringRef b);
 
+/// After reading a POU stopped at a construct netlift refuses: the POU
+/// read so far (added to `unit` after its first `pousBefore` POUs) or, if
+/// none was added, a stub of that kind and name keeps the refusal, to be
+/// reported if the translation reaches it (Sema).
+void keepRefusedPou(Unit &unit, size_t pousBefore, PouKind kind,
+                    llvm::StringRef name, llvm::SMLoc loc,
+                    llvm::SMLoc refusalLoc, std::string refusal);
+
 /// Visits every statement of `l`, nested ones included: `stmt` on the
 /// statement, then `expr` on each expression it holds directly (target,
 /// value, FOR bounds, IF conditions; not their sub-expressions), then the

@@ -442,19 +442,13 @@ bool Reader::project(pugi::xml_node root) {
       continue;
     if (!refusal)
       return false; // a syntax error, reported where it is
-    Pou *stub = unit.pous.size() > before ? unit.pous.back() : nullptr;
-    if (!stub) {
-      stub = unit.make<Pou>();
-      StringRef kind = p.attribute("pouType").value();
-      stub->kind = kind == "program"         ? PouKind::Program
+    StringRef kind = p.attribute("pouType").value();
+    keepRefusedPou(unit, before,
+                   kind == "program"         ? PouKind::Program
                    : kind == "functionBlock" ? PouKind::FunctionBlock
-                                             : PouKind::Function;
-      stub->name = p.attribute("name").value();
-      stub->loc = src.locOf(p);
-      unit.pous.push_back(stub);
-    }
-    stub->refusal = refusal->message;
-    stub->refusalLoc = refusal->loc;
+                                             : PouKind::Function,
+                   p.attribute("name").value(), src.locOf(p), refusal->loc,
+                   std::move(refusal->message));
   }
   pugi::xml_node configs = child(child(root, "instances"), "configurations");
   for (pugi::xml_node c : configs.children())

@@ -387,19 +387,13 @@ private:
   SMLoc loc(antlr4::ParserRuleContext *c) const { return loc(c->getStart()); }
   SMLoc loc(antlr4::tree::TerminalNode *n) const { return loc(n->getSymbol()); }
   std::nullptr_t refuse(SMLoc at, const llvm::Twine &what) {
-    if (!failed) {
-      if (deferring)
-        deferred = {at, what.str()};
-      else
-        diag.error(at, what);
-    }
+    if (!failed)
+      diag.error(at, what);
     failed = true;
     return nullptr;
   }
   // Building a POU, a refusal is kept on it (reported if it is translated)
   // instead of stopping the file.
-  bool deferring = false;
-  std::pair<SMLoc, std::string> deferred;
   template <typename Ctx, typename Build>
   void deferRefusals(PouKind kind, Ctx *c, Build build);
   TypeSyntax *refusedType(SMLoc at, const std::string &what) {
@@ -486,25 +480,14 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
 template <typename Ctx, typename Build>
 void AstBuilder::deferRefusals(PouKind kind, Ctx *c, Build build) {
   size_t before = unit.pous.size();
-  deferring = true;
-  deferred = {};
+  diag.beginDeferral();
   build();
-  deferring = false;
-  if (!failed)
-    return;
-  if (!deferred.first.isValid())
-    return; // an error reported where it is (a grouped body's syntax)
+  std::optional<DiagEngine::Deferred> refusal = diag.endDeferral();
+  if (!failed || !refusal)
+    return; // built, or a syntax error reported where it is
   failed = false;
-  Pou *pou = unit.pous.size() > before ? unit.pous.back() : nullptr;
-  if (!pou) {
-    pou = unit.make<Pou>();
-    pou->kind = kind;
-    pou->name = c->name->getText();
-    pou->loc = loc(c->name);
-    unit.pous.push_back(pou);
-  }
-  pou->refusalLoc = deferred.first;
-  pou->refusal = deferred.second;
+  keepRefusedPou(unit, before, kind, c->name->getText(), loc(c->name),
+                 refusal->loc, std::move(refusal->message));
 }
 
 /// The parts every POU has: name, pragmas, variable blocks, body.

@@ -16,6 +16,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace netlift {
 
@@ -37,18 +38,22 @@ public:
   /// Between beginDeferral and endDeferral, errors are held back and the
   /// first is kept (with the notes after it dropped): a construct netlift
   /// refuses inside a POU is reported only if the POU is translated.
-  /// Syntax errors are never held back.
+  /// Syntax errors are never held back. Deferrals nest.
   struct Deferred {
     llvm::SMLoc loc;
     std::string message;
   };
   void beginDeferral() {
+    outer.push_back({deferring, std::move(deferred)});
     deferring = true;
     deferred.reset();
   }
   std::optional<Deferred> endDeferral() {
-    deferring = false;
-    return std::move(deferred);
+    std::optional<Deferred> held = std::move(deferred);
+    deferring = outer.back().first;
+    deferred = std::move(outer.back().second);
+    outer.pop_back();
+    return held;
   }
 
   unsigned numErrors() const { return errors; }
@@ -66,6 +71,7 @@ private:
   bool suppressing = false;
   bool deferring = false;
   std::optional<Deferred> deferred;
+  std::vector<std::pair<bool, std::optional<Deferred>>> outer;
 };
 
 } // namespace netlift
