@@ -434,13 +434,13 @@ public:
       return false;
     }
     if (opts.has("grid")) {
-      if (opts.count("grid") > 100000) {
+      if (opts.wholeNumber("grid") > 100000) {
         diag.error(llvm::SMLoc(),
                    "discretise: grid= needs a whole number from 1 to 100000");
         return false;
       }
       spec.mode = GridSpec::Mode::Count;
-      spec.count = unsigned(opts.count("grid"));
+      spec.count = unsigned(opts.wholeNumber("grid"));
     } else if (opts.has("points")) {
       spec.mode = GridSpec::Mode::Points;
       spec.points = opts.numbers("points");

@@ -58,7 +58,7 @@ public:
   /// Names, Numbers, Components: the comma-separated items, trimmed.
   std::vector<std::string> list(llvm::StringRef key) const;
   /// Count.
-  uint64_t count(llvm::StringRef key) const;
+  uint64_t wholeNumber(llvm::StringRef key) const;
   /// Number, PositiveNumber.
   double number(llvm::StringRef key) const;
   std::vector<double> numbers(llvm::StringRef key) const;

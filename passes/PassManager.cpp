@@ -56,7 +56,7 @@ std::vector<std::string> PassOptions::list(StringRef key) const {
   return items;
 }
 
-uint64_t PassOptions::count(StringRef key) const {
+uint64_t PassOptions::wholeNumber(StringRef key) const {
   uint64_t n = 0;
   StringRef(text(key)).trim().getAsInteger(10, n);
   return n;
