@@ -229,6 +229,12 @@ bool Discretiser::collectAssignments() {
         } else if (auto *f = llvm::dyn_cast<ForStmt>(s)) {
           if (!walk(f->body, false))
             return false;
+        } else if (auto *w = llvm::dyn_cast<WhileStmt>(s)) {
+          const Expr *where = nullptr;
+          if (mentionsReal(w->cond, realOfVar, where))
+            return error(where->loc, "a loop condition reads a real variable");
+          if (!walk(w->body, false))
+            return false;
         }
       }
       return true;

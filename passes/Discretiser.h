@@ -115,8 +115,10 @@ public:
         return *std::min_element(args.begin(), args.end());
       case Builtin::Max:
         return *std::max_element(args.begin(), args.end());
+      default: // the float built-ins are not part of hybrid flows
+        bad = e;
+        return std::nullopt;
       }
-      return std::nullopt;
     }
     default:
       bad = e;

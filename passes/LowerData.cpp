@@ -46,6 +46,7 @@
 
 #include "ir/net/Builder.h"
 #include "ir/net/Clone.h"
+#include "ir/net/ExecutedOnly.h"
 #include "ir/net/ScalarOps.h"
 
 #include "llvm/ADT/DenseMap.h"
@@ -242,7 +243,7 @@ private:
         args.push_back(subst(a));
         same &= args.back() == a;
       }
-      return same ? e : b.call(c->fn, args, e->loc);
+      return same ? e : b.call(c->fn, args, e->loc, c->to);
     }
     default:
       return e;
@@ -417,7 +418,14 @@ public:
   explicit LowerDataPass(const PassOptions &opts) : opts(opts) {}
   bool run(Design &d, DiagEngine &diag, Statistics &stats) override {
     Module *m = reduce::flatTop(d, diag, opts, "lower-data");
-    if (!m || !collectBits(*m, diag) || !checkWriters(*m, diag))
+    if (!m)
+      return false;
+    if (std::optional<ExecutedOnly> x = findExecutedOnly(*m)) {
+      diag.error(x->loc, "lower-data: cannot encode " + x->what +
+                             " in places and arcs");
+      return false;
+    }
+    if (!collectBits(*m, diag) || !checkWriters(*m, diag))
       return false;
     Builder b(d);
     b.setModule(m);

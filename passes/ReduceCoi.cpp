@@ -97,8 +97,17 @@ public:
         readBlock(c->elseBody);
         break;
       }
-      case StmtKind::For:
-        readBlock(cast<ForStmt>(s)->body);
+      case StmtKind::For: {
+        // Run-time bounds decide how often the body writes.
+        auto *f = cast<ForStmt>(s);
+        readExpr(f->lo);
+        readExpr(f->hi);
+        readBlock(f->body);
+        break;
+      }
+      case StmtKind::While:
+        readExpr(cast<WhileStmt>(s)->cond);
+        readBlock(cast<WhileStmt>(s)->body);
         break;
       }
     }

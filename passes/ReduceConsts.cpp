@@ -189,8 +189,9 @@ Expr *ConstFolder::fold(Expr *e) {
       return literal(e->type, std::max(v0, *value(args[1])), e->loc);
     case Builtin::Abs:
       return literal(e->type, v0 < 0 ? -v0 : v0, e->loc);
+    default: // conversions and float functions are left to the engine
+      return e;
     }
-    return e;
   }
   default:
     return e;
@@ -290,6 +291,12 @@ Block ConstFolder::foldBlock(Block blk) {
           b.forStmt(f->var, f->lo, f->hi, foldBlock(f->body), s->loc));
       break;
     }
+    case StmtKind::While: {
+      auto *w = cast<WhileStmt>(s);
+      out.push_back(
+          b.whileStmt(fold(w->cond), foldBlock(w->body), w->testAfter, s->loc));
+      break;
+    }
     }
   }
   return d.copy(llvm::ArrayRef<Stmt *>(out));
@@ -323,7 +330,7 @@ public:
     for (uint32_t v = 0; v < nv; ++v) {
       const Var &var = m->vars[v];
       const Type *t = var.type;
-      if (!t->isScalar() || t->isClock() || t->isReal())
+      if (!t->isScalar() || t->isClock() || t->isReal() || t->isFloat())
         continue;
       if (uses.writers[v].empty()) {
         if (auto x = net::initialValue(var)) {

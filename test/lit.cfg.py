@@ -38,6 +38,11 @@ if lit_config.params.get("roundtrip", "0") not in ("0", ""):
 import shutil
 if shutil.which("spin") and shutil.which("cc"):
     config.available_features.add("spin")
+# A C compiler: IEEE arithmetic is cross-checked against what C computes.
+# No fused multiply-add: a PLC rounds every operation.
+if shutil.which("cc"):
+    config.available_features.add("cc")
+    config.substitutions.append(("%cc", "cc -O0 -ffp-contract=off"))
 # Debian's chromium (scripts/setup.sh installs it when it can): the HTML
 # report is tested in a real browser.
 # It must also start here (headless, as root, no sandbox).

@@ -337,6 +337,9 @@ void StepWriter::collectWrites(Block b, std::set<uint32_t> &out) {
       collectWrites(cast<ForStmt>(s)->body, out);
       --loopDepth;
       break;
+    case StmtKind::While: // refused by encodesSemantics
+      refuse(s->loc, "a loop without constant bounds");
+      return;
     }
   }
 }
@@ -426,6 +429,8 @@ void StepWriter::stmts(Block b, const std::string &in) {
       --loopDepth;
       break;
     }
+    case StmtKind::While: // refused by encodesSemantics
+      break;
     }
   }
 }

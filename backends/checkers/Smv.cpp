@@ -497,6 +497,9 @@ void SmvWriter::exec(Block b, Effect &eff) {
       --loopDepth;
       break;
     }
+    case StmtKind::While: // refused by encodesSemantics
+      refuse(s->loc, "a loop without constant bounds");
+      return;
     }
   }
 }

@@ -1,6 +1,8 @@
 //===- StateUnits.cpp - a flat module's state as a checker names it -------===//
 #include "backends/checkers/StateUnits.h"
 
+#include "ir/net/ExecutedOnly.h"
+
 #include "ir/net/Printer.h"
 
 #include <cstdint>
@@ -63,6 +65,11 @@ bool StateUnits::addUnits(const std::string &name, const Type *t,
 
 bool checkers::encodesSemantics(const Module &m, const sem::Options &o,
                                 const char *format, DiagEngine &diag) {
+  if (std::optional<ExecutedOnly> x = findExecutedOnly(m)) {
+    diag.error(x->loc, std::string(format) + " cannot encode " + x->what +
+                           "; `netlift reach` and `check` execute it");
+    return false;
+  }
   if (o.policy == sem::StepPolicy::Maximal) {
     unsigned spontaneous = 0;
     for (const Transition &t : m.transitions)

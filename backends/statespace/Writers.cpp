@@ -3,6 +3,7 @@
 #include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/FloatOps.h"
 
 #include "llvm/Support/JSON.h"
 
@@ -26,8 +27,10 @@ namespace {
 struct StateColumn {
   std::string name;
   enum Kind { Place, Clock, Data, Output } kind;
-  uint32_t slot = 0;         // Place, Clock, Data, stored Output
-  const Expr *def = nullptr; // defined Output
+  uint32_t slot = 0;          // Place, Clock, Data, stored Output
+  const Expr *def = nullptr;  // defined Output
+  const Type *type = nullptr; // Data and Output: how to write the value
+  std::string text(int64_t v) const { return formatScalar(type, v); }
 };
 
 std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
@@ -47,20 +50,21 @@ std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
       continue;
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(m.vars[v].type); ++i)
       out.push_back({L.slots()[first + i].name, StateColumn::Data,
-                     uint32_t(first + i), nullptr});
+                     uint32_t(first + i), nullptr, L.slots()[first + i].type});
   }
   for (uint32_t p = 0; p < m.ports.size(); ++p) {
     const Port &port = m.ports[p];
     if (!port.isOutput() || port.kind == PortKind::Event)
       continue;
     if (port.definition) {
-      out.push_back({port.name.str(), StateColumn::Output, 0, port.definition});
+      out.push_back({port.name.str(), StateColumn::Output, 0, port.definition,
+                     port.definition->type});
       continue;
     }
     int32_t first = L.portSlot(p);
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(port.type); ++i)
       out.push_back({L.slots()[first + i].name, StateColumn::Output,
-                     uint32_t(first + i), nullptr});
+                     uint32_t(first + i), nullptr, L.slots()[first + i].type});
   }
   return out;
 }
@@ -90,8 +94,7 @@ std::string netlift::statespace::describeState(sem::Semantics &sem,
     int64_t v = valueOf(sem, a, state);
     if (a.kind == StateColumn::Place && v == 0)
       continue; // markings list the marked places only
-    out +=
-        (out.empty() ? "" : separator.str()) + a.name + "=" + std::to_string(v);
+    out += (out.empty() ? "" : separator.str()) + a.name + "=" + a.text(v);
   }
   return out;
 }
@@ -134,7 +137,8 @@ void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
       int64_t v = valueOf(sem, a, x.store().state(s));
       if (a.kind == StateColumn::Place && v == 0)
         continue; // a marking lists its marked places
-      os << " " << a.name << (a.kind == StateColumn::Place ? ":" : "=") << v;
+      os << " " << a.name << (a.kind == StateColumn::Place ? ":" : "=")
+         << a.text(v);
       any = true;
     }
     if (!any)
@@ -171,8 +175,19 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
           if (isDeadlock[s])
             j.attribute("deadlock", true);
           j.attributeArray("values", [&] {
-            for (const StateColumn &a : attrs)
-              j.value(valueOf(sem, a, x.store().state(s)));
+            for (const StateColumn &a : attrs) {
+              int64_t v = valueOf(sem, a, x.store().state(s));
+              if (!a.type || !a.type->isFloat()) {
+                j.value(v);
+                continue;
+              }
+              // Finite floats as JSON numbers, NaN and infinities as text.
+              std::string t = a.text(v);
+              if (t.find_first_of("ni") != std::string::npos)
+                j.value(t);
+              else
+                j.rawValue([&](llvm::raw_ostream &o) { o << t; });
+            }
           });
         });
     });
@@ -209,7 +224,7 @@ void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
   for (uint32_t s = 0; s < x.store().size(); ++s) {
     os << s << ',' << int(isDeadlock[s]);
     for (const StateColumn &a : attrs)
-      os << ',' << valueOf(sem, a, x.store().state(s));
+      os << ',' << a.text(valueOf(sem, a, x.store().state(s)));
     os << '\n';
   }
 }
@@ -271,10 +286,10 @@ void netlift::statespace::writePath(
         if (attrs[k].kind == StateColumn::Place && cur[k] == 0)
           continue;
         changes += (changes.empty() ? "" : ", ") + attrs[k].name + "=" +
-                   std::to_string(cur[k]);
+                   attrs[k].text(cur[k]);
       } else if (cur[k] != prev[k]) {
         changes += (changes.empty() ? "" : ", ") + attrs[k].name + ": " +
-                   std::to_string(prev[k]) + " -> " + std::to_string(cur[k]);
+                   attrs[k].text(prev[k]) + " -> " + attrs[k].text(cur[k]);
       }
     }
     os << fmt::format("{:>4}  {:<{}}  {}\n", i,

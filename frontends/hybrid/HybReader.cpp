@@ -544,6 +544,9 @@ void ChartReader::substituteIn(Block blk) {
       f->lo = substitute(f->lo);
       f->hi = substitute(f->hi);
       substituteIn(f->body);
+    } else if (auto *w = llvm::dyn_cast<WhileStmt>(s)) {
+      w->cond = substitute(w->cond);
+      substituteIn(w->body);
     }
   }
 }

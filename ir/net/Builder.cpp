@@ -155,8 +155,12 @@ Expr *Builder::index(Expr *base, Expr *idx, SMLoc loc) {
 Expr *Builder::field(Expr *base, StringRef f, SMLoc loc) {
   return design.create<FieldExpr>(loc, base, design.save(f));
 }
-Expr *Builder::call(Builtin fn, ArrayRef<Expr *> args, SMLoc loc) {
-  return design.create<CallExpr>(loc, fn, design.copy(args));
+Expr *Builder::call(Builtin fn, ArrayRef<Expr *> args, SMLoc loc,
+                    const Type *to) {
+  return design.create<CallExpr>(loc, fn, design.copy(args), to);
+}
+Expr *Builder::convert(const Type *to, Expr *a, SMLoc loc) {
+  return call(Builtin::Convert, {a}, loc, to);
 }
 Expr *Builder::aggregate(ArrayRef<Expr *> elems, ArrayRef<StringRef> names,
                          SMLoc loc) {
@@ -183,4 +187,8 @@ Stmt *Builder::forStmt(StringRef var, Expr *lo, Expr *hi, ArrayRef<Stmt *> body,
                        SMLoc loc) {
   return design.create<ForStmt>(loc, design.save(var), lo, hi,
                                 design.copy(body));
+}
+Stmt *Builder::whileStmt(Expr *c, ArrayRef<Stmt *> body, bool testAfter,
+                         SMLoc loc) {
+  return design.create<WhileStmt>(loc, c, design.copy(body), testAfter);
 }

@@ -63,7 +63,11 @@ public:
   Expr *cond(Expr *c, Expr *a, Expr *b, llvm::SMLoc loc = {});
   Expr *index(Expr *base, Expr *idx, llvm::SMLoc loc = {});
   Expr *field(Expr *base, llvm::StringRef f, llvm::SMLoc loc = {});
-  Expr *call(Builtin fn, llvm::ArrayRef<Expr *> args, llvm::SMLoc loc = {});
+  /// `to`: the target type of Builtin::Convert (else null).
+  Expr *call(Builtin fn, llvm::ArrayRef<Expr *> args, llvm::SMLoc loc = {},
+             const Type *to = nullptr);
+  /// `to(a)`: a conversion to a PLC integer or a float type.
+  Expr *convert(const Type *to, Expr *a, llvm::SMLoc loc = {});
   /// An array's (no names) or a record's (one name per field) initial
   /// value.
   Expr *aggregate(llvm::ArrayRef<Expr *> elems,
@@ -76,6 +80,9 @@ public:
                  llvm::ArrayRef<Stmt *> elseBody, llvm::SMLoc loc = {});
   Stmt *forStmt(llvm::StringRef var, Expr *lo, Expr *hi,
                 llvm::ArrayRef<Stmt *> body, llvm::SMLoc loc = {});
+  /// `while c { body }`, or with `testAfter` `repeat { body } until c;`.
+  Stmt *whileStmt(Expr *c, llvm::ArrayRef<Stmt *> body, bool testAfter,
+                  llvm::SMLoc loc = {});
 
 private:
   Design &design;

@@ -63,7 +63,7 @@ Expr *netlift::net::cloneExpr(Builder &b, const Module &src, const Expr *e,
     llvm::SmallVector<Expr *, 2> args;
     for (const Expr *a : c->args)
       args.push_back(rec(a));
-    return b.call(c->fn, args, e->loc);
+    return b.call(c->fn, args, e->loc, c->to);
   }
   case ExprKind::Aggregate: {
     auto *a = cast<AggregateLit>(e);
@@ -114,6 +114,12 @@ Block netlift::net::cloneBlock(Builder &b, const Module &src, Block block,
       auto *f = cast<ForStmt>(s);
       out.push_back(
           b.forStmt(f->var, ce(f->lo), ce(f->hi), cb(f->body), s->loc));
+      break;
+    }
+    case StmtKind::While: {
+      auto *w = cast<WhileStmt>(s);
+      out.push_back(
+          b.whileStmt(ce(w->cond), cb(w->body), w->testAfter, s->loc));
       break;
     }
     }

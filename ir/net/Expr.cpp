@@ -62,14 +62,40 @@ StringRef netlift::net::spelling(BinaryOp op) {
 
 StringRef netlift::net::spelling(Builtin b) {
   switch (b) {
-  case Builtin::Min:
-    return "min";
-  case Builtin::Max:
-    return "max";
-  case Builtin::Abs:
-    return "abs";
+#define NETLIFT_BUILTIN(name, spelling, arity, summary)                        \
+  case Builtin::name:                                                          \
+    return spelling;
+#include "ir/net/Builtins.def"
   }
   return "?";
+}
+
+std::string netlift::net::calleeSpelling(const CallExpr *c) {
+  if (c->fn != Builtin::Convert)
+    return spelling(c->fn).str();
+  const Type *t = c->to;
+  return (t->isFloat()  ? "real"
+          : t->isSigned ? "int"
+                        : "uint") +
+         std::to_string(t->width);
+}
+
+unsigned netlift::net::arity(Builtin b) {
+  switch (b) {
+#define NETLIFT_BUILTIN(name, spelling, arity, summary)                        \
+  case Builtin::name:                                                          \
+    return arity;
+#include "ir/net/Builtins.def"
+  }
+  return 0;
+}
+
+std::optional<Builtin> netlift::net::builtinNamed(StringRef name) {
+#define NETLIFT_BUILTIN(name_, spelling, arity, summary)                       \
+  if (name == spelling && Builtin::name_ != Builtin::Convert)                  \
+    return Builtin::name_;
+#include "ir/net/Builtins.def"
+  return std::nullopt;
 }
 
 int netlift::net::precedence(BinaryOp op) {

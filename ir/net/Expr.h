@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 namespace netlift::net {
 
@@ -80,7 +81,14 @@ enum class BinaryOp : uint8_t {
   Div,
   Mod,
 };
-enum class Builtin : uint8_t { Min, Max, Abs };
+enum class Builtin : uint8_t {
+#define NETLIFT_BUILTIN(name, spelling, arity, summary) name,
+#include "ir/net/Builtins.def"
+};
+/// How many operands a built-in takes.
+unsigned arity(Builtin b);
+/// The built-in spelled `name` (not Convert, which is spelled as a type).
+std::optional<Builtin> builtinNamed(llvm::StringRef name);
 
 llvm::StringRef spelling(UnaryOp op);
 llvm::StringRef spelling(BinaryOp op);
@@ -199,12 +207,21 @@ public:
 
 class CallExpr : public Expr {
 public:
-  CallExpr(llvm::SMLoc l, Builtin f, llvm::ArrayRef<Expr *> a)
-      : Expr(ExprKind::Call, l), fn(f), args(a) {}
+  CallExpr(llvm::SMLoc l, Builtin f, llvm::ArrayRef<Expr *> a,
+           const Type *to = nullptr)
+      : Expr(ExprKind::Call, l), fn(f), args(a), to(to) {}
   Builtin fn;
   llvm::ArrayRef<Expr *> args;
+  /// Convert: the target type (a PLC integer or a float). Converting a
+  /// float to an integer rounds half away from zero; a value the target
+  /// cannot hold is a run-time error, whatever the target's overflow rule.
+  const Type *to;
   static bool classof(const Expr *e) { return e->getKind() == ExprKind::Call; }
 };
+
+/// How a call is spelled: the built-in's name, or a conversion's target
+/// (`int16`, `real32`: overflow rules play no part in a conversion).
+std::string calleeSpelling(const CallExpr *c);
 
 /// The initial value of an array or record variable, and nothing else:
 /// `[1, 2, 3]` lists an array's elements from its low index up,
@@ -228,7 +245,7 @@ public:
 // Statements
 //===----------------------------------------------------------------------===//
 
-enum class StmtKind : uint8_t { Assign, If, Case, For };
+enum class StmtKind : uint8_t { Assign, If, Case, For, While };
 
 class Stmt {
 public:
@@ -295,7 +312,8 @@ public:
   static bool classof(const Stmt *s) { return s->getKind() == StmtKind::Case; }
 };
 
-/// `for i in lo..hi { }` with constant bounds; i is read-only in the body.
+/// `for i in lo..hi { }`: the bounds are evaluated once, before the first
+/// iteration; i is read-only in the body.
 class ForStmt : public Stmt {
 public:
   ForStmt(llvm::SMLoc l, llvm::StringRef v, Expr *a, Expr *b, Block body)
@@ -304,6 +322,20 @@ public:
   Expr *lo, *hi;
   Block body;
   static bool classof(const Stmt *s) { return s->getKind() == StmtKind::For; }
+};
+
+/// `while c { }` (the condition tested before each iteration) or
+/// `repeat { } until c;` (after each, so the body runs at least once). Run
+/// concretely; every iteration counts against the watchdog of the firing.
+class WhileStmt : public Stmt {
+public:
+  WhileStmt(llvm::SMLoc l, Expr *c, Block body, bool testAfter)
+      : Stmt(StmtKind::While, l), cond(c), body(body), testAfter(testAfter) {}
+  /// WHILE: keep going while it holds; REPEAT: stop when it holds.
+  Expr *cond;
+  Block body;
+  bool testAfter;
+  static bool classof(const Stmt *s) { return s->getKind() == StmtKind::While; }
 };
 
 /// Evaluate a constant integer expression (literals, enumerators, + - * /

@@ -240,12 +240,12 @@ Expr *Parser::parsePrimary() {
       consume();
       return b.boolLit(n == "true", loc);
     }
-    if (n == "min" || n == "max" || n == "abs") {
-      Lexer peek = lex;
-      if (peek.next().is(Tok::LParen)) {
-        Builtin fn = n == "min"   ? Builtin::Min
-                     : n == "max" ? Builtin::Max
-                                  : Builtin::Abs;
+    if (Lexer peek = lex; peek.next().is(Tok::LParen)) {
+      std::optional<Builtin> fn = builtinNamed(n);
+      const Type *to = fn ? nullptr : conversionTarget(n);
+      if (to)
+        fn = Builtin::Convert;
+      if (fn) {
         consume();
         consume();
         llvm::SmallVector<Expr *, 2> args;
@@ -259,13 +259,13 @@ Expr *Parser::parsePrimary() {
         }
         if (!expect(Tok::RParen, "')'"))
           return nullptr;
-        size_t want = fn == Builtin::Abs ? 1 : 2;
+        unsigned want = arity(*fn);
         if (args.size() != want) {
           error(loc, n + "() takes " + llvm::Twine(want) + " argument" +
                          (want == 1 ? "" : "s"));
           return nullptr;
         }
-        return b.call(fn, args, loc);
+        return b.call(*fn, args, loc, to);
       }
     }
     if (isReservedWord(n)) {
@@ -319,6 +319,8 @@ bool Parser::parseBlock(Block &out) {
 Stmt *Parser::parseStmt() {
   if (tok.isIdent("if"))
     return parseIf();
+  if (tok.isIdent("while") || tok.isIdent("repeat"))
+    return parseWhile();
   if (tok.isIdent("case"))
     return parseCase();
   if (tok.isIdent("for"))
@@ -424,4 +426,32 @@ Stmt *Parser::parseFor() {
   if (!hi || !parseBlock(body))
     return nullptr;
   return b.forStmt(var, lo, hi, body, loc);
+}
+
+Stmt *Parser::parseWhile() {
+  SMLoc loc = tok.loc();
+  bool testAfter = tok.isIdent("repeat");
+  consume();
+  Expr *c = nullptr;
+  Block body;
+  if (!testAfter && !(c = parseExpr()))
+    return nullptr;
+  if (!parseBlock(body))
+    return nullptr;
+  if (testAfter && (!expectIdent("until") || !(c = parseExpr()) ||
+                    !expect(Tok::Semi, "';'")))
+    return nullptr;
+  return b.whileStmt(c, body, testAfter, loc);
+}
+
+const Type *Parser::conversionTarget(StringRef word) {
+  if (word == "real32" || word == "real64")
+    return design.types.getFloat(word == "real32" ? 32 : 64);
+  bool isSigned = word.startswith("int");
+  unsigned width;
+  if ((isSigned || word.startswith("uint")) &&
+      !word.drop_front(isSigned ? 3 : 4).getAsInteger(10, width) &&
+      (width == 8 || width == 16 || width == 32 || (width == 64 && isSigned)))
+    return design.types.getInt(width, isSigned, Overflow::Error);
+  return nullptr;
 }

@@ -238,6 +238,11 @@ bool Parser::parseType(const Type *&type, bool allowReal) {
     type = design.types.getClock(hi);
     return true;
   }
+  if (word == "real32" || word == "real64") {
+    consume();
+    type = design.types.getFloat(word == "real32" ? 32 : 64);
+    return true;
+  }
   if (word == "real") {
     if (!allowReal)
       return errorHere("'real' is only allowed for hybrid variables "

@@ -134,6 +134,8 @@ private:
   bool parseTimescale();
   bool parseTypeDecl();
   bool parseType(const Type *&type, bool allowReal);
+  /// The type a conversion spelled `word(...)` converts to, or null.
+  const Type *conversionTarget(StringRef word);
   bool parseModule(bool isSystem);
   bool parseModuleItem();
   bool parsePortDecl(PortKind kind);
@@ -168,6 +170,7 @@ private:
   Stmt *parseIf();
   Stmt *parseCase();
   Stmt *parseFor();
+  Stmt *parseWhile();
 
   struct DepthGuard {
     Parser &p;

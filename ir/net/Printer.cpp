@@ -101,7 +101,7 @@ void print(const Expr *e, raw_ostream &os, int ctx) {
   }
   case ExprKind::Call: {
     auto *c = llvm::cast<CallExpr>(e);
-    os << spelling(c->fn) << '(';
+    os << calleeSpelling(c) << '(';
     llvm::interleave(
         c->args, os, [&](const Expr *a) { print(a, os, 0); }, ", ");
     os << ')';
@@ -208,6 +208,23 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
     printOperand(f->hi, os, 6);
     os << ' ';
     printBlock(f->body, indent);
+    os << '\n';
+    return;
+  }
+  case StmtKind::While: {
+    auto *w = llvm::cast<WhileStmt>(s);
+    if (w->testAfter) {
+      os << "repeat ";
+      printBlock(w->body, indent);
+      os << " until ";
+      print(w->cond, os, 0);
+      os << ";\n";
+      return;
+    }
+    os << "while ";
+    print(w->cond, os, 0);
+    os << ' ';
+    printBlock(w->body, indent);
     os << '\n';
     return;
   }

@@ -119,6 +119,8 @@ OpError net::applyBuiltin(const CallExpr *c, int64_t a, int64_t b,
   case Builtin::Max:
     out = std::max(a, b);
     return OpError::None;
+  default: // float functions and conversions: FloatOps.h
+    break;
   }
   out = 0;
   return OpError::None;

@@ -67,6 +67,9 @@ void Type::printStructure(llvm::raw_ostream &os) const {
     os << (isSigned ? "int" : "uint") << width
        << (overflow == Overflow::Wrap ? " wrap" : " error");
     return;
+  case TypeKind::Float:
+    os << "real" << width;
+    return;
   case TypeKind::Real:
     os << "real[" << formatReal(realLo) << ", " << formatReal(realHi) << "]";
     return;
@@ -111,6 +114,9 @@ bool netlift::net::isAssignable(const Type *to, const Type *from) {
   if (to->isInteger() && from->isInteger())
     return true;
   if (to->isReal() && (from->isReal() || from->isInteger()))
+    return true;
+  // A constant real expression takes the float type of its context.
+  if (to->isFloat() && from->isAnyReal())
     return true;
   return false;
 }
@@ -193,6 +199,14 @@ const Type *TypeTable::getReal(double lo, double hi) {
   auto t = std::unique_ptr<Type>(new Type(TypeKind::Real));
   t->realLo = lo;
   t->realHi = hi;
+  return intern(std::move(t));
+}
+
+const Type *TypeTable::getFloat(unsigned width) {
+  auto t = std::unique_ptr<Type>(new Type(TypeKind::Float));
+  t->width = width;
+  t->lo = width == 32 ? 0 : INT64_MIN;
+  t->hi = width == 32 ? int64_t(UINT32_MAX) : INT64_MAX;
   return intern(std::move(t));
 }
 

@@ -1,10 +1,11 @@
 //===- Types.h - NetIR data types -------------------------------*- C++ -*-===//
 //
-// The finite data types of NetIR (bool, integer ranges, enumerations,
-// fixed-width PLC integers with a declared overflow behaviour, clocks, arrays
-// and records) and the hybrid `real` type that only exists before
-// discretisation. Every scalar finite type denotes an integer interval
-// [lo, hi] (bool is 0..1, an enumeration 0..n-1), which is what the semantics
+// The data types of NetIR (bool, integer ranges, enumerations, fixed-width
+// PLC integers with a declared overflow behaviour, IEEE-754 `real32` and
+// `real64`, clocks, arrays and records) and the hybrid `real` type that only
+// exists before discretisation. Every scalar type other than the hybrid one
+// is held as a 64-bit word in the interval [lo, hi] (bool is 0..1, an
+// enumeration 0..n-1, a float its bit pattern), which is what the semantics
 // engine and the state encoding work with. Types are owned by a TypeTable and
 // compared by pointer after uniquing, except named types which are nominal.
 //
@@ -33,7 +34,8 @@ enum class TypeKind : uint8_t {
   Clock,
   Array,
   Record,
-  Real
+  Real,  // hybrid: continuous, removed by `discretise`
+  Float, // real32 / real64: the IEEE values a PLC computes
 };
 enum class Overflow : uint8_t { Error, Wrap };
 
@@ -51,6 +53,7 @@ public:
   /// Scalar finite types: the value interval. Int: derived from the width.
   int64_t lo = 0, hi = 0;
   /// Int: bit width, signedness and what an out-of-range write does.
+  /// Float: 32 or 64; lo..hi is then the range of its bit patterns.
   /// Range variables always report out-of-range writes as errors.
   unsigned width = 0;
   bool isSigned = false;
@@ -70,6 +73,10 @@ public:
   bool isBool() const { return kind == TypeKind::Bool; }
   bool isReal() const { return kind == TypeKind::Real; }
   bool isClock() const { return kind == TypeKind::Clock; }
+  bool isFloat() const { return kind == TypeKind::Float; }
+  /// The type of constant real expressions (`1.5`, `-2.0 * 3.0`): it takes
+  /// the float type of its context, or is hybrid.
+  bool isAnyReal() const { return kind == TypeKind::Real && name == "real"; }
   /// Integer-valued scalar (range, PLC int or clock).
   bool isInteger() const {
     return kind == TypeKind::Range || kind == TypeKind::Int ||
@@ -78,6 +85,7 @@ public:
   bool isScalar() const {
     return kind != TypeKind::Array && kind != TypeKind::Record;
   }
+  /// Not hybrid: a value the semantics engine holds in a state.
   bool isFinite() const { return kind != TypeKind::Real; }
   /// Number of scalar slots in the flattened layout.
   uint64_t numSlots() const;
@@ -99,7 +107,8 @@ private:
 
 /// Are values of `from` assignable to a variable of type `to` (statically)?
 /// Integers assign to integers (the range is checked when the value is
-/// written), everything else needs the same type.
+/// written), a constant real (`real`) to a float, everything else needs the
+/// same type.
 bool isAssignable(const Type *to, const Type *from);
 /// Can the two be compared with == / != ?
 bool isComparable(const Type *a, const Type *b);
@@ -125,6 +134,8 @@ public:
   const Type *getInt(unsigned width, bool isSigned, Overflow ov);
   const Type *getArray(const Type *elem, int64_t lo, int64_t hi);
   const Type *getReal(double lo, double hi);
+  /// IEEE-754 binary32 (`real32`) or binary64 (`real64`).
+  const Type *getFloat(unsigned width);
   /// Named types: created once per name. Returns null if the name exists.
   Type *createEnum(llvm::StringRef name, std::vector<llvm::StringRef> enums);
   Type *createRecord(llvm::StringRef name, std::vector<Field> fields);

@@ -68,6 +68,7 @@ private:
 
   const Type *check(Expr *e, Ctx ctx);
   const Type *checkRef(Ref *r, Ctx ctx);
+  const Type *checkCall(CallExpr *c, Ctx ctx);
   bool expectBool(Expr *e, Ctx ctx, StringRef what);
   /// The input port `p` is, or the first one its definition reads.
   const Port *inputRead(const Port &p);
@@ -76,13 +77,29 @@ private:
   void checkBlock(Block b);
   void checkStmt(Stmt *s);
   const Type *checkTarget(Expr *e);
-  bool isNumeric(const Type *t) { return t->isInteger() || t->isReal(); }
+  bool isNumeric(const Type *t) {
+    return t->isInteger() || t->isReal() || t->isFloat();
+  }
+  /// Gives a constant real expression (type `real`) the float type `ft` of
+  /// its context, down to its literals.
+  void adopt(Expr *e, const Type *ft);
+  /// The float type two operands of `e` share (a constant real adopts the
+  /// other's; two constant reals are real64); null with an error when
+  /// they mix a float with anything else. Only called when one is a float
+  /// or both are constant reals.
+  const Type *commonFloat(Expr *e, Expr *a, Expr *b, StringRef op);
+  /// Is this an operand pair computed in floating point?
+  static bool involvesFloat(const Type *a, const Type *b) {
+    return a->isFloat() || b->isFloat();
+  }
 
   Design &d;
   Module &m;
   DiagEngine &diag;
   TypeTable &types;
   std::vector<StringRef> loopVars;
+  /// Constant reals are hybrid values in a module with hybrid parts.
+  bool hybrid = false;
 };
 
 SMLoc ModuleVerifier::locOf(Symbol s) {
@@ -187,6 +204,8 @@ bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
                          "', expected '" + typeName(type) + "'");
     return false;
   }
+  if (type->isFloat())
+    adopt(init, type);
   int64_t v;
   if (type->isInteger() && evalConstInt(init, v) &&
       (v < type->lo || v > type->hi)) {
@@ -573,6 +592,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
         error(e->loc, "'-' needs a number, not '" + typeName(t) + "'");
         return nullptr;
       }
+      if (t->isFloat())
+        return e->type = t;
       return e->type = t->isReal() ? types.getAnyReal() : types.getInteger();
     case UnaryOp::BitNot:
       if (!t->isInteger()) {
@@ -617,6 +638,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
                         typeName(a) + "' and '" + typeName(b) + "'");
       return nullptr;
     };
+    bool inFloat = involvesFloat(a, b) || (a->isAnyReal() && b->isAnyReal() &&
+                                           ctx != Ctx::Constant && !hybrid);
     switch (bin->op) {
     case BinaryOp::Or:
     case BinaryOp::Xor:
@@ -626,6 +649,10 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       return e->type = types.getBool();
     case BinaryOp::Eq:
     case BinaryOp::Ne:
+      if (inFloat && isNumeric(a) && isNumeric(b))
+        return commonFloat(e, bin->lhs, bin->rhs, op)
+                   ? e->type = types.getBool()
+                   : nullptr;
       if (!isComparable(a, b))
         return mismatch("operands of the same type");
       return e->type = types.getBool();
@@ -635,6 +662,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     case BinaryOp::Ge:
       if (!isNumeric(a) || !isNumeric(b))
         return mismatch("numbers");
+      if (inFloat && !commonFloat(e, bin->lhs, bin->rhs, op))
+        return nullptr;
       return e->type = types.getBool();
     case BinaryOp::BitOr:
     case BinaryOp::BitXor:
@@ -654,6 +683,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     case BinaryOp::Div:
       if (!isNumeric(a) || !isNumeric(b))
         return mismatch("numbers");
+      if (involvesFloat(a, b))
+        return e->type = commonFloat(e, bin->lhs, bin->rhs, op);
       return e->type = (a->isReal() || b->isReal()) ? types.getAnyReal()
                                                     : types.getInteger();
     }
@@ -672,30 +703,116 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
                         "' and '" + typeName(b) + "'");
       return nullptr;
     }
+    if (involvesFloat(a, b))
+      return e->type = commonFloat(e, c->thenExpr, c->elseExpr, "?:");
     if (a->isInteger() && b->isInteger() && a != b)
       return e->type = types.getInteger();
     if (a->isReal() || b->isReal())
       return e->type = types.getAnyReal();
     return e->type = a;
   }
-  case ExprKind::Call: {
-    auto *c = llvm::cast<CallExpr>(e);
-    bool real = false;
-    for (Expr *a : c->args) {
-      const Type *t = check(a, ctx);
-      if (!t)
-        return nullptr;
-      if (!isNumeric(t)) {
-        error(a->loc,
-              spelling(c->fn) + "() needs numbers, not '" + typeName(t) + "'");
-        return nullptr;
-      }
-      real |= t->isReal();
-    }
-    return e->type = real ? types.getAnyReal() : types.getInteger();
-  }
+  case ExprKind::Call:
+    return checkCall(llvm::cast<CallExpr>(e), ctx);
   }
   return nullptr;
+}
+
+void ModuleVerifier::adopt(Expr *e, const Type *ft) {
+  if (!e->type || !e->type->isAnyReal())
+    return;
+  e->type = ft;
+  if (auto *u = llvm::dyn_cast<UnaryExpr>(e))
+    adopt(u->operand, ft);
+  else if (auto *b = llvm::dyn_cast<BinaryExpr>(e)) {
+    adopt(b->lhs, ft);
+    adopt(b->rhs, ft);
+  } else if (auto *c = llvm::dyn_cast<CondExpr>(e)) {
+    adopt(c->thenExpr, ft);
+    adopt(c->elseExpr, ft);
+  } else if (auto *c = llvm::dyn_cast<CallExpr>(e)) {
+    if (c->fn != Builtin::Convert && c->fn != Builtin::Trunc)
+      for (Expr *a : c->args)
+        adopt(a, ft);
+  }
+}
+
+const Type *ModuleVerifier::commonFloat(Expr *e, Expr *a, Expr *b,
+                                        StringRef op) {
+  const Type *ta = a->type, *tb = b->type;
+  const Type *ft = ta->isFloat() ? ta : tb->isFloat() ? tb : types.getFloat(64);
+  auto fits = [&](const Type *t) { return t == ft || t->isAnyReal(); };
+  if (!fits(ta) || !fits(tb)) {
+    const Type *other = fits(ta) ? tb : ta;
+    error(e->loc, "'" + op + "' mixes '" + typeName(ft) + "' and '" +
+                      typeName(other) + "'; convert one (" +
+                      (other->isFloat() || !other->isInteger()
+                           ? "real32(x) or real64(x)"
+                           : typeName(ft) + "(x)") +
+                      ")");
+    return nullptr;
+  }
+  adopt(a, ft);
+  adopt(b, ft);
+  return ft;
+}
+
+const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
+  bool anyFloat = false, anyReal = false;
+  for (Expr *a : c->args) {
+    const Type *t = check(a, ctx);
+    if (!t)
+      return nullptr;
+    if (!isNumeric(t) && !(c->fn == Builtin::Convert && t->isBool())) {
+      error(a->loc,
+            calleeSpelling(c) + "() needs numbers, not '" + typeName(t) + "'");
+      return nullptr;
+    }
+    anyFloat |= t->isFloat();
+    anyReal |= t->isReal() && !t->isAnyReal();
+  }
+  Expr *x = c->args[0];
+  switch (c->fn) {
+  case Builtin::Convert:
+    if (x->type->isAnyReal())
+      adopt(x, types.getFloat(64));
+    else if (x->type->isReal()) {
+      error(x->loc, "a hybrid 'real' cannot be converted");
+      return nullptr;
+    }
+    return c->type = c->to;
+  case Builtin::Trunc:
+    if (!x->type->isFloat() && !x->type->isAnyReal()) {
+      error(x->loc, "trunc() needs a float, not '" + typeName(x->type) + "'");
+      return nullptr;
+    }
+    adopt(x, types.getFloat(64));
+    return c->type = types.getInteger();
+  case Builtin::Min:
+  case Builtin::Max:
+  case Builtin::Abs:
+    if (anyFloat) {
+      const Type *ft =
+          c->args.size() == 1
+              ? x->type
+              : commonFloat(c, c->args[0], c->args[1], spelling(c->fn));
+      return c->type = ft;
+    }
+    return c->type =
+               anyReal || (x->type->isReal() ||
+                           (c->args.size() > 1 && c->args[1]->type->isReal()))
+                   ? types.getAnyReal()
+                   : types.getInteger();
+  default: // the float functions
+    for (Expr *a : c->args)
+      if (!a->type->isFloat() && !a->type->isAnyReal()) {
+        error(a->loc, spelling(c->fn) + "() needs a float, not '" +
+                          typeName(a->type) + "'; convert it (real64(x))");
+        return nullptr;
+      }
+    if (c->args.size() == 2)
+      return c->type = commonFloat(c, c->args[0], c->args[1], spelling(c->fn));
+    return c->type = x->type;
+  }
 }
 
 const Type *ModuleVerifier::checkTarget(Expr *e) {
@@ -765,6 +882,8 @@ void ModuleVerifier::checkStmt(Stmt *s) {
                                "' of type '" + typeName(tt) + "'");
       return;
     }
+    if (tt->isFloat())
+      adopt(a->value, tt);
     int64_t v;
     if (tt->isInteger() && evalConstInt(a->value, v) &&
         (v < tt->lo || v > tt->hi) &&
@@ -814,14 +933,20 @@ void ModuleVerifier::checkStmt(Stmt *s) {
   }
   case StmtKind::For: {
     auto *f = llvm::cast<ForStmt>(s);
-    int64_t lo, hi;
-    const Type *a = check(f->lo, Ctx::Constant);
-    const Type *b = check(f->hi, Ctx::Constant);
-    if (a && b && (!evalConstInt(f->lo, lo) || !evalConstInt(f->hi, hi)))
-      error(f->loc, "the bounds of a 'for' loop must be integer constants");
+    for (Expr *bound : {f->lo, f->hi})
+      if (const Type *t = check(bound, Ctx::Guard); t && !t->isInteger())
+        error(bound->loc, "the bounds of a 'for' loop must be integers, not '" +
+                              typeName(t) + "'");
     loopVars.push_back(f->var);
     checkBlock(f->body);
     loopVars.pop_back();
+    return;
+  }
+  case StmtKind::While: {
+    auto *w = llvm::cast<WhileStmt>(s);
+    expectBool(w->cond, Ctx::Guard,
+               w->testAfter ? "a 'repeat' condition" : "a 'while' condition");
+    checkBlock(w->body);
     return;
   }
   }
@@ -1027,6 +1152,7 @@ void ModuleVerifier::checkInstancesAndConnections() {
 }
 
 void ModuleVerifier::run() {
+  hybrid = hasHybridParts(m);
   checkNames();
   checkPorts();
   checkVars();

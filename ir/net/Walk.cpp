@@ -102,6 +102,13 @@ void walkBlock(Block b, int t, llvm::function_ref<void(const Expr *, int)> read,
       walkBlock(f->body, t, read, assign);
       break;
     }
+    case StmtKind::While: {
+      auto *w = cast<WhileStmt>(s);
+      if (read)
+        read(w->cond, t);
+      walkBlock(w->body, t, read, assign);
+      break;
+    }
     }
   }
 }
@@ -157,6 +164,9 @@ Block net::dropAssignments(Builder &b, Block blk,
     } else if (auto *f = dyn_cast<ForStmt>(s)) {
       out.push_back(b.forStmt(f->var, f->lo, f->hi,
                               dropAssignments(b, f->body, keep), s->loc));
+    } else if (auto *w = dyn_cast<WhileStmt>(s)) {
+      out.push_back(b.whileStmt(w->cond, dropAssignments(b, w->body, keep),
+                                w->testAfter, s->loc));
     }
   }
   return d.copy(llvm::ArrayRef<Stmt *>(out));

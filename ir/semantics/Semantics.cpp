@@ -8,6 +8,7 @@
 //===----------------------------------------------------------------------===//
 #include "ir/semantics/Semantics.h"
 
+#include "ir/net/FloatOps.h"
 #include "ir/net/ScalarOps.h"
 #include "ir/semantics/PtKernel.h"
 
@@ -149,6 +150,8 @@ struct Semantics::Impl {
     case ExprKind::BoolLit:
       return cast<BoolLit>(e)->value;
     case ExprKind::RealLit:
+      if (e->type && e->type->isFloat())
+        return floatBits(e->type->width, cast<RealLit>(e)->value);
       fail(e, "real arithmetic is not part of the discrete semantics");
     case ExprKind::Aggregate: // only initial values, flattened there
       fail(e, "an aggregate is not a scalar value");
@@ -189,6 +192,8 @@ struct Semantics::Impl {
     case ExprKind::Unary: {
       auto *u = cast<UnaryExpr>(e);
       int64_t a = eval(u->operand, v), r;
+      if (e->type && e->type->isFloat())
+        return applyFloatNeg(e->type->width, a);
       if (OpError err = applyUnary(u, a, r); err != OpError::None)
         fail(e, opErrorMessage(err, e, 0));
       return r;
@@ -199,16 +204,34 @@ struct Semantics::Impl {
       auto *c = cast<CondExpr>(e);
       return eval(c->cond, v) ? eval(c->thenExpr, v) : eval(c->elseExpr, v);
     }
-    case ExprKind::Call: {
-      auto *c = cast<CallExpr>(e);
-      int64_t a = eval(c->args[0], v), r;
-      int64_t b = c->fn == Builtin::Abs ? 0 : eval(c->args[1], v);
-      if (OpError err = applyBuiltin(c, a, b, r); err != OpError::None)
-        fail(e, opErrorMessage(err, e, 0));
-      return r;
-    }
+    case ExprKind::Call:
+      return evalCall(cast<CallExpr>(e), v);
     }
     return 0;
+  }
+
+  int64_t evalCall(const CallExpr *c, const std::vector<int64_t> &v) {
+    const Type *at = c->args[0]->type;
+    int64_t a = eval(c->args[0], v), r;
+    int64_t b = c->args.size() > 1 ? eval(c->args[1], v) : 0;
+    if (c->fn == Builtin::Convert || c->fn == Builtin::Trunc) {
+      ConvertError err = c->fn == Builtin::Trunc
+                             ? truncToInteger(at->width, a, r)
+                             : convertValue(at, c->to, a, r);
+      if (err != ConvertError::None)
+        fail(c, "'" + exprToString(c) + "': " + formatScalar(at, a) +
+                    (err == ConvertError::NotANumber
+                         ? " is not a number"
+                         : " is outside the range of " +
+                               (c->fn == Builtin::Trunc ? std::string("int64")
+                                                        : calleeSpelling(c))));
+      return r;
+    }
+    if (c->type && c->type->isFloat())
+      return applyFloatBuiltin(c->fn, c->type->width, a, b);
+    if (OpError err = applyBuiltin(c, a, b, r); err != OpError::None)
+      fail(c, opErrorMessage(err, c, 0));
+    return r;
   }
 
   bool aggregateEqual(const Expr *a, const Expr *b,
@@ -240,12 +263,29 @@ struct Semantics::Impl {
       break;
     }
     int64_t x = eval(b->lhs, v), y = eval(b->rhs, v), r;
+    if (b->lhs->type && b->lhs->type->isFloat())
+      return applyFloatBinary(b->op, b->lhs->type->width, x, y);
     if (OpError err = applyBinary(b, x, y, r); err != OpError::None)
       fail(b, opErrorMessage(err, b, y));
     return r;
   }
 
   // --- Actions ------------------------------------------------------------
+  /// Loop iterations of the firing being executed, and its transition.
+  uint64_t iterations = 0;
+  uint32_t firing = 0;
+  /// The watchdog: a firing may run at most opts.maxLoopIterations loop
+  /// iterations, all loops counted together, as a PLC's watchdog bounds
+  /// the time of one scan.
+  void countIteration(const Stmt *loop) {
+    if (++iterations > opts.maxLoopIterations)
+      throw EvalError{
+          "watchdog: transition '" + m.transitions[firing].name.str() +
+              "' ran more than " + std::to_string(opts.maxLoopIterations) +
+              " loop iterations in one firing "
+              "(--max-loop-iterations)",
+          loop->loc};
+  }
   void store(const Expr *target, uint32_t slot, int64_t value,
              std::vector<int64_t> &v, std::vector<uint32_t> &written) {
     const Slot &s = L.slots()[slot];
@@ -324,10 +364,28 @@ struct Semantics::Impl {
         int64_t lo = eval(f->lo, v), hi = eval(f->hi, v);
         loopVals.push_back(0);
         for (int64_t i = lo; i <= hi; ++i) {
+          countIteration(st);
           loopVals.back() = i;
           exec(f->body, v, written);
+          if (i == INT64_MAX)
+            break;
         }
         loopVals.pop_back();
+        break;
+      }
+      case StmtKind::While: {
+        auto *w = cast<WhileStmt>(st);
+        if (w->testAfter) {
+          do {
+            countIteration(st);
+            exec(w->body, v, written);
+          } while (!eval(w->cond, v));
+        } else {
+          while (eval(w->cond, v)) {
+            countIteration(st);
+            exec(w->body, v, written);
+          }
+        }
         break;
       }
       }
@@ -513,6 +571,8 @@ struct Semantics::Impl {
         continue;
       local = vals;
       written.clear();
+      iterations = 0;
+      firing = ti;
       exec(t.action(), local, written);
       std::sort(written.begin(), written.end());
       written.erase(std::unique(written.begin(), written.end()), written.end());

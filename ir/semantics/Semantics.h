@@ -37,6 +37,10 @@ struct Options {
   unsigned unboundedBits = 8;
   /// Most input valuations enumerated per state before refusing.
   uint64_t maxInputValuations = 1u << 16;
+  /// The watchdog: most loop iterations one transition's firing may run
+  /// (every loop of its action counted together) before it is a runtime
+  /// error, as a PLC's watchdog stops the CPU.
+  uint64_t maxLoopIterations = 100000;
   /// Expand plain P/T nets with the compiled kernel (PtKernel.h); off, the
   /// general interpreter does it (the two must agree: a cross-check).
   bool compilePT = true;

@@ -39,10 +39,14 @@ void StateLayout::addLeaves(const std::string &name, const Type *t) {
     for (const Field &f : t->fields)
       addLeaves(name + "." + f.name.str(), f.type);
     return;
-  default:
-    addSlot(name, t->lo, t->hi,
-            t->kind == TypeKind::Int && t->overflow == Overflow::Wrap,
-            t->kind == TypeKind::Int);
+  default: {
+    // PLC integers and floats start at 0 (+0.0 for a float).
+    uint32_t s =
+        addSlot(name, t->lo, t->hi,
+                t->kind == TypeKind::Int && t->overflow == Overflow::Wrap,
+                t->kind == TypeKind::Int || t->kind == TypeKind::Float);
+    slotVec[s].type = t;
+  }
   }
 }
 

@@ -35,6 +35,9 @@ struct Slot {
   /// integers (as in IEC 61131-3), the low bound otherwise.
   int64_t initial = 0;
   std::string name; // for states written out: `p`, `v[2].x`, `clock(p)`
+  /// The scalar type of a variable's or port's leaf (null for markings and
+  /// clocks): how its value is read (a float's bits) and written out.
+  const net::Type *type = nullptr;
 };
 
 enum class SlotKind : uint8_t { Marking, PlaceClock, Data, Input };

@@ -157,6 +157,11 @@ static cl::opt<unsigned>
     placeBits("place-bits",
               cl::desc("Bits for the marking of unbounded places (default 8)"),
               cl::init(8), NETLIFT_EXPLORING, cl::sub(emitCommand()));
+static cl::opt<uint64_t> maxLoopIterations(
+    "max-loop-iterations",
+    cl::desc("Watchdog: most loop iterations one firing may run "
+             "(default 100000)"),
+    cl::init(100000), NETLIFT_EXPLORING);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -199,6 +204,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.semantics.timing = timing;
   eo.semantics.unboundedBits = placeBits;
   eo.semantics.compilePT = !interpreter;
+  eo.semantics.maxLoopIterations = maxLoopIterations;
   eo.maxStates = maxStates;
   eo.timeLimit = timeLimit;
   if (!maxMemory.empty() &&
