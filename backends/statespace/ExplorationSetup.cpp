@@ -1,6 +1,8 @@
 //===- ExplorationSetup.cpp - one state space for every command -----------===//
 #include "backends/statespace/ExplorationSetup.h"
 
+#include "ir/net/ExecutedOnly.h"
+
 #include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
 #include "passes/Pass.h"
@@ -67,6 +69,17 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   net::Module *top = explorableTop(design, options.top, diag, command);
   if (!top)
     return nullptr;
+  if (options.enumeratesInputs)
+    for (const net::Port &p : top->ports)
+      if (p.isInput() && p.type && net::holdsFloat(p.type)) {
+        diag.error(p.loc, "free input '" + p.name + "' of type " +
+                              p.type->str() + ": " + command +
+                              " cannot enumerate the values of a float at "
+                              "every step; connect it to a model of what "
+                              "drives it (`netlift compose`), or give it a "
+                              "value in the program");
+        return nullptr;
+      }
   if (options.enumeratesInputs)
     for (const net::Attribute &a : top->attributes) {
       if (a.key != net::kNeedsRangeAttribute)

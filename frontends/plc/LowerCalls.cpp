@@ -62,7 +62,10 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
       NExpr *v = b.ref(prefix + sanitize(a.name), a.loc);
       if (a.negated)
         v = b.unary(net::UnaryOp::Not, v, a.loc);
-      pre.push_back(b.assign(lvalue(a.value, f, pre), v, a.loc));
+      VarDecl *out = fn->find(a.name);
+      pre.push_back(b.assign(
+          lvalue(a.value, f, pre),
+          coerce(v, out ? out->type : nullptr, a.value->type, a.loc), a.loc));
     }
   return b.ref(prefix + sanitize(fn->name), call->loc);
 }
@@ -246,6 +249,10 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
       NExpr *v = b.ref(member, a.loc);
       if (a.negated)
         v = b.unary(net::UnaryOp::Not, v, a.loc);
-      out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));
+      VarDecl *param = fb->find(a.name);
+      out.push_back(b.assign(
+          lvalue(a.value, f, out),
+          coerce(v, param ? param->type : nullptr, a.value->type, a.loc),
+          a.loc));
     }
 }

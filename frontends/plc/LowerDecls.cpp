@@ -44,9 +44,8 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = scalarNetType(t, tt);
     break;
   case PTypeKind::Real:
-    refuse(at, t->str() + " " + what +
-                   ": REAL arithmetic is not supported (it cannot be "
-                   "modelled exactly)");
+    r = floatType(t);
+    break;
   case PTypeKind::String:
     refuse(at, t->str() + " " + what + ": strings are not supported");
   case PTypeKind::Date:
@@ -120,6 +119,8 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
   case PTypeKind::Time:
   case PTypeKind::AnyInt:
     return b.intLit(0, at);
+  case PTypeKind::Real:
+    return b.realLit(0.0, at);
   case PTypeKind::Enum:
     return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[0]), at);
   default:
@@ -208,6 +209,13 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
     refuse(e->loc, "STRING variable '" + v->name +
                        "' is not supported (string operations beyond "
                        "constants are refused)");
+  if (t->kind == PTypeKind::Real) {
+    Sink pre;
+    NExpr *r = coerce(expr(e, none, pre), e->type, t, e->loc);
+    if (!pre.empty())
+      refuse(e->loc, "initial value of '" + v->name + "' must be a constant");
+    return r;
+  }
   std::optional<int64_t> c = constValue(e, none);
   if (!c)
     refuse(e->loc, "initial value of '" + v->name + "' must be a constant");

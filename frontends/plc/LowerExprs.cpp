@@ -206,9 +206,6 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
 }
 
 NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
-  if (e->type && e->type->kind == PTypeKind::Real)
-    refuse(e->loc, "REAL arithmetic is not supported (it cannot be modelled "
-                   "exactly)");
   if (e->type && e->type->kind == PTypeKind::String)
     refuse(e->loc, "string operations are not supported");
   if (e->type && e->type->kind == PTypeKind::Date)
@@ -223,7 +220,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::TimeLit:
     return b.intLit(ticks(e->intValue, e->loc), e->loc);
   case ExprKind::RealLit:
-    refuse(e->loc, "REAL values are not supported");
+    return b.realLit(e->realValue, e->loc);
   case ExprKind::StringLit:
     refuse(e->loc, "string literals are not supported");
   case ExprKind::DateLit:
@@ -273,11 +270,20 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     }
   }
   case ExprKind::Binary: {
-    if (e->op == Op::Pow)
-      refuse(e->loc, "'**' (EXPT) is REAL arithmetic, which is not "
-                     "supported");
     NExpr *l = expr(e->operands[0], f, pre);
     NExpr *r = expr(e->operands[1], f, pre);
+    if (const PType *real = commonReal({e->operands[0], e->operands[1]})) {
+      // Both operands in the REAL the operation is computed in.
+      l = coerce(l, e->operands[0]->type, real, e->loc);
+      r = coerce(r, e->operands[1]->type, real, e->loc);
+    }
+    if (e->op == Op::Pow) {
+      const PType *in = baseOf(e->type);
+      return b.call(net::Builtin::Expt,
+                    {coerce(l, e->operands[0]->type, in, e->loc),
+                     coerce(r, e->operands[1]->type, in, e->loc)},
+                    e->loc);
+    }
     const PType *lt = e->operands[0]->type;
     bool logical = lt && (lt->kind == PTypeKind::Bool);
     net::BinaryOp op;
@@ -382,8 +388,7 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   }
   if (from->kind == to->kind && from->kind == PTypeKind::Time)
     return v;
-  refuse(at, "conversion from " + from->str() + " to " + to->str() +
-                 " is not supported");
+  return convertReal(v, from, to, at);
 }
 
 NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
@@ -395,6 +400,16 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
     src.push_back(arg.value);
   }
   SMLoc at = e->loc;
+  if (info.fn != StdFn::RealMath && info.fn != StdFn::Convert) {
+    // The value operands in the REAL they are computed in (SEL's and MUX's
+    // selector aside).
+    size_t first = info.fn == StdFn::Sel || info.fn == StdFn::Mux ? 1 : 0;
+    std::vector<Expr *> values(src.begin() + std::min(first, src.size()),
+                               src.end());
+    if (const PType *real = commonReal(values))
+      for (size_t i = first; i < a.size(); ++i)
+        a[i] = coerce(a[i], src[i]->type, real, at);
+  }
   auto chain = [&](net::BinaryOp op, size_t from, bool wrap) {
     NExpr *r = a[from];
     for (size_t i = from + 1; i < a.size(); ++i)
@@ -511,9 +526,7 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
   case StdFn::Convert:
     return convert(a[0], src[0]->type, info.to, at);
   case StdFn::RealMath:
-    refuse(at, "'" + e->name +
-                   "' is REAL arithmetic, which is not "
-                   "supported");
+    return realMath(e, a, at);
   case StdFn::StringOp:
     refuse(at, "string function '" + e->name + "' is not supported");
   case StdFn::Refused:

@@ -53,6 +53,8 @@ void Lowering::assign(NExpr *target, NExpr *value, const PType *targetType,
   if (targetType && targetType->kind == PTypeKind::Bool && valueExpr &&
       valueExpr->type && valueExpr->type->kind == PTypeKind::AnyInt)
     value = b.boolLit(valueExpr->intValue != 0, at);
+  if (valueExpr)
+    value = coerce(value, valueExpr->type, targetType, at);
   out.push_back(b.assign(target, value, at));
 }
 
@@ -297,9 +299,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     std::optional<int64_t> from = constValue(s->from, f);
     std::optional<int64_t> to = constValue(s->to, f);
     std::optional<int64_t> by = s->by ? constValue(s->by, f) : int64_t(1);
-    if (!from || !to || !by)
-      refuse(s->loc, "FOR loop bounds must be constants (netlift unrolls "
-                     "nothing it cannot bound)");
+    if (!from || !to || !by) {
+      runtimeFor(s, f, out, loops);
+      return;
+    }
     if (*by == 0)
       refuse(s->by->loc, "FOR loop step is 0");
     // Assigning the loop variable inside the body is not allowed (IEC).
@@ -359,13 +362,19 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   case StmtKind::While:
   case StmtKind::Repeat: {
     bool isWhile = s->kind == StmtKind::While;
+    // A proved bound gives a `for` every backend can encode; otherwise
+    // the loop runs as it is, under the watchdog.
     std::optional<int64_t> n = loopBound(s, previous, f);
-    if (!n)
-      refuse(s->loc, Twine(isWhile ? "WHILE" : "REPEAT") +
-                         " loop refused: netlift cannot prove a bound on its "
-                         "iterations (it proves `i := c; WHILE i < C DO ... "
-                         "i := i + s; END_WHILE` and the like; otherwise use "
-                         "FOR with constant bounds)");
+    if (!n && !mayJump(s->body, true) && f.returnFlag.empty()) {
+      Sink cond;
+      NExpr *c = expr(s->value, f, cond);
+      if (cond.empty()) {
+        Sink bodyStmts;
+        body(s->body, f, bodyStmts, loops);
+        out.push_back(b.whileStmt(c, bodyStmts, !isWhile, s->loc));
+        return;
+      }
+    }
     // for k in 0..n-1 { if <still looping> { body } }: the bound is an
     // upper bound, the condition keeps the iteration count exact.
     LoopCtx loop;
@@ -412,7 +421,16 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     net::IfArm run{running, design.copy(llvm::ArrayRef<NStmt *>(bodyStmts))};
     iter.push_back(b.ifStmt({run}, false, {}, s->loc));
     std::string k = "_k" + std::to_string(++loopVars);
-    if (*n > 0)
+    if (!n) {
+      NExpr *more =
+          b.unary(net::UnaryOp::Not, b.ref(loop.exitFlag, s->loc), s->loc);
+      if (!f.returnFlag.empty())
+        more = b.binary(
+            net::BinaryOp::And, more,
+            b.unary(net::UnaryOp::Not, b.ref(f.returnFlag, s->loc), s->loc),
+            s->loc);
+      out.push_back(b.whileStmt(more, iter, false, s->loc));
+    } else if (*n > 0)
       out.push_back(b.forStmt(k, b.intLit(0, s->loc), b.intLit(*n - 1, s->loc),
                               iter, s->loc));
     return;
@@ -433,6 +451,83 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
         b.assign(b.ref(f.returnFlag, s->loc), b.boolLit(true, s->loc), s->loc));
     return;
   }
+}
+
+/// FOR with bounds known only at run time: the start, end and step are
+/// evaluated once, when the loop starts, and the loop runs as it is, under
+/// the watchdog (a control variable that wraps around before passing the
+/// end runs until the watchdog stops it, as on a PLC).
+void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
+                          const std::vector<LoopCtx> &loops) {
+  SMLoc at = s->loc;
+  const PType *vt = s->target->type;
+  auto temp = [&](const char *what, Expr *e) -> NExpr * {
+    if (std::optional<int64_t> c = e ? constValue(e, f) : int64_t(1))
+      return b.intLit(*c, at);
+    NExpr *v = expr(e, f, out);
+    std::string name =
+        unique(std::string("_for_") + what + std::to_string(++loopVars));
+    declareTemp(name, vt, at);
+    out.push_back(b.assign(b.ref(name, at), v, at));
+    return b.ref(name, at);
+  };
+  NExpr *start = expr(s->from, f, out);
+  NExpr *to = temp("to", s->to);
+  NExpr *by = temp("by", s->by);
+  out.push_back(b.assign(lvalue(s->target, f, out), start, at));
+  auto var = [&] { return lvalue(s->target, f, out); };
+  // Up while i <= to for a step >= 0, down while i >= to otherwise.
+  NExpr *up = b.binary(net::BinaryOp::Le, var(), to, at);
+  NExpr *down = b.binary(net::BinaryOp::Ge, var(), to, at);
+  NExpr *more;
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(by))
+    more = lit->value >= 0 ? up : down;
+  else
+    more = b.cond(b.binary(net::BinaryOp::Ge, by, b.intLit(0, at), at), up,
+                  down, at);
+  LoopCtx loop;
+  bool jumps = mayJump(s->body, true);
+  if (jumps) {
+    loop.exitFlag = unique("_exit" + std::to_string(++flags));
+    declareTemp(loop.exitFlag, elementaryType("BOOL"), at);
+    loop.continueFlag = unique("_continue" + std::to_string(++flags));
+    declareTemp(loop.continueFlag, elementaryType("BOOL"), at);
+    out.push_back(b.assign(b.ref(loop.exitFlag, at), b.boolLit(false, at), at));
+  }
+  NExpr *stop = jumps ? b.ref(loop.exitFlag, at) : nullptr;
+  if (!f.returnFlag.empty())
+    stop = stop ? b.binary(net::BinaryOp::Or, stop, b.ref(f.returnFlag, at), at)
+                : b.ref(f.returnFlag, at);
+  if (stop)
+    more = b.binary(net::BinaryOp::And, more,
+                    b.unary(net::UnaryOp::Not, stop, at), at);
+  std::vector<LoopCtx> inner = loops;
+  inner.push_back(loop);
+  Sink iter;
+  if (jumps)
+    iter.push_back(
+        b.assign(b.ref(loop.continueFlag, at), b.boolLit(false, at), at));
+  body(s->body, f, iter, inner);
+  NStmt *step = b.assign(var(),
+                         wrapTo(b.binary(net::BinaryOp::Add, var(), by, at), vt,
+                                {0, 0, false}, at),
+                         at);
+  if (stop) {
+    NExpr *notStop = b.unary(
+        net::UnaryOp::Not,
+        jumps ? (f.returnFlag.empty()
+                     ? b.ref(loop.exitFlag, at)
+                     : b.binary(net::BinaryOp::Or, b.ref(loop.exitFlag, at),
+                                b.ref(f.returnFlag, at), at))
+              : b.ref(f.returnFlag, at),
+        at);
+    iter.push_back(b.ifStmt(
+        {net::IfArm{notStop, design.copy(llvm::ArrayRef<NStmt *>(step))}},
+        false, {}, at));
+  } else {
+    iter.push_back(step);
+  }
+  out.push_back(b.whileStmt(more, iter, false, at));
 }
 
 //===----------------------------------------------------------------------===//

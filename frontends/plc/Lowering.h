@@ -29,6 +29,9 @@
 
 namespace netlift::plc::detail {
 
+/// A subrange's elementary type (SemaTypes.cpp).
+const PType *baseOf(const PType *t);
+
 using llvm::SMLoc;
 using llvm::StringRef;
 using llvm::Twine;
@@ -178,12 +181,24 @@ private:
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
   NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
   NExpr *convert(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  // REAL and LREAL (LowerReals.cpp).
+  const net::Type *floatType(const PType *t);
+  /// `v` of PLC type `from` where IEC converts it implicitly to `to`: a
+  /// NetIR conversion when a float is involved, else `v`.
+  NExpr *coerce(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  /// The REAL type operands are computed in (the widest typed REAL among
+  /// them; anyRealType() for literals only), or null when none is REAL.
+  const PType *commonReal(llvm::ArrayRef<Expr *> operands);
+  NExpr *realMath(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
+  NExpr *convertReal(NExpr *v, const PType *from, const PType *to, SMLoc at);
   NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
   NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
   Range rangeOf(Expr *e);
   std::optional<int64_t> constValue(Expr *e, Frame &f);
   bool mayJump(const StmtList &l, bool loopLevel);
   std::optional<int64_t> loopBound(Stmt *loop, Stmt *before, Frame &f);
+  void runtimeFor(Stmt *s, Frame &f, Sink &out,
+                  const std::vector<LoopCtx> &loops);
   Stmt *previous = nullptr; // the statement before the one being lowered
   void assign(NExpr *target, NExpr *value, const PType *targetType,
               Expr *valueExpr, Sink &out, SMLoc at);

@@ -94,7 +94,7 @@ enum class StdFn : uint8_t {
   Lt,
   Ne,
   Convert,  // X_TO_Y and TO_Y between BOOL, integer and bit-string types
-  RealMath, // SQRT, SIN, EXPT, TRUNC, ... (typed, refused when lowered)
+  RealMath, // SQRT, SIN, EXPT, TRUNC, ...
   StringOp, // LEN, CONCAT, ... (typed, refused when lowered)
   Refused,  // recognised but not supported at all (BCD, date/time)
 };
@@ -127,6 +127,11 @@ std::vector<Pou *> reachedPous(const Unit &unit, llvm::StringRef top);
 
 /// The PLC type of an elementary type name (BOOL, INT, TIME...), or null.
 const PType *elementaryType(llvm::StringRef name);
+
+/// The type of an untyped real literal (`1.5`) and of constant arithmetic on
+/// such literals: LREAL, except that next to a REAL it is that REAL (IEC's
+/// ANY_REAL literal takes the type its context needs).
+const PType *anyRealType();
 
 } // namespace netlift::plc
 

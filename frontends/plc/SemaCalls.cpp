@@ -366,8 +366,26 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     }
     return info.to;
   }
-  case StdFn::RealMath:
-    return elementaryType("LREAL");
+  case StdFn::RealMath: {
+    bool expt = sameName(e->name, "EXPT") || sameName(e->name, "ATAN2");
+    if (!arity(expt ? 2 : 1, expt ? 2 : 1))
+      return nullptr;
+    for (size_t i = 0; i < types.size(); ++i) {
+      const PType *t = baseOf(types[i]);
+      if (t->kind != PTypeKind::Real && !t->isInteger()) {
+        error(e->args[i].loc,
+              "'" + e->name + "' needs a number, given " + types[i]->str());
+        return nullptr;
+      }
+    }
+    if (sameName(e->name, "TRUNC"))
+      return elementaryType("DINT"); // as CODESYS's TRUNC
+    // The type of the (first) operand; LREAL for integers and literals.
+    const PType *t = baseOf(types[0]);
+    return t->kind == PTypeKind::Real && t != anyRealType()
+               ? t
+               : elementaryType("LREAL");
+  }
   case StdFn::StringOp:
     return elementaryType("STRING");
   case StdFn::Refused:

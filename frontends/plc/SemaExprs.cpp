@@ -66,7 +66,7 @@ const PType *Checker::expr(Expr *e) {
     }
     break;
   case ExprKind::RealLit:
-    t = elementaryType(e->typeName.empty() ? "LREAL" : e->typeName);
+    t = e->typeName.empty() ? anyRealType() : elementaryType(e->typeName);
     if (!t || t->kind != PTypeKind::Real) {
       error(e->loc, "a real number cannot be a " + e->typeName);
       return nullptr;

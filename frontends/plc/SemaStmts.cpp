@@ -189,6 +189,13 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
     return nullptr;
   }
   if (a->kind == PTypeKind::Real || b->kind == PTypeKind::Real) {
+    // A literal takes the other operand's REAL; otherwise the wider wins.
+    if (a == anyRealType() && b->kind == PTypeKind::Real)
+      return b;
+    if (b == anyRealType() && a->kind == PTypeKind::Real)
+      return a;
+    if (a->kind == PTypeKind::Real && b->kind == PTypeKind::Real)
+      return a->width >= b->width ? a : b;
     if ((a->kind == PTypeKind::Real || a->isInteger()) &&
         (b->kind == PTypeKind::Real || b->isInteger()))
       return a->kind == PTypeKind::Real ? a : b;

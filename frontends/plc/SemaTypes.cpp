@@ -133,6 +133,11 @@ const PType *baseOf(const PType *t) {
 
 } // namespace netlift::plc::detail
 
+const PType *plc::anyRealType() {
+  static const PType t = *elementaryType("LREAL");
+  return &t;
+}
+
 const PType *plc::elementaryType(StringRef name) {
   auto it = elementaryTable().find(name.upper());
   return it == elementaryTable().end() ? nullptr : &it->second;

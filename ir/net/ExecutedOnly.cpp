@@ -51,15 +51,17 @@ std::optional<ExecutedOnly> inBlock(Block b) {
       auto *f = cast<ForStmt>(s);
       int64_t v;
       if (!evalConstInt(f->lo, v) || !evalConstInt(f->hi, v))
-        return ExecutedOnly{s->loc, "a 'for' loop with run-time bounds"};
+        return ExecutedOnly{s->loc, "a loop without constant bounds ('for')"};
       if (auto r = inBlock(f->body))
         return r;
       break;
     }
     case StmtKind::While:
       return ExecutedOnly{s->loc, cast<WhileStmt>(s)->testAfter
-                                      ? "a 'repeat' loop"
-                                      : "a 'while' loop"};
+                                      ? "a loop without constant bounds "
+                                        "('repeat')"
+                                      : "a loop without constant bounds "
+                                        "('while')"};
     }
   }
   return std::nullopt;

@@ -22,7 +22,7 @@ namespace netlift::net {
 struct ExecutedOnly {
   llvm::SMLoc loc;
   /// What it is, for "... cannot encode <what>": "the real32 variable 'x'",
-  /// "a 'while' loop", "a 'for' loop with run-time bounds".
+  /// "a loop without constant bounds ('while')".
   std::string what;
 };
 

@@ -1,0 +1,108 @@
+//===- LowerReals.cpp - REAL and LREAL in NetIR ---------------------------===//
+//
+// REAL and LREAL become NetIR's real32 and real64, which the engine computes
+// bit for bit as the PLC does (docs/netir.md, "Floating point"). NetIR never
+// converts implicitly, so every place IEC converts implicitly — an operand
+// next to a wider REAL or an integer, an assignment, a parameter, a
+// function's result — gets its conversion here, and an untyped real literal
+// takes the float type of its context as IEC's ANY_REAL literal does.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/Lowering.h"
+
+#include "llvm/ADT/StringSwitch.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+static bool isReal(const PType *t) { return t && t->kind == PTypeKind::Real; }
+
+const net::Type *Lowering::floatType(const PType *t) {
+  return design.types.getFloat(t->width == 32 ? 32 : 64);
+}
+
+NExpr *Lowering::coerce(NExpr *v, const PType *from, const PType *to,
+                        SMLoc at) {
+  from = from ? baseOf(from) : nullptr;
+  to = to ? baseOf(to) : nullptr;
+  if (!isReal(to) || !from || from == anyRealType())
+    return v; // an untyped literal adopts the type in NetIR
+  if (isReal(from))
+    return from->width == to->width ? v : b.convert(floatType(to), v, at);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(v))
+    return b.realLit(double(lit->value), at);
+  if (from->isInteger())
+    return b.convert(floatType(to), v, at);
+  return v; // not numeric: Sema has reported it
+}
+
+const PType *Lowering::commonReal(llvm::ArrayRef<Expr *> operands) {
+  const PType *common = nullptr;
+  for (Expr *e : operands) {
+    const PType *t = e->type ? baseOf(e->type) : nullptr;
+    if (!isReal(t) || t == anyRealType())
+      continue;
+    if (!common || t->width > common->width)
+      common = t;
+  }
+  if (common)
+    return common;
+  for (Expr *e : operands)
+    if (isReal(e->type))
+      return anyRealType(); // literals only: NetIR gives them a width
+  return nullptr;
+}
+
+NExpr *Lowering::realMath(Expr *e, llvm::ArrayRef<NExpr *> args, SMLoc at) {
+  std::string up = StringRef(e->name).upper();
+  auto fn = llvm::StringSwitch<std::optional<net::Builtin>>(up)
+                .Case("SQRT", net::Builtin::Sqrt)
+                .Case("LN", net::Builtin::Ln)
+                .Case("LOG", net::Builtin::Log)
+                .Case("EXP", net::Builtin::Exp)
+                .Case("SIN", net::Builtin::Sin)
+                .Case("COS", net::Builtin::Cos)
+                .Case("TAN", net::Builtin::Tan)
+                .Case("ASIN", net::Builtin::Asin)
+                .Case("ACOS", net::Builtin::Acos)
+                .Case("ATAN", net::Builtin::Atan)
+                .Case("EXPT", net::Builtin::Expt)
+                .Case("TRUNC", net::Builtin::Trunc)
+                .Default(std::nullopt);
+  if (!fn)
+    refuse(at, "'" + e->name + "' is not a standard function netlift models");
+  // The operands in the float type the function computes in.
+  const PType *in =
+      *fn == net::Builtin::Trunc ? baseOf(e->args[0].value->type) : e->type;
+  if (!isReal(in))
+    in = elementaryType("LREAL");
+  std::vector<NExpr *> xs;
+  for (size_t i = 0; i < args.size(); ++i)
+    xs.push_back(coerce(args[i], e->args[i].value->type, in, at));
+  if (*fn == net::Builtin::Trunc) // DINT, as CODESYS's TRUNC
+    return b.convert(design.types.getInt(32, true, net::Overflow::Error),
+                     b.call(net::Builtin::Trunc, xs, at), at);
+  return b.call(*fn, xs, at);
+}
+
+NExpr *Lowering::convertReal(NExpr *v, const PType *from, const PType *to,
+                             SMLoc at) {
+  if (isReal(to)) {
+    if (from->kind == PTypeKind::Bool)
+      return b.cond(v, b.realLit(1.0, at), b.realLit(0.0, at), at);
+    if (isReal(from) || from->isInteger())
+      return coerce(v, from, to, at);
+  } else if (isReal(from)) {
+    if (to->kind == PTypeKind::Bool)
+      return b.binary(net::BinaryOp::Ne, v, b.realLit(0.0, at), at);
+    if (to->kind == PTypeKind::Int && !(to->width == 64 && !to->isSigned))
+      // Rounded half away from zero; a value the target cannot hold is a
+      // runtime error (CODESYS and TwinCAT call the result undefined).
+      return b.convert(
+          design.types.getInt(to->width, to->isSigned, net::Overflow::Error), v,
+          at);
+  }
+  refuse(at, "conversion from " + from->str() + " to " + to->str() +
+                 " is not supported");
+}
