@@ -361,6 +361,8 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   to = to && to->isSubrange ? to->base : to;
   if (!from || from->kind == PTypeKind::AnyInt)
     from = to;
+  if (from->kind == PTypeKind::Real || to->kind == PTypeKind::Real)
+    return convertReal(v, from, to, at);
   if (to->kind == PTypeKind::Bool) {
     if (from->kind == PTypeKind::Bool)
       return v;
