@@ -117,6 +117,9 @@ public:
     }
     case ExprKind::Call: {
       auto *c = cast<CallExpr>(e);
+      if (c->fn != Builtin::Min && c->fn != Builtin::Max &&
+          c->fn != Builtin::Abs)
+        return ofType(e->type); // conversions, trunc: their type's range
       Interval a = eval(c->args[0]);
       if (c->fn == Builtin::Abs) {
         if (a.lo >= 0)
