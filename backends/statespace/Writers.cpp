@@ -183,10 +183,10 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
               }
               // Finite floats as JSON numbers, NaN and infinities as text.
               std::string t = a.text(v);
-              if (t.find_first_of("ni") != std::string::npos)
-                j.value(t);
-              else
+              if (std::isfinite(floatValue(a.type->width, v)))
                 j.rawValue([&](llvm::raw_ostream &o) { o << t; });
+              else
+                j.value(t);
             }
           });
         });

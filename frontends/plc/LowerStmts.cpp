@@ -189,12 +189,7 @@ std::optional<int64_t> Lowering::loopBound(Stmt *loop, Stmt *before, Frame &f) {
 
 void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
                     const std::vector<LoopCtx> &loops) {
-  auto flagVar = [&](const char *what) {
-    std::string name =
-        unique(std::string("_") + what + std::to_string(++flags));
-    declareTemp(name, elementaryType("BOOL"), s->loc);
-    return name;
-  };
+  auto flagVar = [&](const char *what) { return newFlag(what, s->loc); };
   switch (s->kind) {
   case StmtKind::Assign: {
     NExpr *value = expr(s->value, f, out);
@@ -457,6 +452,12 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
 /// evaluated once, when the loop starts, and the loop runs as it is, under
 /// the watchdog (a control variable that wraps around before passing the
 /// end runs until the watchdog stops it, as on a PLC).
+std::string Lowering::newFlag(const char *what, SMLoc at) {
+  std::string name = unique(std::string("_") + what + std::to_string(++flags));
+  declareTemp(name, elementaryType("BOOL"), at);
+  return name;
+}
+
 void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
                           const std::vector<LoopCtx> &loops) {
   SMLoc at = s->loc;
@@ -476,6 +477,20 @@ void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
   NExpr *by = temp("by", s->by);
   out.push_back(b.assign(lvalue(s->target, f, out), start, at));
   auto var = [&] { return lvalue(s->target, f, out); };
+  LoopCtx loop;
+  if (mayJump(s->body, true)) {
+    loop.exitFlag = newFlag("exit", at);
+    loop.continueFlag = newFlag("continue", at);
+    out.push_back(b.assign(b.ref(loop.exitFlag, at), b.boolLit(false, at), at));
+  }
+  // "EXIT or RETURN taken", built afresh for each use (null: neither can).
+  auto stopped = [&]() -> NExpr * {
+    NExpr *r = loop.exitFlag.empty() ? nullptr : b.ref(loop.exitFlag, at);
+    if (!f.returnFlag.empty())
+      r = r ? b.binary(net::BinaryOp::Or, r, b.ref(f.returnFlag, at), at)
+            : b.ref(f.returnFlag, at);
+    return r;
+  };
   // Up while i <= to for a step >= 0, down while i >= to otherwise.
   NExpr *up = b.binary(net::BinaryOp::Le, var(), to, at);
   NExpr *down = b.binary(net::BinaryOp::Ge, var(), to, at);
@@ -485,26 +500,13 @@ void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
   else
     more = b.cond(b.binary(net::BinaryOp::Ge, by, b.intLit(0, at), at), up,
                   down, at);
-  LoopCtx loop;
-  bool jumps = mayJump(s->body, true);
-  if (jumps) {
-    loop.exitFlag = unique("_exit" + std::to_string(++flags));
-    declareTemp(loop.exitFlag, elementaryType("BOOL"), at);
-    loop.continueFlag = unique("_continue" + std::to_string(++flags));
-    declareTemp(loop.continueFlag, elementaryType("BOOL"), at);
-    out.push_back(b.assign(b.ref(loop.exitFlag, at), b.boolLit(false, at), at));
-  }
-  NExpr *stop = jumps ? b.ref(loop.exitFlag, at) : nullptr;
-  if (!f.returnFlag.empty())
-    stop = stop ? b.binary(net::BinaryOp::Or, stop, b.ref(f.returnFlag, at), at)
-                : b.ref(f.returnFlag, at);
-  if (stop)
+  if (NExpr *stop = stopped())
     more = b.binary(net::BinaryOp::And, more,
                     b.unary(net::UnaryOp::Not, stop, at), at);
   std::vector<LoopCtx> inner = loops;
   inner.push_back(loop);
   Sink iter;
-  if (jumps)
+  if (!loop.continueFlag.empty())
     iter.push_back(
         b.assign(b.ref(loop.continueFlag, at), b.boolLit(false, at), at));
   body(s->body, f, iter, inner);
@@ -512,21 +514,13 @@ void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
                          wrapTo(b.binary(net::BinaryOp::Add, var(), by, at), vt,
                                 {0, 0, false}, at),
                          at);
-  if (stop) {
-    NExpr *notStop = b.unary(
-        net::UnaryOp::Not,
-        jumps ? (f.returnFlag.empty()
-                     ? b.ref(loop.exitFlag, at)
-                     : b.binary(net::BinaryOp::Or, b.ref(loop.exitFlag, at),
-                                b.ref(f.returnFlag, at), at))
-              : b.ref(f.returnFlag, at),
-        at);
-    iter.push_back(b.ifStmt(
-        {net::IfArm{notStop, design.copy(llvm::ArrayRef<NStmt *>(step))}},
-        false, {}, at));
-  } else {
+  if (NExpr *stop = stopped()) // CONTINUE steps on; EXIT and RETURN do not
+    iter.push_back(
+        b.ifStmt({net::IfArm{b.unary(net::UnaryOp::Not, stop, at),
+                             design.copy(llvm::ArrayRef<NStmt *>(step))}},
+                 false, {}, at));
+  else
     iter.push_back(step);
-  }
   out.push_back(b.whileStmt(more, iter, false, at));
 }
 

@@ -199,6 +199,8 @@ private:
   std::optional<int64_t> loopBound(Stmt *loop, Stmt *before, Frame &f);
   void runtimeFor(Stmt *s, Frame &f, Sink &out,
                   const std::vector<LoopCtx> &loops);
+  /// A fresh BOOL temporary `_<what>N` (EXIT, CONTINUE flags).
+  std::string newFlag(const char *what, SMLoc at);
   Stmt *previous = nullptr; // the statement before the one being lowered
   void assign(NExpr *target, NExpr *value, const PType *targetType,
               Expr *valueExpr, Sink &out, SMLoc at);

@@ -5,7 +5,6 @@
 
 using namespace netlift;
 using namespace netlift::net;
-using llvm::cast;
 
 bool net::holdsFloat(const Type *t) {
   switch (t->kind) {
@@ -24,46 +23,18 @@ bool net::holdsFloat(const Type *t) {
 }
 
 namespace {
-std::optional<ExecutedOnly> inBlock(Block b) {
-  for (const Stmt *s : b) {
-    switch (s->getKind()) {
-    case StmtKind::Assign:
-      break;
-    case StmtKind::If: {
-      auto *i = cast<IfStmt>(s);
-      for (const IfArm &arm : i->arms)
-        if (auto r = inBlock(arm.body))
-          return r;
-      if (auto r = inBlock(i->elseBody))
-        return r;
-      break;
-    }
-    case StmtKind::Case: {
-      auto *c = cast<CaseStmt>(s);
-      for (const CaseArm &arm : c->arms)
-        if (auto r = inBlock(arm.body))
-          return r;
-      if (auto r = inBlock(c->elseBody))
-        return r;
-      break;
-    }
-    case StmtKind::For: {
-      auto *f = cast<ForStmt>(s);
-      int64_t v;
-      if (!evalConstInt(f->lo, v) || !evalConstInt(f->hi, v))
-        return ExecutedOnly{s->loc, "a loop without constant bounds ('for')"};
-      if (auto r = inBlock(f->body))
-        return r;
-      break;
-    }
-    case StmtKind::While:
-      return ExecutedOnly{s->loc, cast<WhileStmt>(s)->testAfter
-                                      ? "a loop without constant bounds "
-                                        "('repeat')"
-                                      : "a loop without constant bounds "
-                                        "('while')"};
-    }
-  }
+/// A loop only execution can run: `while`, `repeat`, or `for` with bounds
+/// that are not constants.
+std::optional<ExecutedOnly> asExecutedOnlyLoop(const Stmt *s) {
+  if (auto *w = llvm::dyn_cast<WhileStmt>(s))
+    return ExecutedOnly{s->loc, w->testAfter ? "a loop without constant "
+                                               "bounds ('repeat')"
+                                             : "a loop without constant "
+                                               "bounds ('while')"};
+  int64_t v;
+  if (auto *f = llvm::dyn_cast<ForStmt>(s))
+    if (!evalConstInt(f->lo, v) || !evalConstInt(f->hi, v))
+      return ExecutedOnly{s->loc, "a loop without constant bounds ('for')"};
   return std::nullopt;
 }
 } // namespace
@@ -87,7 +58,9 @@ std::optional<ExecutedOnly> net::findExecutedOnly(const Module &m) {
   if (found)
     return found;
   for (const Transition &t : m.transitions)
-    if (auto r = inBlock(t.action()))
-      return r;
-  return std::nullopt;
+    forEachStmt(t.action(), [&](const Stmt *s) {
+      if (!found)
+        found = asExecutedOnlyLoop(s);
+    });
+  return found;
 }

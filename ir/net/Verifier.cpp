@@ -757,7 +757,7 @@ const Type *ModuleVerifier::commonFloat(Expr *e, Expr *a, Expr *b,
 }
 
 const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
-  bool anyFloat = false, anyReal = false;
+  bool anyFloat = false, anyReal = false; // anyReal: hybrid or constant
   for (Expr *a : c->args) {
     const Type *t = check(a, ctx);
     if (!t)
@@ -768,7 +768,7 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
       return nullptr;
     }
     anyFloat |= t->isFloat();
-    anyReal |= t->isReal() && !t->isAnyReal();
+    anyReal |= t->isReal();
   }
   Expr *x = c->args[0];
   switch (c->fn) {
@@ -791,17 +791,12 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
   case Builtin::Max:
   case Builtin::Abs:
     if (anyFloat) {
-      const Type *ft =
-          c->args.size() == 1
-              ? x->type
-              : commonFloat(c, c->args[0], c->args[1], spelling(c->fn));
-      return c->type = ft;
+      return c->type =
+                 c->args.size() == 1
+                     ? x->type
+                     : commonFloat(c, c->args[0], c->args[1], spelling(c->fn));
     }
-    return c->type =
-               anyReal || (x->type->isReal() ||
-                           (c->args.size() > 1 && c->args[1]->type->isReal()))
-                   ? types.getAnyReal()
-                   : types.getInteger();
+    return c->type = anyReal ? types.getAnyReal() : types.getInteger();
   default: // the float functions
     for (Expr *a : c->args)
       if (!a->type->isFloat() && !a->type->isAnyReal()) {

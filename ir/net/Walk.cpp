@@ -42,10 +42,13 @@ void net::walkExpr(const Expr *e, llvm::function_ref<void(const Expr *)> f) {
 
 namespace {
 /// Visits a block: `read` for every expression evaluated, `assign` for
-/// every assignment.
+/// every assignment, `visit` for every statement (before its body).
 void walkBlock(Block b, int t, llvm::function_ref<void(const Expr *, int)> read,
-               llvm::function_ref<void(const AssignStmt *, int)> assign) {
+               llvm::function_ref<void(const AssignStmt *, int)> assign,
+               llvm::function_ref<void(const Stmt *)> visit = nullptr) {
   for (const Stmt *s : b) {
+    if (visit)
+      visit(s);
     switch (s->getKind()) {
     case StmtKind::Assign: {
       auto *a = cast<AssignStmt>(s);
@@ -72,9 +75,9 @@ void walkBlock(Block b, int t, llvm::function_ref<void(const Expr *, int)> read,
       for (const IfArm &arm : i->arms) {
         if (read)
           read(arm.cond, t);
-        walkBlock(arm.body, t, read, assign);
+        walkBlock(arm.body, t, read, assign, visit);
       }
-      walkBlock(i->elseBody, t, read, assign);
+      walkBlock(i->elseBody, t, read, assign, visit);
       break;
     }
     case StmtKind::Case: {
@@ -88,9 +91,9 @@ void walkBlock(Block b, int t, llvm::function_ref<void(const Expr *, int)> read,
             if (l.hi)
               read(l.hi, t);
           }
-        walkBlock(arm.body, t, read, assign);
+        walkBlock(arm.body, t, read, assign, visit);
       }
-      walkBlock(c->elseBody, t, read, assign);
+      walkBlock(c->elseBody, t, read, assign, visit);
       break;
     }
     case StmtKind::For: {
@@ -99,14 +102,14 @@ void walkBlock(Block b, int t, llvm::function_ref<void(const Expr *, int)> read,
         read(f->lo, t);
         read(f->hi, t);
       }
-      walkBlock(f->body, t, read, assign);
+      walkBlock(f->body, t, read, assign, visit);
       break;
     }
     case StmtKind::While: {
       auto *w = cast<WhileStmt>(s);
       if (read)
         read(w->cond, t);
-      walkBlock(w->body, t, read, assign);
+      walkBlock(w->body, t, read, assign, visit);
       break;
     }
     }
@@ -170,6 +173,10 @@ Block net::dropAssignments(Builder &b, Block blk,
     }
   }
   return d.copy(llvm::ArrayRef<Stmt *>(out));
+}
+
+void net::forEachStmt(Block block, llvm::function_ref<void(const Stmt *)> f) {
+  walkBlock(block, -1, nullptr, nullptr, f);
 }
 
 void net::forEachAssign(Block block,

@@ -32,6 +32,9 @@ void forEachRead(const Module &m,
 void forEachAssign(const Module &m,
                    llvm::function_ref<void(const AssignStmt *, int)> f);
 
+/// Every statement in `block`, nested ones included, each before its body.
+void forEachStmt(Block block, llvm::function_ref<void(const Stmt *)> f);
+
 /// Every assignment in `block`, nested ones included.
 void forEachAssign(Block block, llvm::function_ref<void(const AssignStmt *)> f);
 
