@@ -117,6 +117,8 @@ public:
     }
     case ExprKind::Call: {
       auto *c = cast<CallExpr>(e);
+      if (c->fn == Builtin::Len || c->fn == Builtin::Find)
+        return {0, int64_t(c->args[0]->type->maxLen)};
       if (c->fn != Builtin::Min && c->fn != Builtin::Max &&
           c->fn != Builtin::Abs)
         return ofType(e->type); // conversions, trunc: their type's range

@@ -172,6 +172,7 @@ std::string StepWriter::expr(const Expr *e) {
   case ExprKind::BoolLit:
     return cast<BoolLit>(e)->value ? "1" : "0";
   case ExprKind::RealLit:
+  case ExprKind::StringLit:
   case ExprKind::Aggregate:
     refuse(e->loc, "the value '" + exprToString(e) + "'");
     return "0";

@@ -168,6 +168,7 @@ Val SmvWriter::expr(const Expr *e) {
   case ExprKind::BoolLit:
     return {cast<BoolLit>(e)->value ? "TRUE" : "FALSE", true};
   case ExprKind::RealLit:
+  case ExprKind::StringLit:
   case ExprKind::Aggregate:
     refuse(e->loc, "the value '" + exprToString(e) + "'");
     return {"0"};

@@ -71,11 +71,12 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
     return nullptr;
   if (options.enumeratesInputs)
     for (const net::Port &p : top->ports)
-      if (p.isInput() && p.type && net::holdsFloat(p.type)) {
+      if (const char *what =
+              p.isInput() && p.type ? net::executedOnlyData(p.type) : nullptr) {
         diag.error(p.loc, "free input '" + p.name + "' of type " +
                               p.type->str() + ": " + command +
-                              " cannot enumerate the values of a float at "
-                              "every step; connect it to a model of what "
+                              " cannot enumerate its values (" + what +
+                              ") at every step; connect it to a model of what "
                               "drives it (`netlift compose`), or give it a "
                               "value in the program");
         return nullptr;

@@ -4,6 +4,7 @@
 
 #include "ir/net/Builder.h"
 #include "ir/net/FloatOps.h"
+#include "ir/net/StringOps.h"
 
 #include "llvm/Support/JSON.h"
 
@@ -23,14 +24,15 @@ void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
 }
 
 namespace {
-/// The columns of a state listing: places, variables (leaves), outputs.
+/// The columns of a state listing: places, variables (leaves; a string is
+/// one leaf), outputs.
 struct StateColumn {
   std::string name;
   enum Kind { Place, Clock, Data, Output } kind;
   uint32_t slot = 0;          // Place, Clock, Data, stored Output
   const Expr *def = nullptr;  // defined Output
   const Type *type = nullptr; // Data and Output: how to write the value
-  std::string text(int64_t v) const { return formatScalar(type, v); }
+  bool isString() const { return type && type->isString(); }
 };
 
 std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
@@ -49,8 +51,9 @@ std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
     if (first < 0)
       continue;
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(m.vars[v].type); ++i)
-      out.push_back({L.slots()[first + i].name, StateColumn::Data,
-                     uint32_t(first + i), nullptr, L.slots()[first + i].type});
+      if (const sem::Slot &s = L.slots()[first + i]; s.type)
+        out.push_back(
+            {s.name, StateColumn::Data, uint32_t(first + i), nullptr, s.type});
   }
   for (uint32_t p = 0; p < m.ports.size(); ++p) {
     const Port &port = m.ports[p];
@@ -63,8 +66,9 @@ std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
     }
     int32_t first = L.portSlot(p);
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(port.type); ++i)
-      out.push_back({L.slots()[first + i].name, StateColumn::Output,
-                     uint32_t(first + i), nullptr, L.slots()[first + i].type});
+      if (const sem::Slot &s = L.slots()[first + i]; s.type)
+        out.push_back({s.name, StateColumn::Output, uint32_t(first + i),
+                       nullptr, s.type});
   }
   return out;
 }
@@ -76,13 +80,35 @@ std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
   return flags;
 }
 
-int64_t valueOf(sem::Semantics &sem, const StateColumn &a,
-                const uint64_t *state) {
-  if (a.def) {
-    sem::RuntimeError err;
-    return sem.evalInState(a.def, state, err);
+/// A column's value in one state: the number it holds (a string: its
+/// length) and how it is written (a string: as a NetIR literal).
+struct Cell {
+  int64_t v = 0;
+  StringValue str; // a string's characters
+  std::string text;
+  bool operator!=(const Cell &o) const { return text != o.text; }
+};
+
+Cell cellOf(sem::Semantics &sem, const StateColumn &a, const uint64_t *state) {
+  Cell c;
+  sem::RuntimeError err;
+  if (a.isString()) {
+    if (a.def) {
+      c.str = sem.evalStringInState(a.def, state, err);
+    } else {
+      const sem::StateLayout &L = sem.layout();
+      int64_t len = L.get(state, a.slot);
+      for (int64_t i = 1; i <= len; ++i)
+        c.str += char16_t(L.get(state, a.slot + uint32_t(i)));
+    }
+    c.v = int64_t(c.str.size());
+    c.text = formatStringLiteral({c.str.data(), c.str.size()});
+    return c;
   }
-  return sem.layout().get(state, a.slot);
+  c.v = a.def ? sem.evalInState(a.def, state, err)
+              : sem.layout().get(state, a.slot);
+  c.text = formatScalar(a.type, c.v);
+  return c;
 }
 } // namespace
 
@@ -91,10 +117,10 @@ std::string netlift::statespace::describeState(sem::Semantics &sem,
                                                llvm::StringRef separator) {
   std::string out;
   for (const StateColumn &a : stateColumns(sem)) {
-    int64_t v = valueOf(sem, a, state);
-    if (a.kind == StateColumn::Place && v == 0)
+    Cell c = cellOf(sem, a, state);
+    if (a.kind == StateColumn::Place && c.v == 0)
       continue; // markings list the marked places only
-    out += (out.empty() ? "" : separator.str()) + a.name + "=" + a.text(v);
+    out += (out.empty() ? "" : separator.str()) + a.name + "=" + c.text;
   }
   return out;
 }
@@ -104,7 +130,13 @@ void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
   os << "digraph statespace {\n  node [shape=box, fontname=Helvetica];\n"
         "  edge [fontname=Helvetica, fontsize=10];\n";
   for (uint32_t s = 0; s < x.store().size(); ++s) {
-    std::string values = describeState(sem, x.store().state(s), "\\n");
+    // A string's quotes and backslashes are escaped for dot.
+    std::string values;
+    for (char ch : describeState(sem, x.store().state(s), "\n")) {
+      if (ch == '"' || ch == '\\')
+        values += '\\';
+      values += ch == '\n' ? std::string("\\n") : std::string(1, ch);
+    }
     std::string label =
         "s" + std::to_string(s) + (values.empty() ? "" : "\\n" + values);
     os << "  s" << s << " [label=\"" << label << "\""
@@ -134,11 +166,11 @@ void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
     os << "state nr. " << s << "\n ";
     bool any = false;
     for (const StateColumn &a : attrs) {
-      int64_t v = valueOf(sem, a, x.store().state(s));
-      if (a.kind == StateColumn::Place && v == 0)
+      Cell c = cellOf(sem, a, x.store().state(s));
+      if (a.kind == StateColumn::Place && c.v == 0)
         continue; // a marking lists its marked places
       os << " " << a.name << (a.kind == StateColumn::Place ? ":" : "=")
-         << a.text(v);
+         << c.text;
       any = true;
     }
     if (!any)
@@ -176,17 +208,17 @@ void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
             j.attribute("deadlock", true);
           j.attributeArray("values", [&] {
             for (const StateColumn &a : attrs) {
-              int64_t v = valueOf(sem, a, x.store().state(s));
-              if (!a.type || !a.type->isFloat()) {
-                j.value(v);
-                continue;
+              Cell c = cellOf(sem, a, x.store().state(s));
+              if (a.isString()) {
+                j.value(toUtf8(c.str)); // the characters, not the literal
+              } else if (!a.type || !a.type->isFloat()) {
+                j.value(c.v);
+              } else if (std::isfinite(floatValue(a.type->width, c.v))) {
+                // Finite floats as JSON numbers, NaN and infinities as text.
+                j.rawValue([&](llvm::raw_ostream &o) { o << c.text; });
+              } else {
+                j.value(c.text);
               }
-              // Finite floats as JSON numbers, NaN and infinities as text.
-              std::string t = a.text(v);
-              if (std::isfinite(floatValue(a.type->width, v)))
-                j.rawValue([&](llvm::raw_ostream &o) { o << t; });
-              else
-                j.value(t);
             }
           });
         });
@@ -223,8 +255,10 @@ void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
   os << '\n';
   for (uint32_t s = 0; s < x.store().size(); ++s) {
     os << s << ',' << int(isDeadlock[s]);
-    for (const StateColumn &a : attrs)
-      os << ',' << a.text(valueOf(sem, a, x.store().state(s)));
+    for (const StateColumn &a : attrs) {
+      Cell c = cellOf(sem, a, x.store().state(s));
+      os << ',' << csvField(a.isString() ? toUtf8(c.str) : c.text);
+    }
     os << '\n';
   }
 }
@@ -268,7 +302,7 @@ void netlift::statespace::writePath(
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
     int64_t loopTo, uint32_t loopLabel) {
   std::vector<StateColumn> attrs = stateColumns(sem);
-  std::vector<int64_t> prev;
+  std::vector<Cell> prev;
   size_t width = 9; // "(initial)"
   for (auto &[label, s] : path)
     if (label != Explorer::kNone)
@@ -277,19 +311,19 @@ void netlift::statespace::writePath(
                     "values (initial) / changes");
   for (size_t i = 0; i < path.size(); ++i) {
     auto [label, s] = path[i];
-    std::vector<int64_t> cur;
+    std::vector<Cell> cur;
     for (const StateColumn &a : attrs)
-      cur.push_back(valueOf(sem, a, x.store().state(s)));
+      cur.push_back(cellOf(sem, a, x.store().state(s)));
     std::string changes;
     for (size_t k = 0; k < attrs.size(); ++k) {
       if (i == 0) {
-        if (attrs[k].kind == StateColumn::Place && cur[k] == 0)
+        if (attrs[k].kind == StateColumn::Place && cur[k].v == 0)
           continue;
-        changes += (changes.empty() ? "" : ", ") + attrs[k].name + "=" +
-                   attrs[k].text(cur[k]);
+        changes +=
+            (changes.empty() ? "" : ", ") + attrs[k].name + "=" + cur[k].text;
       } else if (cur[k] != prev[k]) {
         changes += (changes.empty() ? "" : ", ") + attrs[k].name + ": " +
-                   attrs[k].text(prev[k]) + " -> " + attrs[k].text(cur[k]);
+                   prev[k].text + " -> " + cur[k].text;
       }
     }
     os << fmt::format("{:>4}  {:<{}}  {}\n", i,

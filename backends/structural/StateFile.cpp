@@ -231,6 +231,9 @@ public:
     case ExprKind::Aggregate:
       diag.error(e->loc, "aggregates are not values of a state file");
       return false;
+    case ExprKind::StringLit:
+      diag.error(e->loc, "strings are not values of a state file");
+      return false;
     case ExprKind::Ref:
     case ExprKind::Field:
     case ExprKind::Index: {
@@ -274,6 +277,7 @@ public:
     case ExprKind::BoolLit:
       return llvm::cast<BoolLit>(e)->value;
     case ExprKind::RealLit: // refused by resolve()
+    case ExprKind::StringLit:
     case ExprKind::Aggregate:
       return 0;
     case ExprKind::Ref:

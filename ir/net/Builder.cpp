@@ -137,6 +137,9 @@ Expr *Builder::boolLit(bool v, SMLoc loc) {
 Expr *Builder::realLit(double v, SMLoc loc) {
   return design.create<RealLit>(loc, v);
 }
+Expr *Builder::stringLit(ArrayRef<char16_t> chars, SMLoc loc) {
+  return design.create<StringLit>(loc, design.copy(chars));
+}
 Expr *Builder::ref(StringRef name, SMLoc loc) {
   return design.create<Ref>(loc, design.save(name));
 }

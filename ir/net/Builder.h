@@ -57,6 +57,7 @@ public:
   Expr *intLit(int64_t v, llvm::SMLoc loc = {});
   Expr *boolLit(bool v, llvm::SMLoc loc = {});
   Expr *realLit(double v, llvm::SMLoc loc = {});
+  Expr *stringLit(llvm::ArrayRef<char16_t> chars, llvm::SMLoc loc = {});
   Expr *ref(llvm::StringRef name, llvm::SMLoc loc = {});
   Expr *unary(UnaryOp op, Expr *a, llvm::SMLoc loc = {});
   Expr *binary(BinaryOp op, Expr *a, Expr *b, llvm::SMLoc loc = {});
@@ -66,7 +67,7 @@ public:
   /// `to`: the target type of Builtin::Convert (else null).
   Expr *call(Builtin fn, llvm::ArrayRef<Expr *> args, llvm::SMLoc loc = {},
              const Type *to = nullptr);
-  /// `to(a)`: a conversion to a PLC integer or a float type.
+  /// `to(a)`: a conversion to a PLC integer, a float or a string type.
   Expr *convert(const Type *to, Expr *a, llvm::SMLoc loc = {});
   /// An array's (no names) or a record's (one name per field) initial
   /// value.

@@ -18,6 +18,8 @@ Expr *netlift::net::cloneExpr(Builder &b, const Module &src, const Expr *e,
     return b.boolLit(cast<BoolLit>(e)->value, e->loc);
   case ExprKind::RealLit:
     return b.realLit(cast<RealLit>(e)->value, e->loc);
+  case ExprKind::StringLit:
+    return b.stringLit(cast<StringLit>(e)->chars, e->loc);
   case ExprKind::Ref: {
     auto *r = cast<Ref>(e);
     switch (r->sym.kind) {

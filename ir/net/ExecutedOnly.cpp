@@ -6,19 +6,21 @@
 using namespace netlift;
 using namespace netlift::net;
 
-bool net::holdsFloat(const Type *t) {
+const char *net::executedOnlyData(const Type *t) {
   switch (t->kind) {
   case TypeKind::Float:
-    return true;
+    return "floating point";
+  case TypeKind::String:
+    return "a string";
   case TypeKind::Array:
-    return holdsFloat(t->elem);
+    return executedOnlyData(t->elem);
   case TypeKind::Record:
     for (const Field &f : t->fields)
-      if (holdsFloat(f.type))
-        return true;
-    return false;
+      if (const char *what = executedOnlyData(f.type))
+        return what;
+    return nullptr;
   default:
-    return false;
+    return nullptr;
   }
 }
 
@@ -41,18 +43,20 @@ std::optional<ExecutedOnly> asExecutedOnlyLoop(const Stmt *s) {
 
 std::optional<ExecutedOnly> net::findExecutedOnly(const Module &m) {
   for (const Var &v : m.vars)
-    if (holdsFloat(v.type))
+    if (const char *what = executedOnlyData(v.type))
       return ExecutedOnly{v.loc, "the " + v.type->str() + " variable '" +
-                                     v.name.str() + "' (floating point)"};
+                                     v.name.str() + "' (" + what + ")"};
   for (const Port &p : m.ports)
-    if (p.type && holdsFloat(p.type))
+    if (const char *what = p.type ? executedOnlyData(p.type) : nullptr)
       return ExecutedOnly{p.loc, "the " + p.type->str() + " port '" +
-                                     p.name.str() + "' (floating point)"};
+                                     p.name.str() + "' (" + what + ")"};
   std::optional<ExecutedOnly> found;
   forEachRead(m, [&](const Expr *e, int) {
     walkExpr(e, [&](const Expr *x) {
       if (!found && x->type && x->type->isFloat())
         found = ExecutedOnly{x->loc, "floating-point arithmetic"};
+      if (!found && x->type && x->type->isString())
+        found = ExecutedOnly{x->loc, "a string operation"};
     });
   });
   if (found)

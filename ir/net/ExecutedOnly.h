@@ -1,6 +1,7 @@
 //===- ExecutedOnly.h - what only execution gives a meaning to --*- C++ -*-===//
 //
-// NetIR expresses what a PLC executes (ARCHITECTURE §3.1): floats, `while`
+// NetIR expresses what a PLC executes (ARCHITECTURE §3.1): floats, strings,
+// `while`
 // and `repeat` loops, `for` loops with run-time bounds. The explicit-state
 // engine runs them on concrete states; a backend that encodes a module
 // symbolically (SMV, Promela, lower-data and what reads its result) cannot,
@@ -30,8 +31,10 @@ struct ExecutedOnly {
 /// order) that only execution can give a meaning to; nullopt if none.
 std::optional<ExecutedOnly> findExecutedOnly(const Module &m);
 
-/// Does a value of type `t` (or any element or field of it) hold a float?
-bool holdsFloat(const Type *t);
+/// What in a value of type `t` (or any element or field of it) only
+/// execution gives a meaning to ("floating point", "a string"); null if
+/// nothing.
+const char *executedOnlyData(const Type *t);
 
 } // namespace netlift::net
 

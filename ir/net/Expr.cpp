@@ -74,10 +74,29 @@ std::string netlift::net::calleeSpelling(const CallExpr *c) {
   if (c->fn != Builtin::Convert)
     return spelling(c->fn).str();
   const Type *t = c->to;
+  if (t->isString() || t->isBool())
+    return t->str();
   return (t->isFloat()  ? "real"
           : t->isSigned ? "int"
                         : "uint") +
          std::to_string(t->width);
+}
+
+bool netlift::net::isStringBuiltin(Builtin b) {
+  switch (b) {
+  case Builtin::Len:
+  case Builtin::Left:
+  case Builtin::Right:
+  case Builtin::Mid:
+  case Builtin::Concat:
+  case Builtin::Insert:
+  case Builtin::Delete:
+  case Builtin::Replace:
+  case Builtin::Find:
+    return true;
+  default:
+    return false;
+  }
 }
 
 unsigned netlift::net::arity(Builtin b) {

@@ -49,6 +49,7 @@ enum class ExprKind : uint8_t {
   IntLit,
   BoolLit,
   RealLit,
+  StringLit,
   Ref,
   Index,
   Field,
@@ -87,6 +88,8 @@ enum class Builtin : uint8_t {
 };
 /// How many operands a built-in takes.
 unsigned arity(Builtin b);
+/// len, left, ... find: the built-ins with string operands.
+bool isStringBuiltin(Builtin b);
 /// The built-in spelled `name` (not Convert, which is spelled as a type).
 std::optional<Builtin> builtinNamed(llvm::StringRef name);
 
@@ -139,6 +142,20 @@ public:
   double value;
   static bool classof(const Expr *e) {
     return e->getKind() == ExprKind::RealLit;
+  }
+};
+
+/// `"abc"`: a string constant, of type string[n] (wstring[n] when a
+/// character needs more than 8 bits, or when it stands next to a wstring).
+class StringLit : public Expr {
+public:
+  StringLit(llvm::SMLoc l, llvm::ArrayRef<char16_t> c)
+      : Expr(ExprKind::StringLit, l), chars(c) {}
+  /// The characters (arena-allocated), each a code unit of the string's
+  /// character width.
+  llvm::ArrayRef<char16_t> chars;
+  static bool classof(const Expr *e) {
+    return e->getKind() == ExprKind::StringLit;
   }
 };
 
@@ -212,9 +229,11 @@ public:
       : Expr(ExprKind::Call, l), fn(f), args(a), to(to) {}
   Builtin fn;
   llvm::ArrayRef<Expr *> args;
-  /// Convert: the target type (a PLC integer or a float). Converting a
-  /// float to an integer rounds half away from zero; a value the target
-  /// cannot hold is a run-time error, whatever the target's overflow rule.
+  /// Convert: the target type (a PLC integer, a float, a string, or bool
+  /// from a string). Converting a float to an integer rounds half away from
+  /// zero; a value the target cannot hold is a run-time error, whatever the
+  /// target's overflow rule; a string's text is read as IEC 61131-3
+  /// writes a literal of the target type (docs/netir.md, "Strings").
   const Type *to;
   static bool classof(const Expr *e) { return e->getKind() == ExprKind::Call; }
 };

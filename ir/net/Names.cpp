@@ -10,7 +10,7 @@ bool netlift::net::isReservedWord(StringRef n) {
   return llvm::StringSwitch<bool>(n)
       .Cases("and", "or", "xor", "not", "true", "false", "inf", true)
       .Cases("if", "elif", "else", "case", "for", "in", true)
-      .Cases("while", "repeat", "until", true)
+      .Cases("while", "repeat", "until", "string", "wstring", true)
       .Default(false);
 }
 

@@ -1,5 +1,6 @@
 //===- ParseExprs.cpp - NetIR text parser: expressions, statements --------===//
 #include "ir/net/ParserImpl.h"
+#include "ir/net/StringOps.h"
 
 #include <cerrno>
 #include <cmath>
@@ -197,6 +198,18 @@ Expr *Parser::parsePrimary() {
     consume();
     return b.realLit(v, loc);
   }
+  case Tok::String: {
+    StringValue chars;
+    size_t at = 0;
+    StringRef body = tok.text.drop_front().drop_back();
+    if (auto err = parseStringLiteral(body, chars, at)) {
+      error(SMLoc::getFromPointer(body.data() + at), *err);
+      return nullptr;
+    }
+    consume();
+    return b.stringLit(llvm::ArrayRef<char16_t>(chars.data(), chars.size()),
+                       loc);
+  }
   case Tok::LParen: {
     consume();
     Expr *e = parseExpr();
@@ -240,6 +253,13 @@ Expr *Parser::parsePrimary() {
       consume();
       return b.boolLit(n == "true", loc);
     }
+    if (n == "string" || n == "wstring") {
+      // A conversion to a string type: `string[20](x)`.
+      const Type *to;
+      if (!parseType(to, false) || !expect(Tok::LParen, "'(' after the type"))
+        return nullptr;
+      return parseCallArgs(Builtin::Convert, to->str(), loc, to);
+    }
     if (Lexer peek = lex; peek.next().is(Tok::LParen)) {
       std::optional<Builtin> fn = builtinNamed(n);
       const Type *to = fn ? nullptr : conversionTarget(n);
@@ -248,24 +268,7 @@ Expr *Parser::parsePrimary() {
       if (fn) {
         consume();
         consume();
-        llvm::SmallVector<Expr *, 2> args;
-        if (!tok.is(Tok::RParen)) {
-          do {
-            Expr *a = parseExpr();
-            if (!a)
-              return nullptr;
-            args.push_back(a);
-          } while (tok.is(Tok::Comma) && (consume(), true));
-        }
-        if (!expect(Tok::RParen, "')'"))
-          return nullptr;
-        unsigned want = arity(*fn);
-        if (args.size() != want) {
-          error(loc, n + "() takes " + llvm::Twine(want) + " argument" +
-                         (want == 1 ? "" : "s"));
-          return nullptr;
-        }
-        return b.call(*fn, args, loc, to);
+        return parseCallArgs(*fn, n, loc, to);
       }
     }
     if (isReservedWord(n)) {
@@ -444,7 +447,31 @@ Stmt *Parser::parseWhile() {
   return b.whileStmt(c, body, testAfter, loc);
 }
 
+Expr *Parser::parseCallArgs(Builtin fn, StringRef name, SMLoc loc,
+                            const Type *to) {
+  llvm::SmallVector<Expr *, 4> args;
+  if (!tok.is(Tok::RParen)) {
+    do {
+      Expr *a = parseExpr();
+      if (!a)
+        return nullptr;
+      args.push_back(a);
+    } while (tok.is(Tok::Comma) && (consume(), true));
+  }
+  if (!expect(Tok::RParen, "')'"))
+    return nullptr;
+  unsigned want = arity(fn);
+  if (args.size() != want) {
+    error(loc, name + "() takes " + llvm::Twine(want) + " argument" +
+                   (want == 1 ? "" : "s"));
+    return nullptr;
+  }
+  return b.call(fn, args, loc, to);
+}
+
 const Type *Parser::conversionTarget(StringRef word) {
+  if (word == "bool")
+    return design.types.getBool();
   if (word == "real32" || word == "real64")
     return design.types.getFloat(word == "real32" ? 32 : 64);
   bool isSigned = word.startswith("int");

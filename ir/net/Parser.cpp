@@ -243,6 +243,18 @@ bool Parser::parseType(const Type *&type, bool allowReal) {
     type = design.types.getFloat(word == "real32" ? 32 : 64);
     return true;
   }
+  if (word == "string" || word == "wstring") {
+    consume();
+    int64_t n;
+    if (!expect(Tok::LBrack, "'[' and the string's length") ||
+        !parseSignedInt(n, "a length") || !expect(Tok::RBrack, "']'"))
+      return false;
+    if (n < 1 || n > 65535)
+      return error(loc,
+                   "a string's length must be 1..65535, not " + llvm::Twine(n));
+    type = design.types.getString(uint32_t(n), word == "wstring");
+    return true;
+  }
   if (word == "real") {
     if (!allowReal)
       return errorHere("'real' is only allowed for hybrid variables "

@@ -136,6 +136,9 @@ private:
   bool parseType(const Type *&type, bool allowReal);
   /// The type a conversion spelled `word(...)` converts to, or null.
   const Type *conversionTarget(StringRef word);
+  /// The arguments of a call whose `(` is consumed, checked against the
+  /// built-in's arity.
+  Expr *parseCallArgs(Builtin fn, StringRef name, SMLoc loc, const Type *to);
   bool parseModule(bool isSystem);
   bool parseModuleItem();
   bool parsePortDecl(PortKind kind);

@@ -1,5 +1,6 @@
 //===- Printer.cpp - canonical NetIR text ---------------------------------===//
 #include "ir/net/Printer.h"
+#include "ir/net/StringOps.h"
 
 #include "llvm/ADT/STLExtras.h"
 
@@ -50,6 +51,9 @@ void print(const Expr *e, raw_ostream &os, int ctx) {
     return;
   case ExprKind::RealLit:
     os << formatReal(llvm::cast<RealLit>(e)->value);
+    return;
+  case ExprKind::StringLit:
+    os << formatStringLiteral(llvm::cast<StringLit>(e)->chars);
     return;
   case ExprKind::Ref: {
     auto *r = llvm::cast<Ref>(e);

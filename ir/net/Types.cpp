@@ -20,6 +20,8 @@ uint64_t Type::numSlots() const {
       n += f.type->numSlots();
     return n;
   }
+  case TypeKind::String:
+    return uint64_t(maxLen) + 1;
   default:
     return 1;
   }
@@ -70,6 +72,9 @@ void Type::printStructure(llvm::raw_ostream &os) const {
   case TypeKind::Float:
     os << "real" << width;
     return;
+  case TypeKind::String:
+    os << (width == 16 ? "wstring[" : "string[") << maxLen << "]";
+    return;
   case TypeKind::Real:
     os << "real[" << formatReal(realLo) << ", " << formatReal(realHi) << "]";
     return;
@@ -118,6 +123,8 @@ bool netlift::net::isAssignable(const Type *to, const Type *from) {
   // A constant real expression takes the float type of its context.
   if (to->isFloat() && from->isAnyReal())
     return true;
+  if (to->isString() && from->isString())
+    return to->width == from->width;
   return false;
 }
 
@@ -207,6 +214,13 @@ const Type *TypeTable::getFloat(unsigned width) {
   t->width = width;
   t->lo = width == 32 ? 0 : INT64_MIN;
   t->hi = width == 32 ? int64_t(UINT32_MAX) : INT64_MAX;
+  return intern(std::move(t));
+}
+
+const Type *TypeTable::getString(uint32_t maxLen, bool wide) {
+  auto t = std::unique_ptr<Type>(new Type(TypeKind::String));
+  t->maxLen = maxLen;
+  t->width = wide ? 16 : 8;
   return intern(std::move(t));
 }
 

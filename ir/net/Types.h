@@ -2,12 +2,14 @@
 //
 // The data types of NetIR (bool, integer ranges, enumerations, fixed-width
 // PLC integers with a declared overflow behaviour, IEEE-754 `real32` and
-// `real64`, clocks, arrays and records) and the hybrid `real` type that only
-// exists before discretisation. Every scalar type other than the hybrid one
-// is held as a 64-bit word in the interval [lo, hi] (bool is 0..1, an
-// enumeration 0..n-1, a float its bit pattern), which is what the semantics
-// engine and the state encoding work with. Types are owned by a TypeTable and
-// compared by pointer after uniquing, except named types which are nominal.
+// `real64`, bounded strings, clocks, arrays and records) and the hybrid
+// `real` type that only exists before discretisation. Every scalar type
+// other than the hybrid one is held as a 64-bit word in the interval
+// [lo, hi] (bool is 0..1, an enumeration 0..n-1, a float its bit pattern),
+// which is what the semantics engine and the state encoding work with; a
+// string is held as its length followed by one word per character. Types are
+// owned by a TypeTable and compared by pointer after uniquing, except named
+// types which are nominal.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_IR_NET_TYPES_H
@@ -34,8 +36,9 @@ enum class TypeKind : uint8_t {
   Clock,
   Array,
   Record,
-  Real,  // hybrid: continuous, removed by `discretise`
-  Float, // real32 / real64: the IEEE values a PLC computes
+  Real,   // hybrid: continuous, removed by `discretise`
+  Float,  // real32 / real64: the IEEE values a PLC computes
+  String, // string[n] / wstring[n]: bounded character strings
 };
 enum class Overflow : uint8_t { Error, Wrap };
 
@@ -69,11 +72,16 @@ public:
   std::vector<Field> fields;
   /// Real: bounds (may be +-infinity).
   double realLo = 0, realHi = 0;
+  /// String: the most characters it holds; `width` is then the bits of a
+  /// character (8: string, 16: wstring).
+  uint32_t maxLen = 0;
 
   bool isBool() const { return kind == TypeKind::Bool; }
   bool isReal() const { return kind == TypeKind::Real; }
   bool isClock() const { return kind == TypeKind::Clock; }
   bool isFloat() const { return kind == TypeKind::Float; }
+  bool isString() const { return kind == TypeKind::String; }
+  bool isWideString() const { return isString() && width == 16; }
   /// The type of constant real expressions (`1.5`, `-2.0 * 3.0`): it takes
   /// the float type of its context, or is hybrid.
   bool isAnyReal() const { return kind == TypeKind::Real && name == "real"; }
@@ -83,7 +91,8 @@ public:
            kind == TypeKind::Clock;
   }
   bool isScalar() const {
-    return kind != TypeKind::Array && kind != TypeKind::Record;
+    return kind != TypeKind::Array && kind != TypeKind::Record &&
+           kind != TypeKind::String;
   }
   /// Not hybrid: a value the semantics engine holds in a state.
   bool isFinite() const { return kind != TypeKind::Real; }
@@ -107,8 +116,9 @@ private:
 
 /// Are values of `from` assignable to a variable of type `to` (statically)?
 /// Integers assign to integers (the range is checked when the value is
-/// written), a constant real (`real`) to a float, everything else needs the
-/// same type.
+/// written), a constant real (`real`) to a float, a string to a string of
+/// the same character width whatever the lengths (a longer value is cut to
+/// the target's length when written), everything else needs the same type.
 bool isAssignable(const Type *to, const Type *from);
 /// Can the two be compared with == / != ?
 bool isComparable(const Type *a, const Type *b);
@@ -136,6 +146,8 @@ public:
   const Type *getReal(double lo, double hi);
   /// IEEE-754 binary32 (`real32`) or binary64 (`real64`).
   const Type *getFloat(unsigned width);
+  /// `string[maxLen]` (8-bit characters) or `wstring[maxLen]` (16-bit).
+  const Type *getString(uint32_t maxLen, bool wide);
   /// Named types: created once per name. Returns null if the name exists.
   Type *createEnum(llvm::StringRef name, std::vector<llvm::StringRef> enums);
   Type *createRecord(llvm::StringRef name, std::vector<Field> fields);

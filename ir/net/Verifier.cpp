@@ -7,6 +7,7 @@
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/DenseSet.h"
 #include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringSwitch.h"
 
 #include <algorithm>
 #include <functional>
@@ -88,6 +89,14 @@ private:
   /// they mix a float with anything else. Only called when one is a float
   /// or both are constant reals.
   const Type *commonFloat(Expr *e, Expr *a, Expr *b, StringRef op);
+  /// A narrow string literal (or a choice between them) next to a wstring
+  /// becomes a wstring literal: its characters fit.
+  void widen(Expr *e, const Type *to);
+  /// The string type two operands of `e` share (the longer length, the
+  /// wider characters after widening literals); null with an error when
+  /// one is not a string or they mix string and wstring.
+  const Type *commonString(Expr *e, Expr *a, Expr *b, StringRef op);
+  const Type *checkStringCall(CallExpr *c);
   /// Is this an operand pair computed in floating point?
   static bool involvesFloat(const Type *a, const Type *b) {
     return a->isFloat() || b->isFloat();
@@ -199,6 +208,8 @@ bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
   const Type *t = check(init, Ctx::Constant);
   if (!t)
     return false;
+  widen(init, type);
+  t = init->type;
   if (!isAssignable(type, t)) {
     error(init->loc, "initial value of " + what + " has type '" + typeName(t) +
                          "', expected '" + typeName(type) + "'");
@@ -535,6 +546,11 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     return e->type = types.getBool();
   case ExprKind::RealLit:
     return e->type = types.getAnyReal();
+  case ExprKind::StringLit: {
+    auto *l = llvm::cast<StringLit>(e);
+    bool wide = llvm::any_of(l->chars, [](char16_t c) { return c > 0xff; });
+    return e->type = types.getString(uint32_t(l->chars.size()), wide);
+  }
   case ExprKind::Ref:
     return checkRef(llvm::cast<Ref>(e), ctx);
   case ExprKind::Index: {
@@ -649,6 +665,10 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       return e->type = types.getBool();
     case BinaryOp::Eq:
     case BinaryOp::Ne:
+      if (a->isString() || b->isString())
+        return commonString(e, bin->lhs, bin->rhs, op)
+                   ? e->type = types.getBool()
+                   : nullptr;
       if (inFloat && isNumeric(a) && isNumeric(b))
         return commonFloat(e, bin->lhs, bin->rhs, op)
                    ? e->type = types.getBool()
@@ -660,8 +680,12 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     case BinaryOp::Le:
     case BinaryOp::Gt:
     case BinaryOp::Ge:
+      if (a->isString() || b->isString())
+        return commonString(e, bin->lhs, bin->rhs, op)
+                   ? e->type = types.getBool()
+                   : nullptr;
       if (!isNumeric(a) || !isNumeric(b))
-        return mismatch("numbers");
+        return mismatch("numbers or strings");
       if (inFloat && !commonFloat(e, bin->lhs, bin->rhs, op))
         return nullptr;
       return e->type = types.getBool();
@@ -698,6 +722,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     const Type *b = check(c->elseExpr, ctx);
     if (!a || !b)
       return nullptr;
+    if (a->isString() || b->isString())
+      return e->type = commonString(e, c->thenExpr, c->elseExpr, "?:");
     if (!isComparable(a, b)) {
       error(e->loc, "the branches of '?:' have types '" + typeName(a) +
                         "' and '" + typeName(b) + "'");
@@ -756,12 +782,118 @@ const Type *ModuleVerifier::commonFloat(Expr *e, Expr *a, Expr *b,
   return ft;
 }
 
+void ModuleVerifier::widen(Expr *e, const Type *to) {
+  if (!to->isWideString() || !e->type || !e->type->isString() ||
+      e->type->isWideString())
+    return;
+  if (auto *c = llvm::dyn_cast<CondExpr>(e)) {
+    widen(c->thenExpr, to);
+    widen(c->elseExpr, to);
+    if (!c->thenExpr->type->isWideString() ||
+        !c->elseExpr->type->isWideString())
+      return;
+  } else if (!llvm::isa<StringLit>(e)) {
+    return;
+  }
+  e->type = types.getString(e->type->maxLen, true);
+}
+
+const Type *ModuleVerifier::commonString(Expr *e, Expr *a, Expr *b,
+                                         StringRef op) {
+  const Type *ta = a->type, *tb = b->type;
+  if (!ta->isString() || !tb->isString()) {
+    error(e->loc, "'" + op +
+                      "' needs two strings, but the operands have "
+                      "types '" +
+                      typeName(ta) + "' and '" + typeName(tb) + "'");
+    return nullptr;
+  }
+  widen(a, tb);
+  widen(b, ta);
+  ta = a->type;
+  tb = b->type;
+  if (ta->width != tb->width) {
+    error(e->loc, "'" + op + "' mixes '" + typeName(ta) + "' and '" +
+                      typeName(tb) + "'; convert one (wstring[n](x) or " +
+                      "string[n](x))");
+    return nullptr;
+  }
+  return types.getString(std::max(ta->maxLen, tb->maxLen), ta->isWideString());
+}
+
+const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
+  // Operand kinds per built-in: 's' a string, 'i' an integer.
+  StringRef shape = llvm::StringSwitch<StringRef>(spelling(c->fn))
+                        .Case("len", "s")
+                        .Cases("left", "right", "si")
+                        .Cases("mid", "delete", "sii")
+                        .Cases("concat", "find", "ss")
+                        .Case("insert", "ssi")
+                        .Case("replace", "ssii")
+                        .Default("");
+  for (size_t i = 0; i < c->args.size(); ++i) {
+    const Type *t = c->args[i]->type;
+    bool ok = shape[i] == 's' ? t->isString() : t->isInteger();
+    if (!ok) {
+      error(c->args[i]->loc, spelling(c->fn) + "() needs " +
+                                 (shape[i] == 's' ? "a string" : "an integer") +
+                                 " as operand " + Twine(i + 1) + ", not '" +
+                                 typeName(t) + "'");
+      return nullptr;
+    }
+  }
+  Expr *x = c->args[0];
+  if (shape.startswith("ss")) {
+    const Type *both = commonString(c, c->args[0], c->args[1], spelling(c->fn));
+    if (!both)
+      return nullptr;
+    if (c->fn == Builtin::Find)
+      return c->type = types.getInteger();
+    // The result holds both operands whole; an assignment cuts it.
+    uint64_t len =
+        uint64_t(c->args[0]->type->maxLen) + c->args[1]->type->maxLen;
+    return c->type = types.getString(uint32_t(std::min<uint64_t>(len, 65535)),
+                                     both->isWideString());
+  }
+  if (c->fn == Builtin::Len)
+    return c->type = types.getInteger();
+  return c->type = x->type; // left, right, mid, delete: no longer than s
+}
+
 const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
+  for (Expr *a : c->args)
+    if (!check(a, ctx))
+      return nullptr;
+  if (isStringBuiltin(c->fn))
+    return checkStringCall(c);
+  switch (c->fn) {
+  case Builtin::Convert:
+    if (c->to->isString() || c->args[0]->type->isString()) {
+      const Type *from = c->args[0]->type;
+      bool ok =
+          c->to->isString()
+              ? (isNumeric(from) || from->isBool() || from->isString())
+              : (from->isString() &&
+                 (c->to->isBool() || c->to->isInteger() || c->to->isFloat()));
+      if (!ok || from->isReal()) {
+        error(c->loc, "cannot convert a value of type '" + typeName(from) +
+                          "' with " + calleeSpelling(c) + "()");
+        return nullptr;
+      }
+      adopt(c->args[0], types.getFloat(64));
+      return c->type = c->to;
+    }
+    if (c->to->isBool()) {
+      error(c->loc, "bool() converts a string; compare a number with 0");
+      return nullptr;
+    }
+    break;
+  default:
+    break;
+  }
   bool anyFloat = false, anyReal = false; // anyReal: hybrid or constant
   for (Expr *a : c->args) {
-    const Type *t = check(a, ctx);
-    if (!t)
-      return nullptr;
+    const Type *t = a->type;
     if (!isNumeric(t) && !(c->fn == Builtin::Convert && t->isBool())) {
       error(a->loc,
             calleeSpelling(c) + "() needs numbers, not '" + typeName(t) + "'");
@@ -871,6 +1003,8 @@ void ModuleVerifier::checkStmt(Stmt *s) {
     const Type *vt = check(a->value, Ctx::Guard);
     if (!tt || !vt)
       return;
+    widen(a->value, tt);
+    vt = a->value->type;
     if (!isAssignable(tt, vt)) {
       error(a->value->loc, "cannot assign a value of type '" + typeName(vt) +
                                "' to '" + exprToString(a->target) +

@@ -10,6 +10,7 @@
 
 #include "ir/net/FloatOps.h"
 #include "ir/net/ScalarOps.h"
+#include "ir/net/StringOps.h"
 #include "ir/semantics/PtKernel.h"
 
 #include "ir/net/Printer.h"
@@ -155,6 +156,8 @@ struct Semantics::Impl {
       fail(e, "real arithmetic is not part of the discrete semantics");
     case ExprKind::Aggregate: // only initial values, flattened there
       fail(e, "an aggregate is not a scalar value");
+    case ExprKind::StringLit:
+      fail(e, "a string is not a scalar value");
     case ExprKind::Ref: {
       auto *r = cast<Ref>(e);
       switch (r->sym.kind) {
@@ -210,8 +213,73 @@ struct Semantics::Impl {
     return 0;
   }
 
+  /// The value of a string-typed expression.
+  StringValue evalStr(const Expr *e, const std::vector<int64_t> &v) {
+    switch (e->getKind()) {
+    case ExprKind::StringLit: {
+      auto *l = cast<StringLit>(e);
+      return StringValue(l->chars.begin(), l->chars.end());
+    }
+    case ExprKind::Cond: {
+      auto *c = cast<CondExpr>(e);
+      return eval(c->cond, v) ? evalStr(c->thenExpr, v)
+                              : evalStr(c->elseExpr, v);
+    }
+    case ExprKind::Call: {
+      auto *c = cast<CallExpr>(e);
+      if (c->fn == Builtin::Convert) {
+        const Type *from = c->args[0]->type;
+        StringValue text = from->isString()
+                               ? evalStr(c->args[0], v)
+                               : scalarToString(from, eval(c->args[0], v));
+        return text.substr(0, c->to->maxLen);
+      }
+      llvm::SmallVector<StringValue, 2> strs;
+      llvm::SmallVector<int64_t, 2> ints;
+      for (const Expr *a : c->args) {
+        if (a->type->isString())
+          strs.push_back(evalStr(a, v));
+        else
+          ints.push_back(eval(a, v));
+      }
+      StringValue out;
+      if (auto err = applyStringBuiltin(c->fn, strs, ints, out))
+        fail(c, "'" + exprToString(c) + "': " + *err);
+      return out;
+    }
+    case ExprKind::Ref:
+      if (auto *r = cast<Ref>(e); r->sym.kind == SymKind::Port &&
+                                  m.ports[r->sym.index].definition &&
+                                  r->fields.empty())
+        return evalStr(m.ports[r->sym.index].definition, v);
+      [[fallthrough]];
+    default: {
+      int64_t s = slotOf(e, v);
+      if (s < 0)
+        fail(e, "'" + exprToString(e) + "' has no value here");
+      return StringValue(v.begin() + s + 1, v.begin() + s + 1 + v[s]);
+    }
+    }
+  }
+
   int64_t evalCall(const CallExpr *c, const std::vector<int64_t> &v) {
+    if (c->fn == Builtin::Len)
+      return int64_t(evalStr(c->args[0], v).size());
+    if (c->fn == Builtin::Find)
+      return findString(evalStr(c->args[0], v), evalStr(c->args[1], v));
     const Type *at = c->args[0]->type;
+    if (c->fn == Builtin::Convert && at->isString()) {
+      StringValue text = evalStr(c->args[0], v);
+      int64_t r = 0;
+      ConvertError err = stringToScalar(text, c->to, r);
+      if (err != ConvertError::None)
+        fail(c, "'" + exprToString(c) +
+                    "': " + formatStringLiteral({text.data(), text.size()}) +
+                    (err == ConvertError::NotANumber
+                         ? " is not a literal of " + calleeSpelling(c)
+                         : " is outside the range of " + calleeSpelling(c)));
+      return r;
+    }
     int64_t a = eval(c->args[0], v), r;
     int64_t b = c->args.size() > 1 ? eval(c->args[1], v) : 0;
     if (c->fn == Builtin::Convert || c->fn == Builtin::Trunc) {
@@ -254,7 +322,13 @@ struct Semantics::Impl {
       return eval(b->lhs, v) || eval(b->rhs, v);
     case BinaryOp::Eq:
     case BinaryOp::Ne:
-      if (b->lhs->type && !b->lhs->type->isScalar()) {
+    case BinaryOp::Lt:
+    case BinaryOp::Le:
+    case BinaryOp::Gt:
+    case BinaryOp::Ge:
+      if (b->lhs->type && b->lhs->type->isString())
+        return compareStrings(b->op, evalStr(b->lhs, v), evalStr(b->rhs, v));
+      if (isComparison(b->op) && b->lhs->type && !b->lhs->type->isScalar()) {
         bool eq = aggregateEqual(b->lhs, b->rhs, v);
         return b->op == BinaryOp::Eq ? eq : !eq;
       }
@@ -302,6 +376,18 @@ struct Semantics::Impl {
     written.push_back(slot);
   }
 
+  /// Writes a string into the slots of a variable of type `t` at `slot`:
+  /// its length, then its characters, cut to the variable's length, the
+  /// unused characters zero (so equal strings are equal states).
+  void storeStr(const Expr *target, uint32_t slot, const Type *t,
+                const StringValue &str, std::vector<int64_t> &v,
+                std::vector<uint32_t> &written) {
+    size_t n = std::min<size_t>(str.size(), t->maxLen);
+    store(target, slot, int64_t(n), v, written);
+    for (uint32_t i = 0; i < t->maxLen; ++i)
+      store(target, slot + 1 + i, i < n ? int64_t(str[i]) : 0, v, written);
+  }
+
   void exec(Block block, std::vector<int64_t> &v,
             std::vector<uint32_t> &written) {
     for (const Stmt *st : block) {
@@ -311,7 +397,10 @@ struct Semantics::Impl {
         int64_t slot = slotOf(a->target, v);
         if (slot < 0)
           fail(a->target, "'" + exprToString(a->target) + "' has no storage");
-        if (!a->target->type->isScalar()) {
+        if (a->target->type->isString()) {
+          storeStr(a->target, uint32_t(slot), a->target->type,
+                   evalStr(a->value, v), v, written);
+        } else if (!a->target->type->isScalar()) {
           int64_t src = slotOf(a->value, v);
           if (src < 0)
             fail(a->value, "assigning this aggregate value is not supported");
@@ -764,7 +853,10 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
             }
             return;
           }
-          I.store(e, uint32_t(first), I.eval(e, v), v, written);
+          if (t->isString())
+            I.storeStr(e, uint32_t(first), t, I.evalStr(e, v), v, written);
+          else
+            I.store(e, uint32_t(first), I.eval(e, v), v, written);
         };
     for (uint32_t x = 0; x < m.vars.size(); ++x)
       init(L.varSlot(x), m.vars[x].type, m.vars[x].init);
@@ -941,8 +1033,7 @@ bool Semantics::evalPredicate(const Expr *e, const uint64_t *state,
   return evalInState(e, state, err) != 0;
 }
 
-int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
-                               RuntimeError &err) {
+std::vector<int64_t> &Semantics::predicateValuation(const uint64_t *state) {
   // A buffer of its own: predicates are evaluated while successors() is
   // still enumerating from its working valuation.
   Impl &I = *impl;
@@ -953,10 +1044,28 @@ int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
   for (size_t k = 0; k < I.inputSlots.size(); ++k)
     v[I.inputSlots[k]] =
         I.inputsFixed ? I.fixedLeaves[k] : L.slots()[I.inputSlots[k]].lo;
+  return v;
+}
+
+int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
+                               RuntimeError &err) {
+  std::vector<int64_t> &v = predicateValuation(state);
   try {
-    return I.eval(e, v);
+    return impl->eval(e, v);
   } catch (const EvalError &x) {
     err = {x.message, x.loc};
     return 0;
+  }
+}
+
+net::StringValue Semantics::evalStringInState(const Expr *e,
+                                              const uint64_t *state,
+                                              RuntimeError &err) {
+  std::vector<int64_t> &v = predicateValuation(state);
+  try {
+    return impl->evalStr(e, v);
+  } catch (const EvalError &x) {
+    err = {x.message, x.loc};
+    return {};
   }
 }

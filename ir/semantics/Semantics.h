@@ -16,6 +16,7 @@
 #ifndef NETLIFT_IR_SEMANTICS_SEMANTICS_H
 #define NETLIFT_IR_SEMANTICS_SEMANTICS_H
 
+#include "ir/net/StringOps.h"
 #include "ir/semantics/StateLayout.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
@@ -92,8 +93,13 @@ public:
   /// Value of slot-free signals (defined outputs) in a state.
   int64_t evalInState(const net::Expr *e, const uint64_t *state,
                       RuntimeError &err);
+  /// Value of a string-typed expression in a state.
+  net::StringValue evalStringInState(const net::Expr *e, const uint64_t *state,
+                                     RuntimeError &err);
 
 private:
+  /// The state's slots and the inputs as evalInState reads them.
+  std::vector<int64_t> &predicateValuation(const uint64_t *state);
   struct Impl;
   const net::Module &m;
   const StateLayout &L;

@@ -39,6 +39,16 @@ void StateLayout::addLeaves(const std::string &name, const Type *t) {
     for (const Field &f : t->fields)
       addLeaves(name + "." + f.name.str(), f.type);
     return;
+  case TypeKind::String: {
+    // The length, typed as the string (how the whole is written out),
+    // then one slot per character; empty is all zeros.
+    uint32_t len = addSlot(name, 0, t->maxLen);
+    slotVec[len].type = t;
+    for (uint32_t i = 1; i <= t->maxLen; ++i)
+      addSlot(name + "[" + std::to_string(i) + "]", 0,
+              t->width == 16 ? 0xffff : 0xff);
+    return;
+  }
   default: {
     // PLC integers and floats start at 0 (+0.0 for a float).
     uint32_t s =

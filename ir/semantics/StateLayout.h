@@ -3,7 +3,8 @@
 // The compact encoding of a state of a flat module (docs/semantics.md): one
 // bit-packed vector of 64-bit words holding, slot by slot, the marking of
 // every place, the clock of every place that has timed arcs leaving it,
-// every scalar leaf of every variable (arrays and records flattened), every
+// every scalar leaf of every variable (arrays and records flattened, a
+// string as its length followed by its characters), every
 // stored output and every clock variable. A slot holds `value - lo` in just
 // enough bits for its domain; places of unbounded capacity get a fixed
 // width (an overflow is reported, never wrapped). Free inputs are not part
@@ -36,7 +37,8 @@ struct Slot {
   int64_t initial = 0;
   std::string name; // for states written out: `p`, `v[2].x`, `clock(p)`
   /// The scalar type of a variable's or port's leaf (null for markings and
-  /// clocks): how its value is read (a float's bits) and written out.
+  /// clocks): how its value is read (a float's bits) and written out. A
+  /// string's length slot has the string's type; its characters have none.
   const net::Type *type = nullptr;
 };
 
