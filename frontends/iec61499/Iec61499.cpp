@@ -229,6 +229,9 @@ private:
     SMLoc loc;
   };
   std::map<std::string, Constant> constants;
+  /// String parameters by their literal text: the number in their module's
+  /// name.
+  std::map<std::string, size_t> stringConstants;
   bool neverNeeded = false; // some network uses the silent source
 };
 
@@ -1583,16 +1586,34 @@ std::string Translator::constantModule(StringRef type, Expr *e, StringRef text,
   } else if (e->kind == ExprKind::IntLit || e->kind == ExprKind::BoolLit) {
     key = StringRef(type).upper() + "_" + (negative ? "m" : "") +
           std::to_string(e->intValue);
+  } else if (e->kind == ExprKind::RealLit || e->kind == ExprKind::StringLit) {
+    bool real = e->kind == ExprKind::RealLit;
+    const PType *declared = elementaryType(type);
+    if (!declared ||
+        declared->kind != (real ? PTypeKind::Real : PTypeKind::String))
+      fail(at, std::string(real ? "a real number" : "a string") + " '" +
+                   text.trim() + "' given for a value of type " + type);
+    if (real) {
+      key = StringRef(type).upper() + "_" + (negative ? "m" : "") +
+            net::toIdentifier(net::formatReal(e->realValue));
+    } else {
+      size_t id = stringConstants.emplace(e->name, stringConstants.size())
+                      .first->second;
+      key = StringRef(type).upper() + "_" + std::to_string(id);
+    }
   } else {
     fail(at, "parameter value '" + text.trim() +
-                 "' is not supported (integer, Boolean and duration "
-                 "literals only)");
+                 "' is not supported (integer, real, Boolean, string and "
+                 "duration literals only)");
   }
   std::string module = "Const_" + key;
-  if (negative && e->kind != ExprKind::IntLit && e->kind != ExprKind::TimeLit)
+  if (negative && e->kind != ExprKind::IntLit && e->kind != ExprKind::TimeLit &&
+      e->kind != ExprKind::RealLit)
     fail(at, "'-' before a non-number");
-  if (negative)
+  if (negative) {
     e->intValue = -e->intValue;
+    e->realValue = -e->realValue;
+  }
   constants.try_emplace(module, Constant{module, type.str(), e, at});
   return module;
 }
@@ -2027,6 +2048,21 @@ bool Translator::run(const std::vector<unsigned> &ids) {
         uint32_t p = b.addPort("OUT", net::PortKind::Cond, net::PortDir::Out,
                                nullptr, c.loc);
         m->ports[p].definition = b.boolLit(c.value->intValue != 0, c.loc);
+        continue;
+      }
+      if (c.value->kind == ExprKind::RealLit ||
+          c.value->kind == ExprKind::StringLit) {
+        uint32_t p = b.addPort("OUT", net::PortKind::Data, net::PortDir::Out,
+                               dataType(c.type, c.loc), c.loc);
+        if (c.value->kind == ExprKind::RealLit) {
+          m->ports[p].definition = b.realLit(c.value->realValue, c.loc);
+          continue;
+        }
+        std::u16string chars;
+        if (auto err = plc::decodeStringLiteral(c.value->name, chars))
+          fail(c.loc, *err);
+        m->ports[p].definition = b.stringLit(
+            llvm::ArrayRef<char16_t>(chars.data(), chars.size()), c.loc);
         continue;
       }
       int64_t v = c.value->intValue;

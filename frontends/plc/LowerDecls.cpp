@@ -47,7 +47,8 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = floatType(t);
     break;
   case PTypeKind::String:
-    refuse(at, t->str() + " " + what + ": strings are not supported");
+    r = stringType(t, at, what);
+    break;
   case PTypeKind::Date:
     refuse(at, t->str() + " " + what +
                    ": dates and times of day are not supported");
@@ -105,6 +106,10 @@ const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
     return tt.getInt(64, true, net::Overflow::Wrap);
   case PTypeKind::Time:
     return tt.getInt(64, true, net::Overflow::Error);
+  case PTypeKind::Real:
+    return tt.getFloat(t->width == 32 ? 32 : 64);
+  case PTypeKind::String:
+    return t->isString() ? tt.getString(t->strLen, t->width == 16) : nullptr;
   default:
     return nullptr;
   }
@@ -121,6 +126,8 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
     return b.intLit(0, at);
   case PTypeKind::Real:
     return b.realLit(0.0, at);
+  case PTypeKind::String:
+    return b.stringLit({}, at);
   case PTypeKind::Enum:
     return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[0]), at);
   default:
@@ -205,10 +212,11 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
                      sanitize(t->enumerators[e->enumValue]),
                  e->loc);
   }
-  if (e->kind == ExprKind::StringLit)
-    refuse(e->loc, "STRING variable '" + v->name +
-                       "' is not supported (string operations beyond "
-                       "constants are refused)");
+  if (t->kind == PTypeKind::String) {
+    if (e->kind != ExprKind::StringLit)
+      refuse(e->loc, "initial value of '" + v->name + "' must be a literal");
+    return stringLiteral(e);
+  }
   if (t->kind == PTypeKind::Real) {
     Sink pre;
     NExpr *r = coerce(expr(e, none, pre), e->type, t, e->loc);
@@ -319,9 +327,9 @@ void Lowering::declareProgramVar(VarDecl *v) {
     } else {
       nt = netType(t, v->loc, "input " + v->name);
     }
-    if (!nt->isScalar())
+    if (!nt->isScalar() && !nt->isString())
       refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
-                         ": inputs must be scalars");
+                         ": inputs must be scalars or strings");
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, v->loc);
     return;
   }

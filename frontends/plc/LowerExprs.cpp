@@ -206,8 +206,6 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
 }
 
 NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
-  if (e->type && e->type->kind == PTypeKind::String)
-    refuse(e->loc, "string operations are not supported");
   if (e->type && e->type->kind == PTypeKind::Date)
     refuse(e->loc, "dates and times of day are not supported");
   switch (e->kind) {
@@ -222,7 +220,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::RealLit:
     return b.realLit(e->realValue, e->loc);
   case ExprKind::StringLit:
-    refuse(e->loc, "string literals are not supported");
+    return stringLiteral(e);
   case ExprKind::DateLit:
     refuse(e->loc, "date and time-of-day literals are not supported");
   case ExprKind::EnumLit:
@@ -361,6 +359,8 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   to = to && to->isSubrange ? to->base : to;
   if (!from || from->kind == PTypeKind::AnyInt)
     from = to;
+  if (from->kind == PTypeKind::String || to->kind == PTypeKind::String)
+    return convertString(v, from, to, at);
   if (from->kind == PTypeKind::Real || to->kind == PTypeKind::Real)
     return convertReal(v, from, to, at);
   if (to->kind == PTypeKind::Bool) {
@@ -530,7 +530,7 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
   case StdFn::RealMath:
     return realMath(e, a, at);
   case StdFn::StringOp:
-    refuse(at, "string function '" + e->name + "' is not supported");
+    return stringFunction(e, a, at);
   case StdFn::Refused:
   case StdFn::None:
     break;

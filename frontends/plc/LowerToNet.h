@@ -96,8 +96,9 @@ bool lowerEventDriven(Unit &unit, std::vector<EventDrivenBlock> &blocks,
 /// A duration in the largest unit that keeps it whole: 1s, 300ms, 1500us.
 std::string formatDuration(int64_t ns);
 
-/// The NetIR type of a BOOL, integer or TIME value as the lowering declares
-/// it (TIME in ticks); null for other types.
+/// The NetIR type of an elementary value as the lowering declares it
+/// (TIME in ticks, REAL as real32, STRING[n] as string[n]); null for the
+/// types netlift does not model (64-bit unsigned, dates, CHAR).
 const net::Type *scalarNetType(const PType *t, net::TypeTable &types);
 
 /// Lowers the checked unit into `design`. Returns false after reporting.

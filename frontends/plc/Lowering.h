@@ -191,6 +191,13 @@ private:
   const PType *commonReal(llvm::ArrayRef<Expr *> operands);
   NExpr *realMath(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
   NExpr *convertReal(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  // STRING and WSTRING (LowerStrings.cpp).
+  const net::Type *stringType(const PType *t, SMLoc at, StringRef what);
+  NExpr *stringLiteral(Expr *literal);
+  /// LEN, LEFT, ... FIND on lowered operands.
+  NExpr *stringFunction(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
+  /// A conversion to or from a string.
+  NExpr *convertString(NExpr *v, const PType *from, const PType *to, SMLoc at);
   NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
   NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
   Range rangeOf(Expr *e);

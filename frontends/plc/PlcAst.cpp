@@ -1,6 +1,8 @@
 //===- PlcAst.cpp - the PLC program model ---------------------------------===//
 #include "frontends/plc/PlcAst.h"
 
+#include "llvm/ADT/StringExtras.h"
+
 using namespace netlift::plc;
 using llvm::StringRef;
 
@@ -158,4 +160,55 @@ void netlift::plc::keepRefusedPou(Unit &unit, size_t pousBefore, PouKind kind,
   }
   pou->refusalLoc = refusalLoc;
   pou->refusal = std::move(refusal);
+}
+
+std::optional<std::string>
+netlift::plc::decodeStringLiteral(StringRef quoted, std::u16string &out) {
+  out.clear();
+  bool wide = quoted.startswith("\"");
+  StringRef body = quoted.drop_front().drop_back();
+  for (size_t i = 0; i < body.size(); ++i) {
+    unsigned char c = body[i];
+    if (c != '$') {
+      out += char16_t(c);
+      continue;
+    }
+    char n = i + 1 < body.size() ? body[i + 1] : '\0';
+    char16_t escaped = 0;
+    switch (llvm::toUpper(n)) {
+    case '$':
+    case '\'':
+    case '"':
+      escaped = char16_t(n);
+      break;
+    case 'L':
+    case 'N':
+      escaped = '\n';
+      break;
+    case 'P':
+      escaped = '\f';
+      break;
+    case 'R':
+      escaped = '\r';
+      break;
+    case 'T':
+      escaped = '\t';
+      break;
+    default: {
+      size_t digits = wide ? 4 : 2;
+      uint64_t code;
+      if (i + 1 + digits > body.size() ||
+          body.substr(i + 1, digits).getAsInteger(16, code))
+        return "malformed escape '$" + body.substr(i + 1, digits).str() +
+               "' in a string literal (write $$, $', $L, $N, $P, $R, $T or " +
+               (wide ? "four" : "two") + " hex digits)";
+      out += char16_t(code);
+      i += digits;
+      continue;
+    }
+    }
+    out += escaped;
+    ++i;
+  }
+  return std::nullopt;
 }

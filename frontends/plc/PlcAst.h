@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,7 @@ struct TypeSyntax {
   std::string name;                            // Named; Subrange: base
   std::string refused;                         // Refused: the construct
   Expr *lo = nullptr, *hi = nullptr;           // Subrange
+  Expr *length = nullptr;                      // String: STRING[20]
   std::vector<std::pair<Expr *, Expr *>> dims; // Array
   TypeSyntax *elem = nullptr;                  // Array
   std::vector<EnumValueSyntax> enumerators;    // Enum
@@ -386,6 +388,13 @@ private:
 
 /// IEC identifiers are case-insensitive.
 bool sameName(llvm::StringRef a, llvm::StringRef b);
+
+/// The characters of an IEC string literal written with its quotes: 'abc'
+/// (STRING; `$hh` escapes a byte) or "abc" (WSTRING; `$hhhh`), with `$$`,
+/// `$'` / `$"`, `$L` and `$N` (line feed), `$P` (form feed), `$R`, `$T`.
+/// Returns the message of a malformed escape, or nullopt.
+std::optional<std::string> decodeStringLiteral(llvm::StringRef quoted,
+                                               std::u16string &out);
 
 /// After reading a POU stopped at a construct netlift refuses: the POU
 /// read so far (added to `unit` after its first `pousBefore` POUs) or, if

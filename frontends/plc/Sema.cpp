@@ -16,6 +16,19 @@ using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
 
+const PType *Checker::stringType(uint64_t len, bool wide) {
+  uint32_t n = uint32_t(std::min<uint64_t>(len, 65535));
+  const PType *&t = stringTypes[{n, wide}];
+  if (!t) {
+    PType *s = make(PTypeKind::String);
+    s->name = (wide ? "WSTRING[" : "STRING[") + std::to_string(n) + "]";
+    s->width = wide ? 16 : 8;
+    s->strLen = n;
+    t = s;
+  }
+  return t;
+}
+
 bool Checker::constInt(Expr *e, int64_t &v) {
   if (!e)
     return false;
@@ -126,8 +139,18 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
   switch (ts->kind) {
   case TypeSyntaxKind::Named:
     return resolveNamed(ts->name, ts->loc);
-  case TypeSyntaxKind::String:
-    return elementaryType(ts->name);
+  case TypeSyntaxKind::String: {
+    const PType *base = elementaryType(ts->name);
+    if (!ts->length)
+      return base;
+    int64_t n;
+    if (!constInt(ts->length, n) || n < 1 || n > 65535) {
+      error(ts->length->loc,
+            "the length of a " + ts->name + " must be a constant in 1..65535");
+      return nullptr;
+    }
+    return stringType(uint64_t(n), base->width == 16);
+  }
   case TypeSyntaxKind::Subrange: {
     const PType *base = resolveNamed(ts->name, ts->loc);
     if (!base)

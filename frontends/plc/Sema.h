@@ -50,6 +50,9 @@ struct PType {
   // Array: elem and one (lo, hi) per dimension
   const PType *elem = nullptr;
   std::vector<std::pair<int64_t, int64_t>> dims;
+  // String: the most characters it holds (`width` is then the bits of a
+  // character, 8 or 16); 0 for CHAR and WCHAR, single characters.
+  uint32_t strLen = 0;
   // Struct
   std::vector<VarDecl *> fields;
   // FunctionBlock
@@ -58,6 +61,7 @@ struct PType {
   bool isInteger() const {
     return kind == PTypeKind::Int || kind == PTypeKind::AnyInt;
   }
+  bool isString() const { return kind == PTypeKind::String && strLen > 0; }
   bool isAnyBit() const {
     return kind == PTypeKind::Bool || (kind == PTypeKind::Int && isBits);
   }
@@ -95,7 +99,7 @@ enum class StdFn : uint8_t {
   Ne,
   Convert,  // X_TO_Y and TO_Y between BOOL, integer and bit-string types
   RealMath, // SQRT, SIN, EXPT, TRUNC, ...
-  StringOp, // LEN, CONCAT, ... (typed, refused when lowered)
+  StringOp, // LEN, LEFT, RIGHT, MID, CONCAT, INSERT, DELETE, REPLACE, FIND
   Refused,  // recognised but not supported at all (BCD, date/time)
 };
 

@@ -81,6 +81,72 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
 /// Puts the named inputs of a standard function call in parameter order
 /// (IEC names: IN; IN1..INn; MN, IN, MX for LIMIT; G, IN0, IN1 for SEL;
 /// K, IN0..INn for MUX; IN, N for shifts). All arguments are named or none.
+/// The operands of a string function: S a string, L a length, P a
+/// position; "S+" for CONCAT's two or more strings.
+static StringRef stringOperandShape(StringRef name) {
+  return llvm::StringSwitch<StringRef>(StringRef(name).upper())
+      .Case("LEN", "S")
+      .Cases("LEFT", "RIGHT", "SL")
+      .Cases("MID", "DELETE", "SLP")
+      .Case("CONCAT", "S+")
+      .Case("INSERT", "SSP")
+      .Case("REPLACE", "SSLP")
+      .Case("FIND", "SS")
+      .Default("");
+}
+
+const PType *Checker::stringCall(Expr *e, llvm::ArrayRef<const PType *> types) {
+  StringRef shape = stringOperandShape(e->name);
+  bool variadic = shape == "S+";
+  size_t want = variadic ? 2 : shape.size();
+  if (types.size() < want || (!variadic && types.size() > want)) {
+    error(e->loc, "'" + e->name + "' takes " +
+                      (variadic ? Twine(want) + " or more" : Twine(want)) +
+                      " argument(s), given " + Twine(types.size()));
+    return nullptr;
+  }
+  // A STRING literal next to a WSTRING reads as one; otherwise the widths
+  // must agree.
+  const PType *wideOperand = nullptr, *narrowOperand = nullptr;
+  uint64_t total = 0;
+  for (size_t i = 0; i < types.size(); ++i) {
+    const PType *t = baseOf(types[i]);
+    Expr *arg = e->args[i].value;
+    if (variadic || shape[i] == 'S') {
+      if (!t->isString()) {
+        error(arg->loc, "'" + e->name + "' needs a STRING or WSTRING as " +
+                            "argument " + Twine(i + 1) + ", given " +
+                            types[i]->str());
+        return nullptr;
+      }
+      if (t->width == 16)
+        wideOperand = t;
+      else if (arg->kind != ExprKind::StringLit)
+        narrowOperand = t;
+      total += t->strLen;
+    } else if (!t->isInteger()) {
+      error(arg->loc, "'" + e->name + "' needs an integer as argument " +
+                          Twine(i + 1) + ", given " + types[i]->str());
+      return nullptr;
+    }
+  }
+  if (wideOperand && narrowOperand) {
+    error(e->loc, "'" + e->name + "' mixes " + narrowOperand->str() + " and " +
+                      wideOperand->str() +
+                      " (convert one with STRING_TO_WSTRING or "
+                      "WSTRING_TO_STRING)");
+    return nullptr;
+  }
+  if (shape == "S" || shape == "SS") // LEN, FIND
+    return elementaryType("INT");
+  bool wide = wideOperand != nullptr;
+  // CONCAT, INSERT, REPLACE hold both strings whole; the others no more
+  // than their string.
+  if (variadic || shape.startswith("SS"))
+    return stringType(total, wide);
+  return stringType(baseOf(types[0])->strLen, wide);
+}
+
 bool Checker::orderStdArgs(Expr *e, StdFn fn) {
   size_t named = 0;
   for (CallArg &a : e->args)
@@ -110,6 +176,21 @@ bool Checker::orderStdArgs(Expr *e, StdFn fn) {
     case StdFn::Rol:
     case StdFn::Ror:
       return up == "IN" ? 0 : up == "N" ? 1 : -1;
+    case StdFn::StringOp: {
+      // LEFT(IN, L), MID(IN, L, P), INSERT(IN1, IN2, P),
+      // REPLACE(IN1, IN2, L, P), ...: L and P follow the strings.
+      StringRef shape = stringOperandShape(e->name);
+      if (up == "L" || up == "P") {
+        size_t at = shape.find(up == "L" ? 'L' : 'P');
+        return at == StringRef::npos ? -1 : int(at);
+      }
+      if (up == "IN")
+        return 0;
+      if (up.consume_front("IN") && !up.getAsInteger(10, k) && k >= 1 &&
+          (shape == "S+" || k <= shape.count('S')))
+        return int(k) - 1;
+      return -1;
+    }
     default:
       if (up == "IN")
         return 0;
@@ -261,8 +342,9 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   auto numericOf = [&](size_t from) -> const PType * {
     const PType *t = types[from];
     for (size_t i = from + 1; i < types.size() && t; ++i) {
-      Expr probe(ExprKind::Binary, e->loc);
-      probe.op = Op::Add;
+      // A stand-in for the call in commonNumeric's messages.
+      Expr probe(ExprKind::Call, e->loc);
+      probe.name = e->name;
       if (baseOf(t)->kind == PTypeKind::Time &&
           baseOf(types[i])->kind == PTypeKind::Time)
         continue;
@@ -271,6 +353,13 @@ const PType *Checker::call(Expr *e, bool asStatement) {
         continue;
       if (baseOf(t)->kind == PTypeKind::Enum && baseOf(types[i]) == baseOf(t))
         continue;
+      if (baseOf(t)->isString() && baseOf(types[i])->isString() &&
+          baseOf(t)->width == baseOf(types[i])->width) {
+        // EQ, SEL, MUX, MIN... on strings: the longer one holds either.
+        if (baseOf(types[i])->strLen > baseOf(t)->strLen)
+          t = types[i];
+        continue;
+      }
       t = commonNumeric(t, types[i], &probe);
     }
     return t ? baseOf(t) : nullptr;
@@ -387,7 +476,7 @@ const PType *Checker::call(Expr *e, bool asStatement) {
                : elementaryType("LREAL");
   }
   case StdFn::StringOp:
-    return elementaryType("STRING");
+    return stringCall(e, types);
   case StdFn::Refused:
     error(e->loc, "'" + e->name +
                       "' is not supported (BCD conversions are "

@@ -46,6 +46,9 @@ private:
   const PType *resolve(TypeSyntax *ts, StringRef ownerName);
   const PType *resolveNamed(StringRef name, SMLoc at);
   bool constInt(Expr *e, int64_t &v);
+  /// STRING[len] or WSTRING[len], one per length.
+  const PType *stringType(uint64_t len, bool wide);
+  std::map<std::pair<uint32_t, bool>, const PType *> stringTypes;
   void checkInitializer(Initializer *init, const PType *t);
   void reshapeRowMajor(Initializer *init, const PType *t, size_t dim);
 
@@ -72,6 +75,8 @@ private:
   int64_t lookupEnumerator(StringRef name, const PType *&type);
   VarDecl *enEno(Pou *p, StringRef name);
   bool orderStdArgs(Expr *e, StdFn fn);
+  /// LEN, LEFT, ... FIND: operands checked, the result's type.
+  const PType *stringCall(Expr *e, llvm::ArrayRef<const PType *> types);
   // The enumerated type an ambiguous enumerator resolves to (assignment
   // target, CASE selector), if any.
   const PType *expectedEnum = nullptr;

@@ -81,9 +81,16 @@ const PType *Checker::expr(Expr *e) {
   case ExprKind::DateLit:
     t = elementaryType("DATE");
     break;
-  case ExprKind::StringLit:
-    t = elementaryType("STRING");
+  case ExprKind::StringLit: {
+    std::u16string chars;
+    if (auto err = decodeStringLiteral(e->name, chars)) {
+      error(e->loc, *err);
+      return nullptr;
+    }
+    t = stringType(std::max<size_t>(chars.size(), 1),
+                   StringRef(e->name).startswith("\""));
     break;
+  }
   case ExprKind::EnumLit: {
     const PType *et = resolveNamed(e->typeName, e->loc);
     if (!et)
@@ -321,9 +328,13 @@ const PType *Checker::expr(Expr *e) {
       if ((ab->isInteger() || ab->kind == PTypeKind::Real) &&
           (bb->isInteger() || bb->kind == PTypeKind::Real))
         ok = commonNumeric(a, b, e) != nullptr;
+      else if (ab->isString() && bb->isString())
+        ok = ab->width == bb->width ||
+             (ab->width < bb->width ? e->operands[0] : e->operands[1])->kind ==
+                 ExprKind::StringLit;
       else if (ab->kind == bb->kind &&
                (ab->kind == PTypeKind::Bool || ab->kind == PTypeKind::Time ||
-                ab->kind == PTypeKind::String || ab->kind == PTypeKind::Date))
+                ab->kind == PTypeKind::Date))
         ok = true;
       else if (ab->kind == PTypeKind::Enum && ab == bb)
         ok = true;

@@ -153,6 +153,16 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     if (fb->kind == PTypeKind::Real || fb->isInteger())
       return true;
     return mismatch();
+  case PTypeKind::String:
+    // Any length: a longer value is cut to the target's (docs/st.md). A
+    // STRING literal fits a WSTRING; otherwise the widths must agree.
+    if (tb->isString() && fb->isString() &&
+        (tb->width == fb->width ||
+         (fb->width < tb->width && from->kind == ExprKind::StringLit)))
+      return true;
+    if (tb->kind == fb->kind && tb == fb)
+      return true; // CHAR, WCHAR: refused when lowered
+    return mismatch();
   default:
     if (tb->kind == fb->kind &&
         (tb == fb ||
@@ -166,6 +176,7 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
 }
 
 const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
+  std::string op = e->kind == ExprKind::Call ? e->name : spelling(e->op).str();
   a = baseOf(a);
   b = baseOf(b);
   if (a->kind == PTypeKind::AnyInt)
@@ -182,7 +193,7 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
     if (wide->width == narrow->width &&
         (wide->isSigned == narrow->isSigned || wide->isBits || narrow->isBits))
       return wide;
-    error(e->loc, "operands of '" + spelling(e->op) +
+    error(e->loc, "operands of '" + op +
                       "' have incompatible "
                       "types " +
                       a->str() + " and " + b->str());
@@ -200,7 +211,7 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
         (b->kind == PTypeKind::Real || b->isInteger()))
       return a->kind == PTypeKind::Real ? a : b;
   }
-  error(e->loc, "operands of '" + spelling(e->op) +
+  error(e->loc, "operands of '" + op +
                     "' have incompatible "
                     "types " +
                     a->str() + " and " + b->str());

@@ -62,10 +62,10 @@ const Elementary kElementary[] = {
     {"LTIME", PTypeKind::Time, 64, true, false},
     {"REAL", PTypeKind::Real, 32, true, false},
     {"LREAL", PTypeKind::Real, 64, true, false},
-    {"STRING", PTypeKind::String, 0, false, false},
-    {"WSTRING", PTypeKind::String, 0, false, false},
-    {"CHAR", PTypeKind::String, 0, false, false},
-    {"WCHAR", PTypeKind::String, 0, false, false},
+    {"STRING", PTypeKind::String, 8, false, false},
+    {"WSTRING", PTypeKind::String, 16, false, false},
+    {"CHAR", PTypeKind::String, 8, false, false},
+    {"WCHAR", PTypeKind::String, 16, false, false},
     {"DATE", PTypeKind::Date, 0, false, false},
     {"TOD", PTypeKind::Date, 0, false, false},
     {"TIME_OF_DAY", PTypeKind::Date, 0, false, false},
@@ -100,6 +100,11 @@ const llvm::StringMap<PType> &elementaryTable() {
       }
       if (e.kind == PTypeKind::Bool)
         ty->hi = 1;
+      // STRING and WSTRING without a length hold 80 characters, as in
+      // CODESYS and TwinCAT (IEC 61131-3 leaves the default to the
+      // implementation).
+      if (e.kind == PTypeKind::String && StringRef(e.name).endswith("STRING"))
+        ty->strLen = 80;
     }
     return t;
   }();

@@ -86,6 +86,8 @@ TypeSyntax *Reader::type(pugi::xml_node holder) {
   if (kind == "string" || kind == "wstring") {
     auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::String, at);
     ts->name = kind == "string" ? "STRING" : "WSTRING";
+    if (t.attribute("length") && !(ts->length = bound(t, "length")))
+      return nullptr;
     return ts;
   }
   if (kind == "array") {

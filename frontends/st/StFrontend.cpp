@@ -771,6 +771,8 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
   if (auto *s = alt<P::StringTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::String, loc(s));
     t->name = s->WSTRING_KW() ? "WSTRING" : "STRING";
+    if (s->length)
+      t->length = expr(s->length);
     return t;
   }
   return refuse(loc(c), "unsupported type");

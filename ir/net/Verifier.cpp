@@ -250,6 +250,13 @@ void ModuleVerifier::checkPorts() {
     }
     if (p.definition) {
       const Type *t = check(p.definition, Ctx::Guard);
+      if (t) {
+        // A constant real or a narrow string literal takes the port's type.
+        if (p.type->isFloat())
+          adopt(p.definition, p.type);
+        widen(p.definition, p.type);
+        t = p.definition->type;
+      }
       if (t && !isAssignable(p.type, t))
         error(p.definition->loc, "output '" + p.name + "' of type '" +
                                      typeName(p.type) +

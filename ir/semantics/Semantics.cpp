@@ -232,7 +232,11 @@ struct Semantics::Impl {
         StringValue text = from->isString()
                                ? evalStr(c->args[0], v)
                                : scalarToString(from, eval(c->args[0], v));
-        return text.substr(0, c->to->maxLen);
+        text.resize(std::min<size_t>(text.size(), c->to->maxLen));
+        if (!c->to->isWideString())
+          for (char16_t &ch : text)
+            ch &= 0xff; // wstring to string keeps the low 8 bits
+        return text;
       }
       llvm::SmallVector<StringValue, 2> strs;
       llvm::SmallVector<int64_t, 2> ints;

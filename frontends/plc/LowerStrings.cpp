@@ -1,0 +1,91 @@
+//===- LowerStrings.cpp - STRING and WSTRING in NetIR ---------------------===//
+//
+// STRING[n] and WSTRING[n] become NetIR's string[n] and wstring[n], which
+// the engine executes (docs/netir.md, "Strings"): literals are decoded from
+// IEC's `$` escapes, the standard string functions map one to one onto
+// NetIR's built-ins (CONCAT's extra operands chained), and the conversions
+// *_TO_STRING / STRING_TO_* onto NetIR conversions. CHAR and WCHAR, and
+// conversions between strings and TIME or dates, are refused by name.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/Lowering.h"
+
+#include "llvm/ADT/StringSwitch.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+const net::Type *Lowering::stringType(const PType *t, SMLoc at,
+                                      StringRef what) {
+  if (!t->isString())
+    refuse(at, t->str() + " " + what +
+                   ": single characters (CHAR, WCHAR) are not supported; "
+                   "use STRING[1]");
+  return design.types.getString(t->strLen, t->width == 16);
+}
+
+NExpr *Lowering::stringLiteral(Expr *e) {
+  std::u16string chars;
+  if (auto err = decodeStringLiteral(e->name, chars))
+    refuse(e->loc, *err); // Sema has reported it
+  return b.stringLit(llvm::ArrayRef<char16_t>(chars.data(), chars.size()),
+                     e->loc);
+}
+
+NExpr *Lowering::stringFunction(Expr *e, llvm::ArrayRef<NExpr *> args,
+                                SMLoc at) {
+  std::string up = StringRef(e->name).upper();
+  auto fn = llvm::StringSwitch<std::optional<net::Builtin>>(up)
+                .Case("LEN", net::Builtin::Len)
+                .Case("LEFT", net::Builtin::Left)
+                .Case("RIGHT", net::Builtin::Right)
+                .Case("MID", net::Builtin::Mid)
+                .Case("CONCAT", net::Builtin::Concat)
+                .Case("INSERT", net::Builtin::Insert)
+                .Case("DELETE", net::Builtin::Delete)
+                .Case("REPLACE", net::Builtin::Replace)
+                .Case("FIND", net::Builtin::Find)
+                .Default(std::nullopt);
+  if (!fn)
+    refuse(at, "'" + e->name + "' is not a standard function netlift models");
+  if (*fn != net::Builtin::Concat)
+    return b.call(*fn, args, at);
+  // CONCAT(a, b, c) is concat(concat(a, b), c): nothing is cut on the way.
+  NExpr *r = args[0];
+  for (size_t i = 1; i < args.size(); ++i)
+    r = b.call(net::Builtin::Concat, {r, args[i]}, at);
+  return r;
+}
+
+NExpr *Lowering::convertString(NExpr *v, const PType *from, const PType *to,
+                               SMLoc at) {
+  auto refused = [&]() -> NExpr * {
+    refuse(at, "conversion from " + from->str() + " to " + to->str() +
+                   " is not supported");
+  };
+  if (to->kind == PTypeKind::String) {
+    if (!(from->isString() || from->kind == PTypeKind::Bool ||
+          from->kind == PTypeKind::Int || from->kind == PTypeKind::Real))
+      refused();
+    return b.convert(stringType(to, at, "conversion result"), v, at);
+  }
+  if (!from->isString())
+    refused();
+  switch (to->kind) {
+  case PTypeKind::Bool:
+    return b.convert(design.types.getBool(), v, at);
+  case PTypeKind::Int:
+    if (to->width == 64 && !to->isSigned)
+      refused();
+    // The text must spell a value of the target type; anything else is a
+    // runtime error (docs/netir.md, "Strings").
+    return b.convert(
+        design.types.getInt(to->width, to->isSigned, net::Overflow::Error), v,
+        at);
+  case PTypeKind::Real:
+    return b.convert(floatType(to), v, at);
+  default:
+    refused();
+  }
+}
