@@ -117,6 +117,9 @@ Expr *ConstFolder::fold(Expr *e) {
     x->lhs = fold(x->lhs);
     x->rhs = fold(x->rhs);
     auto a = value(x->lhs), c = value(x->rhs);
+    if ((x->lhs->type && x->lhs->type->isUnsigned64()) ||
+        (x->rhs->type && x->rhs->type->isUnsigned64()))
+      return e; // unsigned arithmetic is left to the engine
     // Boolean identities need only one constant side.
     if (x->op == BinaryOp::And || x->op == BinaryOp::Or) {
       bool isAnd = x->op == BinaryOp::And;
@@ -330,7 +333,9 @@ public:
     for (uint32_t v = 0; v < nv; ++v) {
       const Var &var = m->vars[v];
       const Type *t = var.type;
-      if (!t->isScalar() || t->isClock() || t->isReal() || t->isFloat())
+      // A uint64's literal would lose the unsigned reading of its bits.
+      if (!t->isScalar() || t->isClock() || t->isReal() || t->isFloat() ||
+          t->isUnsigned64())
         continue;
       if (uses.writers[v].empty()) {
         if (auto x = net::initialValue(var)) {

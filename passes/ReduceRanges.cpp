@@ -62,6 +62,10 @@ public:
   }
 
   Interval eval(const Expr *e) const {
+    // A uint64 holds bit patterns its operators read unsigned: signed
+    // intervals say nothing about them.
+    if (e->type && e->type->isUnsigned64())
+      return {-kBig, kBig};
     switch (e->getKind()) {
     case ExprKind::IntLit: {
       int64_t v = cast<IntLit>(e)->value;
@@ -142,7 +146,8 @@ public:
 
 bool candidate(const Var &v) {
   const Type *t = v.type;
-  return t->kind == TypeKind::Range || t->kind == TypeKind::Int;
+  return t->kind == TypeKind::Range ||
+         (t->kind == TypeKind::Int && !t->isUnsigned64());
 }
 
 class ReduceRangesPass : public Pass {

@@ -38,9 +38,6 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = scalarNetType(t, tt);
     break;
   case PTypeKind::Int:
-    if (t->width == 64 && !t->isSigned && !t->isSubrange)
-      refuse(at, "64-bit unsigned type " + t->str() + " of " + what +
-                     " is not supported (values are held in 64 signed bits)");
     r = scalarNetType(t, tt);
     break;
   case PTypeKind::Real:
@@ -99,8 +96,6 @@ const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
   case PTypeKind::Int:
     if (t->isSubrange)
       return tt.getRange(t->lo, t->hi);
-    if (t->width == 64 && !t->isSigned)
-      return nullptr;
     return tt.getInt(t->width, t->isSigned, net::Overflow::Wrap);
   case PTypeKind::AnyInt:
     return tt.getInt(64, true, net::Overflow::Wrap);

@@ -275,6 +275,14 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       l = coerce(l, e->operands[0]->type, real, e->loc);
       r = coerce(r, e->operands[1]->type, real, e->loc);
     }
+    if (e->op != Op::Pow) {
+      // Next to a ULINT or LWORD, the other operand becomes one.
+      std::vector<NExpr *> both{l, r};
+      bool any = false;
+      unifyUnsigned64(both, {e->operands[0], e->operands[1]}, e->loc, any);
+      l = both[0];
+      r = both[1];
+    }
     if (e->op == Op::Pow) {
       const PType *in = baseOf(e->type);
       return b.call(net::Builtin::Expt,
@@ -368,10 +376,29 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
       return v;
     return b.binary(net::BinaryOp::Ne, v, b.intLit(0, at), at);
   }
-  if (from->kind == PTypeKind::Bool && to->kind == PTypeKind::Int)
-    return b.cond(v, b.intLit(1, at), b.intLit(0, at), at);
-  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Int)
+  auto isU64 = [](const PType *t) {
+    return t->kind == PTypeKind::Int && t->width == 64 && !t->isSigned;
+  };
+  if (from->kind == PTypeKind::Bool && to->kind == PTypeKind::Int) {
+    NExpr *bit = b.cond(v, b.intLit(1, at), b.intLit(0, at), at);
+    return isU64(to) ? asUnsigned64(bit, elementaryType("USINT"), at) : bit;
+  }
+  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Int) {
+    if (isU64(from) && isU64(to))
+      return v;
+    if (isU64(to))
+      return asUnsigned64(v, from, at);
+    if (isU64(from))
+      return fromUnsigned64(v, to, at);
     return wrapTo(v, to, {from->lo, from->hi, true}, at);
+  }
+  if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int && isU64(to))
+    return asUnsigned64(convert(v, from, elementaryType("LINT"), at),
+                        elementaryType("LINT"), at);
+  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time &&
+      isU64(from))
+    return convert(fromUnsigned64(v, elementaryType("LINT"), at),
+                   elementaryType("LINT"), to, at);
   if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int) {
     // TIME converts to milliseconds.
     if (tickNs % 1000000 != 0)
@@ -411,6 +438,15 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
     if (const PType *real = commonReal(values))
       for (size_t i = first; i < a.size(); ++i)
         a[i] = coerce(a[i], src[i]->type, real, at);
+    bool shifts = info.fn == StdFn::Shl || info.fn == StdFn::Shr ||
+                  info.fn == StdFn::Rol || info.fn == StdFn::Ror;
+    if (!shifts) {
+      std::vector<NExpr *> tail(a.begin() + std::min(first, a.size()), a.end());
+      bool unused = false;
+      unifyUnsigned64(tail, values, at, unused);
+      std::copy(tail.begin(), tail.end(),
+                a.begin() + std::min(first, a.size()));
+    }
   }
   auto chain = [&](net::BinaryOp op, size_t from, bool wrap) {
     NExpr *r = a[from];

@@ -22,10 +22,75 @@ const net::Type *Lowering::floatType(const PType *t) {
   return design.types.getFloat(t->width == 32 ? 32 : 64);
 }
 
+static bool isUnsigned64(const PType *t) {
+  return t && t->kind == PTypeKind::Int && t->width == 64 && !t->isSigned;
+}
+
+NExpr *Lowering::asUnsigned64(NExpr *v, const PType *from, SMLoc at) {
+  const net::Type *u64 = design.types.getInt(64, false, net::Overflow::Wrap);
+  if (llvm::isa<net::IntLit>(v) && llvm::cast<net::IntLit>(v)->value >= 0)
+    return v; // NetIR reads a constant as the uint64 it denotes
+  if (!from->isSigned && from->kind == PTypeKind::Int)
+    return b.convert(u64, v, at);
+  // Two's complement, as IEC implementations convert: a negative value
+  // wraps modulo 2^64. 2^63 is added as INT64_MAX, then 1, so that no
+  // step leaves its domain.
+  auto addHalf = [&](NExpr *x) {
+    return b.binary(
+        net::BinaryOp::Add,
+        b.binary(net::BinaryOp::Add, x, b.intLit(INT64_MAX, at), at),
+        b.intLit(1, at), at);
+  };
+  NExpr *shifted = addHalf(b.convert(u64, addHalf(v), at));
+  return b.cond(b.binary(net::BinaryOp::Lt, v, b.intLit(0, at), at), shifted,
+                b.convert(u64, v, at), at);
+}
+
+void Lowering::unifyUnsigned64(std::vector<NExpr *> &values,
+                               llvm::ArrayRef<Expr *> sources, SMLoc at,
+                               bool &any) {
+  any = llvm::any_of(sources, [](Expr *s) {
+    return s->type && isUnsigned64(baseOf(s->type));
+  });
+  if (!any)
+    return;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const PType *t = sources[i]->type ? baseOf(sources[i]->type) : nullptr;
+    if (t && (t->kind == PTypeKind::Int || t->kind == PTypeKind::AnyInt) &&
+        !isUnsigned64(t))
+      values[i] = asUnsigned64(values[i], t, at);
+  }
+}
+
+NExpr *Lowering::fromUnsigned64(NExpr *v, const PType *to, SMLoc at) {
+  const net::Type *i64 = design.types.getInt(64, true, net::Overflow::Wrap);
+  if (to->width < 64) {
+    // The low bits, then the target's own wrap (two's complement).
+    NExpr *low = b.binary(net::BinaryOp::BitAnd, v,
+                          b.intLit((int64_t(1) << to->width) - 1, at), at);
+    return wrapTo(b.convert(i64, low, at), to, {0, 0, false}, at);
+  }
+  // LINT: the same 64 bits, read signed.
+  NExpr *high = b.binary(net::BinaryOp::Eq,
+                         b.binary(net::BinaryOp::Shr, v, b.intLit(63, at), at),
+                         b.intLit(0, at), at);
+  NExpr *low = b.convert(
+      i64, b.binary(net::BinaryOp::BitAnd, v, b.intLit(INT64_MAX, at), at), at);
+  NExpr *negative =
+      b.binary(net::BinaryOp::Sub,
+               b.binary(net::BinaryOp::Sub, low, b.intLit(INT64_MAX, at), at),
+               b.intLit(1, at), at);
+  return b.cond(high, b.convert(i64, v, at), negative, at);
+}
+
 NExpr *Lowering::coerce(NExpr *v, const PType *from, const PType *to,
                         SMLoc at) {
   from = from ? baseOf(from) : nullptr;
   to = to ? baseOf(to) : nullptr;
+  if (isUnsigned64(to) && from &&
+      (from->kind == PTypeKind::Int || from->kind == PTypeKind::AnyInt) &&
+      !isUnsigned64(from))
+    return asUnsigned64(v, from, at);
   if (!isReal(to) || !from || from == anyRealType())
     return v; // an untyped literal adopts the type in NetIR
   if (isReal(from))
@@ -96,7 +161,7 @@ NExpr *Lowering::convertReal(NExpr *v, const PType *from, const PType *to,
   } else if (isReal(from)) {
     if (to->kind == PTypeKind::Bool)
       return b.binary(net::BinaryOp::Ne, v, b.realLit(0.0, at), at);
-    if (to->kind == PTypeKind::Int && !(to->width == 64 && !to->isSigned))
+    if (to->kind == PTypeKind::Int)
       // Rounded half away from zero; a value the target cannot hold is a
       // runtime error (CODESYS and TwinCAT call the result undefined).
       return b.convert(

@@ -76,8 +76,6 @@ NExpr *Lowering::convertString(NExpr *v, const PType *from, const PType *to,
   case PTypeKind::Bool:
     return b.convert(design.types.getBool(), v, at);
   case PTypeKind::Int:
-    if (to->width == 64 && !to->isSigned)
-      refused();
     // The text must spell a value of the target type; anything else is a
     // runtime error (docs/netir.md, "Strings").
     return b.convert(

@@ -97,8 +97,8 @@ bool lowerEventDriven(Unit &unit, std::vector<EventDrivenBlock> &blocks,
 std::string formatDuration(int64_t ns);
 
 /// The NetIR type of an elementary value as the lowering declares it
-/// (TIME in ticks, REAL as real32, STRING[n] as string[n]); null for the
-/// types netlift does not model (64-bit unsigned, dates, CHAR).
+/// (TIME in ticks, REAL as real32, STRING[n] as string[n], ULINT and LWORD
+/// as uint64); null for the types netlift does not model (dates, CHAR).
 const net::Type *scalarNetType(const PType *t, net::TypeTable &types);
 
 /// Lowers the checked unit into `design`. Returns false after reporting.

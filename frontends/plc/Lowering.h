@@ -191,6 +191,17 @@ private:
   const PType *commonReal(llvm::ArrayRef<Expr *> operands);
   NExpr *realMath(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
   NExpr *convertReal(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  /// An integer of PLC type `from` as a NetIR uint64 (a negative value
+  /// wraps modulo 2^64).
+  NExpr *asUnsigned64(NExpr *v, const PType *from, SMLoc at);
+  /// A NetIR uint64 as the integer type `to` (its low bits, two's
+  /// complement).
+  NExpr *fromUnsigned64(NExpr *v, const PType *to, SMLoc at);
+  /// Operands computed together (`a + b`, MAX(a, b, c)): when one is a
+  /// ULINT or LWORD, the other integers become uint64 (`any` says whether
+  /// one was).
+  void unifyUnsigned64(std::vector<NExpr *> &values,
+                       llvm::ArrayRef<Expr *> sources, SMLoc at, bool &any);
   // STRING and WSTRING (LowerStrings.cpp).
   const net::Type *stringType(const PType *t, SMLoc at, StringRef what);
   NExpr *stringLiteral(Expr *literal);

@@ -12,6 +12,8 @@ const char *net::executedOnlyData(const Type *t) {
     return "floating point";
   case TypeKind::String:
     return "a string";
+  case TypeKind::Int:
+    return t->isUnsigned64() ? "64-bit unsigned arithmetic" : nullptr;
   case TypeKind::Array:
     return executedOnlyData(t->elem);
   case TypeKind::Record:

@@ -32,8 +32,8 @@ struct ExecutedOnly {
 std::optional<ExecutedOnly> findExecutedOnly(const Module &m);
 
 /// What in a value of type `t` (or any element or field of it) only
-/// execution gives a meaning to ("floating point", "a string"); null if
-/// nothing.
+/// execution gives a meaning to ("floating point", "a string", "64-bit
+/// unsigned arithmetic"); null if nothing.
 const char *executedOnlyData(const Type *t);
 
 } // namespace netlift::net

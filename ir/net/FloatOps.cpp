@@ -173,11 +173,36 @@ ConvertError net::truncToInteger(unsigned width, int64_t bits, int64_t &out) {
 
 ConvertError net::convertValue(const Type *from, const Type *to, int64_t v,
                                int64_t &out) {
+  bool fromU64 = from->isUnsigned64();
   if (to->isFloat()) {
     if (from->isFloat())
       out = floatBits(to->width, floatValue(from->width, v));
+    else if (fromU64) // the nearest value, ties to even
+      out = to->width == 32 ? bitsOf(float(uint64_t(v)))
+                            : bitsOf(double(uint64_t(v)));
     else // integer to float: the nearest value, ties to even
       out = to->width == 32 ? bitsOf(float(v)) : bitsOf(double(v));
+    return ConvertError::None;
+  }
+  if (to->isUnsigned64()) {
+    if (from->isFloat()) {
+      double d = std::round(floatValue(from->width, v));
+      if (std::isnan(d))
+        return ConvertError::NotANumber;
+      if (!(d >= 0 && d < 18446744073709551616.0))
+        return ConvertError::OutOfRange;
+      out = int64_t(uint64_t(d));
+      return ConvertError::None;
+    }
+    if (!fromU64 && v < 0)
+      return ConvertError::OutOfRange;
+    out = v;
+    return ConvertError::None;
+  }
+  if (fromU64) {
+    if (v < 0 || v > to->hi) // 2^63 and above, or beyond the target
+      return ConvertError::OutOfRange;
+    out = v;
     return ConvertError::None;
   }
   if (from->isFloat()) {
@@ -197,6 +222,8 @@ ConvertError net::convertValue(const Type *from, const Type *to, int64_t v,
 }
 
 std::string net::formatScalar(const Type *t, int64_t v) {
+  if (t && t->isUnsigned64())
+    return std::to_string(uint64_t(v));
   if (!t || !t->isFloat())
     return std::to_string(v);
   if (t->width == 32) {

@@ -478,7 +478,7 @@ const Type *Parser::conversionTarget(StringRef word) {
   unsigned width;
   if ((isSigned || word.startswith("uint")) &&
       !word.drop_front(isSigned ? 3 : 4).getAsInteger(10, width) &&
-      (width == 8 || width == 16 || width == 32 || (width == 64 && isSigned)))
+      (width == 8 || width == 16 || width == 32 || width == 64))
     return design.types.getInt(width, isSigned, Overflow::Error);
   return nullptr;
 }

@@ -267,9 +267,6 @@ bool Parser::parseType(const Type *&type, bool allowReal) {
       if (width != 8 && width != 16 && width != 32 && width != 64)
         return errorHere("unsupported integer width in '" + word +
                          "' (8, 16, 32 or 64)");
-      if (!isSigned && width == 64)
-        return errorHere("'uint64' is not supported (values are held in 64 "
-                         "signed bits); use a range");
       consume();
       Overflow ov = Overflow::Error;
       if (tok.isIdent("wrap")) {

@@ -20,8 +20,82 @@ std::string net::opErrorMessage(OpError err, const Expr *e, int64_t rhs) {
   return "";
 }
 
+/// The uint64 type an operation on `a` and `b` computes in, if any.
+static const Type *unsigned64(const Type *a, const Type *b) {
+  if (a && a->isUnsigned64())
+    return a;
+  if (b && b->isUnsigned64())
+    return b;
+  return nullptr;
+}
+
+/// `x op y` in unsigned 64-bit arithmetic: comparisons, division and
+/// shifts unsigned; + - * modulo 2^64, an overflow an error when the type
+/// says `error`.
+static OpError applyUnsigned64(BinaryOp op, const Type *t, uint64_t x,
+                               uint64_t y, int64_t &out) {
+  uint64_t r = 0;
+  bool overflow = false;
+  switch (op) {
+  case BinaryOp::Lt:
+    out = x < y;
+    return OpError::None;
+  case BinaryOp::Le:
+    out = x <= y;
+    return OpError::None;
+  case BinaryOp::Gt:
+    out = x > y;
+    return OpError::None;
+  case BinaryOp::Ge:
+    out = x >= y;
+    return OpError::None;
+  case BinaryOp::Shr:
+    if (y > 63)
+      return OpError::BadShift;
+    out = int64_t(x >> y);
+    return OpError::None;
+  case BinaryOp::Add:
+    overflow = __builtin_add_overflow(x, y, &r);
+    break;
+  case BinaryOp::Sub:
+    overflow = __builtin_sub_overflow(x, y, &r);
+    break;
+  case BinaryOp::Mul:
+    overflow = __builtin_mul_overflow(x, y, &r);
+    break;
+  case BinaryOp::Div:
+  case BinaryOp::Mod:
+    if (y == 0)
+      return OpError::DivisionByZero;
+    r = op == BinaryOp::Div ? x / y : x % y;
+    break;
+  default:
+    return OpError::None; // not reached: the caller computes the rest
+  }
+  if (overflow && t->overflow == Overflow::Error)
+    return OpError::Overflow;
+  out = int64_t(r);
+  return OpError::None;
+}
+
 OpError net::applyBinary(const BinaryExpr *b, int64_t x, int64_t y,
                          int64_t &out) {
+  if (const Type *u = unsigned64(b->lhs->type, b->rhs->type))
+    switch (b->op) {
+    case BinaryOp::Lt:
+    case BinaryOp::Le:
+    case BinaryOp::Gt:
+    case BinaryOp::Ge:
+    case BinaryOp::Shr:
+    case BinaryOp::Add:
+    case BinaryOp::Sub:
+    case BinaryOp::Mul:
+    case BinaryOp::Div:
+    case BinaryOp::Mod:
+      return applyUnsigned64(b->op, u, uint64_t(x), uint64_t(y), out);
+    default:
+      break; // bitwise and equality: the same on bit patterns
+    }
   switch (b->op) {
   case BinaryOp::And:
     out = x && y;
@@ -107,6 +181,13 @@ OpError net::applyUnary(const UnaryExpr *u, int64_t a, int64_t &out) {
 
 OpError net::applyBuiltin(const CallExpr *c, int64_t a, int64_t b,
                           int64_t &out) {
+  if (c->type && c->type->isUnsigned64()) {
+    uint64_t x = uint64_t(a), y = uint64_t(b);
+    out = int64_t(c->fn == Builtin::Min   ? std::min(x, y)
+                  : c->fn == Builtin::Max ? std::max(x, y)
+                                          : x); // abs
+    return OpError::None;
+  }
   switch (c->fn) {
   case Builtin::Abs:
     if (a == INT64_MIN)

@@ -110,9 +110,8 @@ bool net::compareStrings(BinaryOp op, const StringValue &a,
 }
 
 StringValue net::scalarToString(const Type *from, int64_t v) {
-  std::string text = from->isBool()    ? std::string(v ? "TRUE" : "FALSE")
-                     : from->isFloat() ? formatScalar(from, v)
-                                       : std::to_string(v);
+  std::string text = from->isBool() ? std::string(v ? "TRUE" : "FALSE")
+                                    : formatScalar(from, v);
   return StringValue(text.begin(), text.end());
 }
 
@@ -178,6 +177,12 @@ ConvertError net::stringToScalar(const StringValue &s, const Type *to,
   if (to->isFloat()) {
     double d = double(mag);
     out = floatBits(to->width, neg ? -d : d);
+    return ConvertError::None;
+  }
+  if (to->isUnsigned64()) {
+    if (neg && mag != 0)
+      return ConvertError::OutOfRange;
+    out = int64_t(mag);
     return ConvertError::None;
   }
   if (mag > uint64_t(INT64_MAX) + (neg ? 1 : 0))

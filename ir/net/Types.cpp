@@ -116,6 +116,10 @@ std::string Type::str() const {
 bool netlift::net::isAssignable(const Type *to, const Type *from) {
   if (to == from)
     return true;
+  // A uint64 holds bit patterns: it takes a uint64 or a constant (checked
+  // by the verifier), other integers only through a conversion.
+  if (to->isUnsigned64() || from->isUnsigned64())
+    return to->isUnsigned64() && from->isUnsigned64();
   if (to->isInteger() && from->isInteger())
     return true;
   if (to->isReal() && (from->isReal() || from->isInteger()))
@@ -187,9 +191,12 @@ const Type *TypeTable::getInt(unsigned width, bool isSigned, Overflow ov) {
   if (isSigned) {
     t->lo = width == 64 ? INT64_MIN : -(int64_t(1) << (width - 1));
     t->hi = width == 64 ? INT64_MAX : (int64_t(1) << (width - 1)) - 1;
+  } else if (width == 64) {
+    t->lo = INT64_MIN; // bit patterns: 2^63.. read as negative int64
+    t->hi = INT64_MAX;
   } else {
     t->lo = 0;
-    t->hi = width >= 63 ? INT64_MAX : (int64_t(1) << width) - 1;
+    t->hi = (int64_t(1) << width) - 1;
   }
   return intern(std::move(t));
 }

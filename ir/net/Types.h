@@ -94,6 +94,11 @@ public:
     return kind != TypeKind::Array && kind != TypeKind::Record &&
            kind != TypeKind::String;
   }
+  /// `uint64`: held as its bit pattern (lo..hi is all of int64), so its
+  /// operators compute in unsigned 64-bit arithmetic (ScalarOps.h).
+  bool isUnsigned64() const {
+    return kind == TypeKind::Int && width == 64 && !isSigned;
+  }
   /// Not hybrid: a value the semantics engine holds in a state.
   bool isFinite() const { return kind != TypeKind::Real; }
   /// Number of scalar slots in the flattened layout.

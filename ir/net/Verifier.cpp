@@ -97,6 +97,12 @@ private:
   /// one is not a string or they mix string and wstring.
   const Type *commonString(Expr *e, Expr *a, Expr *b, StringRef op);
   const Type *checkStringCall(CallExpr *c);
+  /// A uint64 operand computes in unsigned arithmetic: the other operand
+  /// must be a uint64 too or a constant in its range. Returns the uint64
+  /// type; null with an error when they mix.
+  const Type *commonUnsigned64(Expr *e, Expr *a, Expr *b, StringRef op);
+  /// Can `value` be written to a uint64 (or read from one into `to`)?
+  bool fitsUnsigned64(const Type *to, Expr *value);
   /// Is this an operand pair computed in floating point?
   static bool involvesFloat(const Type *a, const Type *b) {
     return a->isFloat() || b->isFloat();
@@ -210,7 +216,8 @@ bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
     return false;
   widen(init, type);
   t = init->type;
-  if (!isAssignable(type, t)) {
+  if (!isAssignable(type, t) &&
+      !(type->isUnsigned64() && fitsUnsigned64(type, init))) {
     error(init->loc, "initial value of " + what + " has type '" + typeName(t) +
                          "', expected '" + typeName(type) + "'");
     return false;
@@ -611,6 +618,10 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       }
       return e->type = t;
     case UnaryOp::Neg:
+      if (t->isUnsigned64()) {
+        error(e->loc, "'-' of a uint64; subtract it from a uint64 instead");
+        return nullptr;
+      }
       if (!isNumeric(t)) {
         error(e->loc, "'-' needs a number, not '" + typeName(t) + "'");
         return nullptr;
@@ -623,7 +634,7 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
         error(e->loc, "'~' needs an integer, not '" + typeName(t) + "'");
         return nullptr;
       }
-      return e->type = types.getInteger();
+      return e->type = t->isUnsigned64() ? t : types.getInteger();
     }
     return nullptr;
   }
@@ -663,6 +674,18 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
     };
     bool inFloat = involvesFloat(a, b) || (a->isAnyReal() && b->isAnyReal() &&
                                            ctx != Ctx::Constant && !hybrid);
+    bool shift = bin->op == BinaryOp::Shl || bin->op == BinaryOp::Shr;
+    if ((a->isUnsigned64() || (b->isUnsigned64() && !shift)) &&
+        a->isInteger() && b->isInteger() && !countsPlaces) {
+      const Type *u = shift ? a : commonUnsigned64(e, bin->lhs, bin->rhs, op);
+      if (!u)
+        return nullptr;
+      bool logical = bin->op == BinaryOp::And || bin->op == BinaryOp::Or ||
+                     bin->op == BinaryOp::Xor;
+      if (logical)
+        return mismatch("Boolean operands");
+      return e->type = isComparison(bin->op) ? types.getBool() : u;
+    }
     switch (bin->op) {
     case BinaryOp::Or:
     case BinaryOp::Xor:
@@ -731,6 +754,8 @@ const Type *ModuleVerifier::check(Expr *e, Ctx ctx) {
       return nullptr;
     if (a->isString() || b->isString())
       return e->type = commonString(e, c->thenExpr, c->elseExpr, "?:");
+    if (a->isUnsigned64() || b->isUnsigned64())
+      return e->type = commonUnsigned64(e, c->thenExpr, c->elseExpr, "?:");
     if (!isComparable(a, b)) {
       error(e->loc, "the branches of '?:' have types '" + typeName(a) +
                         "' and '" + typeName(b) + "'");
@@ -826,6 +851,28 @@ const Type *ModuleVerifier::commonString(Expr *e, Expr *a, Expr *b,
     return nullptr;
   }
   return types.getString(std::max(ta->maxLen, tb->maxLen), ta->isWideString());
+}
+
+bool ModuleVerifier::fitsUnsigned64(const Type *to, Expr *value) {
+  const Type *from = value->type;
+  if (to->isUnsigned64() == from->isUnsigned64())
+    return true;
+  int64_t v;
+  // A constant may go either way when the value fits.
+  return to->isUnsigned64() && evalConstInt(value, v) && v >= 0;
+}
+
+const Type *ModuleVerifier::commonUnsigned64(Expr *e, Expr *a, Expr *b,
+                                             StringRef op) {
+  const Type *u = a->type->isUnsigned64() ? a->type : b->type;
+  for (Expr *x : {a, b})
+    if (!fitsUnsigned64(u, x)) {
+      error(e->loc, "'" + op + "' mixes '" + typeName(u) + "' and '" +
+                        typeName(x->type) + "'; convert one (uint64(x) or " +
+                        "int64(x))");
+      return nullptr;
+    }
+  return u;
 }
 
 const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
@@ -929,6 +976,12 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
   case Builtin::Min:
   case Builtin::Max:
   case Builtin::Abs:
+    if (x->type->isUnsigned64() ||
+        (c->args.size() == 2 && c->args[1]->type->isUnsigned64()))
+      return c->type = c->args.size() == 1
+                           ? x->type
+                           : commonUnsigned64(c, c->args[0], c->args[1],
+                                              spelling(c->fn));
     if (anyFloat) {
       return c->type =
                  c->args.size() == 1
@@ -1012,7 +1065,8 @@ void ModuleVerifier::checkStmt(Stmt *s) {
       return;
     widen(a->value, tt);
     vt = a->value->type;
-    if (!isAssignable(tt, vt)) {
+    if (!isAssignable(tt, vt) &&
+        !(tt->isUnsigned64() && fitsUnsigned64(tt, a->value))) {
       error(a->value->loc, "cannot assign a value of type '" + typeName(vt) +
                                "' to '" + exprToString(a->target) +
                                "' of type '" + typeName(tt) + "'");
