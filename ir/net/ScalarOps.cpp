@@ -20,6 +20,21 @@ std::string net::opErrorMessage(OpError err, const Expr *e, int64_t rhs) {
   return "";
 }
 
+/// `x op y` for `<`, `<=`, `>`, `>=`, the operands read as T (int64_t or
+/// uint64_t).
+template <typename T> static int64_t ordered(BinaryOp op, T x, T y) {
+  switch (op) {
+  case BinaryOp::Lt:
+    return x < y;
+  case BinaryOp::Le:
+    return x <= y;
+  case BinaryOp::Gt:
+    return x > y;
+  default:
+    return x >= y;
+  }
+}
+
 /// The uint64 type an operation on `a` and `b` computes in, if any.
 static const Type *unsigned64(const Type *a, const Type *b) {
   if (a && a->isUnsigned64())
@@ -38,16 +53,10 @@ static OpError applyUnsigned64(BinaryOp op, const Type *t, uint64_t x,
   bool overflow = false;
   switch (op) {
   case BinaryOp::Lt:
-    out = x < y;
-    return OpError::None;
   case BinaryOp::Le:
-    out = x <= y;
-    return OpError::None;
   case BinaryOp::Gt:
-    out = x > y;
-    return OpError::None;
   case BinaryOp::Ge:
-    out = x >= y;
+    out = ordered(op, x, y);
     return OpError::None;
   case BinaryOp::Shr:
     if (y > 63)
@@ -113,16 +122,10 @@ OpError net::applyBinary(const BinaryExpr *b, int64_t x, int64_t y,
     out = x != y;
     return OpError::None;
   case BinaryOp::Lt:
-    out = x < y;
-    return OpError::None;
   case BinaryOp::Le:
-    out = x <= y;
-    return OpError::None;
   case BinaryOp::Gt:
-    out = x > y;
-    return OpError::None;
   case BinaryOp::Ge:
-    out = x >= y;
+    out = ordered(b->op, x, y);
     return OpError::None;
   case BinaryOp::BitOr:
     out = x | y;

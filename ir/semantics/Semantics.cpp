@@ -1051,25 +1051,26 @@ std::vector<int64_t> &Semantics::predicateValuation(const uint64_t *state) {
   return v;
 }
 
+/// `f()`, or `fallback` with `err` set if it fails with an EvalError.
+template <typename F, typename T>
+static T orReport(F f, T fallback, RuntimeError &err) {
+  try {
+    return f();
+  } catch (const EvalError &x) {
+    err = {x.message, x.loc};
+    return fallback;
+  }
+}
+
 int64_t Semantics::evalInState(const Expr *e, const uint64_t *state,
                                RuntimeError &err) {
   std::vector<int64_t> &v = predicateValuation(state);
-  try {
-    return impl->eval(e, v);
-  } catch (const EvalError &x) {
-    err = {x.message, x.loc};
-    return 0;
-  }
+  return orReport([&] { return impl->eval(e, v); }, int64_t(0), err);
 }
 
 net::StringValue Semantics::evalStringInState(const Expr *e,
                                               const uint64_t *state,
                                               RuntimeError &err) {
   std::vector<int64_t> &v = predicateValuation(state);
-  try {
-    return impl->evalStr(e, v);
-  } catch (const EvalError &x) {
-    err = {x.message, x.loc};
-    return {};
-  }
+  return orReport([&] { return impl->evalStr(e, v); }, net::StringValue(), err);
 }
