@@ -3,6 +3,7 @@
 
 #include "ir/net/Printer.h"
 #include "ir/net/ScalarOps.h"
+#include "ir/net/StringOps.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -106,16 +107,7 @@ public:
           return fail("bad \\u escape");
         i += 4;
         // Names are ASCII in practice; keep others as UTF-8.
-        if (code < 0x80) {
-          out += char(code);
-        } else if (code < 0x800) {
-          out += char(0xC0 | (code >> 6));
-          out += char(0x80 | (code & 0x3F));
-        } else {
-          out += char(0xE0 | (code >> 12));
-          out += char(0x80 | ((code >> 6) & 0x3F));
-          out += char(0x80 | (code & 0x3F));
-        }
+        net::appendUtf8(out, code);
         break;
       }
       default:

@@ -208,9 +208,16 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
                  e->loc);
   }
   if (t->kind == PTypeKind::String) {
-    if (e->kind != ExprKind::StringLit)
-      refuse(e->loc, "initial value of '" + v->name + "' must be a literal");
-    return stringLiteral(e);
+    // A literal, or a CONSTANT whose initial value is one.
+    Expr *lit = e;
+    while (lit->kind == ExprKind::Name && lit->var && lit->var->constant &&
+           lit->var->typeSyntax && lit->var->typeSyntax->init &&
+           lit->var->typeSyntax->init->kind == Initializer::Value)
+      lit = lit->var->typeSyntax->init->value;
+    if (lit->kind != ExprKind::StringLit)
+      refuse(e->loc, "initial value of '" + v->name +
+                         "' must be a string literal or a CONSTANT");
+    return stringLiteral(lit);
   }
   if (t->kind == PTypeKind::Real) {
     Sink pre;

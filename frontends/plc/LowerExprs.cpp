@@ -278,8 +278,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     if (e->op != Op::Pow) {
       // Next to a ULINT or LWORD, the other operand becomes one.
       std::vector<NExpr *> both{l, r};
-      bool any = false;
-      unifyUnsigned64(both, {e->operands[0], e->operands[1]}, e->loc, any);
+      unifyUnsigned64(both, {e->operands[0], e->operands[1]}, e->loc);
       l = both[0];
       r = both[1];
     }
@@ -442,8 +441,7 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
                   info.fn == StdFn::Rol || info.fn == StdFn::Ror;
     if (!shifts) {
       std::vector<NExpr *> tail(a.begin() + std::min(first, a.size()), a.end());
-      bool unused = false;
-      unifyUnsigned64(tail, values, at, unused);
+      unifyUnsigned64(tail, values, at);
       std::copy(tail.begin(), tail.end(),
                 a.begin() + std::min(first, a.size()));
     }

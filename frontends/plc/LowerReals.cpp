@@ -10,8 +10,6 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
 
-#include "llvm/ADT/StringSwitch.h"
-
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -47,12 +45,10 @@ NExpr *Lowering::asUnsigned64(NExpr *v, const PType *from, SMLoc at) {
 }
 
 void Lowering::unifyUnsigned64(std::vector<NExpr *> &values,
-                               llvm::ArrayRef<Expr *> sources, SMLoc at,
-                               bool &any) {
-  any = llvm::any_of(sources, [](Expr *s) {
-    return s->type && isUnsigned64(baseOf(s->type));
-  });
-  if (!any)
+                               llvm::ArrayRef<Expr *> sources, SMLoc at) {
+  if (llvm::none_of(sources, [](Expr *s) {
+        return s->type && isUnsigned64(baseOf(s->type));
+      }))
     return;
   for (size_t i = 0; i < values.size(); ++i) {
     const PType *t = sources[i]->type ? baseOf(sources[i]->type) : nullptr;
@@ -120,21 +116,10 @@ const PType *Lowering::commonReal(llvm::ArrayRef<Expr *> operands) {
 }
 
 NExpr *Lowering::realMath(Expr *e, llvm::ArrayRef<NExpr *> args, SMLoc at) {
-  std::string up = StringRef(e->name).upper();
-  auto fn = llvm::StringSwitch<std::optional<net::Builtin>>(up)
-                .Case("SQRT", net::Builtin::Sqrt)
-                .Case("LN", net::Builtin::Ln)
-                .Case("LOG", net::Builtin::Log)
-                .Case("EXP", net::Builtin::Exp)
-                .Case("SIN", net::Builtin::Sin)
-                .Case("COS", net::Builtin::Cos)
-                .Case("TAN", net::Builtin::Tan)
-                .Case("ASIN", net::Builtin::Asin)
-                .Case("ACOS", net::Builtin::Acos)
-                .Case("ATAN", net::Builtin::Atan)
-                .Case("EXPT", net::Builtin::Expt)
-                .Case("TRUNC", net::Builtin::Trunc)
-                .Default(std::nullopt);
+  // NetIR's float built-ins are IEC's functions, spelled in lower case
+  // (ATAN2 has none).
+  std::optional<net::Builtin> fn =
+      net::builtinNamed(StringRef(e->name).lower());
   if (!fn)
     refuse(at, "'" + e->name + "' is not a standard function netlift models");
   // The operands in the float type the function computes in.

@@ -10,8 +10,6 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
 
-#include "llvm/ADT/StringSwitch.h"
-
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -35,18 +33,9 @@ NExpr *Lowering::stringLiteral(Expr *e) {
 
 NExpr *Lowering::stringFunction(Expr *e, llvm::ArrayRef<NExpr *> args,
                                 SMLoc at) {
-  std::string up = StringRef(e->name).upper();
-  auto fn = llvm::StringSwitch<std::optional<net::Builtin>>(up)
-                .Case("LEN", net::Builtin::Len)
-                .Case("LEFT", net::Builtin::Left)
-                .Case("RIGHT", net::Builtin::Right)
-                .Case("MID", net::Builtin::Mid)
-                .Case("CONCAT", net::Builtin::Concat)
-                .Case("INSERT", net::Builtin::Insert)
-                .Case("DELETE", net::Builtin::Delete)
-                .Case("REPLACE", net::Builtin::Replace)
-                .Case("FIND", net::Builtin::Find)
-                .Default(std::nullopt);
+  // NetIR's string built-ins are IEC's functions, spelled in lower case.
+  std::optional<net::Builtin> fn =
+      net::builtinNamed(StringRef(e->name).lower());
   if (!fn)
     refuse(at, "'" + e->name + "' is not a standard function netlift models");
   if (*fn != net::Builtin::Concat)

@@ -198,10 +198,9 @@ private:
   /// complement).
   NExpr *fromUnsigned64(NExpr *v, const PType *to, SMLoc at);
   /// Operands computed together (`a + b`, MAX(a, b, c)): when one is a
-  /// ULINT or LWORD, the other integers become uint64 (`any` says whether
-  /// one was).
+  /// ULINT or LWORD, the other integers become uint64.
   void unifyUnsigned64(std::vector<NExpr *> &values,
-                       llvm::ArrayRef<Expr *> sources, SMLoc at, bool &any);
+                       llvm::ArrayRef<Expr *> sources, SMLoc at);
   // STRING and WSTRING (LowerStrings.cpp).
   const net::Type *stringType(const PType *t, SMLoc at, StringRef what);
   NExpr *stringLiteral(Expr *literal);

@@ -194,21 +194,23 @@ ConvertError net::stringToScalar(const StringValue &s, const Type *to,
   return ConvertError::None;
 }
 
+void net::appendUtf8(std::string &out, uint32_t u) {
+  if (u < 0x80) {
+    out += char(u);
+  } else if (u < 0x800) {
+    out += char(0xc0 | (u >> 6));
+    out += char(0x80 | (u & 0x3f));
+  } else {
+    out += char(0xe0 | (u >> 12));
+    out += char(0x80 | ((u >> 6) & 0x3f));
+    out += char(0x80 | (u & 0x3f));
+  }
+}
+
 std::string net::toUtf8(const StringValue &s) {
   std::string out;
-  for (char16_t c : s) {
-    uint32_t u = c >= 0xd800 && c < 0xe000 ? 0xfffd : c;
-    if (u < 0x80) {
-      out += char(u);
-    } else if (u < 0x800) {
-      out += char(0xc0 | (u >> 6));
-      out += char(0x80 | (u & 0x3f));
-    } else {
-      out += char(0xe0 | (u >> 12));
-      out += char(0x80 | ((u >> 6) & 0x3f));
-      out += char(0x80 | (u & 0x3f));
-    }
-  }
+  for (char16_t c : s)
+    appendUtf8(out, c >= 0xd800 && c < 0xe000 ? 0xfffd : c);
   return out;
 }
 

@@ -52,6 +52,9 @@ ConvertError stringToScalar(const StringValue &s, const Type *to, int64_t &out);
 /// The characters as UTF-8 (a lone surrogate code unit as U+FFFD), for
 /// JSON and CSV.
 std::string toUtf8(const StringValue &s);
+/// Appends the UTF-8 encoding of a code point of the Basic Multilingual
+/// Plane (below U+10000).
+void appendUtf8(std::string &out, uint32_t code);
 /// NetIR text of a string literal, quotes included: `\"`, `\\`, `\n`, `\t`
 /// escaped, other code units outside printable ASCII as `\xHH` or `\uHHHH`.
 std::string formatStringLiteral(llvm::ArrayRef<char16_t> chars);

@@ -103,6 +103,17 @@ private:
   const Type *commonUnsigned64(Expr *e, Expr *a, Expr *b, StringRef op);
   /// Can `value` be written to a uint64 (or read from one into `to`)?
   bool fitsUnsigned64(const Type *to, Expr *value);
+  /// Can a variable of type `to` take `value` (assigned, initial, a
+  /// definition)? A constant real and a narrow string literal take `to`'s
+  /// float or wstring type on the way.
+  bool takes(const Type *to, Expr *value) {
+    widen(value, to);
+    bool ok = isAssignable(to, value->type) ||
+              (to->isUnsigned64() && fitsUnsigned64(to, value));
+    if (ok && to->isFloat())
+      adopt(value, to);
+    return ok;
+  }
   /// Is this an operand pair computed in floating point?
   static bool involvesFloat(const Type *a, const Type *b) {
     return a->isFloat() || b->isFloat();
@@ -214,16 +225,12 @@ bool ModuleVerifier::checkInit(Expr *init, const Type *type, StringRef what) {
   const Type *t = check(init, Ctx::Constant);
   if (!t)
     return false;
-  widen(init, type);
-  t = init->type;
-  if (!isAssignable(type, t) &&
-      !(type->isUnsigned64() && fitsUnsigned64(type, init))) {
-    error(init->loc, "initial value of " + what + " has type '" + typeName(t) +
-                         "', expected '" + typeName(type) + "'");
+  if (!takes(type, init)) {
+    error(init->loc, "initial value of " + what + " has type '" +
+                         typeName(init->type) + "', expected '" +
+                         typeName(type) + "'");
     return false;
   }
-  if (type->isFloat())
-    adopt(init, type);
   int64_t v;
   if (type->isInteger() && evalConstInt(init, v) &&
       (v < type->lo || v > type->hi)) {
@@ -256,19 +263,11 @@ void ModuleVerifier::checkPorts() {
       continue;
     }
     if (p.definition) {
-      const Type *t = check(p.definition, Ctx::Guard);
-      if (t) {
-        // A constant real or a narrow string literal takes the port's type.
-        if (p.type->isFloat())
-          adopt(p.definition, p.type);
-        widen(p.definition, p.type);
-        t = p.definition->type;
-      }
-      if (t && !isAssignable(p.type, t))
+      if (check(p.definition, Ctx::Guard) && !takes(p.type, p.definition))
         error(p.definition->loc, "output '" + p.name + "' of type '" +
                                      typeName(p.type) +
                                      "' is defined by an expression of type '" +
-                                     typeName(t) + "'");
+                                     typeName(p.definition->type) + "'");
     }
     checkInit(p.init, p.type, ("output '" + p.name + "'").str());
   }
@@ -1063,17 +1062,13 @@ void ModuleVerifier::checkStmt(Stmt *s) {
     const Type *vt = check(a->value, Ctx::Guard);
     if (!tt || !vt)
       return;
-    widen(a->value, tt);
-    vt = a->value->type;
-    if (!isAssignable(tt, vt) &&
-        !(tt->isUnsigned64() && fitsUnsigned64(tt, a->value))) {
-      error(a->value->loc, "cannot assign a value of type '" + typeName(vt) +
-                               "' to '" + exprToString(a->target) +
-                               "' of type '" + typeName(tt) + "'");
+    if (!takes(tt, a->value)) {
+      error(a->value->loc, "cannot assign a value of type '" +
+                               typeName(a->value->type) + "' to '" +
+                               exprToString(a->target) + "' of type '" +
+                               typeName(tt) + "'");
       return;
     }
-    if (tt->isFloat())
-      adopt(a->value, tt);
     int64_t v;
     if (tt->isInteger() && evalConstInt(a->value, v) &&
         (v < tt->lo || v > tt->hi) &&
