@@ -2,6 +2,8 @@
 //-------------------===//
 #include "frontends/plc/Lowering.h"
 
+#include "ir/net/Walk.h"
+
 #include "llvm/ADT/ScopeExit.h"
 
 using namespace netlift;
@@ -29,7 +31,8 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
   // Locals and the result live in variables of this call site, reset at
   // the end of the scan (functions have no memory).
   std::vector<VarDecl *> locals = fn->vars;
-  locals.push_back(fn->resultVar);
+  if (fn->resultVar)
+    locals.push_back(fn->resultVar);
   std::map<std::string, CallArg *> byName;
   for (CallArg &a : call->args)
     byName[StringRef(a.name).upper()] = &a;
@@ -56,7 +59,10 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
                  : nullptr,
              pre, call->loc);
   }
+  size_t bodyStart = pre.size();
   enabledBody(fn, prefix, call, nf, pre);
+  if (fn->isLibrary)
+    atCallSite(llvm::ArrayRef<NStmt *>(pre).drop_front(bodyStart), call->loc);
   for (CallArg &a : call->args)
     if (a.isOutput) {
       NExpr *v = b.ref(prefix + sanitize(a.name), a.loc);
@@ -67,7 +73,25 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
           lvalue(a.value, f, pre),
           coerce(v, out ? out->type : nullptr, a.value->type, a.loc), a.loc));
     }
+  if (!fn->resultVar)
+    return nullptr; // called as a statement (Sema)
   return b.ref(prefix + sanitize(fn->name), call->loc);
+}
+
+/// A standard function's body (CONCAT_DATE checking its fields) stops with
+/// a runtime error at the user's call, not at a line of netlift's library
+/// text, and its steps are the call's in a trace.
+void Lowering::atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at) {
+  auto moveExpr = [&](const NExpr *root) {
+    net::walkExpr(root,
+                  [&](const NExpr *e) { const_cast<NExpr *>(e)->loc = at; });
+  };
+  net::forEachStmt(lowered, [&](const NStmt *s) {
+    const_cast<NStmt *>(s)->loc = at;
+    if (auto *a = llvm::dyn_cast<net::AssignStmt>(s))
+      moveExpr(a->target); // a value out of its range is reported there
+  });
+  net::forEachRead(lowered, moveExpr);
 }
 
 /// The body of a called function or FB under IEC's EN/ENO rule: with EN

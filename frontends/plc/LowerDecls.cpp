@@ -47,8 +47,8 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = stringType(t, at, what);
     break;
   case PTypeKind::Date:
-    refuse(at, t->str() + " " + what +
-                   ": dates and times of day are not supported");
+    r = scalarNetType(t, tt);
+    break;
   case PTypeKind::Enum: {
     std::string name = sanitize(t->name.empty() ? "Enum" : t->name);
     if (const net::Type *existing = tt.lookup(name)) {
@@ -100,6 +100,7 @@ const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
   case PTypeKind::AnyInt:
     return tt.getInt(64, true, net::Overflow::Wrap);
   case PTypeKind::Time:
+  case PTypeKind::Date: // nanoseconds (LowerDates.cpp)
     return tt.getInt(64, true, net::Overflow::Error);
   case PTypeKind::Real:
     return tt.getFloat(t->width == 32 ? 32 : 64);
@@ -118,6 +119,7 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
     return b.intLit(t->isSubrange ? t->lo : 0, at);
   case PTypeKind::Time:
   case PTypeKind::AnyInt:
+  case PTypeKind::Date: // 1970-01-01, midnight: CODESYS's and TwinCAT's 0
     return b.intLit(0, at);
   case PTypeKind::Real:
     return b.realLit(0.0, at);
@@ -219,7 +221,7 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
                          "' must be a string literal or a CONSTANT");
     return stringLiteral(lit);
   }
-  if (t->kind == PTypeKind::Real) {
+  if (t->kind == PTypeKind::Real || t->kind == PTypeKind::Date) {
     Sink pre;
     NExpr *r = coerce(expr(e, none, pre), e->type, t, e->loc);
     if (!pre.empty())
@@ -319,7 +321,8 @@ void Lowering::declareProgramVar(VarDecl *v) {
     } else if (eventDriven || t->kind == PTypeKind::Enum ||
                (t->kind == PTypeKind::Int && t->isSubrange)) {
       nt = netType(t, v->loc, "input " + v->name);
-    } else if (t->kind == PTypeKind::Int || t->kind == PTypeKind::Time) {
+    } else if (t->kind == PTypeKind::Int || t->kind == PTypeKind::Time ||
+               t->kind == PTypeKind::Date) {
       // A free input of its full type: translation needs no range, but an
       // exploration would enumerate every value at every step, so the
       // exploring commands ask for one (ExplorationSetup).

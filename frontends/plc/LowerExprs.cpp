@@ -11,7 +11,12 @@ using namespace netlift::plc::detail;
 //===----------------------------------------------------------------------===//
 
 std::optional<int64_t> Lowering::constValue(Expr *e, Frame &f) {
-  if (!e)
+  // Dates count nanoseconds, durations ticks: their arithmetic is
+  // LowerDates.cpp's.
+  if (!e || (e->type && e->type->kind == PTypeKind::Date) ||
+      (e->kind == ExprKind::Binary && llvm::any_of(e->operands, [](Expr *o) {
+         return o->type && o->type->kind == PTypeKind::Date;
+       })))
     return std::nullopt;
   switch (e->kind) {
   case ExprKind::IntLit:
@@ -206,8 +211,6 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
 }
 
 NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
-  if (e->type && e->type->kind == PTypeKind::Date)
-    refuse(e->loc, "dates and times of day are not supported");
   switch (e->kind) {
   case ExprKind::IntLit:
     if (e->type && e->type->kind == PTypeKind::Bool)
@@ -222,7 +225,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::StringLit:
     return stringLiteral(e);
   case ExprKind::DateLit:
-    refuse(e->loc, "date and time-of-day literals are not supported");
+    return b.intLit(e->intValue, e->loc); // nanoseconds
   case ExprKind::EnumLit:
     return b.ref(sanitize(e->type->name) + "#" +
                      sanitize(e->type->enumerators[e->enumValue]),
@@ -290,6 +293,11 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
                     e->loc);
     }
     const PType *lt = e->operands[0]->type;
+    const PType *rt = e->operands[1]->type;
+    if ((e->op == Op::Add || e->op == Op::Sub) &&
+        (baseOf(lt)->kind == PTypeKind::Date ||
+         baseOf(rt)->kind == PTypeKind::Date))
+      return dateArithmetic(e->op, l, lt, r, rt, e->loc);
     bool logical = lt && (lt->kind == PTypeKind::Bool);
     net::BinaryOp op;
     switch (e->op) {
@@ -366,6 +374,10 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   to = to && to->isSubrange ? to->base : to;
   if (!from || from->kind == PTypeKind::AnyInt)
     from = to;
+  bool timeText = (from->kind == PTypeKind::Time && to->isString()) ||
+                  (from->isString() && to->kind == PTypeKind::Time);
+  if (from->kind == PTypeKind::Date || to->kind == PTypeKind::Date || timeText)
+    return convertDate(v, from, to, at);
   if (from->kind == PTypeKind::String || to->kind == PTypeKind::String)
     return convertString(v, from, to, at);
   if (from->kind == PTypeKind::Real || to->kind == PTypeKind::Real)
@@ -494,11 +506,16 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
   case StdFn::Move:
     return a[0];
   case StdFn::Add:
-    return chain(net::BinaryOp::Add, 0, true);
+  case StdFn::Sub:
+    if (a.size() == 2 && (baseOf(src[0]->type)->kind == PTypeKind::Date ||
+                          baseOf(src[1]->type)->kind == PTypeKind::Date))
+      return dateArithmetic(info.fn == StdFn::Add ? Op::Add : Op::Sub, a[0],
+                            src[0]->type, a[1], src[1]->type, at);
+    return chain(info.fn == StdFn::Add ? net::BinaryOp::Add
+                                       : net::BinaryOp::Sub,
+                 0, true);
   case StdFn::Mul:
     return chain(net::BinaryOp::Mul, 0, true);
-  case StdFn::Sub:
-    return chain(net::BinaryOp::Sub, 0, true);
   case StdFn::Div:
     return chain(net::BinaryOp::Div, 0, true);
   case StdFn::Mod:
@@ -559,8 +576,15 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
       r = b.binary(net::BinaryOp::And, r, b.binary(op, a[i - 1], a[i], at), at);
     return r;
   }
-  case StdFn::Convert:
-    return convert(a[0], src[0]->type, info.to, at);
+  case StdFn::Convert: {
+    // LTIME_TO_STRING(a TIME) writes an LTIME: TIME and LTIME (and DT and
+    // LDT...) share their representation, so the name says which it is.
+    const PType *from = src[0]->type;
+    if (info.from && (info.from->kind == PTypeKind::Time ||
+                      info.from->kind == PTypeKind::Date))
+      from = info.from;
+    return convert(a[0], from, info.to, at);
+  }
   case StdFn::RealMath:
     return realMath(e, a, at);
   case StdFn::StringOp:

@@ -5,7 +5,9 @@
 // LowerToNet.cpp (time, modules, the entry points), LowerDecls.cpp (types
 // and declarations), LowerExprs.cpp (expressions and standard functions),
 // LowerCalls.cpp (function and function block calls), LowerStmts.cpp
-// (statements and loops). LowerToNet.h is the API.
+// (statements and loops), LowerReals.cpp, LowerStrings.cpp and
+// LowerDates.cpp (the data types that need more than integers). LowerToNet.h is
+// the API.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_FRONTENDS_PLC_LOWERING_H
@@ -179,6 +181,7 @@ private:
   void noteClockBound(const std::string &member, Expr *value, Frame &f,
                       SMLoc at);
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
+  void atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at);
   NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
   NExpr *convert(NExpr *v, const PType *from, const PType *to, SMLoc at);
   // REAL and LREAL (LowerReals.cpp).
@@ -208,6 +211,18 @@ private:
   NExpr *stringFunction(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
   /// A conversion to or from a string.
   NExpr *convertString(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  // DATE, TOD, DT and their L forms (LowerDates.cpp).
+  NExpr *ticksToNs(NExpr *ticks, SMLoc at);
+  /// Nanoseconds as ticks, rounded up (noted once per translation).
+  NExpr *nsToTicks(NExpr *ns, SMLoc at);
+  bool notedTickRounding = false;
+  /// `l op r` where a date type takes part (Sema's dateArithmetic).
+  NExpr *dateArithmetic(Op op, NExpr *l, const PType *lt, NExpr *r,
+                        const PType *rt, SMLoc at);
+  /// A conversion to or from a date type, or between TIME and a string.
+  NExpr *convertDate(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  NExpr *dateToString(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  NExpr *stringToDate(NExpr *v, const PType *from, const PType *to, SMLoc at);
   NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
   NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
   Range rangeOf(Expr *e);

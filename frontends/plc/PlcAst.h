@@ -49,7 +49,7 @@ enum class ExprKind : uint8_t {
   RealLit,   // 1.5
   BoolLit,   // TRUE
   TimeLit,   // T#1s: value in nanoseconds
-  DateLit,   // TOD#, D#, DT# (refused)
+  DateLit,   // D#, TOD#, DT# and L forms: intValue ns, typeName the type
   StringLit, // 'abc'
   EnumLit,   // Color#red (typeName, name)
   Name,      // a variable, enumerator, constant or direct address

@@ -560,7 +560,9 @@ bool Checker::run() {
   for (Pou *p : checked) {
     current = p;
     declareVars(p->vars, p);
-    if (p->kind == PouKind::Function) {
+    if (p->kind == PouKind::Function && !p->resultSyntax) {
+      p->resultType = voidType();
+    } else if (p->kind == PouKind::Function) {
       p->resultType = resolve(p->resultSyntax, p->name);
       VarDecl *rv = unit.make<VarDecl>();
       rv->name = p->name;

@@ -26,13 +26,17 @@ enum class PTypeKind : uint8_t {
   Time,
   Real,
   String,
-  Date, // DATE, TOD, DT
+  Date, // DATE, TOD, DT and their L forms (see DateKind)
   Enum,
   Array,
   Struct,
   FunctionBlock,
   Void,
 };
+
+/// Which of the date types a PTypeKind::Date is; all hold nanoseconds
+/// (since 1970-01-01 for DATE and DT, since midnight for TOD).
+enum class DateKind : uint8_t { None, Date, TimeOfDay, DateAndTime };
 
 struct PType {
   explicit PType(PTypeKind k) : kind(k) {}
@@ -53,6 +57,8 @@ struct PType {
   // String: the most characters it holds (`width` is then the bits of a
   // character, 8 or 16); 0 for CHAR and WCHAR, single characters.
   uint32_t strLen = 0;
+  // Date: which one (`width` is 64 for LDATE, LTOD, LDT, else 32)
+  DateKind dateKind = DateKind::None;
   // Struct
   std::vector<VarDecl *> fields;
   // FunctionBlock
@@ -100,7 +106,7 @@ enum class StdFn : uint8_t {
   Convert,  // X_TO_Y and TO_Y between BOOL, integer and bit-string types
   RealMath, // SQRT, SIN, EXPT, TRUNC, ...
   StringOp, // LEN, LEFT, RIGHT, MID, CONCAT, INSERT, DELETE, REPLACE, FIND
-  Refused,  // recognised but not supported at all (BCD, date/time)
+  Refused,  // recognised but not supported at all (BCD)
 };
 
 struct StdFnInfo {

@@ -309,6 +309,12 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     if (e->drawn && !drawnAsDeclared(e, p))
       return nullptr;
     functionArgs(e, p);
+    if (!asStatement && p->resultType == voidType()) {
+      error(e->loc, "function '" + p->name +
+                        "' has no result type: call it as a statement and "
+                        "read its outputs");
+      return nullptr;
+    }
     return p->resultType;
   }
   StdFnInfo info = lookupStdFunction(e->name);
@@ -351,6 +357,10 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       if (baseOf(t)->kind == PTypeKind::Bool &&
           baseOf(types[i])->kind == PTypeKind::Bool)
         continue;
+      if (baseOf(t)->kind == PTypeKind::Date &&
+          baseOf(types[i])->kind == PTypeKind::Date &&
+          baseOf(t)->dateKind == baseOf(types[i])->dateKind)
+        continue;
       if (baseOf(t)->kind == PTypeKind::Enum && baseOf(types[i]) == baseOf(t))
         continue;
       if (baseOf(t)->isString() && baseOf(types[i])->isString() &&
@@ -371,14 +381,26 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     if (!arity(1, 1))
       return nullptr;
     return baseOf(types[0]);
+  case StdFn::Add:
+  case StdFn::Sub:
+    if (types.size() == 2 && (baseOf(types[0])->kind == PTypeKind::Date ||
+                              baseOf(types[1])->kind == PTypeKind::Date)) {
+      const PType *t = dateArithmetic(info.fn == StdFn::Add ? Op::Add : Op::Sub,
+                                      baseOf(types[0]), baseOf(types[1]));
+      if (!t)
+        error(e->loc, "'" + e->name + "' on " + types[0]->str() + " and " +
+                          types[1]->str());
+      return t;
+    }
+    if (!arity(2, info.fn == StdFn::Add ? 64 : 2))
+      return nullptr;
+    return numericOf(0);
   case StdFn::Min:
   case StdFn::Max:
-  case StdFn::Add:
   case StdFn::Mul:
     if (!arity(2, 64))
       return nullptr;
     return numericOf(0);
-  case StdFn::Sub:
   case StdFn::Div:
   case StdFn::Mod:
     if (!arity(2, 2))
@@ -448,7 +470,8 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       return nullptr;
     const PType *src = baseOf(types[0]);
     if (info.from && src->kind != PTypeKind::AnyInt && src != info.from &&
-        !(src->kind == info.from->kind && src->kind != PTypeKind::Int)) {
+        !(src->kind == info.from->kind && src->kind != PTypeKind::Int &&
+          src->dateKind == info.from->dateKind)) {
       error(e->args[0].loc, "'" + e->name + "' converts from " +
                                 info.from->str() + ", given " + src->str());
       return nullptr;

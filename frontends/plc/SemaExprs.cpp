@@ -79,7 +79,7 @@ const PType *Checker::expr(Expr *e) {
     t = elementaryType("TIME");
     break;
   case ExprKind::DateLit:
-    t = elementaryType("DATE");
+    t = elementaryType(e->typeName); // set by the parser from the prefix
     break;
   case ExprKind::StringLit: {
     std::u16string chars;
@@ -334,7 +334,7 @@ const PType *Checker::expr(Expr *e) {
                  ExprKind::StringLit;
       else if (ab->kind == bb->kind &&
                (ab->kind == PTypeKind::Bool || ab->kind == PTypeKind::Time ||
-                ab->kind == PTypeKind::Date))
+                (ab->kind == PTypeKind::Date && ab->dateKind == bb->dateKind)))
         ok = true;
       else if (ab->kind == PTypeKind::Enum && ab == bb)
         ok = true;
@@ -350,6 +350,15 @@ const PType *Checker::expr(Expr *e) {
     case Op::Mul:
     case Op::Div:
     case Op::Mod:
+      if (ab->kind == PTypeKind::Date || bb->kind == PTypeKind::Date) {
+        t = dateArithmetic(e->op, ab, bb);
+        if (!t) {
+          error(e->loc, "'" + spelling(e->op) + "' on " + a->str() + " and " +
+                            b->str());
+          return nullptr;
+        }
+        break;
+      }
       if (ab->kind == PTypeKind::Time || bb->kind == PTypeKind::Time) {
         bool ok = false;
         if (e->op == Op::Add || e->op == Op::Sub)
@@ -403,4 +412,22 @@ const PType *Checker::expr(Expr *e) {
   }
   e->type = t;
   return t;
+}
+
+const PType *Checker::dateArithmetic(Op op, const PType *a, const PType *b) {
+  // IEC 61131-3 Table 35 (ADD_TOD_TIME, SUB_DT_DT, ...) as operators, as
+  // CODESYS and TwinCAT take them; a duration may come first in a sum.
+  auto isTime = [](const PType *t) { return t->kind == PTypeKind::Time; };
+  bool wide = a->width == 64 || b->width == 64;
+  if (op == Op::Add && isTime(a))
+    std::swap(a, b);
+  if (a->kind != PTypeKind::Date)
+    return nullptr;
+  bool moves = a->dateKind == DateKind::TimeOfDay ||
+               a->dateKind == DateKind::DateAndTime;
+  if ((op == Op::Add || op == Op::Sub) && isTime(b) && moves)
+    return a;
+  if (op == Op::Sub && b->kind == PTypeKind::Date && a->dateKind == b->dateKind)
+    return elementaryType(wide ? "LTIME" : "TIME");
+  return nullptr;
 }

@@ -163,6 +163,11 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     if (tb->kind == fb->kind && tb == fb)
       return true; // CHAR, WCHAR: refused when lowered
     return mismatch();
+  case PTypeKind::Date:
+    // LDT := DT and back: both hold nanoseconds.
+    if (fb->kind == PTypeKind::Date && fb->dateKind == tb->dateKind)
+      return true;
+    return mismatch();
   default:
     if (tb->kind == fb->kind &&
         (tb == fb ||

@@ -66,14 +66,16 @@ const Elementary kElementary[] = {
     {"WSTRING", PTypeKind::String, 16, false, false},
     {"CHAR", PTypeKind::String, 8, false, false},
     {"WCHAR", PTypeKind::String, 16, false, false},
-    {"DATE", PTypeKind::Date, 0, false, false},
-    {"TOD", PTypeKind::Date, 0, false, false},
-    {"TIME_OF_DAY", PTypeKind::Date, 0, false, false},
-    {"DT", PTypeKind::Date, 0, false, false},
-    {"DATE_AND_TIME", PTypeKind::Date, 0, false, false},
-    {"LDATE", PTypeKind::Date, 0, false, false},
-    {"LTOD", PTypeKind::Date, 0, false, false},
-    {"LDT", PTypeKind::Date, 0, false, false},
+    {"DATE", PTypeKind::Date, 32, false, false},
+    {"TOD", PTypeKind::Date, 32, false, false},
+    {"TIME_OF_DAY", PTypeKind::Date, 32, false, false},
+    {"DT", PTypeKind::Date, 32, false, false},
+    {"DATE_AND_TIME", PTypeKind::Date, 32, false, false},
+    {"LDATE", PTypeKind::Date, 64, false, false},
+    {"LTOD", PTypeKind::Date, 64, false, false},
+    {"LTIME_OF_DAY", PTypeKind::Date, 64, false, false},
+    {"LDT", PTypeKind::Date, 64, false, false},
+    {"LDATE_AND_TIME", PTypeKind::Date, 64, false, false},
 };
 
 /// The elementary types, held by value (StringMap entries do not move).
@@ -105,6 +107,13 @@ const llvm::StringMap<PType> &elementaryTable() {
       // implementation).
       if (e.kind == PTypeKind::String && StringRef(e.name).endswith("STRING"))
         ty->strLen = 80;
+      if (e.kind == PTypeKind::Date) {
+        StringRef n(e.name);
+        ty->dateKind =
+            n.contains("TOD") || n.contains("TIME_OF_DAY") ? DateKind::TimeOfDay
+            : n.contains("DT") || n.contains("AND_TIME") ? DateKind::DateAndTime
+                                                         : DateKind::Date;
+      }
     }
     return t;
   }();

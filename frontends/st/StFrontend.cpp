@@ -9,6 +9,7 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StLexer.h"
+#include "ir/support/IecTime.h"
 
 #include "ST.h"
 
@@ -74,77 +75,10 @@ bool st::parseIntegerLiteral(StringRef text, int64_t &value) {
 }
 
 bool st::parseDuration(StringRef literal, int64_t &ns, std::string &error) {
-  size_t hash = literal.find('#');
-  StringRef body = literal.substr(hash + 1);
-  bool negative = body.consume_front("-");
-  body.consume_front("+");
-  if (body.empty()) {
-    error = "empty duration";
-    return false;
-  }
-  long double total = 0;
-  // Matched in this order ("ms" before "m"); each may appear once.
-  static const struct {
-    const char *name;
-    long double ns;
-  } units[] = {{"d", 86400e9L}, {"h", 3600e9L}, {"ms", 1e6L}, {"m", 60e9L},
-               {"s", 1e9L},     {"us", 1e3L},   {"ns", 1L}};
-  int lastUnit = -1;
-  while (!body.empty()) {
-    size_t i = 0;
-    while (i < body.size() &&
-           (llvm::isDigit(body[i]) || body[i] == '_' || body[i] == '.'))
-      ++i;
-    if (i == 0) {
-      error = ("expected a number in duration '" + literal + "'").str();
-      return false;
-    }
-    std::string num;
-    for (char c : body.substr(0, i))
-      if (c != '_')
-        num += c;
-    body = body.drop_front(i);
-    int unit = -1;
-    for (int u = 0; u < 7; ++u) {
-      StringRef name = units[u].name;
-      if (body.size() >= name.size() &&
-          body.substr(0, name.size()).equals_insensitive(name) &&
-          // "m" must not swallow the "m" of "ms".
-          !(name == "m" && body.size() > 1 &&
-            (body[1] == 's' || body[1] == 'S'))) {
-        unit = u;
-        body = body.drop_front(name.size());
-        break;
-      }
-    }
-    if (unit < 0) {
-      error = ("unknown unit in duration '" + literal +
-               "' (use d, h, m, s, ms, us, ns)")
-                  .str();
-      return false;
-    }
-    // Units must get smaller from left to right (1h2m3s, not 1s2h).
-    if (lastUnit >= 0 && units[unit].ns >= units[lastUnit].ns) {
-      error = ("units out of order in duration '" + literal + "'").str();
-      return false;
-    }
-    lastUnit = unit;
-    total += std::stold(num) * units[unit].ns;
-    body.consume_front("_");
-  }
-  if (total > 9.2e18L) {
-    error = ("duration '" + literal + "' is too large").str();
-    return false;
-  }
-  long double rounded = std::floor(total + 0.5L);
-  if (std::fabs(rounded - total) > 1e-6L) {
-    error = ("duration '" + literal + "' is not a whole number of ns").str();
-    return false;
-  }
-  ns = static_cast<int64_t>(rounded);
-  if (negative)
-    ns = -ns;
-  return true;
+  IecTimeKind kind = IecTimeKind::Duration;
+  return parseIecTime(literal, kind, ns, error) &&
+         (kind == IecTimeKind::Duration ||
+          (error = ("'" + literal + "' is not a duration").str(), false));
 }
 
 //===----------------------------------------------------------------------===//
@@ -498,12 +432,10 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   pou->loc = loc(c->name);
   pou->attrs = pragmasBefore(c->getStart());
   if constexpr (std::is_same_v<Ctx, P::FunctionDeclContext>) {
-    auto *f = c;
-    if (!f->result)
-      return refuse(loc(c->name), "function '" + pou->name +
-                                      "' has no result type (': TYPE' after "
-                                      "its name)");
-    pou->resultSyntax = typeSpec(f->result);
+    // Without a result type (IEC 61131-3 3rd edition, CODESYS) a function
+    // gives its outputs only.
+    if (c->result)
+      pou->resultSyntax = typeSpec(c->result);
   }
   for (auto *vb : c->pouVarBlock())
     varBlock(vb->varBlock(), pou->vars);
@@ -1083,6 +1015,16 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   if (alt<P::DateLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::DateLit, at);
     e->name = c->getText();
+    IecTimeKind kind;
+    std::string err;
+    if (!parseIecTime(e->name, kind, e->intValue, err))
+      return refuse(at, err);
+    bool wide = std::toupper(static_cast<unsigned char>(e->name[0])) == 'L';
+    e->typeName = kind == IecTimeKind::Date        ? "DATE"
+                  : kind == IecTimeKind::TimeOfDay ? "TOD"
+                                                   : "DT";
+    if (wide)
+      e->typeName = "L" + e->typeName;
     return e;
   }
   if (auto *s = alt<P::StringLiteralContext>(c)) {

@@ -1,8 +1,11 @@
 //===- StdLib.cpp - the IEC 61131-3 standard function blocks --------------===//
 //
-// The standard function blocks, written in Structured Text and translated
-// like the user's own code, so their behaviour is exactly what this text
-// says. The behaviour is the standard's at scan granularity: an FB computes
+// The standard function blocks, and the standard functions on dates and
+// times (IEC 61131-3 3rd edition, Tables 35 and 36: ADD_TOD_TIME ...
+// CONCAT_DATE, SPLIT_DT, DAY_OF_WEEK), written in Structured Text and
+// translated like the user's own code, so their behaviour is exactly what
+// this text says. A date function given a month, day or hour that does not
+// exist stops with a runtime error naming the field (a subrange variable). The behaviour is the standard's at scan granularity: an FB computes
 // its outputs when it is called, from its inputs and from the time at the
 // start of the scan. matiec's library (../shared/corpus/st/matiec/lib) is
 // the reference the behavioural tests compare against.
@@ -184,6 +187,281 @@ FUNCTION_BLOCK TP
     STATE := 0;
   END_IF;
 END_FUNCTION_BLOCK
+
+FUNCTION CONCAT_LDATE : LDATE
+  VAR_INPUT YEAR, MONTH, DAY : LINT; END_VAR
+  VAR
+    checked_month : LINT(1..12);
+    checked_day : LINT(1..31);
+    days_past_month_end : LINT(-30..0);
+    y, era, yoe, doe : LINT;
+  END_VAR
+  checked_month := MONTH;
+  checked_day := DAY;
+  IF MONTH = 2 THEN
+    IF (YEAR MOD 4 = 0 AND YEAR MOD 100 <> 0) OR YEAR MOD 400 = 0 THEN
+      days_past_month_end := DAY - 29;
+    ELSE
+      days_past_month_end := DAY - 28;
+    END_IF;
+  ELSIF MONTH = 4 OR MONTH = 6 OR MONTH = 9 OR MONTH = 11 THEN
+    days_past_month_end := DAY - 30;
+  END_IF;
+  (* Days since 1970-01-01 counted in 400-year eras from 0000-03-01. *)
+  y := YEAR;
+  IF MONTH <= 2 THEN y := y - 1; END_IF;
+  IF y >= 0 THEN era := y / 400; ELSE era := (y - 399) / 400; END_IF;
+  yoe := y - era * 400;
+  IF MONTH > 2 THEN
+    doe := (153 * (MONTH - 3) + 2) / 5 + DAY - 1;
+  ELSE
+    doe := (153 * (MONTH + 9) + 2) / 5 + DAY - 1;
+  END_IF;
+  doe := yoe * 365 + yoe / 4 - yoe / 100 + doe;
+  CONCAT_LDATE := LINT_TO_LDATE((era * 146097 + doe - 719468) * 86400000000000);
+END_FUNCTION
+
+FUNCTION CONCAT_LTOD : LTOD
+  VAR_INPUT HOUR, MINUTE, SECOND, MILLISECOND : LINT; END_VAR
+  VAR
+    checked_hour : LINT(0..23);
+    checked_minute, checked_second : LINT(0..59);
+    checked_millisecond : LINT(0..999);
+  END_VAR
+  checked_hour := HOUR;
+  checked_minute := MINUTE;
+  checked_second := SECOND;
+  checked_millisecond := MILLISECOND;
+  CONCAT_LTOD := LINT_TO_LTOD(((HOUR * 60 + MINUTE) * 60 + SECOND) *
+                              1000000000 + MILLISECOND * 1000000);
+END_FUNCTION
+
+FUNCTION CONCAT_LDT : LDT
+  VAR_INPUT YEAR, MONTH, DAY, HOUR, MINUTE, SECOND, MILLISECOND : LINT;
+  END_VAR
+  CONCAT_LDT := CONCAT_LDATE_LTOD(CONCAT_LDATE(YEAR, MONTH, DAY),
+                  CONCAT_LTOD(HOUR, MINUTE, SECOND, MILLISECOND));
+END_FUNCTION
+
+FUNCTION CONCAT_DATE : DATE
+  VAR_INPUT YEAR, MONTH, DAY : LINT; END_VAR
+  CONCAT_DATE := CONCAT_LDATE(YEAR, MONTH, DAY);
+END_FUNCTION
+
+FUNCTION CONCAT_TOD : TOD
+  VAR_INPUT HOUR, MINUTE, SECOND, MILLISECOND : LINT; END_VAR
+  CONCAT_TOD := CONCAT_LTOD(HOUR, MINUTE, SECOND, MILLISECOND);
+END_FUNCTION
+
+FUNCTION CONCAT_DT : DT
+  VAR_INPUT YEAR, MONTH, DAY, HOUR, MINUTE, SECOND, MILLISECOND : LINT;
+  END_VAR
+  CONCAT_DT := CONCAT_LDT(YEAR, MONTH, DAY, HOUR, MINUTE, SECOND, MILLISECOND);
+END_FUNCTION
+
+FUNCTION CONCAT_LDATE_LTOD : LDT
+  VAR_INPUT IN1 : LDATE; IN2 : LTOD; END_VAR
+  CONCAT_LDATE_LTOD := LINT_TO_LDT(LDATE_TO_LINT(IN1) + LTOD_TO_LINT(IN2));
+END_FUNCTION
+
+FUNCTION CONCAT_DATE_TOD : DT
+  VAR_INPUT IN1 : DATE; IN2 : TOD; END_VAR
+  CONCAT_DATE_TOD := CONCAT_LDATE_LTOD(IN1, IN2);
+END_FUNCTION
+
+FUNCTION SPLIT_LDATE
+  VAR_INPUT IN : LDATE; END_VAR
+  VAR_OUTPUT YEAR, MONTH, DAY : INT; END_VAR
+  VAR z, era, doe, yoe, doy, mp : LINT; END_VAR
+  z := LDATE_TO_LINT(IN);
+  IF z >= 0 THEN
+    z := z / 86400000000000;
+  ELSE
+    z := (z + 1) / 86400000000000 - 1;
+  END_IF;
+  z := z + 719468;
+  IF z >= 0 THEN era := z / 146097; ELSE era := (z - 146096) / 146097; END_IF;
+  doe := z - era * 146097;
+  yoe := (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  doy := doe - (365 * yoe + yoe / 4 - yoe / 100);
+  mp := (5 * doy + 2) / 153;
+  DAY := LINT_TO_INT(doy - (153 * mp + 2) / 5 + 1);
+  IF mp < 10 THEN MONTH := LINT_TO_INT(mp + 3);
+  ELSE MONTH := LINT_TO_INT(mp - 9); END_IF;
+  IF MONTH <= 2 THEN
+    YEAR := LINT_TO_INT(yoe + era * 400 + 1);
+  ELSE
+    YEAR := LINT_TO_INT(yoe + era * 400);
+  END_IF;
+END_FUNCTION
+
+FUNCTION SPLIT_LTOD
+  VAR_INPUT IN : LTOD; END_VAR
+  VAR_OUTPUT HOUR, MINUTE, SECOND, MILLISECOND : INT; END_VAR
+  VAR ms : LINT; END_VAR
+  ms := LTOD_TO_LINT(IN) / 1000000;
+  MILLISECOND := LINT_TO_INT(ms MOD 1000);
+  SECOND := LINT_TO_INT(ms / 1000 MOD 60);
+  MINUTE := LINT_TO_INT(ms / 60000 MOD 60);
+  HOUR := LINT_TO_INT(ms / 3600000);
+END_FUNCTION
+
+FUNCTION SPLIT_LDT
+  VAR_INPUT IN : LDT; END_VAR
+  VAR_OUTPUT YEAR, MONTH, DAY, HOUR, MINUTE, SECOND, MILLISECOND : INT;
+  END_VAR
+  SPLIT_LDATE(IN := LDT_TO_LDATE(IN), YEAR => YEAR, MONTH => MONTH,
+              DAY => DAY);
+  SPLIT_LTOD(IN := LDT_TO_LTOD(IN), HOUR => HOUR, MINUTE => MINUTE,
+             SECOND => SECOND, MILLISECOND => MILLISECOND);
+END_FUNCTION
+
+FUNCTION SPLIT_DATE
+  VAR_INPUT IN : DATE; END_VAR
+  VAR_OUTPUT YEAR, MONTH, DAY : INT; END_VAR
+  SPLIT_LDATE(IN := IN, YEAR => YEAR, MONTH => MONTH, DAY => DAY);
+END_FUNCTION
+
+FUNCTION SPLIT_TOD
+  VAR_INPUT IN : TOD; END_VAR
+  VAR_OUTPUT HOUR, MINUTE, SECOND, MILLISECOND : INT; END_VAR
+  SPLIT_LTOD(IN := IN, HOUR => HOUR, MINUTE => MINUTE, SECOND => SECOND,
+             MILLISECOND => MILLISECOND);
+END_FUNCTION
+
+FUNCTION SPLIT_DT
+  VAR_INPUT IN : DT; END_VAR
+  VAR_OUTPUT YEAR, MONTH, DAY, HOUR, MINUTE, SECOND, MILLISECOND : INT;
+  END_VAR
+  SPLIT_LDT(IN := IN, YEAR => YEAR, MONTH => MONTH, DAY => DAY,
+            HOUR => HOUR, MINUTE => MINUTE, SECOND => SECOND,
+            MILLISECOND => MILLISECOND);
+END_FUNCTION
+
+FUNCTION DAY_OF_WEEK : INT
+  VAR_INPUT IN : LDATE; END_VAR
+  VAR d : LINT; END_VAR
+  (* 0 = Sunday; 1970-01-01 was a Thursday. *)
+  d := LDATE_TO_LINT(IN);
+  IF d >= 0 THEN
+    d := d / 86400000000000;
+  ELSE
+    d := (d + 1) / 86400000000000 - 1;
+  END_IF;
+  d := (d + 4) MOD 7;
+  IF d < 0 THEN d := d + 7; END_IF;
+  DAY_OF_WEEK := LINT_TO_INT(d);
+END_FUNCTION
+
+FUNCTION ADD_TOD_TIME : TOD
+  VAR_INPUT IN1 : TOD; IN2 : TIME; END_VAR
+  ADD_TOD_TIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION ADD_DT_TIME : DT
+  VAR_INPUT IN1 : DT; IN2 : TIME; END_VAR
+  ADD_DT_TIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION SUB_TOD_TIME : TOD
+  VAR_INPUT IN1 : TOD; IN2 : TIME; END_VAR
+  SUB_TOD_TIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_DT_TIME : DT
+  VAR_INPUT IN1 : DT; IN2 : TIME; END_VAR
+  SUB_DT_TIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_DATE_DATE : TIME
+  VAR_INPUT IN1 : DATE; IN2 : DATE; END_VAR
+  SUB_DATE_DATE := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_TOD_TOD : TIME
+  VAR_INPUT IN1 : TOD; IN2 : TOD; END_VAR
+  SUB_TOD_TOD := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_DT_DT : TIME
+  VAR_INPUT IN1 : DT; IN2 : DT; END_VAR
+  SUB_DT_DT := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION ADD_LTOD_LTIME : LTOD
+  VAR_INPUT IN1 : LTOD; IN2 : LTIME; END_VAR
+  ADD_LTOD_LTIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION ADD_LDT_LTIME : LDT
+  VAR_INPUT IN1 : LDT; IN2 : LTIME; END_VAR
+  ADD_LDT_LTIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION SUB_LTOD_LTIME : LTOD
+  VAR_INPUT IN1 : LTOD; IN2 : LTIME; END_VAR
+  SUB_LTOD_LTIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_LDT_LTIME : LDT
+  VAR_INPUT IN1 : LDT; IN2 : LTIME; END_VAR
+  SUB_LDT_LTIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_LDATE_LDATE : LTIME
+  VAR_INPUT IN1 : LDATE; IN2 : LDATE; END_VAR
+  SUB_LDATE_LDATE := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_LTOD_LTOD : LTIME
+  VAR_INPUT IN1 : LTOD; IN2 : LTOD; END_VAR
+  SUB_LTOD_LTOD := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION SUB_LDT_LDT : LTIME
+  VAR_INPUT IN1 : LDT; IN2 : LDT; END_VAR
+  SUB_LDT_LDT := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION ADD_TIME : TIME
+  VAR_INPUT IN1 : TIME; IN2 : TIME; END_VAR
+  ADD_TIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION SUB_TIME : TIME
+  VAR_INPUT IN1 : TIME; IN2 : TIME; END_VAR
+  SUB_TIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION ADD_LTIME : LTIME
+  VAR_INPUT IN1 : LTIME; IN2 : LTIME; END_VAR
+  ADD_LTIME := IN1 + IN2;
+END_FUNCTION
+
+FUNCTION SUB_LTIME : LTIME
+  VAR_INPUT IN1 : LTIME; IN2 : LTIME; END_VAR
+  SUB_LTIME := IN1 - IN2;
+END_FUNCTION
+
+FUNCTION MUL_TIME : TIME
+  VAR_INPUT IN1 : TIME; IN2 : LINT; END_VAR
+  MUL_TIME := IN1 * IN2;
+END_FUNCTION
+
+FUNCTION DIV_TIME : TIME
+  VAR_INPUT IN1 : TIME; IN2 : LINT; END_VAR
+  DIV_TIME := IN1 / IN2;
+END_FUNCTION
+
+FUNCTION MUL_LTIME : LTIME
+  VAR_INPUT IN1 : LTIME; IN2 : LINT; END_VAR
+  MUL_LTIME := IN1 * IN2;
+END_FUNCTION
+
+FUNCTION DIV_LTIME : LTIME
+  VAR_INPUT IN1 : LTIME; IN2 : LINT; END_VAR
+  DIV_LTIME := IN1 / IN2;
+END_FUNCTION
 )ST";
 
 bool st::isStandardFunctionBlock(llvm::StringRef name) {

@@ -93,6 +93,14 @@ bool netlift::net::isStringBuiltin(Builtin b) {
   case Builtin::Delete:
   case Builtin::Replace:
   case Builtin::Find:
+  case Builtin::FormatDuration:
+  case Builtin::FormatDate:
+  case Builtin::FormatTod:
+  case Builtin::FormatDt:
+  case Builtin::ParseDuration:
+  case Builtin::ParseDate:
+  case Builtin::ParseTod:
+  case Builtin::ParseDt:
     return true;
   default:
     return false;

@@ -1,6 +1,8 @@
 //===- StringOps.cpp - what NetIR's string functions compute --------------===//
 #include "ir/net/StringOps.h"
 
+#include "ir/support/IecTime.h"
+
 #include "llvm/ADT/StringExtras.h"
 
 #include <cmath>
@@ -23,6 +25,23 @@ std::optional<std::string> checkSpan(StringRef fn, size_t len, int64_t n,
            std::to_string(len + 1) + " of a string of length " +
            std::to_string(len);
   return std::nullopt;
+}
+
+/// What a time-text built-in reads or writes.
+IecTimeKind timeKindOf(Builtin fn) {
+  switch (fn) {
+  case Builtin::FormatDate:
+  case Builtin::ParseDate:
+    return IecTimeKind::Date;
+  case Builtin::FormatTod:
+  case Builtin::ParseTod:
+    return IecTimeKind::TimeOfDay;
+  case Builtin::FormatDt:
+  case Builtin::ParseDt:
+    return IecTimeKind::DateAndTime;
+  default:
+    return IecTimeKind::Duration;
+  }
 }
 
 /// The characters from position p (1-based, checked) on, at most n.
@@ -76,9 +95,35 @@ net::applyStringBuiltin(Builtin fn, llvm::ArrayRef<StringValue> strs,
     out = a.substr(0, from) + strs[1] + a.substr(to);
     return std::nullopt;
   }
+  case Builtin::FormatDuration:
+  case Builtin::FormatDate:
+  case Builtin::FormatTod:
+  case Builtin::FormatDt: {
+    std::string text = formatIecTimeValue(timeKindOf(fn), ints[0]);
+    out.assign(text.begin(), text.end());
+    return std::nullopt;
+  }
   default:
     return "not a string function";
   }
+}
+
+std::optional<std::string> net::parseTimeText(Builtin fn, const StringValue &s,
+                                              int64_t &ns) {
+  std::string text;
+  for (char16_t c : s)
+    text += c > 0x7e ? '?' : char(c);
+  IecTimeKind want = timeKindOf(fn), kind = want;
+  std::string error;
+  if (!parseIecTime(text, kind, ns, error, /*prefixOptional=*/true))
+    return error;
+  if (kind != want)
+    return "'" + text + "' is not a " +
+           (want == IecTimeKind::Duration    ? "duration"
+            : want == IecTimeKind::Date      ? "date"
+            : want == IecTimeKind::TimeOfDay ? "time of day"
+                                             : "date and time");
+  return std::nullopt;
 }
 
 int64_t net::findString(const StringValue &a, const StringValue &b) {

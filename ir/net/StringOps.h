@@ -35,6 +35,10 @@ std::optional<std::string> applyStringBuiltin(Builtin fn,
                                               llvm::ArrayRef<StringValue> strs,
                                               llvm::ArrayRef<int64_t> ints,
                                               StringValue &out);
+/// parse_duration(s), parse_date(s), parse_tod(s), parse_dt(s): the
+/// nanoseconds the text spells, or the message saying why it spells none.
+std::optional<std::string> parseTimeText(Builtin fn, const StringValue &s,
+                                         int64_t &ns);
 /// find(a, b) and len(s), which give integers.
 int64_t findString(const StringValue &a, const StringValue &b);
 /// `a op b` for a comparison: code unit by code unit, a proper prefix

@@ -883,6 +883,8 @@ const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
                         .Cases("concat", "find", "ss")
                         .Case("insert", "ssi")
                         .Case("replace", "ssii")
+                        .StartsWith("format_", "i")
+                        .StartsWith("parse_", "s")
                         .Default("");
   for (size_t i = 0; i < c->args.size(); ++i) {
     const Type *t = c->args[i]->type;
@@ -908,8 +910,10 @@ const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
     return c->type = types.getString(uint32_t(std::min<uint64_t>(len, 65535)),
                                      both->isWideString());
   }
-  if (c->fn == Builtin::Len)
-    return c->type = types.getInteger();
+  if (c->fn == Builtin::Len || shape == "s")
+    return c->type = types.getInteger(); // len, parse_*
+  if (shape == "i") // format_*: the longest, LTIME's, is 35 characters
+    return c->type = types.getString(40, false);
   return c->type = x->type; // left, right, mid, delete: no longer than s
 }
 

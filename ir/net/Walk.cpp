@@ -138,6 +138,11 @@ void net::forEachRead(const Module &m,
   }
 }
 
+void net::forEachRead(Block block, llvm::function_ref<void(const Expr *)> f) {
+  walkBlock(
+      block, -1, [&](const Expr *e, int) { f(e); }, nullptr);
+}
+
 void net::forEachAssign(const Module &m,
                         llvm::function_ref<void(const AssignStmt *, int)> f) {
   for (uint32_t t = 0; t < m.transitions.size(); ++t)

@@ -32,6 +32,9 @@ void forEachRead(const Module &m,
 void forEachAssign(const Module &m,
                    llvm::function_ref<void(const AssignStmt *, int)> f);
 
+/// Every expression `block` evaluates (as forEachRead lists them).
+void forEachRead(Block block, llvm::function_ref<void(const Expr *)> f);
+
 /// Every statement in `block`, nested ones included, each before its body.
 void forEachStmt(Block block, llvm::function_ref<void(const Stmt *)> f);
 

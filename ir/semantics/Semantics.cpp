@@ -271,6 +271,14 @@ struct Semantics::Impl {
       return int64_t(evalStr(c->args[0], v).size());
     if (c->fn == Builtin::Find)
       return findString(evalStr(c->args[0], v), evalStr(c->args[1], v));
+    if (isStringBuiltin(c->fn) && c->args[0]->type->isString()) {
+      // parse_duration, parse_date, parse_tod, parse_dt
+      StringValue text = evalStr(c->args[0], v);
+      int64_t ns = 0;
+      if (auto err = parseTimeText(c->fn, text, ns))
+        fail(c, "'" + exprToString(c) + "': " + *err);
+      return ns;
+    }
     const Type *at = c->args[0]->type;
     if (c->fn == Builtin::Convert && at->isString()) {
       StringValue text = evalStr(c->args[0], v);
