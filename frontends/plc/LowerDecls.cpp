@@ -69,6 +69,10 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     break;
   }
   case PTypeKind::Struct: {
+    if (t->isUnion) {
+      r = unionType(t, at);
+      break;
+    }
     std::string name = sanitize(t->name.empty() ? "Struct" : t->name);
     if (const net::Type *existing = tt.lookup(name)) {
       r = existing;
@@ -112,6 +116,8 @@ const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
 }
 
 NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
+  if (t->kind == PTypeKind::Struct && t->isUnion)
+    return b.intLit(0, at); // all bytes zero
   switch (t->kind) {
   case PTypeKind::Bool:
     return b.boolLit(false, at);
@@ -188,6 +194,8 @@ NExpr *Lowering::aggregateValue(VarDecl *v, Initializer *init, const PType *t,
 NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
                               std::optional<SMLoc> at) {
   SMLoc loc = at ? *at : v->loc;
+  if (t->kind == PTypeKind::Struct && t->isUnion)
+    return unionInitialValue(v, init, t, loc);
   if (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct) {
     // Aggregates start at IEC's defaults unless something says otherwise,
     // and NetIR's defaults are the same: no initial value needed then.

@@ -191,6 +191,14 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
     return varRef(e->var, f, e->loc);
   case ExprKind::Field: {
     Expr *base = e->base();
+    for (Expr *x = base; x;
+         x = x->kind == ExprKind::Field || x->kind == ExprKind::Index
+                 ? x->base()
+                 : nullptr)
+      if (x->type && baseOf(x->type)->kind == PTypeKind::Struct &&
+          baseOf(x->type)->isUnion)
+        refuse(e->loc, "a UNION member is read and assigned here, not "
+                       "written as an output, an in-out argument or a bit");
     if (base->type && base->type->kind == PTypeKind::FunctionBlock) {
       std::string path = instancePath(base, f) + "." + sanitize(e->var->name);
       if (f.external)
@@ -241,6 +249,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     return lvalue(e, f, pre);
   case ExprKind::Field:
   case ExprKind::Index:
+    if (auto part = unionPart(e, f, pre))
+      return unionRead(*part, f, pre, e->loc);
     return lvalue(e, f, pre);
   case ExprKind::BitAccess: {
     NExpr *base = expr(e->base(), f, pre);

@@ -208,6 +208,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
       out.push_back(b.assign(target, r, s->loc));
       return;
     }
+    if (auto part = unionPart(s->target, f, out)) {
+      out.push_back(unionWrite(*part, value, s->value->type, f, out, s->loc));
+      return;
+    }
     NExpr *target = lvalue(s->target, f, out);
     if (auto *r = llvm::dyn_cast<net::Ref>(target))
       noteClockBound(r->name.str(), s->value, f, s->loc);

@@ -6,7 +6,8 @@
 // and declarations), LowerExprs.cpp (expressions and standard functions),
 // LowerCalls.cpp (function and function block calls), LowerStmts.cpp
 // (statements and loops), LowerReals.cpp, LowerStrings.cpp and
-// LowerDates.cpp (the data types that need more than integers). LowerToNet.h is
+// LowerDates.cpp and LowerUnions.cpp (the data types that need more than
+// integers). LowerToNet.h is
 // the API.
 //
 //===----------------------------------------------------------------------===//
@@ -223,6 +224,29 @@ private:
   NExpr *convertDate(NExpr *v, const PType *from, const PType *to, SMLoc at);
   NExpr *dateToString(NExpr *v, const PType *from, const PType *to, SMLoc at);
   NExpr *stringToDate(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  // UNION (LowerUnions.cpp): held as its bytes in one int64.
+  struct UnionLayout {
+    int64_t size, align;
+  };
+  UnionLayout unionLayout(const PType *t, SMLoc at);
+  const net::Type *unionType(const PType *t, SMLoc at);
+  /// What `e` designates inside a UNION (u.m, u.a[i], u.s.f): the UNION
+  /// expression, the bit offset, the type there; none when `e` is not in
+  /// one.
+  struct UnionPart {
+    Expr *unionExpr;
+    NExpr *bitOffset;
+    const PType *type;
+  };
+  std::optional<UnionPart> unionPart(Expr *e, Frame &f, Sink &pre);
+  const PType *scalarUnionMember(const UnionPart &p, SMLoc at);
+  NExpr *unionRead(const UnionPart &p, Frame &f, Sink &pre, SMLoc at);
+  /// A member's value as the bits it leaves in the UNION.
+  NExpr *unionBits(const PType *t, NExpr *value, SMLoc at);
+  NStmt *unionWrite(const UnionPart &p, NExpr *value, const PType *valueType,
+                    Frame &f, Sink &pre, SMLoc at);
+  NExpr *unionInitialValue(VarDecl *v, Initializer *init, const PType *t,
+                           SMLoc at);
   NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
   NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
   Range rangeOf(Expr *e);

@@ -133,7 +133,7 @@ enum class TypeSyntaxKind : uint8_t {
   Enum,     // (a, b := 2, c)
   Struct,   // STRUCT ... END_STRUCT
   String,   // STRING[20]
-  Refused,  // POINTER TO, REFERENCE TO, UNION: `refused` is the message
+  Refused,  // POINTER TO, REFERENCE TO: `refused` is the message
 };
 
 struct Initializer;
@@ -155,7 +155,8 @@ struct TypeSyntax {
   TypeSyntax *elem = nullptr;                  // Array
   std::vector<EnumValueSyntax> enumerators;    // Enum
   std::vector<VarDecl *> fields;               // Struct
-  Initializer *init = nullptr;                 // `:= init` after the type
+  bool isUnion = false;        // Struct: UNION ... END_UNION (members overlap)
+  Initializer *init = nullptr; // `:= init` after the type
   TypeSyntax(TypeSyntaxKind k, llvm::SMLoc l) : kind(k), loc(l) {}
 };
 

@@ -219,6 +219,7 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
   }
   case TypeSyntaxKind::Struct: {
     PType *t = make(PTypeKind::Struct);
+    t->isUnion = ts->isUnion;
     for (VarDecl *f : ts->fields) {
       f->type = resolve(f->typeSyntax, f->name);
       if (!f->type)

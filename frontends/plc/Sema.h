@@ -59,8 +59,9 @@ struct PType {
   uint32_t strLen = 0;
   // Date: which one (`width` is 64 for LDATE, LTOD, LDT, else 32)
   DateKind dateKind = DateKind::None;
-  // Struct
+  // Struct (a UNION too: its members overlap, LowerUnions.cpp)
   std::vector<VarDecl *> fields;
+  bool isUnion = false;
   // FunctionBlock
   Pou *fb = nullptr;
 

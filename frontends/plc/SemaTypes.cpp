@@ -26,7 +26,7 @@ std::string PType::str() const {
   case PTypeKind::Enum:
     return "enumeration";
   case PTypeKind::Struct:
-    return "STRUCT";
+    return isUnion ? "UNION" : "STRUCT";
   case PTypeKind::Void:
     return "no value";
   default:

@@ -122,9 +122,9 @@ typeSpec
 typeSpec0
   : ARRAY LBRACKET subrange (COMMA subrange)* RBRACKET OF elem=typeSpec0   # arrayType
   | STRUCT (structField)* END_STRUCT                                      # structType
-  | UNION (~END_UNION)* END_UNION                                         # unionType
+  | UNION (structField)* END_UNION                                        # unionType
   | (POINTER TO | REFERENCE TO | REF_TO) typeSpec0                        # pointerType
-  | base=IDENT? LPAREN enumValue (COMMA enumValue)* RPAREN                # enumType
+  | base=IDENT? LPAREN enumValue (COMMA enumValue)* RPAREN after=IDENT?   # enumType
   | base=IDENT LPAREN subrange RPAREN                                     # subrangeType
   | (STRING_KW | WSTRING_KW) ((LBRACKET | LPAREN) length=expression (RBRACKET | RPAREN))? # stringType
   | qualifiedName                                                         # namedType

@@ -658,9 +658,13 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     t->elem = typeSpec0(a->elem);
     return t;
   }
-  if (auto *s = alt<P::StructTypeContext>(c)) {
-    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, loc(s));
-    for (auto *f : s->structField()) {
+  auto *st = alt<P::StructTypeContext>(c);
+  auto *un = alt<P::UnionTypeContext>(c);
+  if (st || un) {
+    auto *t =
+        unit.make<TypeSyntax>(TypeSyntaxKind::Struct, st ? loc(st) : loc(un));
+    t->isUnion = un != nullptr;
+    for (auto *f : st ? st->structField() : un->structField()) {
       if (f->DIRECT())
         return refuse(loc(f->DIRECT()), "located structure fields are not "
                                         "supported");
@@ -677,16 +681,17 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
   }
   // Refused where a translated POU uses the type, not where it is written:
   // a library's unused POUs may hold what netlift does not model.
-  if (auto *u = alt<P::UnionTypeContext>(c))
-    return refusedType(loc(u), "UNION types are not supported");
   if (auto *p = alt<P::PointerTypeContext>(c))
     return refusedType(loc(p), p->getStart()->getText() +
                                    " types (pointers and references) are not "
                                    "supported");
   if (auto *e = alt<P::EnumTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
+    // CODESYS writes the base type after the values: (a := 1, b := 2) INT.
     if (e->base)
       t->name = e->base->getText();
+    else if (e->after)
+      t->name = e->after->getText();
     for (auto *v : e->enumValue())
       t->enumerators.push_back({v->name->getText(),
                                 v->value ? expr(v->value) : nullptr,

@@ -787,7 +787,9 @@ void ModuleVerifier::adopt(Expr *e, const Type *ft) {
     adopt(c->thenExpr, ft);
     adopt(c->elseExpr, ft);
   } else if (auto *c = llvm::dyn_cast<CallExpr>(e)) {
-    if (c->fn != Builtin::Convert && c->fn != Builtin::Trunc)
+    if (c->fn != Builtin::Convert && c->fn != Builtin::Trunc &&
+        c->fn != Builtin::Bits && c->fn != Builtin::Real32FromBits &&
+        c->fn != Builtin::Real64FromBits)
       for (Expr *a : c->args)
         adopt(a, ft);
   }
@@ -969,6 +971,20 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
       return nullptr;
     }
     return c->type = c->to;
+  case Builtin::Bits:
+    if (!x->type->isFloat()) {
+      error(x->loc, "bits() needs a float, not '" + typeName(x->type) + "'");
+      return nullptr;
+    }
+    return c->type = types.getInteger();
+  case Builtin::Real32FromBits:
+  case Builtin::Real64FromBits:
+    if (!x->type->isInteger()) {
+      error(x->loc, spelling(c->fn) + "() needs an integer, not '" +
+                        typeName(x->type) + "'");
+      return nullptr;
+    }
+    return c->type = types.getFloat(c->fn == Builtin::Real32FromBits ? 32 : 64);
   case Builtin::Trunc:
     if (!x->type->isFloat() && !x->type->isAnyReal()) {
       error(x->loc, "trunc() needs a float, not '" + typeName(x->type) + "'");

@@ -307,6 +307,16 @@ struct Semantics::Impl {
                                                         : calleeSpelling(c))));
       return r;
     }
+    switch (c->fn) {
+    case Builtin::Bits: // a float is held as its bits (NaN canonical)
+      return a;
+    case Builtin::Real32FromBits:
+      return floatBits(32, floatValue(32, a & 0xFFFFFFFF));
+    case Builtin::Real64FromBits:
+      return floatBits(64, floatValue(64, a));
+    default:
+      break;
+    }
     if (c->type && c->type->isFloat())
       return applyFloatBuiltin(c->fn, c->type->width, a, b);
     if (OpError err = applyBuiltin(c, a, b, r); err != OpError::None)
