@@ -55,6 +55,18 @@ size_t spanEnd(size_t len, int64_t n, int64_t p) {
 std::optional<std::string>
 net::applyStringBuiltin(Builtin fn, llvm::ArrayRef<StringValue> strs,
                         llvm::ArrayRef<int64_t> ints, StringValue &out) {
+  switch (fn) {
+  case Builtin::FormatDuration: // the only ones without a string operand
+  case Builtin::FormatDate:
+  case Builtin::FormatTod:
+  case Builtin::FormatDt: {
+    std::string text = formatIecTimeValue(timeKindOf(fn), ints[0]);
+    out.assign(text.begin(), text.end());
+    return std::nullopt;
+  }
+  default:
+    break;
+  }
   const StringValue &a = strs[0];
   switch (fn) {
   case Builtin::Left:
@@ -93,14 +105,6 @@ net::applyStringBuiltin(Builtin fn, llvm::ArrayRef<StringValue> strs,
       return err;
     size_t from = size_t(ints[1] - 1), to = spanEnd(a.size(), ints[0], ints[1]);
     out = a.substr(0, from) + strs[1] + a.substr(to);
-    return std::nullopt;
-  }
-  case Builtin::FormatDuration:
-  case Builtin::FormatDate:
-  case Builtin::FormatTod:
-  case Builtin::FormatDt: {
-    std::string text = formatIecTimeValue(timeKindOf(fn), ints[0]);
-    out.assign(text.begin(), text.end());
     return std::nullopt;
   }
   default:
