@@ -64,7 +64,6 @@ NExpr *Lowering::dateArithmetic(Op op, NExpr *l, const PType *lt, NExpr *r,
 
 NExpr *Lowering::convertDate(NExpr *v, const PType *from, const PType *to,
                              SMLoc at) {
-  net::TypeTable &tt = design.types;
   NExpr *day = b.intLit(kNsPerDay, at);
   // The time of day of a count of nanoseconds since 1970 (a day before
   // 1970 has its time of day too).
@@ -129,7 +128,6 @@ NExpr *Lowering::convertDate(NExpr *v, const PType *from, const PType *to,
   // From a number: that many seconds, milliseconds or nanoseconds.
   NExpr *n = convert(v, from, lint, at);
   int64_t unit = unitOf(to);
-  (void)tt;
   return unit == 1 ? n
                    : b.binary(net::BinaryOp::Mul, n, b.intLit(unit, at), at);
 }
@@ -164,9 +162,8 @@ NExpr *Lowering::dateToString(NExpr *v, const PType *from, const PType *to,
   return b.convert(stringType(to, at, "conversion result"), text, at);
 }
 
-NExpr *Lowering::stringToDate(NExpr *v, const PType *from, const PType *to,
+NExpr *Lowering::stringToDate(NExpr *v, const PType *, const PType *to,
                               SMLoc at) {
-  (void)from;
   if (isTime(to))
     return nsToTicks(b.call(net::Builtin::ParseDuration, {v}, at), at);
   net::Builtin fn = to->dateKind == DateKind::Date ? net::Builtin::ParseDate
