@@ -236,6 +236,8 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
       refuse(e->loc, "initial value of '" + v->name + "' must be a constant");
     return r;
   }
+  if (e->kind == ExprKind::IntLit && e->beyondInt64)
+    return unsigned64Literal(uint64_t(e->intValue), e->loc);
   std::optional<int64_t> c = constValue(e, none);
   if (!c)
     refuse(e->loc, "initial value of '" + v->name + "' must be a constant");

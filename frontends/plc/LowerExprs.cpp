@@ -20,6 +20,9 @@ std::optional<int64_t> Lowering::constValue(Expr *e, Frame &f) {
     return std::nullopt;
   switch (e->kind) {
   case ExprKind::IntLit:
+    if (e->beyondInt64)
+      return std::nullopt; // a uint64, not an int64
+    return e->intValue;
   case ExprKind::BoolLit:
     return e->intValue;
   case ExprKind::TimeLit:
@@ -87,6 +90,8 @@ Range Lowering::rangeOf(Expr *e) {
     full = {t->lo, t->hi, true};
   switch (e->kind) {
   case ExprKind::IntLit:
+    if (e->beyondInt64)
+      return {0, 0, false};
     return {e->intValue, e->intValue, true};
   case ExprKind::Name:
   case ExprKind::Field:
@@ -221,6 +226,8 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
 NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   switch (e->kind) {
   case ExprKind::IntLit:
+    if (e->beyondInt64)
+      return unsigned64Literal(uint64_t(e->intValue), e->loc);
     if (e->type && e->type->kind == PTypeKind::Bool)
       return b.boolLit(e->intValue != 0, e->loc);
     return b.intLit(e->intValue, e->loc);

@@ -24,8 +24,22 @@ static bool isUnsigned64(const PType *t) {
   return t && t->kind == PTypeKind::Int && t->width == 64 && !t->isSigned;
 }
 
+NExpr *Lowering::unsigned64Literal(uint64_t v, SMLoc at) {
+  const net::Type *u64 = design.types.getInt(64, false, net::Overflow::Wrap);
+  NExpr *low =
+      b.convert(u64, b.intLit(int64_t(v & uint64_t(INT64_MAX)), at), at);
+  NExpr *r =
+      b.binary(net::BinaryOp::Add,
+               b.binary(net::BinaryOp::Add, low, b.intLit(INT64_MAX, at), at),
+               b.intLit(1, at), at);
+  unsigned64Literals.insert(r);
+  return r;
+}
+
 NExpr *Lowering::asUnsigned64(NExpr *v, const PType *from, SMLoc at) {
   const net::Type *u64 = design.types.getInt(64, false, net::Overflow::Wrap);
+  if (unsigned64Literals.count(v))
+    return v;
   if (llvm::isa<net::IntLit>(v) && llvm::cast<net::IntLit>(v)->value >= 0)
     return v; // NetIR reads a constant as the uint64 it denotes
   if (!from->isSigned && from->kind == PTypeKind::Int)

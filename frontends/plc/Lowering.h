@@ -23,6 +23,7 @@
 #include "ir/support/Suggest.h"
 
 #include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/SmallPtrSet.h"
 #include "llvm/ADT/StringSet.h"
 
 #include <map>
@@ -198,6 +199,12 @@ private:
   /// An integer of PLC type `from` as a NetIR uint64 (a negative value
   /// wraps modulo 2^64).
   NExpr *asUnsigned64(NExpr *v, const PType *from, SMLoc at);
+  /// A ULINT/LWORD constant past 2^63 - 1, where NetIR's literals stop:
+  /// uint64(v - 2^63) + (2^63 - 1) + 1, computed in uint64.
+  NExpr *unsigned64Literal(uint64_t v, SMLoc at);
+  /// What unsigned64Literal built: already a uint64, whatever Sema's
+  /// untyped-literal type says.
+  llvm::SmallPtrSet<NExpr *, 4> unsigned64Literals;
   /// A NetIR uint64 as the integer type `to` (its low bits, two's
   /// complement).
   NExpr *fromUnsigned64(NExpr *v, const PType *to, SMLoc at);

@@ -105,6 +105,9 @@ struct Expr {
   std::string name;     // Name, Field, Call, EnumLit (enumerator)
   std::string typeName; // typed literals: INT#5, Color#red
   int64_t intValue = 0; // IntLit, BoolLit, TimeLit (ns), BitAccess (bit)
+  /// IntLit: the value is in [2^63, 2^64), only a ULINT or LWORD holds it,
+  /// and intValue holds its bits.
+  bool beyondInt64 = false;
   double realValue = 0;
   Op op = Op::Neg;
   std::vector<Expr *> operands; // Unary: 1, Binary: 2, Field/BitAccess/

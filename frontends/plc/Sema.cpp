@@ -29,13 +29,27 @@ const PType *Checker::stringType(uint64_t len, bool wide) {
   return t;
 }
 
+bool Checker::literalFits(Expr *e, const PType *to, SMLoc at) {
+  if (!e || !e->beyondInt64 || !to)
+    return true;
+  to = baseOf(to);
+  if (to->kind == PTypeKind::AnyInt ||
+      (to->kind == PTypeKind::Int && to->width == 64 && !to->isSigned) ||
+      to->kind == PTypeKind::Real)
+    return true;
+  error(at, "value " + Twine(uint64_t(e->intValue)) + " is out of range for " +
+                to->str());
+  return false;
+}
+
 bool Checker::constInt(Expr *e, int64_t &v) {
   if (!e)
     return false;
   switch (e->kind) {
   case ExprKind::IntLit:
     v = e->intValue;
-    return true;
+    return !e->beyondInt64; // not an int64: every use checks literalFits
+
   case ExprKind::Unary: {
     int64_t a;
     if (e->op == Op::Neg && constInt(e->operands[0], a)) {

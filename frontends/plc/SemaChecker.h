@@ -46,6 +46,9 @@ private:
   const PType *resolve(TypeSyntax *ts, StringRef ownerName);
   const PType *resolveNamed(StringRef name, SMLoc at);
   bool constInt(Expr *e, int64_t &v);
+  /// Reports a literal past 2^63 - 1 (see Expr::beyondInt64) that meets a
+  /// type other than ULINT or LWORD; false when it did.
+  bool literalFits(Expr *e, const PType *to, SMLoc at);
   /// STRING[len] or WSTRING[len], one per length.
   const PType *stringType(uint64_t len, bool wide);
   std::map<std::pair<uint32_t, bool>, const PType *> stringTypes;

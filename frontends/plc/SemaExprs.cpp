@@ -51,7 +51,9 @@ const PType *Checker::expr(Expr *e) {
         error(e->loc, "unknown type '" + e->typeName + "' in typed literal");
         return nullptr;
       }
-      if (t->kind == PTypeKind::Int &&
+      if (!literalFits(e, t, e->loc))
+        return nullptr;
+      if (t->kind == PTypeKind::Int && !e->beyondInt64 &&
           (e->intValue < t->lo || e->intValue > t->hi) && !t->isBits) {
         error(e->loc, "value " + Twine(e->intValue) + " is out of range for " +
                           t->str());
@@ -263,6 +265,15 @@ const PType *Checker::expr(Expr *e) {
     error(e->loc, "dereference is not supported");
     return nullptr;
   case ExprKind::Unary: {
+    Expr *x = e->operands[0];
+    if (e->op == Op::Neg && x->kind == ExprKind::IntLit && x->beyondInt64 &&
+        x->intValue == INT64_MIN && x->typeName.empty()) {
+      // -9223372036854775808, LINT's least value: one literal.
+      e->kind = ExprKind::IntLit;
+      e->intValue = INT64_MIN;
+      e->operands.clear();
+      return e->type = anyIntType();
+    }
     const PType *a = expr(e->operands[0]);
     if (!a)
       return nullptr;
@@ -278,6 +289,11 @@ const PType *Checker::expr(Expr *e) {
       if (!b->isInteger() && b->kind != PTypeKind::Time &&
           b->kind != PTypeKind::Real) {
         error(e->loc, "'" + spelling(e->op) + "' applied to " + a->str());
+        return nullptr;
+      }
+      if (e->op == Op::Neg && e->operands[0]->beyondInt64) {
+        error(e->loc, "value -" + Twine(uint64_t(e->operands[0]->intValue)) +
+                          " is out of range");
         return nullptr;
       }
       if (e->op == Op::Neg && b->kind == PTypeKind::Int && !b->isSigned) {

@@ -127,6 +127,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     return mismatch();
   case PTypeKind::Int: {
     if (fb->kind == PTypeKind::AnyInt) {
+      if (!literalFits(from, to, at))
+        return false;
       int64_t v;
       if (constInt(from, v) && (v < to->lo || v > to->hi)) {
         error(at, "value " + Twine(v) + " is out of range for " + to->str());
@@ -184,6 +186,9 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
   std::string op = e->kind == ExprKind::Call ? e->name : spelling(e->op).str();
   a = baseOf(a);
   b = baseOf(b);
+  if (e->kind == ExprKind::Binary && (!literalFits(e->operands[0], b, e->loc) ||
+                                      !literalFits(e->operands[1], a, e->loc)))
+    return nullptr;
   if (a->kind == PTypeKind::AnyInt)
     return b;
   if (b->kind == PTypeKind::AnyInt)

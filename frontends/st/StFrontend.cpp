@@ -33,7 +33,8 @@ using P = stgen::ST;
 // Literals
 //===----------------------------------------------------------------------===//
 
-bool st::parseIntegerLiteral(StringRef text, int64_t &value) {
+bool st::parseIntegerLiteral(StringRef text, int64_t &value,
+                             bool *beyondInt64) {
   unsigned base = 10;
   size_t hash = text.find('#');
   StringRef digits = text;
@@ -66,10 +67,13 @@ bool st::parseIntegerLiteral(StringRef text, int64_t &value) {
   }
   if (!any)
     return false;
-  // Bit patterns such as 16#FFFFFFFFFFFFFFFF are kept as their two's
-  // complement; decimal literals beyond int64 are out of range.
-  if (base == 10 && v > uint64_t(INT64_MAX))
-    return false;
+  // Values past 2^63 - 1 (only a ULINT or LWORD holds them) keep their
+  // bits, for a caller that asks; for the others they are out of range.
+  if (v > uint64_t(INT64_MAX)) {
+    if (!beyondInt64)
+      return false;
+    *beyondInt64 = true;
+  }
   value = static_cast<int64_t>(v);
   return true;
 }
@@ -990,7 +994,7 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   SMLoc at = loc(c);
   if (auto *i = alt<P::IntLiteralContext>(c)) {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
-    if (!st::parseIntegerLiteral(i->getText(), e->intValue))
+    if (!st::parseIntegerLiteral(i->getText(), e->intValue, &e->beyondInt64))
       return refuse(at, "integer literal '" + i->getText() +
                             "' is out of "
                             "range");
@@ -1045,7 +1049,8 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
   case P::INTEGER: {
     Expr *e = unit.make<Expr>(ExprKind::IntLit, at);
     e->typeName = typeName;
-    if (!st::parseIntegerLiteral(value, e->intValue))
+    if (!st::parseIntegerLiteral(value, e->intValue, &e->beyondInt64) ||
+        (negative && e->beyondInt64))
       return refuse(at, "integer literal '" + value + "' is out of range");
     if (negative)
       e->intValue = -e->intValue;

@@ -49,7 +49,8 @@ plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
 bool parseDuration(llvm::StringRef literal, int64_t &ns, std::string &error);
 
 /// The value of an integer literal (`1_000`, `16#FF`, `2#1010`).
-bool parseIntegerLiteral(llvm::StringRef text, int64_t &value);
+bool parseIntegerLiteral(llvm::StringRef text, int64_t &value,
+                         bool *beyondInt64 = nullptr);
 
 } // namespace netlift::st
 
