@@ -18,6 +18,22 @@
 #include <new>
 #include <sys/mman.h>
 
+// LLVM's BumpPtrAllocator poisons its slabs under AddressSanitizer, and
+// munmap does not clear the shadow: a later mapping at the same address
+// would inherit that poison, so fresh mappings are unpoisoned explicitly.
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/asan_interface.h>
+#define NETLIFT_UNPOISON(p, n) __asan_unpoison_memory_region(p, n)
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#include <sanitizer/asan_interface.h>
+#define NETLIFT_UNPOISON(p, n) __asan_unpoison_memory_region(p, n)
+#endif
+#endif
+#ifndef NETLIFT_UNPOISON
+#define NETLIFT_UNPOISON(p, n) ((void)(p), (void)(n))
+#endif
+
 namespace netlift {
 
 namespace detail {
@@ -48,6 +64,7 @@ inline void *hugeAllocate(size_t bytes) {
 #ifdef MADV_HUGEPAGE
   madvise(p, size, MADV_HUGEPAGE);
 #endif
+  NETLIFT_UNPOISON(p, size);
   return p;
 }
 inline void hugeDeallocate(void *p, size_t bytes) {
