@@ -153,6 +153,20 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
     }
     return best;
   }
+  // a + b and a * k (k >= 0 constant): bounded by the same of the bounds.
+  if (e->kind == ExprKind::Binary && (e->op == Op::Add || e->op == Op::Mul)) {
+    Expr *a = e->operands[0], *k = e->operands[1];
+    if (e->op == Op::Mul && constValue(a, f))
+      std::swap(a, k);
+    auto x = upperBound(a, f, visiting);
+    auto y = e->op == Op::Add ? upperBound(k, f, visiting) : constValue(k, f);
+    int64_t r;
+    if (!x || !y || (e->op == Op::Mul && *y < 0) ||
+        (e->op == Op::Add ? __builtin_add_overflow(*x, *y, &r)
+                          : __builtin_mul_overflow(*x, *y, &r)))
+      return std::nullopt;
+    return r;
+  }
   // A function block's input takes what its calls pass (any instance's:
   // an upper bound is all the clock needs); a program's input is free.
   VarDecl *v = e->kind == ExprKind::Name ? e->var : nullptr;

@@ -297,6 +297,45 @@ struct Stmt {
 
 enum class PouKind : uint8_t { Program, FunctionBlock, Function };
 
+/// A Sequential Function Chart (IEC 61131-3 3rd edition, 6.7), as textual
+/// SFC and PLCopen's graphical SFC give it; expandSfc (SfcExpansion.cpp)
+/// turns it into the statements a scan runs.
+struct SfcAssociation {
+  std::string action; // an ACTION of the POU or a BOOL variable
+  std::string qualifier = "N";
+  Expr *time = nullptr; // L, D, SD, DS, SL
+  std::vector<std::string> indicators;
+  llvm::SMLoc loc;
+};
+
+struct SfcStep {
+  std::string name;
+  llvm::SMLoc loc;
+  bool initial = false;
+  std::vector<SfcAssociation> actions;
+};
+
+struct SfcTransition {
+  std::string name; // may be empty
+  llvm::SMLoc loc;
+  int64_t priority = -1; // PRIORITY := n, -1 when not given
+  std::vector<std::string> from, to;
+  std::vector<llvm::SMLoc> fromLocs, toLocs;
+  Expr *condition = nullptr;
+};
+
+struct SfcAction {
+  std::string name;
+  llvm::SMLoc loc;
+  StmtList body;
+};
+
+struct SfcChart {
+  std::vector<SfcStep *> steps;
+  std::vector<SfcTransition *> transitions;
+  std::vector<SfcAction *> actions;
+};
+
 llvm::StringRef spelling(PouKind k);
 
 struct Pou {
@@ -306,6 +345,9 @@ struct Pou {
   TypeSyntax *resultSyntax = nullptr; // functions
   std::vector<VarDecl *> vars;
   StmtList body;
+  /// The body's chart when it is written in SFC (then `body` is what
+  /// expandSfc made of it).
+  SfcChart *sfc = nullptr;
   std::vector<Attribute> attrs;
   /// Part of netlift's standard library (TON, CTU, ...), not the user's.
   bool isLibrary = false;

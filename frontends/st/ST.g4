@@ -83,13 +83,38 @@ functionBlockDecl
 
 accessModifier : ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL ;
 
-// Methods, properties, actions and SFC steps inside a function block.
+// Methods, properties, actions and SFC elements inside a POU.
 fbMember
   : kw=METHOD (~END_METHOD)* END_METHOD
   | kw=PROPERTY (~END_PROPERTY)* END_PROPERTY
-  | kw=ACTION (~END_ACTION)* END_ACTION
-  | kw=(INITIAL_STEP | STEP) (~END_STEP)* END_STEP
-  | kw=TRANSITION (~END_TRANSITION)* END_TRANSITION
+  | sfcAction
+  | sfcStep
+  | sfcTransition
+  ;
+
+// Sequential Function Chart (IEC 61131-3 3rd edition, 6.7). An action
+// association's arguments are read as expressions: the qualifier, its
+// time and the indicators are told apart when the chart is built.
+sfcStep
+  : kw=(INITIAL_STEP | STEP) name=ident COLON actionAssociation* END_STEP SEMI?
+  ;
+
+actionAssociation
+  : action=ident LPAREN (expression (COMMA expression)*)? RPAREN SEMI
+  ;
+
+sfcTransition
+  : kw=TRANSITION name=ident?
+    (LPAREN priorityKw=IDENT ASSIGN priority=INTEGER RPAREN)?
+    FROM from=sfcStepSet TO to=sfcStepSet
+    (ASSIGN cond=expression SEMI | il=COLON (~END_TRANSITION)*)
+    END_TRANSITION SEMI?
+  ;
+
+sfcStepSet : ident | LPAREN ident (COMMA ident)* RPAREN ;
+
+sfcAction
+  : kw=ACTION name=ident COLON? body=statementList END_ACTION SEMI?
   ;
 
 functionDecl

@@ -8,6 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StFrontend.h"
+#include "frontends/plc/SfcExpansion.h"
 #include "frontends/st/StLexer.h"
 #include "ir/support/IecTime.h"
 
@@ -340,16 +341,13 @@ private:
     return ts;
   }
   std::vector<Attribute> pragmasBefore(antlr4::Token *t);
-  std::nullptr_t refuseMember(P::FbMemberContext *m, StringRef where) {
-    size_t t = m->kw->getType();
-    if (t == P::INITIAL_STEP || t == P::STEP || t == P::TRANSITION)
-      return refuse(loc(m->kw), "Sequential Function Chart (" +
-                                    m->kw->getText() + ") in a " + where +
-                                    " is not supported");
-    return refuse(loc(m->kw), m->kw->getText() + " in a " + where +
-                                  " is not supported (object-oriented "
-                                  "extensions are refused)");
-  }
+  /// The POU's METHODs and PROPERTYs are refused; its SFC elements and
+  /// ACTIONs become its chart (an ACTION without steps is a CODESYS
+  /// action, refused).
+  bool members(const std::vector<P::FbMemberContext *> &ms, StringRef where,
+               Pou *pou);
+  bool sfcStep(P::SfcStepContext *c, SfcChart &chart);
+  bool sfcTransition(P::SfcTransitionContext *c, SfcChart &chart);
 
   template <typename Ctx> Pou *pou(PouKind kind, Ctx *c);
   Pou *program(P::ProgramDeclContext *c);
@@ -456,10 +454,147 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   return pou;
 }
 
+bool AstBuilder::members(const std::vector<P::FbMemberContext *> &ms,
+                         StringRef where, Pou *pou) {
+  if (ms.empty())
+    return true;
+  auto *chart = unit.make<SfcChart>();
+  for (auto *m : ms) {
+    if (m->kw) {
+      refuse(loc(m->kw), m->kw->getText() + " in a " + where +
+                             " is not supported (object-oriented "
+                             "extensions are refused)");
+      return false;
+    }
+    if (auto *s = m->sfcStep()) {
+      if (!sfcStep(s, *chart))
+        return false;
+    } else if (auto *t = m->sfcTransition()) {
+      if (!sfcTransition(t, *chart))
+        return false;
+    } else {
+      auto *a = m->sfcAction();
+      auto *action = unit.make<SfcAction>();
+      action->name = a->name->getText();
+      action->loc = loc(a->name);
+      statements(a->body, action->body);
+      if (failed)
+        return false;
+      chart->actions.push_back(action);
+    }
+  }
+  if (chart->steps.empty()) {
+    refuse(chart->actions.empty() ? pou->loc : chart->actions[0]->loc,
+           chart->actions.empty()
+               ? "an SFC transition without steps"
+               : "ACTION in a " + where +
+                     " without SFC steps is not supported (a CODESYS "
+                     "action, called as a statement, is refused)");
+    return false;
+  }
+  if (!pou->body.empty()) {
+    refuse(pou->body[0]->loc, "statements in the body of a " + where +
+                                  " written in SFC (IEC 61131-3 gives a "
+                                  "body one language)");
+    return false;
+  }
+  pou->sfc = chart;
+  return plc::expandSfc(unit, *pou, diag) || (failed = true, false);
+}
+
+bool AstBuilder::sfcStep(P::SfcStepContext *c, SfcChart &chart) {
+  auto *step = unit.make<SfcStep>();
+  step->name = c->name->getText();
+  step->loc = loc(c->name);
+  step->initial = c->kw->getType() == P::INITIAL_STEP;
+  for (auto *a : c->actionAssociation()) {
+    SfcAssociation assoc;
+    assoc.action = a->action->getText();
+    assoc.loc = loc(a->action);
+    auto args = a->expression();
+    size_t i = 0;
+    auto nameOf = [](P::ExpressionContext *e) { return e->getText(); };
+    static const char *const kQualifiers[] = {"N", "R", "S",  "P",  "P0", "P1",
+                                              "L", "D", "SD", "DS", "SL"};
+    if (!args.empty()) {
+      std::string q = StringRef(nameOf(args[0])).upper();
+      if (llvm::is_contained(kQualifiers, q)) {
+        assoc.qualifier = q;
+        ++i;
+      }
+    }
+    bool timed = llvm::is_contained(
+        std::initializer_list<StringRef>{"L", "D", "SD", "DS", "SL"},
+        assoc.qualifier);
+    if (timed) {
+      if (i >= args.size()) {
+        refuse(assoc.loc, "action qualifier " + assoc.qualifier +
+                              " needs a time (" + assoc.action + "(" +
+                              assoc.qualifier + ", T#1s))");
+        return false;
+      }
+      assoc.time = expr(args[i++]);
+      if (!assoc.time)
+        return false;
+    }
+    for (; i < args.size(); ++i) {
+      auto *p = dynamic_cast<P::PrimaryExprContext *>(args[i]);
+      if (!p || !dynamic_cast<P::VariablePrimaryContext *>(p->primary())) {
+        refuse(loc(args[i]), "'" + nameOf(args[i]) +
+                                 "' is not an action qualifier or an "
+                                 "indicator variable");
+        return false;
+      }
+      assoc.indicators.push_back(nameOf(args[i]));
+    }
+    step->actions.push_back(std::move(assoc));
+  }
+  chart.steps.push_back(step);
+  return true;
+}
+
+bool AstBuilder::sfcTransition(P::SfcTransitionContext *c, SfcChart &chart) {
+  auto *t = unit.make<SfcTransition>();
+  t->loc = loc(c->kw);
+  if (c->name)
+    t->name = c->name->getText();
+  if (c->priorityKw) {
+    if (!StringRef(c->priorityKw->getText()).equals_insensitive("PRIORITY")) {
+      refuse(loc(c->priorityKw), "expected PRIORITY := n, found '" +
+                                     c->priorityKw->getText() + "'");
+      return false;
+    }
+    if (!st::parseIntegerLiteral(c->priority->getText(), t->priority)) {
+      refuse(loc(c->priority), "transition priority out of range");
+      return false;
+    }
+  }
+  auto stepSet = [&](P::SfcStepSetContext *s, std::vector<std::string> &names,
+                     std::vector<SMLoc> &locs) {
+    for (auto *i : s->ident()) {
+      names.push_back(i->getText());
+      locs.push_back(loc(i));
+    }
+  };
+  stepSet(c->from, t->from, t->fromLocs);
+  stepSet(c->to, t->to, t->toLocs);
+  if (c->il) {
+    refuse(loc(c->il), "a transition condition in Instruction List is not "
+                       "supported (write it as ':= expression;')");
+    return false;
+  }
+  t->condition = expr(c->cond);
+  if (!t->condition)
+    return false;
+  chart.transitions.push_back(t);
+  return true;
+}
+
 Pou *AstBuilder::program(P::ProgramDeclContext *c) {
-  for (auto *m : c->fbMember())
-    return refuseMember(m, "program");
-  return pou(PouKind::Program, c);
+  Pou *p = pou(PouKind::Program, c);
+  if (!p || !members(c->fbMember(), "program", p))
+    return nullptr;
+  return p;
 }
 
 Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
@@ -471,9 +606,10 @@ Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
     return refuse(loc(c->IMPLEMENTS()),
                   "IMPLEMENTS is not supported (object-oriented function "
                   "blocks are refused)");
-  for (auto *m : c->fbMember())
-    return refuseMember(m, "function block");
-  return pou(PouKind::FunctionBlock, c);
+  Pou *p = pou(PouKind::FunctionBlock, c);
+  if (!p || !members(c->fbMember(), "function block", p))
+    return nullptr;
+  return p;
 }
 
 Pou *AstBuilder::function(P::FunctionDeclContext *c) {
