@@ -435,6 +435,60 @@ private:
 /// IEC identifiers are case-insensitive.
 bool sameName(llvm::StringRef a, llvm::StringRef b);
 
+/// Builds the AST of code a frontend generates rather than parses (the
+/// networks of graphical bodies, SFC charts). A maker that must watch how
+/// much it builds overrides make().
+class AstMaker {
+public:
+  explicit AstMaker(Unit &unit) : unit(unit) {}
+  virtual ~AstMaker() = default;
+  virtual Expr *make(ExprKind k, llvm::SMLoc at) {
+    return unit.make<Expr>(k, at);
+  }
+  Expr *boolLit(bool v, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::BoolLit, at);
+    e->intValue = v;
+    return e;
+  }
+  Expr *nameRef(llvm::StringRef name, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::Name, at);
+    e->name = name.str();
+    return e;
+  }
+  Expr *field(Expr *base, llvm::StringRef name, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::Field, at);
+    e->name = name.str();
+    e->operands.push_back(base);
+    return e;
+  }
+  Expr *unary(Op op, Expr *a, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::Unary, at);
+    e->op = op;
+    e->operands.push_back(a);
+    return e;
+  }
+  Expr *binary(Op op, Expr *a, Expr *b, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::Binary, at);
+    e->op = op;
+    e->operands = {a, b};
+    return e;
+  }
+  Stmt *assign(Expr *target, Expr *value, llvm::SMLoc at) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Assign, at);
+    s->target = target;
+    s->value = value;
+    return s;
+  }
+  Stmt *when(Expr *cond, StmtList body, llvm::SMLoc at) {
+    Stmt *s = unit.make<Stmt>(StmtKind::If, at);
+    s->arms.push_back({cond, std::move(body)});
+    return s;
+  }
+
+protected:
+  Unit &unit;
+};
+
 /// The characters of an IEC string literal written with its quotes: 'abc'
 /// (STRING; `$hh` escapes a byte) or "abc" (WSTRING; `$hhhh`), with `$$`,
 /// `$'` / `$"`, `$L` and `$N` (line feed), `$P` (form feed), `$R`, `$T`.

@@ -30,47 +30,24 @@ using llvm::StringRef;
 namespace {
 
 /// Makes the AST of the generated statements.
-class Expander {
+class Expander : AstMaker {
 public:
   Expander(Unit &unit, Pou &pou, DiagEngine &diag)
-      : unit(unit), pou(pou), chart(*pou.sfc), diag(diag) {}
+      : AstMaker(unit), pou(pou), chart(*pou.sfc), diag(diag) {}
   bool run();
 
 private:
-  // AST construction.
-  Expr *name(StringRef n, SMLoc at) {
-    Expr *e = unit.make<Expr>(ExprKind::Name, at);
-    e->name = n.str();
-    return e;
-  }
+  // AST construction (AstMaker's, and these).
+  Expr *name(StringRef n, SMLoc at) { return nameRef(n, at); }
   Expr *field(StringRef base, StringRef member, SMLoc at) {
-    Expr *e = unit.make<Expr>(ExprKind::Field, at);
-    e->name = member.str();
-    e->operands = {name(base, at)};
-    return e;
-  }
-  Expr *boolLit(bool v, SMLoc at) {
-    Expr *e = unit.make<Expr>(ExprKind::BoolLit, at);
-    e->intValue = v;
-    return e;
+    return AstMaker::field(name(base, at), member, at);
   }
   Expr *timeLit(int64_t ns, SMLoc at) {
     Expr *e = unit.make<Expr>(ExprKind::TimeLit, at);
     e->intValue = ns;
     return e;
   }
-  Expr *binary(Op op, Expr *a, Expr *b, SMLoc at) {
-    Expr *e = unit.make<Expr>(ExprKind::Binary, at);
-    e->op = op;
-    e->operands = {a, b};
-    return e;
-  }
-  Expr *negate(Expr *a, SMLoc at) {
-    Expr *e = unit.make<Expr>(ExprKind::Unary, at);
-    e->op = Op::Not;
-    e->operands = {a};
-    return e;
-  }
+  Expr *negate(Expr *a, SMLoc at) { return unary(Op::Not, a, at); }
   /// A fresh copy of `e` (a duration written once, used by several timers).
   Expr *copy(Expr *e) {
     Expr *c = unit.make<Expr>(*e);
@@ -90,12 +67,6 @@ private:
       r = binary(Op::Or, r, xs[i], at);
     return r;
   }
-  Stmt *assign(Expr *target, Expr *value, SMLoc at) {
-    Stmt *s = unit.make<Stmt>(StmtKind::Assign, at);
-    s->target = target;
-    s->value = value;
-    return s;
-  }
   Stmt *call(StringRef instance,
              std::vector<std::pair<StringRef, Expr *>> inputs, SMLoc at) {
     Expr *c = unit.make<Expr>(ExprKind::Call, at);
@@ -109,11 +80,6 @@ private:
     }
     Stmt *s = unit.make<Stmt>(StmtKind::Call, at);
     s->value = c;
-    return s;
-  }
-  Stmt *ifThen(Expr *cond, StmtList body, SMLoc at) {
-    Stmt *s = unit.make<Stmt>(StmtKind::If, at);
-    s->arms.push_back({cond, std::move(body)});
     return s;
   }
   VarDecl *declare(StringRef n, StringRef type, SMLoc at,
@@ -133,7 +99,6 @@ private:
   Expr *stepTimeCap(SfcStep *step);
   void expandAction(StringRef action, SMLoc at);
 
-  Unit &unit;
   Pou &pou;
   SfcChart &chart;
   DiagEngine &diag;
@@ -439,7 +404,7 @@ void Expander::expandAction(StringRef actionName, SMLoc at) {
   auto qFlag = [&] { return name(q, at); };
   runs.push_back(name(edge("LAST_Q", qFlag, true), at));
   llvm::append_range(runs, pulses);
-  out.push_back(ifThen(anyOf(runs, at), found->second->body, at));
+  out.push_back(when(anyOf(runs, at), found->second->body, at));
 }
 
 bool Expander::run() {

@@ -50,10 +50,10 @@ struct Element {
 /// expanded further.
 constexpr size_t kMaxExprNodes = 2'000'000;
 
-class Network {
+class Network : public AstMaker {
 public:
   Network(XmlSource &src, DiagEngine &diag, Unit &unit, Pou *pou)
-      : src(src), diag(diag), unit(unit), pou(pou) {}
+      : AstMaker(unit), src(src), diag(diag), pou(pou) {}
 
   bool read(pugi::xml_node body);
 
@@ -76,41 +76,13 @@ private:
   std::vector<const Element *> order();
 
   // Expressions.
-  Expr *make(ExprKind k, SMLoc at) {
+  Expr *make(ExprKind k, SMLoc at) override {
     if (++made > kMaxExprNodes) {
       diag.error(at, "network too large once expanded into expressions "
                      "(more than 2000000 nodes)");
       throw Failure();
     }
     return unit.make<Expr>(k, at);
-  }
-  Expr *boolLit(bool v, SMLoc at) {
-    Expr *e = make(ExprKind::BoolLit, at);
-    e->intValue = v;
-    return e;
-  }
-  Expr *nameRef(StringRef name, SMLoc at) {
-    Expr *e = make(ExprKind::Name, at);
-    e->name = name.str();
-    return e;
-  }
-  Expr *field(Expr *base, StringRef name, SMLoc at) {
-    Expr *e = make(ExprKind::Field, at);
-    e->name = name.str();
-    e->operands.push_back(base);
-    return e;
-  }
-  Expr *unary(Op op, Expr *a, SMLoc at) {
-    Expr *e = make(ExprKind::Unary, at);
-    e->op = op;
-    e->operands.push_back(a);
-    return e;
-  }
-  Expr *binary(Op op, Expr *a, Expr *b, SMLoc at) {
-    Expr *e = make(ExprKind::Binary, at);
-    e->op = op;
-    e->operands = {a, b};
-    return e;
   }
   Expr *textExpr(pugi::xml_node holder, const Element &e, const char *what);
   Expr *power(const Element &e);
@@ -125,17 +97,6 @@ private:
   VarDecl *declare(const std::string &name, StringRef type, VarSection s,
                    pugi::xml_node at);
   void emit(Stmt *s);
-  Stmt *assign(Expr *target, Expr *v, SMLoc at) {
-    Stmt *s = unit.make<Stmt>(StmtKind::Assign, at);
-    s->target = target;
-    s->value = v;
-    return s;
-  }
-  Stmt *when(Expr *cond, StmtList body, SMLoc at) {
-    Stmt *s = unit.make<Stmt>(StmtKind::If, at);
-    s->arms.push_back({cond, std::move(body)});
-    return s;
-  }
   std::string trigger(const Element &e, StringRef suffix, bool rising,
                       Expr *clk);
   void coil(const Element &e);
@@ -147,7 +108,6 @@ private:
 
   XmlSource &src;
   DiagEngine &diag;
-  Unit &unit;
   Pou *pou;
   std::map<int, Element> elements;
   std::vector<int> document;             // localIds in document order

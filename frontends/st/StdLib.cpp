@@ -5,10 +5,11 @@
 // CONCAT_DATE, SPLIT_DT, DAY_OF_WEEK), written in Structured Text and
 // translated like the user's own code, so their behaviour is exactly what
 // this text says. A date function given a month, day or hour that does not
-// exist stops with a runtime error naming the field (a subrange variable). The behaviour is the standard's at scan granularity: an FB computes
-// its outputs when it is called, from its inputs and from the time at the
-// start of the scan. matiec's library (../shared/corpus/st/matiec/lib) is
-// the reference the behavioural tests compare against.
+// exist stops with a runtime error naming the field (a subrange variable). The
+// behaviour is the standard's at scan granularity: an FB computes its outputs
+// when it is called, from its inputs and from the time at the start of the
+// scan. matiec's library (../shared/corpus/st/matiec/lib) is the reference the
+// behavioural tests compare against.
 //
 // Timers read time through a variable marked `{netlift clock PT}`: it
 // becomes a NetIR clock variable counting ticks, saturating at the largest
@@ -504,8 +505,9 @@ END_FUNCTION
 )ST";
 
 bool st::isStandardFunctionBlock(llvm::StringRef name) {
-  for (const char *fb : {"R_TRIG", "F_TRIG", "SR", "RS", "CTU", "CTD", "CTUD",
-                         "TON", "TOF", "TP"})
+  for (const char *fb :
+       {"R_TRIG", "F_TRIG", "SR", "RS", "CTU", "CTD", "CTUD", "TON", "TOF",
+        "TP", "NETLIFT_SFC_STEP", "NETLIFT_SFC_TIMED_STEP"})
     if (name.equals_insensitive(fb))
       return true;
   return false;
