@@ -73,6 +73,6 @@ NExpr *Lowering::convertString(NExpr *v, const PType *from, const PType *to,
   case PTypeKind::Real:
     return b.convert(floatType(to), v, at);
   default:
-    refused();
+    return refused();
   }
 }

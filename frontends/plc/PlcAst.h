@@ -331,6 +331,10 @@ struct SfcAction {
 };
 
 struct SfcChart {
+  /// What a graphical chart computes before its transitions are cleared:
+  /// the networks drawn beside it (wired conditions) and the bodies of the
+  /// POU transitions it names (each sets a BOOL named like it).
+  StmtList networks;
   std::vector<SfcStep *> steps;
   std::vector<SfcTransition *> transitions;
   std::vector<SfcAction *> actions;

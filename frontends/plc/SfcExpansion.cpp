@@ -452,6 +452,7 @@ bool Expander::run() {
             pb = chart.transitions[b]->priority;
     return (pa < 0 ? INT64_MAX : pa) < (pb < 0 ? INT64_MAX : pb);
   });
+  llvm::append_range(out, chart.networks);
   std::vector<std::string> fires(chart.transitions.size());
   std::vector<size_t> cleared;
   for (size_t i : order) {

@@ -52,8 +52,10 @@ constexpr size_t kMaxExprNodes = 2'000'000;
 
 class Network : public AstMaker {
 public:
-  Network(XmlSource &src, DiagEngine &diag, Unit &unit, Pou *pou)
-      : AstMaker(unit), src(src), diag(diag), pou(pou) {}
+  Network(XmlSource &src, DiagEngine &diag, Unit &unit, Pou *pou,
+          const std::map<int, std::string> *sfcConditions)
+      : AstMaker(unit), src(src), diag(diag), pou(pou),
+        sfcConditions(sfcConditions) {}
 
   bool read(pugi::xml_node body);
 
@@ -110,6 +112,9 @@ private:
   DiagEngine &diag;
   Pou *pou;
   std::map<int, Element> elements;
+  /// In an SFC body: the transitions whose condition is wired from the
+  /// networks drawn there, and the variable each condition goes to.
+  const std::map<int, std::string> *sfcConditions;
   std::vector<int> document;             // localIds in document order
   std::map<std::string, int> connectors; // upper-case name -> localId
   size_t made = 0;
@@ -122,6 +127,15 @@ private:
 
 static const char *const statementKinds[] = {"coil", "outVariable", "block",
                                              "jump", "return",      "label"};
+static const char *const sfcKinds[] = {"step",
+                                       "transition",
+                                       "selectionDivergence",
+                                       "selectionConvergence",
+                                       "jumpStep",
+                                       "actionBlock",
+                                       "simultaneousDivergence",
+                                       "simultaneousConvergence",
+                                       "macroStep"};
 static const char *const expressionKinds[] = {
     "leftPowerRail", "rightPowerRail", "contact",     "inVariable",
     "inOutVariable", "connector",      "continuation"};
@@ -133,6 +147,24 @@ bool Network::collect(pugi::xml_node body) {
     StringRef kind = localName(n);
     if (kind == "comment" || kind == "documentation" || kind == "addData")
       continue;
+    if (sfcConditions && llvm::is_contained(sfcKinds, kind)) {
+      // The chart is SfcBody.cpp's; a wired condition is an output here.
+      int id = n.attribute("localId").as_int(-1);
+      if (kind == "transition" && sfcConditions->count(id)) {
+        Element e;
+        e.node = child(n, "condition");
+        e.kind = "sfcCondition";
+        e.id = id;
+        e.order = n.attribute("executionOrderId").as_int(0);
+        pugi::xml_node pos = child(n, "position");
+        e.x = pos.attribute("x").as_int(0);
+        e.y = pos.attribute("y").as_int(0);
+        e.statement = true;
+        document.push_back(e.id);
+        elements.emplace(e.id, e);
+      }
+      continue;
+    }
     bool known = llvm::is_contained(statementKinds, kind) ||
                  llvm::is_contained(expressionKinds, kind);
     if (!known)
@@ -717,6 +749,8 @@ bool Network::read(pugi::xml_node body) {
                     at));
       } else if (k == "block") {
         block(*e);
+      } else if (k == "sfcCondition") {
+        emit(assign(nameRef(sfcConditions->at(e->id), at), power(*e), at));
       } else if (k == "jump") {
         jump(*e);
       } else if (k == "label") {
@@ -740,8 +774,9 @@ bool Network::read(pugi::xml_node body) {
   return true;
 }
 
-bool plcopen::readGraphicalBody(pugi::xml_node body, XmlSource &src,
-                                DiagEngine &diag, Unit &unit, Pou *pou) {
-  Network network(src, diag, unit, pou);
+bool plcopen::readGraphicalBody(
+    pugi::xml_node body, XmlSource &src, DiagEngine &diag, Unit &unit, Pou *pou,
+    const std::map<int, std::string> *sfcConditions) {
+  Network network(src, diag, unit, pou, sfcConditions);
   return network.read(body);
 }

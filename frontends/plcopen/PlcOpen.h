@@ -20,6 +20,8 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/SMLoc.h"
 
+#include <functional>
+#include <map>
 #include <pugixml.hpp>
 
 namespace netlift::plcopen {
@@ -27,10 +29,25 @@ namespace netlift::plcopen {
 /// Turns an LD or FBD body element into statements appended to pou->body,
 /// declaring the instances and temporaries it needs in `pou`. Returns false
 /// after reporting an error.
-bool readGraphicalBody(pugi::xml_node body, XmlSource &src, DiagEngine &diag,
-                       plc::Unit &unit, plc::Pou *pou);
+/// An LD or FBD body into `pou->body`. In an SFC body (`sfcConditions`
+/// set), the networks drawn beside the chart: the SFC elements are left to
+/// SfcBody.cpp, and each wired transition condition (transition localId ->
+/// BOOL variable) is assigned like an output.
+bool readGraphicalBody(
+    pugi::xml_node body, XmlSource &src, DiagEngine &diag, plc::Unit &unit,
+    plc::Pou *pou, const std::map<int, std::string> *sfcConditions = nullptr);
 
 /// Reads a PLCopen XML file into `unit`.
+/// Reads a POU's <body> (any language) into a statement list.
+using SfcBodyReader =
+    std::function<bool(pugi::xml_node body, plc::StmtList &out)>;
+
+/// An <SFC> body: the chart (SfcBody.cpp), expanded into scan code. The
+/// POU's <actions> and <transitions> are read with `readBody`.
+bool readSfcBody(pugi::xml_node sfc, pugi::xml_node pouNode, XmlSource &src,
+                 DiagEngine &diag, plc::Unit &unit, plc::Pou *pou,
+                 const SfcBodyReader &readBody);
+
 bool readPlcOpen(unsigned bufferID, DiagEngine &diag, plc::Unit &unit);
 
 } // namespace netlift::plcopen

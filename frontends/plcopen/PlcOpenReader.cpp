@@ -2,8 +2,8 @@
 //
 // Reads a PLCopen project into the PLC model: data types, POUs and their
 // interfaces, configurations; ST and IL bodies through their frontends,
-// LD and FBD bodies through GraphicalBody.cpp. SFC bodies, POU actions and
-// transitions are refused by name.
+// LD and FBD bodies through GraphicalBody.cpp, SFC bodies (with the POU's
+// actions and transitions) through SfcBody.cpp.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plcopen/PlcOpen.h"
@@ -42,7 +42,7 @@ private:
                  std::vector<VarDecl *> &out);
   bool interface(pugi::xml_node iface, Pou *pou);
   bool pou(pugi::xml_node p);
-  bool body(pugi::xml_node b, Pou *pou);
+  bool body(pugi::xml_node b, Pou *pou, pugi::xml_node pouNode);
   bool configuration(pugi::xml_node c);
   Expr *interval(pugi::xml_node task);
 
@@ -281,7 +281,7 @@ bool Reader::interface(pugi::xml_node iface, Pou *pou) {
   return true;
 }
 
-bool Reader::body(pugi::xml_node b, Pou *pou) {
+bool Reader::body(pugi::xml_node b, Pou *pou, pugi::xml_node pouNode) {
   pugi::xml_node lang;
   for (pugi::xml_node c : b.children())
     if (c.type() == pugi::node_element && localName(c) != "documentation" &&
@@ -298,9 +298,19 @@ bool Reader::body(pugi::xml_node b, Pou *pou) {
     return il::parseInstructionListBody(src.placeText(lang), diag, unit, pou);
   if (kind == "LD" || kind == "FBD")
     return readGraphicalBody(lang, src, diag, unit, pou);
-  if (kind == "SFC")
-    return fail(lang, "Sequential Function Chart body of POU '" + pou->name +
-                          "' is not supported");
+  if (kind == "SFC") {
+    // An action's or transition's body is read as the POU's own would be
+    // (its variables, its temporaries), then set apart.
+    SfcBodyReader part = [&](pugi::xml_node partBody, StmtList &out) {
+      StmtList own = std::move(pou->body);
+      pou->body.clear();
+      bool ok = body(partBody, pou, pouNode);
+      out = std::move(pou->body);
+      pou->body = std::move(own);
+      return ok;
+    };
+    return readSfcBody(lang, pouNode, src, diag, unit, pou, part);
+  }
   return fail(lang, "unknown body language <" + kind.str() + "> in POU '" +
                         pou->name + "'");
 }
@@ -320,26 +330,30 @@ bool Reader::pou(pugi::xml_node p) {
   pou->kind = k;
   pou->name = p.attribute("name").value();
   pou->loc = src.locOf(p);
+  // Actions and transitions belong to an SFC body; elsewhere they are
+  // CODESYS actions, called as statements.
+  pugi::xml_node b = child(p, "body");
+  bool sfc = b && child(b, "SFC");
   for (const char *part : {"actions", "transitions"})
     if (pugi::xml_node n = child(p, part))
       for (pugi::xml_node a : n.children())
-        if (a.type() == pugi::node_element)
+        if (a.type() == pugi::node_element && !sfc)
           return fail(
               a, "POU " + std::string(part).substr(0, strlen(part) - 1) + " '" +
                      a.attribute("name").value() + "' of '" + pou->name +
-                     "' is not supported (an SFC or OOP construct)");
+                     "' outside an SFC body is not supported (a "
+                     "CODESYS action, called as a statement)");
   if (pugi::xml_node iface = child(p, "interface"))
     if (!interface(iface, pou))
       return false;
   if (k == PouKind::Function && !pou->resultSyntax)
     return fail(p, "function '" + pou->name + "' has no <returnType>");
-  pugi::xml_node b = child(p, "body");
   if (!b)
     return fail(p, "POU '" + pou->name +
                        "' has no <body> (a block implemented outside IEC "
                        "61131-3, e.g. in C, cannot be modelled)");
   unit.pous.push_back(pou);
-  return body(b, pou);
+  return body(b, pou, p);
 }
 
 /// A task's interval: an IEC duration (`T#20ms`), or in tc6_0200 files an
