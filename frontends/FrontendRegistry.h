@@ -37,6 +37,8 @@ struct FrontendOptions {
   std::vector<std::string> typeLibraries;
   /// --fb-semantics: the IEC 61499 execution model (empty: the default).
   std::string fbSemantics;
+  /// --sfc-dialect: the order of an SFC scan, iec (default) or codesys.
+  bool sfcCodesys = false;
   /// -Wunused-refused: warn about refused constructs in PLC POUs the
   /// translation does not use.
   bool warnUnusedRefused = false;

@@ -33,8 +33,11 @@ FrontendContext::FrontendContext(const FrontendOptions &options)
 FrontendContext::~FrontendContext() = default;
 
 plc::Unit &FrontendContext::plcUnit() {
-  if (!plc)
+  if (!plc) {
     plc = std::make_unique<plc::Unit>();
+    plc->sfcDialect =
+        options.sfcCodesys ? plc::SfcDialect::Codesys : plc::SfcDialect::Iec;
+  }
   return *plc;
 }
 

@@ -407,8 +407,16 @@ struct Configuration {
 
 /// Everything read from the inputs of one translation: the owner of all
 /// nodes.
+/// Whose order an SFC scan follows (docs/sfc.md, "One scan").
+enum class SfcDialect : uint8_t {
+  Iec,     // evolve, then run the actions of the new activity
+  Codesys, // run the actions of the current activity, then evolve
+};
+
 class Unit {
 public:
+  /// --sfc-dialect, read by expandSfc.
+  SfcDialect sfcDialect = SfcDialect::Iec;
   std::vector<Pou *> pous;
   std::vector<TypeDecl *> types;
   std::vector<Configuration *> configs;

@@ -12,6 +12,7 @@
 //     active step that stays active is a runtime error);
 //  4. each action's control (IEC 61131-3's ACTION_CONTROL, specialised to
 //     the qualifiers the chart uses) decides whether its body runs.
+// With --sfc-dialect codesys, 4 comes before 2 and 3.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/SfcExpansion.h"
@@ -442,6 +443,7 @@ bool Expander::run() {
                           {"RESTART", boolLit(false, s->loc)},
                           {"CAP", copy(caps[s])}},
                          s->loc));
+  size_t evolutionStart = out.size();
   // 2. Clearing, in priority order: PRIORITY first (lowest number first),
   // then the order of the text (left to right in a drawing).
   std::vector<size_t> order(chart.transitions.size());
@@ -517,11 +519,17 @@ bool Expander::run() {
     out.push_back(call(s->name, args, s->loc));
   }
   // 4. Actions, in the order the chart first names them.
+  size_t actionsStart = out.size();
   for (const std::string &a : actionOrder) {
     expandAction(a, associations[key(a)].front().second->loc);
     if (failed)
       return false;
   }
+  // CODESYS runs the actions of the activity the scan starts with, then
+  // evolves the chart.
+  if (unit.sfcDialect == SfcDialect::Codesys)
+    std::rotate(out.begin() + evolutionStart, out.begin() + actionsStart,
+                out.end());
   pou.body = std::move(out);
   return true;
 }

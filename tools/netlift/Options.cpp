@@ -1,4 +1,5 @@
 //===- Options.cpp - the subcommands and the options they share -----------===//
+#include "frontends/plc/PlcAst.h"
 #include "ir/net/Printer.h"
 #include "ir/support/OutputFile.h"
 #include "tools/netlift/Driver.h"
@@ -126,6 +127,16 @@ static cl::opt<std::string> fbSemantics(
              "model: blocks take turns in network order, each reacting to "
              "all its pending events at once)"),
     cl::value_desc("MODEL"), NETLIFT_READING);
+static cl::opt<plc::SfcDialect> sfcDialect(
+    "sfc-dialect", cl::desc("SFC input: the order of a scan (docs/sfc.md)"),
+    cl::init(plc::SfcDialect::Iec),
+    cl::values(clEnumValN(plc::SfcDialect::Iec, "iec",
+                          "evolve the chart, then run the actions of the new "
+                          "step activity (IEC 61131-3, matiec)"),
+               clEnumValN(plc::SfcDialect::Codesys, "codesys",
+                          "run the actions of the current step activity, "
+                          "then evolve (CODESYS, TwinCAT)")),
+    NETLIFT_READING);
 // Hidden knobs, so that tests can make small ST inputs take the grouped
 // parse of long parts.
 static cl::opt<unsigned> stLongPartTokens(
@@ -183,6 +194,7 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.rangesFile = ranges;
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
+  fo.sfcCodesys = sfcDialect == plc::SfcDialect::Codesys;
   fo.warnUnusedRefused = warnUnusedRefused;
   fo.stLongPartTokens = stLongPartTokens;
   fo.stGroupTokens = stGroupTokens;
