@@ -37,6 +37,11 @@ plc::Unit &FrontendContext::plcUnit() {
     plc = std::make_unique<plc::Unit>();
     plc->sfcDialect =
         options.sfcCodesys ? plc::SfcDialect::Codesys : plc::SfcDialect::Iec;
+    plc->instructionListReader = [](llvm::StringRef body, DiagEngine &diag,
+                                    plc::Unit &unit, plc::Pou *pou,
+                                    plc::Expr **result) {
+      return il::parseInstructionListBody(body, diag, unit, pou, result);
+    };
   }
   return *plc;
 }

@@ -104,6 +104,8 @@ public:
       : text(text), diag(diag), unit(unit), pou(pou) {}
 
   void lower(IP::IlBodyContext *body);
+  /// The current result after the last instruction (null when none set it).
+  Expr *result() const { return cr; }
 
 private:
   [[noreturn]] void refuse(SMLoc at, const Twine &msg) {
@@ -668,7 +670,7 @@ bool il::parseInstructionList(unsigned bufferID, DiagEngine &diag, Unit &unit) {
 }
 
 bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
-                                  Pou *pou) {
+                                  Pou *pou, Expr **result) {
   st::StLexer lexer(body, diag, /*lineEnds=*/true);
   antlr4::CommonTokenStream tokens(&lexer);
   IP parser(&tokens);
@@ -717,6 +719,8 @@ bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
   try {
     IlLowering lowering(body, diag, unit, pou);
     lowering.lower(tree);
+    if (result)
+      *result = lowering.result();
   } catch (Refusal &) {
     return false;
   }

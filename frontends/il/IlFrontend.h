@@ -22,9 +22,12 @@ bool parseInstructionList(unsigned bufferID, DiagEngine &diag, plc::Unit &unit);
 
 /// Parses one POU's instruction list (`body`, a slice of a SourceMgr
 /// buffer) and appends its statements to `pou`, whose declarations are
-/// already read (PLCopen XML keeps the two apart).
+/// already read (PLCopen XML keeps the two apart). `result`, if given,
+/// receives the current result after the last instruction (an SFC
+/// transition condition written in IL; null when nothing set it).
 bool parseInstructionListBody(llvm::StringRef body, DiagEngine &diag,
-                              plc::Unit &unit, plc::Pou *pou);
+                              plc::Unit &unit, plc::Pou *pou,
+                              plc::Expr **result = nullptr);
 
 } // namespace netlift::il
 

@@ -22,10 +22,15 @@
 #include "llvm/Support/SMLoc.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace netlift {
+class DiagEngine;
+}
 
 namespace netlift::plc {
 
@@ -417,6 +422,11 @@ class Unit {
 public:
   /// --sfc-dialect, read by expandSfc.
   SfcDialect sfcDialect = SfcDialect::Iec;
+  /// The Instruction List reader (il::parseInstructionListBody), for an SFC
+  /// transition condition written in IL inside ST; set by the frontend
+  /// that owns both languages (the ST library cannot depend on IL's).
+  std::function<bool(llvm::StringRef, DiagEngine &, Unit &, Pou *, Expr **)>
+      instructionListReader;
   std::vector<Pou *> pous;
   std::vector<TypeDecl *> types;
   std::vector<Configuration *> configs;

@@ -347,7 +347,7 @@ private:
   bool members(const std::vector<P::FbMemberContext *> &ms, StringRef where,
                Pou *pou);
   bool sfcStep(P::SfcStepContext *c, SfcChart &chart);
-  bool sfcTransition(P::SfcTransitionContext *c, SfcChart &chart);
+  bool sfcTransition(P::SfcTransitionContext *c, SfcChart &chart, Pou *pou);
 
   template <typename Ctx> Pou *pou(PouKind kind, Ctx *c);
   Pou *program(P::ProgramDeclContext *c);
@@ -470,7 +470,7 @@ bool AstBuilder::members(const std::vector<P::FbMemberContext *> &ms,
       if (!sfcStep(s, *chart))
         return false;
     } else if (auto *t = m->sfcTransition()) {
-      if (!sfcTransition(t, *chart))
+      if (!sfcTransition(t, *chart, pou))
         return false;
     } else {
       auto *a = m->sfcAction();
@@ -553,7 +553,8 @@ bool AstBuilder::sfcStep(P::SfcStepContext *c, SfcChart &chart) {
   return true;
 }
 
-bool AstBuilder::sfcTransition(P::SfcTransitionContext *c, SfcChart &chart) {
+bool AstBuilder::sfcTransition(P::SfcTransitionContext *c, SfcChart &chart,
+                               Pou *pou) {
   auto *t = unit.make<SfcTransition>();
   t->loc = loc(c->kw);
   if (c->name)
@@ -579,9 +580,34 @@ bool AstBuilder::sfcTransition(P::SfcTransitionContext *c, SfcChart &chart) {
   stepSet(c->from, t->from, t->fromLocs);
   stepSet(c->to, t->to, t->toLocs);
   if (c->il) {
-    refuse(loc(c->il), "a transition condition in Instruction List is not "
-                       "supported (write it as ':= expression;')");
-    return false;
+    // The instruction list between ':' and END_TRANSITION; its current
+    // result is the condition.
+    if (!unit.instructionListReader) {
+      refuse(loc(c->il), "a transition condition in Instruction List is not "
+                         "supported here (write it as ':= expression;')");
+      return false;
+    }
+    size_t begin = c->il->getStopIndex() + 1;
+    size_t end = c->END_TRANSITION().back()->getSymbol()->getStartIndex();
+    StmtList own = std::move(pou->body);
+    pou->body.clear();
+    Expr *result = nullptr;
+    bool ok = unit.instructionListReader(text.substr(begin, end - begin), diag,
+                                         unit, pou, &result);
+    llvm::append_range(chart.networks, pou->body);
+    pou->body = std::move(own);
+    if (!ok) {
+      failed = true;
+      return false;
+    }
+    if (!result) {
+      refuse(loc(c->il), "the instruction list of this transition computes "
+                         "no result (start it with LD)");
+      return false;
+    }
+    t->condition = result;
+    chart.transitions.push_back(t);
+    return true;
   }
   t->condition = expr(c->cond);
   if (!t->condition)
