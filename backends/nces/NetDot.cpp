@@ -48,6 +48,61 @@ static void signalSources(const Expr *e, llvm::SmallVectorImpl<Symbol> &out) {
   }
 }
 
+/// A controller translated from SFC keeps its chart in pragmas of its step
+/// and transition variables (frontends/plc/SfcExpansion.cpp); it is drawn
+/// as the chart, steps as places and transitions as bars, beside the net
+/// the chart became (one scan transition).
+static void writeSfcCharts(const Module &m, StringRef pre, raw_ostream &os) {
+  constexpr StringRef kStep = "netlift sfc_step",
+                      kTrans = "netlift sfc_transition ";
+  std::vector<std::pair<std::string, bool>> steps; // scope, initial
+  std::vector<std::pair<std::string, std::string>> transitions; // prefix, text
+  for (const Attribute &a : m.attributes) {
+    if (a.key != "pragma")
+      continue;
+    StringRef v = a.value;
+    if (v.startswith(kTrans)) {
+      size_t dot = a.target.rfind('.');
+      std::string prefix =
+          dot == StringRef::npos ? "" : a.target.substr(0, dot + 1).str();
+      transitions.push_back({prefix, v.drop_front(kTrans.size()).str()});
+    } else if (v == kStep || v == "netlift sfc_step initial") {
+      steps.push_back({a.target.str(), v.endswith("initial")});
+    }
+  }
+  if (steps.empty())
+    return;
+  auto node = [&](StringRef scope) {
+    return quote(pre.str() + "sfc_" + scope.str());
+  };
+  os << "    subgraph " << quote("cluster_" + pre.str() + "sfc")
+     << " {\n      label=\"SFC\";\n";
+  for (auto &[scope, initial] : steps)
+    os << "      " << node(scope)
+       << " [shape=circle, label=" << quote(scope + (initial ? "\\n*" : ""))
+       << (initial ? ", peripheries=2" : "") << "];\n";
+  for (size_t i = 0; i < transitions.size(); ++i) {
+    auto &[prefix, text] = transitions[i];
+    StringRef rest = text;
+    auto [arcs, cond] = rest.split(" : ");
+    auto [from, to] = arcs.split(" -> ");
+    std::string bar = pre.str() + "sfc_t" + std::to_string(i);
+    os << "      " << quote(bar)
+       << " [shape=box, style=filled, fillcolor=black, height=0.05, "
+          "width=0.5, label=\"\", xlabel="
+       << quote(cond) << "];\n";
+    llvm::SmallVector<StringRef, 4> names;
+    from.split(names, ',');
+    for (StringRef s : names)
+      os << "      " << node(prefix + s.str()) << " -> " << quote(bar) << ";\n";
+    names.clear();
+    to.split(names, ',');
+    for (StringRef s : names)
+      os << "      " << quote(bar) << " -> " << node(prefix + s.str()) << ";\n";
+  }
+  os << "    }\n";
+}
+
 static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
   std::string pre = "m" + std::to_string(idx) + "_";
   auto id = [&](StringRef kind, uint32_t i) {
@@ -92,6 +147,7 @@ static void writeModule(const Module &m, unsigned idx, raw_ostream &os) {
        << quote(m.instances[i].name.str() + " : " +
                 m.instances[i].moduleName.str())
        << "];\n";
+  writeSfcCharts(m, pre, os);
   os << "  }\n";
 
   // Flow arcs: solid; weight and time interval as the label.

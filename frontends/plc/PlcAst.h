@@ -327,6 +327,8 @@ struct SfcTransition {
   std::vector<std::string> from, to;
   std::vector<llvm::SMLoc> fromLocs, toLocs;
   Expr *condition = nullptr;
+  /// The condition as written (or what names it), for drawings.
+  std::string conditionText;
 };
 
 struct SfcAction {

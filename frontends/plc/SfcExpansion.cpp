@@ -18,6 +18,7 @@
 #include "frontends/plc/SfcExpansion.h"
 
 #include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSet.h"
 
 #include <algorithm>
@@ -426,6 +427,10 @@ bool Expander::run() {
     VarDecl *v = declare(
         s->name, isTimed(s) ? "NETLIFT_SFC_TIMED_STEP" : "NETLIFT_SFC_STEP",
         s->loc);
+    // The chart for drawings (emit --to dot), as pragmas of the step and
+    // transition variables.
+    v->attrs.push_back(
+        {s->initial ? "netlift sfc_step initial" : "netlift sfc_step", s->loc});
     if (s->initial) {
       auto *init = unit.make<Initializer>(Initializer::Struct, s->loc);
       auto *x = unit.make<Initializer>(Initializer::Value, s->loc);
@@ -460,7 +465,11 @@ bool Expander::run() {
   for (size_t i : order) {
     SfcTransition *t = chart.transitions[i];
     fires[i] = "__SFC_FIRES_" + std::to_string(i + 1);
-    declare(fires[i], "BOOL", t->loc, VarSection::Temp);
+    VarDecl *f = declare(fires[i], "BOOL", t->loc, VarSection::Temp);
+    f->attrs.push_back({"netlift sfc_transition " + llvm::join(t->from, ",") +
+                            " -> " + llvm::join(t->to, ",") + " : " +
+                            llvm::join(llvm::split(t->conditionText, '\n'), " "),
+                        t->loc});
     Expr *c = t->condition;
     for (size_t k = t->from.size(); k-- > 0;)
       c = binary(Op::And, field(t->from[k], "X", t->fromLocs[k]), c, t->loc);

@@ -395,6 +395,13 @@ bool SfcReader::read(pugi::xml_node sfc, pugi::xml_node p) {
         tr->toLocs.push_back(src.locOf(s));
       }
       tr->condition = condition(t);
+      pugi::xml_node cond = child(t, "condition");
+      if (pugi::xml_node in = child(cond, "inline"))
+        tr->conditionText = src.placeText(child(in, "ST")).trim().str();
+      else if (pugi::xml_node ref = child(cond, "reference"))
+        tr->conditionText = ref.attribute("name").value();
+      else
+        tr->conditionText = "(network)";
       chart->transitions.push_back(tr);
     }
     for (auto &[id, e] : byId)

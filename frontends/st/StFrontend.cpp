@@ -606,12 +606,17 @@ bool AstBuilder::sfcTransition(P::SfcTransitionContext *c, SfcChart &chart,
       return false;
     }
     t->condition = result;
+    t->conditionText = "IL";
     chart.transitions.push_back(t);
     return true;
   }
   t->condition = expr(c->cond);
   if (!t->condition)
     return false;
+  t->conditionText = text.substr(c->cond->getStart()->getStartIndex(),
+                                 c->cond->getStop()->getStopIndex() + 1 -
+                                     c->cond->getStart()->getStartIndex())
+                         .str();
   chart.transitions.push_back(t);
   return true;
 }
