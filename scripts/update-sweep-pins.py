@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Rewrites the pinned counts of the corpus-sweep tests: the CHECK lines
 between `# BEGIN PINS` and `# END PINS` of each test below become the exact
-output of scripts/corpus-sweep.py for its formats (files, translated,
-refused per reason, crashed), so a change that moves a count fails its test
+output of its sweep script (scripts/corpus-sweep.py for its formats: files,
+translated, refused per reason, crashed; scripts/sfc-sweep.py: each SFC
+file's outcome), so a change that moves a count fails its test
 until the pins are updated in the same commit, which says why.
 
 usage: update-sweep-pins.py NETLIFT [CORPUS_DIR]
@@ -12,15 +13,19 @@ import re
 import subprocess
 import sys
 
-# Test file (relative to the source root) -> the formats it sweeps.
+# Test file (relative to the source root) -> the sweep script and the
+# formats it sweeps.
 TESTS = {
-    "test/frontends/pnml/corpus-sweep.test": ["pnml"],
-    "test/frontends/st/corpus-sweep.test": ["st"],
-    "test/frontends/il/corpus-sweep.test": ["il"],
-    "test/frontends/tcpou/corpus-sweep.test": ["tcpou"],
-    "test/frontends/plcopen/corpus-sweep.test": ["plcopen_xml"],
-    "test/frontends/iec61499/corpus-sweep.test": ["iec61499"],
-    "test/frontends/hybrid/corpus-sweep.test": ["spaceex"],
+    "test/frontends/pnml/corpus-sweep.test": ("corpus-sweep.py", ["pnml"]),
+    "test/frontends/st/corpus-sweep.test": ("corpus-sweep.py", ["st"]),
+    "test/frontends/il/corpus-sweep.test": ("corpus-sweep.py", ["il"]),
+    "test/frontends/tcpou/corpus-sweep.test": ("corpus-sweep.py", ["tcpou"]),
+    "test/frontends/plcopen/corpus-sweep.test":
+        ("corpus-sweep.py", ["plcopen_xml"]),
+    "test/frontends/iec61499/corpus-sweep.test":
+        ("corpus-sweep.py", ["iec61499"]),
+    "test/frontends/hybrid/corpus-sweep.test": ("corpus-sweep.py", ["spaceex"]),
+    "test/frontends/sfc/corpus-sweep.test": ("sfc-sweep.py", []),
 }
 
 
@@ -34,8 +39,8 @@ def main():
     root = os.path.normpath(os.path.join(os.path.dirname(__file__), ".."))
     corpus = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
         root, "..", "shared", "corpus")
-    sweep = os.path.join(root, "scripts", "corpus-sweep.py")
-    for test, formats in TESTS.items():
+    for test, (script, formats) in TESTS.items():
+        sweep = os.path.join(root, "scripts", script)
         out = subprocess.run([sys.executable, sweep, netlift, corpus] + formats,
                              capture_output=True, text=True).stdout
         lines = out.rstrip("\n").split("\n")
