@@ -210,6 +210,21 @@ bool Expander::checkChart() {
         actionOrder.push_back(a.action);
       list.push_back({s, &a});
     }
+  // The 3rd edition's action flags (A.Q, A.A) are not modelled: say so
+  // rather than "unknown variable".
+  bool flags = false;
+  forEachChartExpr(chart, [&](Expr *e) {
+    if (flags || e->kind != ExprKind::Field ||
+        e->base()->kind != ExprKind::Name ||
+        !actions.count(key(e->base()->name)))
+      return;
+    diag.error(e->loc, "the action flag '" + e->base()->name + "." + e->name +
+                           "' is not supported (read a step's flag s.X "
+                           "instead)");
+    flags = true;
+  });
+  if (flags)
+    return false;
   for (SfcAction *a : chart.actions)
     if (!associations.count(key(a->name)))
       diag.warning(a->loc, "action '" + a->name +
@@ -466,10 +481,11 @@ bool Expander::run() {
     SfcTransition *t = chart.transitions[i];
     fires[i] = "__SFC_FIRES_" + std::to_string(i + 1);
     VarDecl *f = declare(fires[i], "BOOL", t->loc, VarSection::Temp);
-    f->attrs.push_back({"netlift sfc_transition " + llvm::join(t->from, ",") +
-                            " -> " + llvm::join(t->to, ",") + " : " +
-                            llvm::join(llvm::split(t->conditionText, '\n'), " "),
-                        t->loc});
+    f->attrs.push_back(
+        {"netlift sfc_transition " + llvm::join(t->from, ",") + " -> " +
+             llvm::join(t->to, ",") + " : " +
+             llvm::join(llvm::split(t->conditionText, '\n'), " "),
+         t->loc});
     Expr *c = t->condition;
     for (size_t k = t->from.size(); k-- > 0;)
       c = binary(Op::And, field(t->from[k], "X", t->fromLocs[k]), c, t->loc);
