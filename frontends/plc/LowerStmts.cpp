@@ -449,6 +449,9 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
     out.push_back(
         b.assign(b.ref(f.returnFlag, s->loc), b.boolLit(true, s->loc), s->loc));
     return;
+  case StmtKind::Jump:
+  case StmtKind::Label:
+    refuse(s->loc, "internal: a jump expandJumps left");
   }
 }
 

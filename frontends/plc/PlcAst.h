@@ -265,6 +265,10 @@ enum class StmtKind : uint8_t {
   Exit,
   Continue,
   Return,
+  // CODESYS's jumps in ST (`JMP l;`, `l:`; target: the label's Name):
+  // expandJumps turns them into the statements above before Sema.
+  Jump,
+  Label,
 };
 
 struct Stmt;

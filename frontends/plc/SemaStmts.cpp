@@ -102,6 +102,11 @@ void Checker::stmt(Stmt *s) {
     return;
   case StmtKind::Return:
     return;
+  case StmtKind::Jump:
+  case StmtKind::Label:
+    // Only where expandJumps did not run (a body another frontend built).
+    error(s->loc, "JMP and labels are taken only in a POU's ST body");
+    return;
   }
 }
 

@@ -9,6 +9,7 @@
 #include "frontends/plcopen/PlcOpen.h"
 
 #include "frontends/il/IlFrontend.h"
+#include "frontends/plc/JumpExpansion.h"
 #include "frontends/st/StFrontend.h"
 
 using namespace netlift;
@@ -293,7 +294,8 @@ bool Reader::body(pugi::xml_node b, Pou *pou, pugi::xml_node pouNode) {
     return fail(b, "the body of POU '" + pou->name + "' is empty");
   StringRef kind = localName(lang);
   if (kind == "ST")
-    return st::parseStatements(src.placeText(lang), diag, unit, pou->body);
+    return st::parseStatements(src.placeText(lang), diag, unit, pou->body) &&
+           expandJumps(unit, *pou, diag);
   if (kind == "IL")
     return il::parseInstructionListBody(src.placeText(lang), diag, unit, pou);
   if (kind == "LD" || kind == "FBD")

@@ -46,7 +46,7 @@ compilationUnit : libraryElement* EOF ;
 expressionOnly : expression EOF ;
 
 // A POU body alone (the ST bodies of PLCopen XML).
-statementsOnly : statementList EOF ;
+statementsOnly : bodyStatementList EOF ;
 
 // Declarations alone (a long VAR block parsed in groups).
 varDeclsOnly : varDecl* EOF ;
@@ -71,14 +71,14 @@ refusedElement
   ;
 
 programDecl
-  : PROGRAM name=IDENT pouVarBlock* fbMember* body=statementList fbMember*
+  : PROGRAM name=IDENT pouVarBlock* fbMember* body=bodyStatementList fbMember*
     END_PROGRAM
   ;
 
 functionBlockDecl
   : FUNCTION_BLOCK accessModifier* name=IDENT
     (EXTENDS ext=qualifiedName)? (IMPLEMENTS qualifiedName (COMMA qualifiedName)*)?
-    pouVarBlock* fbMember* body=statementList fbMember* END_FUNCTION_BLOCK
+    pouVarBlock* fbMember* body=bodyStatementList fbMember* END_FUNCTION_BLOCK
   ;
 
 accessModifier : ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL ;
@@ -119,7 +119,7 @@ sfcAction
 
 functionDecl
   : FUNCTION accessModifier* name=IDENT (COLON result=typeSpec)? SEMI?
-    pouVarBlock* body=statementList END_FUNCTION
+    pouVarBlock* body=bodyStatementList END_FUNCTION
   ;
 
 qualifiedName : ident (DOT ident)* ;
@@ -234,6 +234,12 @@ programConfig
 // ---------------------------------------------------------------- statements
 
 statementList : statement* ;
+
+// A POU body: statements, and the labels CODESYS lets JMP go to (at the
+// body's top level only; inside CASE an `IDENT :` is a case label).
+bodyStatementList : (bodyLabel | statement)* ;
+
+bodyLabel : name=ident COLON ;
 
 statement
   : SEMI                                                        # emptyStmt

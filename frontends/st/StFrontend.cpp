@@ -8,6 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StFrontend.h"
+#include "frontends/plc/JumpExpansion.h"
 #include "frontends/plc/SfcExpansion.h"
 #include "frontends/st/StLexer.h"
 #include "ir/support/IecTime.h"
@@ -316,6 +317,8 @@ public:
   bool build(P::CompilationUnitContext *cu);
   Expr *expr(P::ExpressionContext *ctx);
   void statements(P::StatementListContext *c, StmtList &out);
+  /// A POU body: statements and labels (Stmt Label), in order.
+  void bodyStatements(P::BodyStatementListContext *c, StmtList &out);
 
   bool failed = false;
 
@@ -441,7 +444,7 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   }
   for (auto *vb : c->pouVarBlock())
     varBlock(vb->varBlock(), pou->vars);
-  statements(c->body, pou->body);
+  bodyStatements(c->body, pou->body);
   if (skipped)
     if (auto it = skipped->find(c->getStop()->getStartIndex());
         it != skipped->end())
@@ -450,6 +453,10 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
           failed = true; // reported where it is
           return nullptr;
         }
+  if (!plc::expandJumps(unit, *pou, diag)) {
+    failed = true;
+    return nullptr;
+  }
   unit.pous.push_back(pou);
   return pou;
 }
@@ -911,6 +918,22 @@ Initializer *AstBuilder::initializer(P::InitializerContext *c) {
   return i;
 }
 
+void AstBuilder::bodyStatements(P::BodyStatementListContext *c, StmtList &out) {
+  for (auto *child : c->children) {
+    if (failed)
+      return;
+    if (auto *l = dynamic_cast<P::BodyLabelContext *>(child)) {
+      Stmt *s = unit.make<Stmt>(StmtKind::Label, loc(l->name));
+      s->target = unit.make<Expr>(ExprKind::Name, loc(l->name));
+      s->target->name = l->name->getText();
+      out.push_back(s);
+    } else if (auto *st = dynamic_cast<P::StatementContext *>(child)) {
+      if (Stmt *s = statement(st))
+        out.push_back(s);
+    }
+  }
+}
+
 void AstBuilder::statements(P::StatementListContext *c, StmtList &out) {
   for (auto *s : c->statement()) {
     if (failed)
@@ -1006,8 +1029,12 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     return unit.make<Stmt>(StmtKind::Continue, loc(c));
   if (alt<P::ReturnStmtContext>(c))
     return unit.make<Stmt>(StmtKind::Return, loc(c));
-  if (alt<P::JumpStmtContext>(c))
-    return refuse(loc(c), "JMP in Structured Text is not supported");
+  if (auto *j = alt<P::JumpStmtContext>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Jump, loc(c));
+    s->target = unit.make<Expr>(ExprKind::Name, loc(j->IDENT()));
+    s->target->name = j->IDENT()->getText();
+    return s;
+  }
   return refuse(loc(c), "unsupported statement");
 }
 
@@ -1557,6 +1584,6 @@ bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,
   if (!tree)
     return false;
   AstBuilder builder(text, diag, unit, tokens);
-  builder.statements(tree->statementList(), out);
+  builder.bodyStatements(tree->bodyStatementList(), out);
   return !builder.failed;
 }
