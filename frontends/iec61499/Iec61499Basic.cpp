@@ -1,0 +1,797 @@
+//===- Iec61499Basic.cpp - basic FBs as PLC blocks ------------------------===//
+#include "frontends/iec61499/Iec61499Internal.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::iec61499::detail;
+using llvm::SMLoc;
+using llvm::StringRef;
+using llvm::Twine;
+
+//===----------------------------------------------------------------------===//
+// Basic function blocks
+//===----------------------------------------------------------------------===//
+
+static std::string internal(StringRef name) { return "_" + name.str(); }
+/// Under the cyclic model: whether event `name` is pending.
+static std::string eventFlag(StringRef name) { return "_ev_" + name.str(); }
+
+void Translator::rename(Expr *e) {
+  if (!e)
+    return;
+  // `S.x`, element x of plug or socket S, is the port it became.
+  if (e->kind == ExprKind::Field && current && e->operands.size() == 1 &&
+      e->operands[0]->kind == ExprKind::Name)
+    if (const AdapterUse *a = current->adapter(e->operands[0]->name)) {
+      e->kind = ExprKind::Name;
+      e->name = adapterPort(a->name, e->name);
+      e->operands.clear();
+    }
+  if (e->kind == ExprKind::Name && copied.count(StringRef(e->name).upper()))
+    e->name = internal(e->name);
+  for (Expr *o : e->operands)
+    rename(o);
+  for (CallArg &a : e->args)
+    rename(a.value);
+}
+
+void Translator::rename(StmtList &l) {
+  plc::forEachStmt(l, nullptr, [&](Expr *e) { rename(e); });
+}
+
+TypeSyntax *Translator::typeOf(FbType &t, pugi::xml_node decl) {
+  SMLoc at = t.src->locOf(decl);
+  auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+  ts->name = decl.attribute("Type").value();
+  if (ts->name.empty())
+    fail(at, "<VarDeclaration> '" + Twine(decl.attribute("Name").value()) +
+                 "' without a Type");
+  if (pugi::xml_attribute size = decl.attribute("ArraySize")) {
+    int64_t n;
+    if (StringRef(size.value()).trim().getAsInteger(10, n) || n <= 0)
+      fail(at, "ArraySize '" + Twine(size.value()) +
+                   "' is not supported (a positive element count)");
+    auto *arr = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
+    arr->dims.push_back({intLit(unit, 0, at), intLit(unit, n - 1, at)});
+    arr->elem = ts;
+    ts = arr;
+  }
+  bool found;
+  StringRef init = t.src->placeAttribute(decl, "InitialValue", &found);
+  if (found && !init.trim().empty()) {
+    auto *i = unit.make<Initializer>(Initializer::Value, at);
+    i->value = st::parseStExpression(init, diag, unit);
+    if (!i->value)
+      throw Failure();
+    ts->init = i;
+  }
+  return ts;
+}
+
+StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
+  for (pugi::xml_node a : t.body.children("Algorithm")) {
+    if (!StringRef(a.attribute("Name").value()).equals_insensitive(name))
+      continue;
+    pugi::xml_node st = child(a, "ST");
+    if (!st) {
+      pugi::xml_node other = a.first_child();
+      fail(t, a,
+           "algorithm '" + name + "' of '" + t.name + "' is written in " +
+               (other ? "<" + localName(other).str() + ">" : "no language") +
+               "; netlift reads ST algorithms only");
+    }
+    bool found;
+    StringRef text = t.src->placeAttribute(st, "Text", &found);
+    if (!found)
+      text = t.src->placeText(st);
+    StmtList out;
+    if (!st::parseStatements(text, diag, unit, out))
+      throw Failure();
+    rename(out);
+    return out;
+  }
+  fail(t, at,
+       "ECC action names algorithm '" + name + "', which '" + t.name +
+           "' does not define");
+}
+
+/// The condition of an ECC transition: `EI`, `EI[guard]`, `1` or `guard`;
+/// `event` is set to the event it waits for (empty: none).
+Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
+  SMLoc at = t.src->locOf(tr);
+  bool found;
+  StringRef text = t.src->placeAttribute(tr, "Condition", &found);
+  StringRef trimmed = text.trim();
+  event.clear();
+  if (trimmed.empty() || trimmed == "1" || trimmed.equals_insensitive("TRUE"))
+    return boolLit(unit, true, at);
+  // 4diac writes a guard without an event in brackets: `[K = 0]`.
+  if (trimmed.startswith("[") && trimmed.endswith("]"))
+    trimmed = trimmed.drop_front().drop_back().trim();
+  size_t id = 0;
+  auto word = [&] {
+    while (id < trimmed.size() &&
+           (isalnum((unsigned char)trimmed[id]) || trimmed[id] == '_'))
+      ++id;
+  };
+  word();
+  std::string head = trimmed.take_front(id).str();
+  // `S.e`: event e of plug or socket S.
+  if (id < trimmed.size() && trimmed[id] == '.')
+    if (const AdapterUse *a = t.adapter(head)) {
+      size_t from = ++id;
+      word();
+      head = adapterPort(a->name, trimmed.slice(from, id));
+    }
+  StringRef rest = trimmed.drop_front(id).trim();
+  for (const Event &e : t.eventInputs)
+    if (StringRef(e.name).equals_insensitive(head) &&
+        (rest.empty() || rest.startswith("["))) {
+      event = e.name;
+      if (rest.empty())
+        return boolLit(unit, true, at);
+      if (!rest.endswith("]"))
+        fail(SMLoc::getFromPointer(rest.data()),
+             "expected ']' closing the guard of an ECC transition");
+      StringRef inner = rest.drop_front().drop_back();
+      if (inner.trim().empty())
+        return boolLit(unit, true, at);
+      Expr *g = st::parseStExpression(inner, diag, unit);
+      if (!g)
+        throw Failure();
+      rename(g);
+      return g;
+    }
+  Expr *g = st::parseStExpression(trimmed, diag, unit);
+  if (!g)
+    throw Failure();
+  rename(g);
+  return g;
+}
+
+/// 4diac implements its type conversions in FORTE's C++: `F_<A>_TO_<B>`
+/// (REQ with IN : A, CNF with OUT : B) and `<A>2<A>` (OUT := IN) have no
+/// body in their .fbt. netlift gives them the body their name means, as a
+/// simple FB whose REQ algorithm is `OUT := A_TO_B(IN);` (or `OUT := IN;`),
+/// so that the conversion is the ST frontend's (a conversion it refuses,
+/// such as to REAL or STRING, is refused at that algorithm).
+bool Translator::modelFunctionFb(FbType &t) {
+  if (t.eventInputs.size() != 1 || t.eventOutputs.size() != 1 ||
+      t.inputs.size() != 1 || t.outputs.size() != 1 ||
+      !StringRef(t.eventInputs[0].name).equals_insensitive("REQ") ||
+      !StringRef(t.eventOutputs[0].name).equals_insensitive("CNF") ||
+      !StringRef(t.inputs[0].name).equals_insensitive("IN") ||
+      !StringRef(t.outputs[0].name).equals_insensitive("OUT"))
+    return false;
+  StringRef name = t.name, from = t.inputs[0].type, to = t.outputs[0].type;
+  std::string text;
+  if (name.equals_insensitive(("F_" + from + "_TO_" + to).str()))
+    text = "OUT := " + from.str() + "_TO_" + to.str() + "(IN);";
+  else if (name.equals_insensitive((from + "2" + to).str()) &&
+           from.equals_insensitive(to))
+    text = "OUT := IN;";
+  else
+    return false;
+  t.body = t.root.append_child("SimpleFB");
+  pugi::xml_node alg = t.body.append_child("Algorithm");
+  alg.append_attribute("Name") = t.eventInputs[0].name.c_str();
+  alg.append_child("ST").append_attribute("Text") = text.c_str();
+  simpleAsBasic(t);
+  return true;
+}
+
+/// The ST that 4diac's generic function FB `name` (its behaviour is in
+/// FORTE's C++, its variables typed ANY_...) runs on REQ, over its
+/// interface's names; null if netlift has none.
+static const char *genericFunctionBody(StringRef name) {
+  static const std::pair<const char *, const char *> kBodies[] = {
+      {"F_ADD", "OUT := IN1 + IN2;"},
+      {"F_ADD_3", "OUT := IN1 + IN2 + IN3;"},
+      {"F_SUB", "OUT := IN1 - IN2;"},
+      {"F_MUL", "OUT := IN1 * IN2;"},
+      {"F_DIV", "OUT := IN1 / IN2;"},
+      {"F_MOD", "OUT := IN1 MOD IN2;"},
+      {"F_MOVE", "OUT := IN;"},
+      {"F_ABS", "OUT := ABS(IN);"},
+      {"F_AND", "OUT := IN1 AND IN2;"},
+      {"F_AND_3", "OUT := IN1 AND IN2 AND IN3;"},
+      {"F_OR", "OUT := IN1 OR IN2;"},
+      {"F_OR_3", "OUT := IN1 OR IN2 OR IN3;"},
+      {"F_XOR", "OUT := IN1 XOR IN2;"},
+      {"F_XOR_3", "OUT := IN1 XOR IN2 XOR IN3;"},
+      {"F_NOT", "OUT := NOT IN;"},
+      {"F_SHL", "OUT := SHL(IN, N);"},
+      {"F_SHR", "OUT := SHR(IN, N);"},
+      {"F_ROL", "OUT := ROL(IN, N);"},
+      {"F_ROR", "OUT := ROR(IN, N);"},
+      {"F_EQ", "OUT := IN1 = IN2;"},
+      {"F_NE", "OUT := IN1 <> IN2;"},
+      {"F_GT", "OUT := IN1 > IN2;"},
+      {"F_GE", "OUT := IN1 >= IN2;"},
+      {"F_LT", "OUT := IN1 < IN2;"},
+      {"F_LE", "OUT := IN1 <= IN2;"},
+      {"F_MAX", "OUT := MAX(IN1, IN2);"},
+      {"F_MIN", "OUT := MIN(IN1, IN2);"},
+      {"F_LIMIT", "OUT := LIMIT(MN, IN, MX);"},
+      {"F_SEL", "OUT := SEL(G, IN0, IN1);"},
+      {"F_MUX_2", "OUT := MUX(K, IN1, IN2);"},
+  };
+  for (const auto &[n, body] : kBodies)
+    if (name.equals_insensitive(n))
+      return body;
+  return nullptr;
+}
+
+static bool isGenericType(StringRef type) {
+  return type.startswith_insensitive("ANY");
+}
+
+/// A block of a network whose type is one of 4diac's generic function FBs
+/// (see genericFunctionBody) gets a type of its own, `F_ADD__INT`: every
+/// variable of one generic type (ANY_NUM, ANY_INT...) takes the type of a
+/// port it is connected to (a group no connection fixes takes the first
+/// fixed group's, as OUT : ANY_NUM of F_MOD follows IN1 : ANY_INT), and REQ
+/// runs the function's ST as a simple FB. The block's Type is rewritten to
+/// that type before the network is read.
+void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
+                                            const FbType *owner) {
+  std::map<std::string, FbType *> types = blockTypes(src, net);
+  std::vector<pugi::xml_node> generic;
+  for (pugi::xml_node fb : blocksOf(net)) {
+    if (!fb.attribute("Type"))
+      continue;
+    FbType *type = types.at(StringRef(fb.attribute("Name").value()).upper());
+    bool anyGeneric = false;
+    for (const auto *list : {&type->inputs, &type->outputs})
+      for (const Var &v : *list)
+        anyGeneric |= isGenericType(v.type);
+    if ((type->kind == TypeKind::Service || type->kind == TypeKind::NoBody) &&
+        anyGeneric && genericFunctionBody(type->name))
+      generic.push_back(fb);
+  }
+  // The declared type of `end` ("block.PORT" or an own port), if fixed.
+  auto typeAt = [&](StringRef end) -> std::string {
+    auto [a, p] = end.split('.');
+    const FbType *t = owner;
+    StringRef port = a;
+    if (!p.empty()) {
+      auto it = types.find(a.upper());
+      if (it == types.end())
+        return "";
+      t = it->second;
+      port = p;
+    }
+    if (!t)
+      return "";
+    for (const auto *list : {&t->inputs, &t->outputs})
+      for (const Var &v : *list)
+        if (StringRef(v.name).equals_insensitive(port) &&
+            !isGenericType(v.type))
+          return v.type;
+    return "";
+  };
+  for (pugi::xml_node fb : generic) {
+    StringRef inst = fb.attribute("Name").value();
+    FbType &t = *types.at(inst.upper());
+    std::map<std::string, std::string> fixed; // generic type -> type
+    std::vector<std::string> order;           // generic types, in order
+    for (const auto *list : {&t.inputs, &t.outputs})
+      for (const Var &v : *list)
+        if (isGenericType(v.type) &&
+            std::find(order.begin(), order.end(), v.type) == order.end())
+          order.push_back(v.type);
+    for (pugi::xml_node c :
+         child(net, "DataConnections").children("Connection")) {
+      for (auto [here, there] : {std::pair{"Destination", "Source"},
+                                 std::pair{"Source", "Destination"}}) {
+        auto [b, port] = StringRef(c.attribute(here).value()).split('.');
+        if (!b.equals_insensitive(inst))
+          continue;
+        for (const auto *list : {&t.inputs, &t.outputs})
+          for (const Var &v : *list)
+            if (StringRef(v.name).equals_insensitive(port) &&
+                isGenericType(v.type) && !fixed.count(v.type)) {
+              std::string other = typeAt(c.attribute(there).value());
+              if (!other.empty())
+                fixed[v.type] = other;
+            }
+      }
+    }
+    if (fixed.empty())
+      fail(src.locOf(fb), "the types of '" + inst + "' (" + t.name +
+                              ", a generic function) are not fixed by any "
+                              "data connection to a typed port");
+    std::string firstFixed;
+    for (const std::string &g : order)
+      if (firstFixed.empty() && fixed.count(g))
+        firstFixed = fixed[g];
+    auto concrete = [&](const std::string &generic) {
+      auto it = fixed.find(generic);
+      return it != fixed.end() ? it->second : firstFixed;
+    };
+    std::string name = t.name + "_";
+    for (const std::string &g : order)
+      name += "_" + concrete(g);
+    std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
+    auto events = [&](const char *tag, const std::vector<Event> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Event &e : list) {
+        text += "<Event Name=\"" + e.name + "\">";
+        for (const std::string &w : e.with)
+          text += "<With Var=\"" + w + "\"/>";
+        text += "</Event>";
+      }
+      text += std::string("</") + tag + ">\n";
+    };
+    auto vars = [&](const char *tag, const std::vector<Var> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Var &v : list)
+        text += "<VarDeclaration Name=\"" + v.name + "\" Type=\"" +
+                (isGenericType(v.type) ? concrete(v.type) : v.type) + "\"/>";
+      text += std::string("</") + tag + ">\n";
+    };
+    events("EventInputs", t.eventInputs);
+    events("EventOutputs", t.eventOutputs);
+    vars("InputVars", t.inputs);
+    vars("OutputVars", t.outputs);
+    text +=
+        "</InterfaceList>\n<SimpleFB><Algorithm Name=\"" +
+        (t.eventInputs.empty() ? std::string("REQ") : t.eventInputs[0].name) +
+        "\"><ST Text=\"" + xmlEscape(genericFunctionBody(t.name)) +
+        "\"/></Algorithm></SimpleFB>\n</FBType>\n";
+    generatedType(name, text);
+    fb.attribute("Type") = name.c_str();
+    types[inst.upper()] = this->types.at(StringRef(name).upper()).get();
+  }
+}
+
+/// A simple FB (IEC 61499-1 Ed. 2) has no ECC: each input event runs the
+/// algorithm of the same name and then sends the output event of the same
+/// index, as 4diac FORTE's CSimpleFB does (REQ runs REQ, then CNF). It is
+/// translated as the basic FB with that ECC, written into the type's own
+/// element (so the algorithms keep their places in the file): START, and
+/// per input event a state running its algorithm and sending its output,
+/// left at once.
+void Translator::simpleAsBasic(FbType &t) {
+  if (child(t.body, "ECC"))
+    fail(t, t.body, "simple FB '" + t.name + "' has an ECC");
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    const Event &e = t.eventInputs[i];
+    bool found = false;
+    for (pugi::xml_node a : t.body.children("Algorithm"))
+      found |=
+          StringRef(a.attribute("Name").value()).equals_insensitive(e.name);
+    if (!found)
+      fail(t, e.node,
+           "event '" + e.name + "' of simple FB '" + t.name +
+               "' has no algorithm of its name (a simple FB runs the "
+               "algorithm named after the event)");
+    if (i >= t.eventOutputs.size())
+      fail(t, e.node,
+           "event '" + e.name + "' of simple FB '" + t.name +
+               "' has no output event at its position to confirm it");
+  }
+  pugi::xml_node ecc = t.body.append_child("ECC");
+  pugi::xml_node start = ecc.append_child("ECState");
+  start.append_attribute("Name") = "START";
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    std::string state = "RUN_" + t.eventInputs[i].name;
+    pugi::xml_node st = ecc.insert_child_after("ECState", start);
+    st.append_attribute("Name") = state.c_str();
+    pugi::xml_node act = st.append_child("ECAction");
+    act.append_attribute("Algorithm") = t.eventInputs[i].name.c_str();
+    act.append_attribute("Output") = t.eventOutputs[i].name.c_str();
+    start = st;
+  }
+  for (size_t i = 0; i < t.eventInputs.size(); ++i) {
+    std::string state = "RUN_" + t.eventInputs[i].name;
+    pugi::xml_node go = ecc.append_child("ECTransition");
+    go.append_attribute("Source") = "START";
+    go.append_attribute("Destination") = state.c_str();
+    go.append_attribute("Condition") = t.eventInputs[i].name.c_str();
+    pugi::xml_node back = ecc.append_child("ECTransition");
+    back.append_attribute("Source") = state.c_str();
+    back.append_attribute("Destination") = "START";
+    back.append_attribute("Condition") = "1";
+  }
+}
+
+void Translator::basicBlock(FbType &t) {
+  SMLoc at = t.src->locOf(t.root);
+  auto *pou = unit.make<Pou>();
+  pou->kind = PouKind::Program;
+  pou->name = t.name;
+  pou->loc = at;
+  unit.pous.push_back(pou);
+  copied.clear();
+  current = &t;
+  // The environment's queue stays event-driven: it feeds the cycle.
+  bool cyclic =
+      semantics == "cyclic" && !StringRef(t.name).startswith("_Inputs_");
+
+  auto declare = [&](StringRef name, TypeSyntax *ts, VarSection s, SMLoc loc) {
+    if (pou->find(name))
+      fail(loc, "'" + name + "' is declared twice in '" + t.name +
+                    "' (netlift keeps interface variables in internal "
+                    "copies named _NAME)");
+    auto *v = unit.make<VarDecl>();
+    v->name = name.str();
+    v->loc = loc;
+    v->section = s;
+    v->typeSyntax = ts;
+    pou->vars.push_back(v);
+    return v;
+  };
+  auto named = [&](StringRef type, SMLoc loc) {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc);
+    ts->name = type.str();
+    return ts;
+  };
+
+  // Interface variables: the port, and the copy the algorithms use.
+  std::set<std::string> sampled;
+  for (const Event &e : t.eventInputs)
+    for (const std::string &w : e.with)
+      sampled.insert(StringRef(w).upper());
+  for (const Var &v : t.inputs) {
+    SMLoc loc = t.src->locOf(v.node);
+    // The port and its copy share one type (an array type written twice
+    // would be two types to the checker).
+    TypeSyntax *type = typeOf(t, v.node);
+    declare(v.name, type, VarSection::Input, loc);
+    // An input no event samples is read where it stands (a parameter).
+    if (sampled.count(StringRef(v.name).upper())) {
+      declare(internal(v.name), type, VarSection::Var, loc);
+      copied.insert(StringRef(v.name).upper());
+    }
+  }
+  for (const Var &v : t.outputs) {
+    SMLoc loc = t.src->locOf(v.node);
+    TypeSyntax *type = typeOf(t, v.node);
+    declare(v.name, type, VarSection::Output, loc);
+    declare(internal(v.name), type, VarSection::Var, loc);
+    copied.insert(StringRef(v.name).upper());
+  }
+  for (pugi::xml_node v :
+       child(t.body, "InternalVars").children("VarDeclaration"))
+    declare(v.attribute("Name").value(), typeOf(t, v), VarSection::Var,
+            t.src->locOf(v));
+  auto checkWith = [&](const Event &e, const std::vector<Var> &vars) {
+    for (const std::string &w : e.with) {
+      bool known = false;
+      for (const Var &v : vars)
+        known |= StringRef(v.name).equals_insensitive(w);
+      if (!known)
+        fail(t, e.node,
+             "event '" + e.name + "' is associated (With) with '" + w +
+                 "', which is not a data " +
+                 (&vars == &t.inputs ? "input" : "output") + " of '" + t.name +
+                 "'");
+    }
+  };
+  for (const Event &e : t.eventInputs)
+    checkWith(e, t.inputs);
+  for (const Event &e : t.eventOutputs)
+    checkWith(e, t.outputs);
+
+  // The ECC: states as an enumeration, the first one initial.
+  pugi::xml_node ecc = child(t.body, "ECC");
+  std::vector<pugi::xml_node> states, transitions;
+  for (pugi::xml_node s : ecc.children("ECState"))
+    states.push_back(s);
+  for (pugi::xml_node tr : ecc.children("ECTransition"))
+    transitions.push_back(tr);
+  if (states.empty())
+    fail(t, ecc ? ecc : t.body, "basic FB '" + t.name + "' has no ECC states");
+  std::string eccType = t.name + "_ECC";
+  auto *enumSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, at);
+  std::map<std::string, pugi::xml_node> stateByName;
+  for (pugi::xml_node s : states) {
+    std::string name = s.attribute("Name").value();
+    if (!stateByName.emplace(StringRef(name).upper(), s).second)
+      fail(t, s, "ECC state '" + name + "' is defined twice");
+    enumSyntax->enumerators.push_back({name, nullptr, t.src->locOf(s)});
+  }
+  auto *td = unit.make<TypeDecl>();
+  td->name = eccType;
+  td->loc = at;
+  td->type = enumSyntax;
+  unit.types.push_back(td);
+  auto stateLit = [&](StringRef name, SMLoc loc) {
+    Expr *e = unit.make<Expr>(ExprKind::EnumLit, loc);
+    e->typeName = eccType;
+    e->name = name.str();
+    return e;
+  };
+  auto *eccInit = named(eccType, at);
+  eccInit->init = unit.make<Initializer>(Initializer::Value, at);
+  eccInit->init->value = stateLit(states.front().attribute("Name").value(), at);
+  declare("ECC", eccInit, VarSection::Var, at);
+  // Output events wait in a FIFO queue, by number (1 = the first output).
+  auto subrange = [&](int64_t lo, int64_t hi) {
+    auto *r = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
+    r->name = "INT";
+    r->lo = intLit(unit, lo, at);
+    r->hi = intLit(unit, hi, at);
+    return r;
+  };
+  std::vector<std::pair<std::string, SMLoc>> eventOutputs;
+  for (const Event &e : t.eventOutputs)
+    eventOutputs.push_back({e.name, t.src->locOf(e.node)});
+  if (!t.eventOutputs.empty()) {
+    auto *queue = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
+    queue->dims.push_back(
+        {intLit(unit, 0, at), intLit(unit, kMaxQueued - 1, at)});
+    queue->elem = subrange(0, int64_t(t.eventOutputs.size()));
+    declare("_queue", queue, VarSection::Var, at);
+    declare("_queued", subrange(0, kMaxQueued), VarSection::Var, at);
+  }
+  declare("_live", named("BOOL", at), VarSection::Temp, at);
+  if (cyclic)
+    for (const Event &e : t.eventInputs)
+      declare(eventFlag(e.name), named("BOOL", at), VarSection::Var,
+              t.src->locOf(e.node));
+  else
+    declare("_event", named("BOOL", at), VarSection::Temp, at);
+  declare("_fired", named("BOOL", at), VarSection::Temp, at);
+  int64_t limit = int64_t(transitions.size()) * kRunawayFactor + 1;
+  declare("_step", subrange(0, std::max<int64_t>(limit, kMaxQueued) + 1),
+          VarSection::Temp, at);
+  auto *never = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
+  never->name = "INT";
+  never->lo = intLit(unit, 0, at);
+  never->hi = intLit(unit, 0, at);
+  declare("_ECC_does_not_settle", never, VarSection::Var, at);
+
+  for (pugi::xml_node tr : transitions)
+    for (const char *end : {"Source", "Destination"})
+      if (!stateByName.count(StringRef(tr.attribute(end).value()).upper()))
+        fail(t, tr,
+             "ECC transition " + StringRef(end).lower() + " '" +
+                 tr.attribute(end).value() + "' is not a state of '" + t.name +
+                 "'");
+
+  auto queueAt = [&](Expr *index, SMLoc loc) {
+    Expr *e = unit.make<Expr>(ExprKind::Index, loc);
+    e->operands = {nameRef(unit, "_queue", loc), index};
+    return e;
+  };
+
+  // What entering a state does: its actions in order.
+  auto enter = [&](pugi::xml_node state) {
+    StmtList out;
+    for (pugi::xml_node a : state.children("ECAction")) {
+      SMLoc loc = t.src->locOf(a);
+      if (StringRef alg = a.attribute("Algorithm").value(); !alg.empty()) {
+        StmtList body = algorithm(t, alg, a);
+        out.insert(out.end(), body.begin(), body.end());
+      }
+      if (StringRef o = a.attribute("Output").value(); !o.empty()) {
+        std::string port = o.str();
+        if (auto [name, element] = o.split('.'); !element.empty())
+          if (const AdapterUse *ad = t.adapter(name))
+            port = adapterPort(ad->name, element);
+        o = port;
+        const Event *ev = nullptr;
+        for (const Event &e : t.eventOutputs)
+          if (StringRef(e.name).equals_insensitive(o))
+            ev = &e;
+        if (!ev)
+          fail(loc, "ECC action emits '" + o +
+                        "', which is not an event "
+                        "output of '" +
+                        t.name + "'");
+        for (const std::string &w : ev->with)
+          out.push_back(assign(unit, nameRef(unit, w, loc),
+                               nameRef(unit, internal(w), loc), loc));
+        int64_t number = ev - &t.eventOutputs.front() + 1;
+        out.push_back(assign(unit, queueAt(nameRef(unit, "_queued", loc), loc),
+                             intLit(unit, number, loc), loc));
+        out.push_back(
+            assign(unit, nameRef(unit, "_queued", loc),
+                   binary(unit, Op::Add, nameRef(unit, "_queued", loc),
+                          intLit(unit, 1, loc), loc),
+                   loc));
+      }
+    }
+    return out;
+  };
+
+  EventDrivenBlock block;
+  block.pou = pou;
+  for (const Event &e : t.eventInputs)
+    block.eventInputs.push_back({e.name, t.src->locOf(e.node)});
+  block.eventOutputs = eventOutputs;
+  // Sending the queue's head: the rest moves up.
+  for (const Event &e : t.eventOutputs) {
+    SMLoc loc = t.src->locOf(e.node);
+    int64_t number = &e - &t.eventOutputs.front() + 1;
+    EventSend send;
+    send.event = e.name;
+    send.loc = loc;
+    send.guard = binary(unit, Op::Eq, queueAt(intLit(unit, 0, loc), loc),
+                        intLit(unit, number, loc), loc);
+    Stmt *shift = unit.make<Stmt>(StmtKind::For, loc);
+    shift->target = nameRef(unit, "_step", loc);
+    shift->from = intLit(unit, 0, loc);
+    shift->to = intLit(unit, kMaxQueued - 2, loc);
+    shift->body.push_back(
+        assign(unit, queueAt(nameRef(unit, "_step", loc), loc),
+               queueAt(binary(unit, Op::Add, nameRef(unit, "_step", loc),
+                              intLit(unit, 1, loc), loc),
+                       loc),
+               loc));
+    send.body.push_back(shift);
+    send.body.push_back(assign(unit,
+                               queueAt(intLit(unit, kMaxQueued - 1, loc), loc),
+                               intLit(unit, 0, loc), loc));
+    send.body.push_back(
+        assign(unit, nameRef(unit, "_queued", loc),
+               binary(unit, Op::Sub, nameRef(unit, "_queued", loc),
+                      intLit(unit, 1, loc), loc),
+               loc));
+    // Checked with the rest of the POU.
+    pou->body.push_back(when(unit, send.guard, send.body, loc));
+    block.sends.push_back(std::move(send));
+  }
+
+  // Running the ECC to completion: from the current state the first
+  // transition (document order) whose condition holds fires, its new
+  // state's actions run, and evaluation repeats until none fires. An event
+  // condition holds only at the first evaluation: `eventCond` gives it
+  // (null: the transition cannot fire in this reaction), and `consumed`
+  // runs after every evaluation, taking the events away. Appended to `h`:
+  // `_live := TRUE`, the statements `armed` (which arm the events), the
+  // loop.
+  auto runEcc = [&](StmtList &h, StmtList armed,
+                    llvm::function_ref<Expr *(StringRef, SMLoc)> eventCond,
+                    llvm::function_ref<StmtList(SMLoc)> consumed, SMLoc loc) {
+    Stmt *sel = unit.make<Stmt>(StmtKind::Case, loc);
+    sel->value = nameRef(unit, "ECC", loc);
+    for (pugi::xml_node s : states) {
+      Stmt *chain = unit.make<Stmt>(StmtKind::If, loc);
+      for (pugi::xml_node tr : transitions) {
+        if (!StringRef(tr.attribute("Source").value())
+                 .equals_insensitive(s.attribute("Name").value()))
+          continue;
+        std::string event;
+        Expr *g = guard(t, tr, event);
+        SMLoc tloc = t.src->locOf(tr);
+        if (!event.empty()) {
+          Expr *e = eventCond(event, tloc);
+          if (!e)
+            continue;
+          g = g->kind == ExprKind::BoolLit ? e
+                                           : binary(unit, Op::And, e, g, tloc);
+        }
+        pugi::xml_node dst =
+            stateByName[StringRef(tr.attribute("Destination").value()).upper()];
+        StmtList body;
+        body.push_back(
+            assign(unit, nameRef(unit, "_ECC_does_not_settle", tloc),
+                   binary(unit, Op::Div, nameRef(unit, "_step", tloc),
+                          intLit(unit, limit, tloc), tloc),
+                   tloc));
+        body.push_back(assign(unit, nameRef(unit, "ECC", tloc),
+                              stateLit(dst.attribute("Name").value(), tloc),
+                              tloc));
+        body.push_back(assign(unit, nameRef(unit, "_fired", tloc),
+                              boolLit(unit, true, tloc), tloc));
+        StmtList entered = enter(dst);
+        body.insert(body.end(), entered.begin(), entered.end());
+        chain->arms.push_back({g, std::move(body)});
+      }
+      if (chain->arms.empty())
+        continue;
+      CaseArmSyntax arm;
+      arm.labels.push_back(
+          {stateLit(s.attribute("Name").value(), t.src->locOf(s)), nullptr});
+      arm.body.push_back(chain);
+      sel->caseArms.push_back(std::move(arm));
+    }
+    StmtList once;
+    once.push_back(assign(unit, nameRef(unit, "_fired", loc),
+                          boolLit(unit, false, loc), loc));
+    if (!sel->caseArms.empty())
+      once.push_back(sel);
+    StmtList taken = consumed(loc);
+    once.insert(once.end(), taken.begin(), taken.end());
+    Expr *notFired = unit.make<Expr>(ExprKind::Unary, loc);
+    notFired->op = Op::Not;
+    notFired->operands.push_back(nameRef(unit, "_fired", loc));
+    once.push_back(when(unit, notFired,
+                        {assign(unit, nameRef(unit, "_live", loc),
+                                boolLit(unit, false, loc), loc)},
+                        loc));
+    Stmt *loop = unit.make<Stmt>(StmtKind::For, loc);
+    loop->target = nameRef(unit, "_step", loc);
+    loop->from = intLit(unit, 0, loc);
+    loop->to = intLit(unit, limit, loc);
+    loop->body.push_back(when(unit, nameRef(unit, "_live", loc), once, loc));
+    h.push_back(assign(unit, nameRef(unit, "_live", loc),
+                       boolLit(unit, true, loc), loc));
+    h.insert(h.end(), armed.begin(), armed.end());
+    h.push_back(loop);
+  };
+  auto handle = [&](StringRef event, StmtList h, SMLoc loc,
+                    bool latch = false) {
+    pou->body.insert(pou->body.end(), h.begin(), h.end());
+    block.handlers.push_back({event.str(), std::move(h), loc, latch});
+  };
+
+  if (cyclic) {
+    // fb2smv's cyclic model: an arriving event only sets its flag; when the
+    // block's turn in the cycle comes (`_run`, ordered by CyclicOrder), it
+    // samples the data of its pending events and runs the ECC with all of
+    // them at once, then forgets them.
+    for (const Event &ei : t.eventInputs) {
+      if (StringRef(ei.name).equals_insensitive(kCycleTurn))
+        fail(t, ei.node,
+             "event input '" + ei.name +
+                 "' has the name netlift gives a block's turn under "
+                 "--fb-semantics cyclic; rename it");
+      SMLoc loc = t.src->locOf(ei.node);
+      handle(ei.name,
+             {assign(unit, nameRef(unit, eventFlag(ei.name), loc),
+                     boolLit(unit, true, loc), loc)},
+             loc, /*latch=*/true);
+    }
+    StmtList h;
+    for (const Var &v : t.inputs) {
+      Expr *pending = nullptr;
+      SMLoc loc = t.src->locOf(v.node);
+      for (const Event &ei : t.eventInputs)
+        for (const std::string &w : ei.with)
+          if (StringRef(w).equals_insensitive(v.name)) {
+            Expr *f = nameRef(unit, eventFlag(ei.name), loc);
+            pending = pending ? binary(unit, Op::Or, pending, f, loc) : f;
+          }
+      if (pending)
+        h.push_back(when(unit, pending,
+                         {assign(unit, nameRef(unit, internal(v.name), loc),
+                                 nameRef(unit, v.name, loc), loc)},
+                         loc));
+    }
+    runEcc(
+        h, {},
+        [&](StringRef event, SMLoc loc) -> Expr * {
+          return nameRef(unit, eventFlag(event), loc);
+        },
+        [&](SMLoc loc) {
+          StmtList forget;
+          for (const Event &ei : t.eventInputs)
+            forget.push_back(assign(unit,
+                                    nameRef(unit, eventFlag(ei.name), loc),
+                                    boolLit(unit, false, loc), loc));
+          return forget;
+        },
+        at);
+    handle(kCycleTurn, std::move(h), at);
+    block.eventInputs.push_back({kCycleTurn, at});
+  } else {
+    for (const Event &ei : t.eventInputs) {
+      SMLoc loc = t.src->locOf(ei.node);
+      StmtList h;
+      for (const std::string &w : ei.with)
+        h.push_back(assign(unit, nameRef(unit, internal(w), loc),
+                           nameRef(unit, w, loc), loc));
+      // Only this event's transitions, and only at the first evaluation.
+      runEcc(
+          h,
+          {assign(unit, nameRef(unit, "_event", loc), boolLit(unit, true, loc),
+                  loc)},
+          [&](StringRef event, SMLoc at) -> Expr * {
+            if (!event.equals_insensitive(ei.name))
+              return nullptr;
+            return nameRef(unit, "_event", at);
+          },
+          [&](SMLoc at) -> StmtList {
+            return {assign(unit, nameRef(unit, "_event", at),
+                           boolLit(unit, false, at), at)};
+          },
+          loc);
+      handle(ei.name, std::move(h), loc);
+    }
+  }
+  blocks.push_back(std::move(block));
+}
