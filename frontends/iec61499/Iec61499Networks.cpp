@@ -2,11 +2,7 @@
 #include "frontends/iec61499/Iec61499Internal.h"
 
 using namespace netlift;
-using namespace netlift::plc;
-using namespace netlift::iec61499::detail;
-using llvm::SMLoc;
-using llvm::StringRef;
-using llvm::Twine;
+using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 
 //===----------------------------------------------------------------------===//
 // Networks
