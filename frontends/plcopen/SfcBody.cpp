@@ -45,6 +45,17 @@ private:
   Expr *condition(pugi::xml_node t);
   void actionBlock(pugi::xml_node block);
   SfcAction *namedAction(StringRef name, pugi::xml_node at);
+  /// The POU's <section><element name=...> (an action or a transition).
+  pugi::xml_node pouPart(StringRef section, StringRef element,
+                         StringRef name) const {
+    pugi::xml_node found;
+    if (pugi::xml_node all = child(pouNode, section))
+      for (pugi::xml_node d : all.children())
+        if (localName(d) == element &&
+            sameName(d.attribute("name").value(), name))
+          found = d;
+    return found;
+  }
 
   XmlSource &src;
   DiagEngine &diag;
@@ -165,12 +176,7 @@ Expr *SfcReader::condition(pugi::xml_node t) {
     // A POU transition: its body sets a BOOL named like it (an ST body
     // may also be `:= expression;`).
     std::string name = ref.attribute("name").value();
-    pugi::xml_node def;
-    if (pugi::xml_node all = child(pouNode, "transitions"))
-      for (pugi::xml_node d : all.children())
-        if (localName(d) == "transition" &&
-            sameName(d.attribute("name").value(), name))
-          def = d;
+    pugi::xml_node def = pouPart("transitions", "transition", name);
     if (!def)
       fail(ref,
            "transition '" + name + "' is not among the POU's <transitions>");
@@ -224,12 +230,7 @@ SfcAction *SfcReader::namedAction(StringRef name, pugi::xml_node at) {
   auto it = actionsByName.find(name.upper());
   if (it != actionsByName.end())
     return it->second;
-  pugi::xml_node def;
-  if (pugi::xml_node all = child(pouNode, "actions"))
-    for (pugi::xml_node d : all.children())
-      if (localName(d) == "action" &&
-          sameName(d.attribute("name").value(), name))
-        def = d;
+  pugi::xml_node def = pouPart("actions", "action", name);
   if (!def)
     return nullptr; // a Boolean variable as the action
   auto *a = unit.make<SfcAction>();
