@@ -44,7 +44,7 @@ private:
   std::string stepName(pugi::xml_node step);
   Expr *condition(pugi::xml_node t);
   void actionBlock(pugi::xml_node block);
-  SfcAction *namedAction(StringRef name, pugi::xml_node at);
+  SfcAction *namedAction(StringRef name);
   /// The POU's <section><element name=...> (an action or a transition).
   pugi::xml_node pouPart(StringRef section, StringRef element,
                          StringRef name) const {
@@ -226,7 +226,7 @@ Expr *SfcReader::condition(pugi::xml_node t) {
   return e;
 }
 
-SfcAction *SfcReader::namedAction(StringRef name, pugi::xml_node at) {
+SfcAction *SfcReader::namedAction(StringRef name) {
   auto it = actionsByName.find(name.upper());
   if (it != actionsByName.end())
     return it->second;
@@ -243,7 +243,6 @@ SfcAction *SfcReader::namedAction(StringRef name, pugi::xml_node at) {
     throw Failure();
   chart->actions.push_back(a);
   actionsByName[name.upper()] = a;
-  (void)at;
   return a;
 }
 
@@ -275,7 +274,7 @@ void SfcReader::actionBlock(pugi::xml_node block) {
         assoc.indicators.push_back(ind.value());
     if (pugi::xml_node ref = child(a, "reference")) {
       assoc.action = ref.attribute("name").value();
-      namedAction(assoc.action, ref);
+      namedAction(assoc.action);
     } else if (pugi::xml_node inl = child(a, "inline")) {
       auto *act = unit.make<SfcAction>();
       act->name = step->name + "_INLINE" + std::to_string(++inlineActions);
