@@ -350,6 +350,16 @@ bool SfcReader::read(pugi::xml_node sfc, pugi::xml_node p) {
         successors[in].push_back(e);
     for (auto &[id, e] : byId)
       if (localName(e) == "step") {
+        // Vendor data naming an action (CODESYS's entry/exit step
+        // actions) would run code the chart does not show: refused.
+        for (pugi::xml_node add : e.children())
+          if (localName(add) == "addData")
+            for (pugi::xml_node d : add.children())
+              if (StringRef(d.attribute("name").value())
+                      .contains_insensitive("action"))
+                fail(d, "step '" + stepName(e) + "' has vendor step actions (" +
+                            d.attribute("name").value() +
+                            "): entry and exit actions are not supported");
         auto *s = unit.make<SfcStep>();
         s->name = stepName(e);
         s->loc = src.locOf(e);
