@@ -397,6 +397,8 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
     return convertDate(v, from, to, at);
   if (from->kind == PTypeKind::String || to->kind == PTypeKind::String)
     return convertString(v, from, to, at);
+  if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Real)
+    return timeInUnit(v, 1000000, to, at); // milliseconds, as CODESYS
   if (from->kind == PTypeKind::Real || to->kind == PTypeKind::Real)
     return convertReal(v, from, to, at);
   if (to->kind == PTypeKind::Bool) {
@@ -446,6 +448,19 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   if (from->kind == to->kind && from->kind == PTypeKind::Time)
     return v;
   return convertReal(v, from, to, at);
+}
+
+NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
+                            SMLoc at) {
+  if (to->kind == PTypeKind::Real)
+    return b.binary(net::BinaryOp::Mul, b.convert(floatType(to), v, at),
+                    b.realLit(double(tickNs) / double(unitNs), at), at);
+  // Whole units, truncated toward zero as 4diac's integer division does.
+  NExpr *ns = b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs, at), at);
+  NExpr *n = unitNs == 1
+                 ? ns
+                 : b.binary(net::BinaryOp::Div, ns, b.intLit(unitNs, at), at);
+  return convert(n, elementaryType("LINT"), to, at);
 }
 
 NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
@@ -600,6 +615,8 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
     if (info.from && (info.from->kind == PTypeKind::Time ||
                       info.from->kind == PTypeKind::Date))
       from = info.from;
+    if (info.unitNs)
+      return timeInUnit(a[0], info.unitNs, info.to, at);
     return convert(a[0], from, info.to, at);
   }
   case StdFn::RealMath:

@@ -199,6 +199,9 @@ private:
   /// An integer of PLC type `from` as a NetIR uint64 (a negative value
   /// wraps modulo 2^64).
   NExpr *asUnsigned64(NExpr *v, const PType *from, SMLoc at);
+  /// A TIME (in ticks) counted in `unitNs` units as the integer or REAL
+  /// type `to` (4diac's TIME_IN_MS_TO_LINT...).
+  NExpr *timeInUnit(NExpr *v, int64_t unitNs, const PType *to, SMLoc at);
   /// A ULINT/LWORD constant past 2^63 - 1, where NetIR's literals stop:
   /// uint64(v - 2^63) + (2^63 - 1) + 1, computed in uint64.
   NExpr *unsigned64Literal(uint64_t v, SMLoc at);

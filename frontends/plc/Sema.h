@@ -114,6 +114,9 @@ struct StdFnInfo {
   StdFn fn = StdFn::None;
   const PType *to = nullptr;   // Convert: target type
   const PType *from = nullptr; // Convert: declared source (null: any)
+  /// Convert: 4diac's TIME_IN_S/MS/US/NS_TO_x count the TIME in this unit
+  /// (ns); 0 for the others.
+  int64_t unitNs = 0;
 };
 
 StdFnInfo lookupStdFunction(llvm::StringRef name);

@@ -501,6 +501,13 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   case StdFn::StringOp:
     return stringCall(e, types);
   case StdFn::Refused:
+    if (StringRef(e->name).upper().find("BCD") == std::string::npos) {
+      error(e->loc, "'" + e->name +
+                        "' reads the runtime's clock, which grows without "
+                        "bound: it is not modelled (measure time with a "
+                        "timer, TON or E_DELAY)");
+      return nullptr;
+    }
     error(e->loc, "'" + e->name +
                       "' is not supported (BCD conversions are "
                       "refused)");

@@ -194,6 +194,8 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
                 .Cases("LEN", "LEFT", "RIGHT", "MID", "CONCAT", "INSERT",
                        StdFn::StringOp)
                 .Cases("DELETE", "REPLACE", "FIND", StdFn::StringOp)
+                // 4diac's clocks: unbounded, refused by name.
+                .Cases("NOW_MONOTONIC", "NOW", StdFn::Refused)
                 .Default(StdFn::None);
   if (info.fn != StdFn::None)
     return info;
@@ -215,6 +217,20 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
       return info;
     }
     const PType *f = elementaryType(from), *t = elementaryType(to);
+    // 4diac's TIME_IN_MS_TO_LINT and the like: the duration in that unit.
+    if (from.consume_front("TIME_IN_")) {
+      info.unitNs = llvm::StringSwitch<int64_t>(from)
+                        .Case("S", 1000000000)
+                        .Case("MS", 1000000)
+                        .Case("US", 1000)
+                        .Case("NS", 1)
+                        .Default(0);
+      if (info.unitNs && t &&
+          (t->kind == PTypeKind::Int || t->kind == PTypeKind::Real))
+        f = elementaryType("TIME");
+      else
+        info.unitNs = 0;
+    }
     if (f && t) {
       info.fn = StdFn::Convert;
       info.from = f;
