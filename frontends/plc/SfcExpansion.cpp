@@ -116,6 +116,8 @@ private:
   std::map<std::string, std::vector<std::pair<SfcStep *, SfcAssociation *>>>
       associations;
   std::map<std::string, SfcAction *> actions;
+  /// The flags read of each action: 1 Q, 2 A.
+  std::map<std::string, int> flagsRead;
   StmtList out;
 };
 
@@ -210,20 +212,29 @@ bool Expander::checkChart() {
         actionOrder.push_back(a.action);
       list.push_back({s, &a});
     }
-  // The 3rd edition's action flags (A.Q, A.A) are not modelled: say so
-  // rather than "unknown variable".
-  bool flags = false;
+  // The 3rd edition's action flags: A.Q (the action control's Q) and A.A
+  // (the body runs: Q, the final run, a pulse) become variables of the
+  // action's control, kept from scan to scan once read.
+  bool bad = false;
   forEachChartExpr(chart, [&](Expr *e) {
-    if (flags || e->kind != ExprKind::Field ||
+    if (bad || e->kind != ExprKind::Field ||
         e->base()->kind != ExprKind::Name ||
         !actions.count(key(e->base()->name)))
       return;
-    diag.error(e->loc, "the action flag '" + e->base()->name + "." + e->name +
-                           "' is not supported (read a step's flag s.X "
-                           "instead)");
-    flags = true;
+    SfcAction *a = actions[key(e->base()->name)];
+    bool q = sameName(e->name, "Q");
+    if (!q && !sameName(e->name, "A")) {
+      diag.error(e->loc, "'" + e->base()->name + "." + e->name +
+                             "': an action's flags are Q and A");
+      bad = true;
+      return;
+    }
+    flagsRead[key(a->name)] |= q ? 1 : 2;
+    e->kind = ExprKind::Name;
+    e->name = "__SFC_" + a->name + (q ? "_Q" : "_A");
+    e->operands.clear();
   });
-  if (flags)
+  if (bad)
     return false;
   for (SfcAction *a : chart.actions)
     if (!associations.count(key(a->name)))
@@ -414,14 +425,24 @@ void Expander::expandAction(StringRef actionName, SMLoc at) {
   }
   // Q, the scan after Q falls (the final run of the body) and the pulses
   // run the body.
-  std::string q = base + "_Q";
-  declare(q, "BOOL", at, VarSection::Temp);
+  // A flag the chart reads (A.Q, A.A) keeps its value between scans, as
+  // the action control's outputs do; otherwise it is scan-local.
+  int read = flagsRead[key(found->second->name)];
+  std::string q = "__SFC_" + found->second->name + "_Q";
+  declare(q, "BOOL", at, read & 1 ? VarSection::Var : VarSection::Temp);
   out.push_back(assign(name(q, at), anyOf(terms, at), at));
   std::vector<Expr *> runs = {name(q, at)};
   auto qFlag = [&] { return name(q, at); };
   runs.push_back(name(edge("LAST_Q", qFlag, true), at));
   llvm::append_range(runs, pulses);
-  out.push_back(when(anyOf(runs, at), found->second->body, at));
+  Expr *runsNow = anyOf(runs, at);
+  if (read & 2) {
+    std::string active = "__SFC_" + found->second->name + "_A";
+    declare(active, "BOOL", at);
+    out.push_back(assign(name(active, at), runsNow, at));
+    runsNow = name(active, at);
+  }
+  out.push_back(when(runsNow, found->second->body, at));
 }
 
 bool Expander::run() {
