@@ -50,6 +50,20 @@ private:
     return e;
   }
   Expr *negate(Expr *a, SMLoc at) { return unary(Op::Not, a, at); }
+  Expr *intLit(int64_t v, SMLoc at) {
+    Expr *e = make(ExprKind::IntLit, at);
+    e->intValue = v;
+    return e;
+  }
+  Expr *boolToInt(Expr *b, SMLoc at) {
+    Expr *c = make(ExprKind::Call, at);
+    c->name = "BOOL_TO_INT";
+    CallArg a;
+    a.value = b;
+    a.loc = at;
+    c->args.push_back(std::move(a));
+    return c;
+  }
   /// A fresh copy of `e` (a duration written once, used by several timers).
   Expr *copy(Expr *e) {
     Expr *c = unit.make<Expr>(*e);
@@ -480,7 +494,7 @@ bool Expander::run() {
     if (isTimed(s))
       out.push_back(call(s->name,
                          {{"ACTIVE", field(s->name, "X", s->loc)},
-                          {"REACTIVATED", boolLit(false, s->loc)},
+                          {"ACTIVATED_WHILE_ACTIVE", intLit(0, s->loc)},
                           {"RESTART", boolLit(false, s->loc)},
                           {"CAP", copy(caps[s])}},
                          s->loc));
@@ -557,7 +571,8 @@ bool Expander::run() {
         twice.push_back(
             binary(Op::And, name(into[i], sl), name(into[j], sl), sl));
     std::vector<std::pair<StringRef, Expr *>> args = {
-        {"ACTIVE", active}, {"REACTIVATED", anyOf(twice, sl)}};
+        {"ACTIVE", active},
+        {"ACTIVATED_WHILE_ACTIVE", boolToInt(anyOf(twice, sl), sl)}};
     if (isTimed(s)) {
       args.push_back({"RESTART", any(into)});
       args.push_back({"CAP", caps[s]});

@@ -440,15 +440,14 @@ FUNCTION ADD_LTIME : LTIME
 END_FUNCTION
 
 (* The steps of a Sequential Function Chart (frontends/plc/SfcExpansion.cpp
-   calls them): X is the step flag. REACTIVATED is TRUE when a transition
-   activates the step while it is active and stays so (an unsafe chart),
-   or when two transitions activate it at once: writing 1 to a 0..0
-   variable stops the scan with a runtime error naming the step. *)
+   calls them): X is the step flag. ACTIVATED_WHILE_ACTIVE is 1 when a
+   transition activates the step while it is active and stays so (an
+   unsafe chart) or two transitions activate it at once: the caller's
+   write of 1 to this 0..0 input stops the scan with a runtime error at the
+   step, naming it. *)
 FUNCTION_BLOCK NETLIFT_SFC_STEP
-  VAR_INPUT ACTIVE : BOOL; REACTIVATED : BOOL; END_VAR
+  VAR_INPUT ACTIVE : BOOL; ACTIVATED_WHILE_ACTIVE : INT(0..0); END_VAR
   VAR_OUTPUT X : BOOL; END_VAR
-  VAR ACTIVATED_WHILE_ACTIVE : INT(0..0); END_VAR
-  ACTIVATED_WHILE_ACTIVE := BOOL_TO_INT(REACTIVATED);
   X := ACTIVE;
 END_FUNCTION_BLOCK
 
@@ -457,15 +456,15 @@ END_FUNCTION_BLOCK
    T keeps its last value while the step is inactive, and the clock parks
    at CAP meanwhile so that idle steps add no states. *)
 FUNCTION_BLOCK NETLIFT_SFC_TIMED_STEP
-  VAR_INPUT ACTIVE : BOOL; REACTIVATED : BOOL; RESTART : BOOL; CAP : TIME;
+  VAR_INPUT
+    ACTIVE : BOOL; ACTIVATED_WHILE_ACTIVE : INT(0..0); RESTART : BOOL;
+    CAP : TIME;
   END_VAR
   VAR_OUTPUT X : BOOL; T : TIME; END_VAR
   VAR
-    ACTIVATED_WHILE_ACTIVE : INT(0..0);
     TIMING : BOOL;
     {netlift clock CAP} CLOCK : TIME;
   END_VAR
-  ACTIVATED_WHILE_ACTIVE := BOOL_TO_INT(REACTIVATED);
   IF ACTIVE AND (RESTART OR NOT TIMING) THEN
     CLOCK := T#0s;
   ELSIF NOT ACTIVE AND TIMING THEN
