@@ -214,11 +214,17 @@ bool Expander::checkChart() {
     if (!known(t->from, t->fromLocs) || !known(t->to, t->toLocs))
       return false;
   }
-  for (SfcAction *a : chart.actions)
+  for (SfcAction *a : chart.actions) {
     if (!actions.emplace(key(a->name), a).second) {
       diag.error(a->loc, "action '" + a->name + "' is declared twice");
       return false;
     }
+    // One name, one thing: `A.X` must say whether it is a step or not.
+    if (steps.count(key(a->name))) {
+      diag.error(a->loc, "action '" + a->name + "' has the name of a step");
+      return false;
+    }
+  }
   for (SfcStep *s : chart.steps)
     for (SfcAssociation &a : s->actions) {
       auto &list = associations[key(a.action)];
