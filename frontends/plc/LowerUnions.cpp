@@ -29,37 +29,33 @@ int64_t alignUp(int64_t n, int64_t a) { return (n + a - 1) / a * a; }
 } // namespace
 
 Lowering::UnionLayout Lowering::unionLayout(const PType *t, SMLoc at) {
-  t = baseOf(t);
-  switch (t->kind) {
-  case PTypeKind::Bool:
-    return {1, 1};
-  case PTypeKind::Int:
-    return {t->width / 8, t->width / 8};
-  case PTypeKind::Real:
-    return {t->width / 8, t->width / 8};
-  case PTypeKind::Array: {
-    UnionLayout e = unionLayout(t->elem, at);
-    int64_t n = 1;
-    for (auto &[lo, hi] : t->dims)
-      n *= hi - lo + 1;
-    return {e.size * n, e.align};
-  }
-  case PTypeKind::Struct: {
-    int64_t size = 0, align = 1;
-    for (VarDecl *f : t->fields) {
-      UnionLayout l = unionLayout(f->type, at);
-      align = std::max(align, l.align);
-      size =
-          t->isUnion ? std::max(size, l.size) : alignUp(size, l.align) + l.size;
+  // Members are integers, bit strings, BOOL, REAL/LREAL, and arrays and
+  // structures of them; their layout is the compilers' (memoryLayout).
+  const PType *bad = nullptr;
+  std::function<bool(const PType *)> held = [&](const PType *m) {
+    m = baseOf(m);
+    switch (m->kind) {
+    case PTypeKind::Bool:
+    case PTypeKind::Int:
+    case PTypeKind::Real:
+      return true;
+    case PTypeKind::Array:
+      return held(m->elem);
+    case PTypeKind::Struct:
+      return llvm::all_of(m->fields, [&](VarDecl *f) { return held(f->type); });
+    default:
+      bad = m;
+      return false;
     }
-    return {alignUp(size, align), align};
-  }
-  default:
-    refuse(at, "a UNION member of type " + t->str() +
+  };
+  std::string why;
+  std::optional<MemoryLayout> l = held(t) ? memoryLayout(t, why) : std::nullopt;
+  if (!l)
+    refuse(at, "a UNION member of type " + (bad ? bad : baseOf(t))->str() +
                    " is not supported (netlift models UNIONs of integers, "
                    "bit strings, BOOL, REAL and LREAL, and arrays and "
                    "structures of them)");
-  }
+  return {l->size, l->align};
 }
 
 const net::Type *Lowering::unionType(const PType *t, SMLoc at) {

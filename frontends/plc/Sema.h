@@ -17,6 +17,9 @@
 #include "frontends/plc/PlcAst.h"
 #include "ir/support/Diagnostics.h"
 
+#include <optional>
+#include <string>
+
 namespace netlift::plc {
 
 enum class PTypeKind : uint8_t {
@@ -120,6 +123,16 @@ struct StdFnInfo {
 };
 
 StdFnInfo lookupStdFunction(llvm::StringRef name);
+
+/// How CODESYS and TwinCAT lay a value of type `t` out in memory (natural
+/// alignment, as C on x86-64: a member sits at a multiple of its
+/// alignment, a structure is padded to its largest member's): the bytes
+/// and the alignment. None, with `why`, for what has no fixed layout
+/// (function block instances).
+struct MemoryLayout {
+  int64_t size, align;
+};
+std::optional<MemoryLayout> memoryLayout(const PType *t, std::string &why);
 
 struct CheckOptions {
   /// The program, program instance or function block translated (--top);

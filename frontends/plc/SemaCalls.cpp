@@ -317,6 +317,27 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     }
     return p->resultType;
   }
+  // SIZEOF(x) (CODESYS, TwinCAT): the bytes of x's type, a constant.
+  if (sameName(e->name, "SIZEOF")) {
+    if (e->args.size() != 1 || e->args[0].isOutput) {
+      error(e->loc, "SIZEOF takes one variable");
+      return nullptr;
+    }
+    const PType *t = expr(e->args[0].value);
+    if (!t)
+      return nullptr;
+    std::string why;
+    std::optional<MemoryLayout> l = memoryLayout(t, why);
+    if (!l) {
+      error(e->args[0].loc, "SIZEOF: " + why);
+      return nullptr;
+    }
+    e->kind = ExprKind::IntLit;
+    e->intValue = l->size;
+    e->args.clear();
+    e->name.clear();
+    return anyIntType();
+  }
   StdFnInfo info = lookupStdFunction(e->name);
   if (info.fn == StdFn::None) {
     error(e->loc,

@@ -157,6 +157,54 @@ const PType *plc::elementaryType(StringRef name) {
   return it == elementaryTable().end() ? nullptr : &it->second;
 }
 
+std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
+                                              std::string &why) {
+  t = baseOf(t);
+  auto alignUp = [](int64_t n, int64_t a) { return (n + a - 1) / a * a; };
+  switch (t->kind) {
+  case PTypeKind::Bool:
+    return MemoryLayout{1, 1};
+  case PTypeKind::Int:
+  case PTypeKind::Real:
+  case PTypeKind::Date:
+    return MemoryLayout{t->width / 8, t->width / 8};
+  case PTypeKind::Time: // TIME 32 bits (ms), LTIME 64 (ns)
+    return t->name == "LTIME" ? MemoryLayout{8, 8} : MemoryLayout{4, 4};
+  case PTypeKind::String: { // the characters and the terminating zero
+    int64_t c = t->width / 8;
+    return MemoryLayout{c * (int64_t(t->strLen) + 1), c};
+  }
+  case PTypeKind::Enum: // an INT unless a base type is given
+    return t->base ? memoryLayout(t->base, why) : MemoryLayout{2, 2};
+  case PTypeKind::Array: {
+    auto e = memoryLayout(t->elem, why);
+    if (!e)
+      return e;
+    int64_t n = 1;
+    for (auto &[lo, hi] : t->dims)
+      n *= hi - lo + 1;
+    return MemoryLayout{e->size * n, e->align};
+  }
+  case PTypeKind::Struct: {
+    int64_t size = 0, align = 1;
+    for (VarDecl *f : t->fields) {
+      auto l = memoryLayout(f->type, why);
+      if (!l)
+        return l;
+      align = std::max(align, l->align);
+      size = t->isUnion ? std::max(size, l->size)
+                        : alignUp(size, l->align) + l->size;
+    }
+    return MemoryLayout{alignUp(size, align), align};
+  }
+  default:
+    why = "a " + t->str() +
+          " has no layout netlift knows (the compiler "
+          "decides it)";
+    return std::nullopt;
+  }
+}
+
 StdFnInfo plc::lookupStdFunction(StringRef name) {
   std::string up = name.upper();
   StdFnInfo info;
