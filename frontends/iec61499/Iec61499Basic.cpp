@@ -8,6 +8,7 @@ using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 // Basic function blocks
 //===----------------------------------------------------------------------===//
 
+/// The internal copy of interface variable `name`.
 static std::string internal(StringRef name) { return "_" + name.str(); }
 /// Under the cyclic model: whether event `name` is pending.
 static std::string eventFlag(StringRef name) { return "_ev_" + name.str(); }

@@ -240,39 +240,23 @@ private:
 
 // The AST of the statements a basic FB's ECC and algorithms become.
 inline Expr *nameRef(Unit &u, StringRef name, SMLoc at) {
-  Expr *e = u.make<Expr>(ExprKind::Name, at);
-  e->name = name.str();
-  return e;
+  return AstMaker(u).nameRef(name, at);
 }
 inline Expr *intLit(Unit &u, int64_t v, SMLoc at) {
-  Expr *e = u.make<Expr>(ExprKind::IntLit, at);
-  e->intValue = v;
-  return e;
+  return AstMaker(u).intLit(v, at);
 }
 inline Expr *boolLit(Unit &u, bool v, SMLoc at) {
-  Expr *e = u.make<Expr>(ExprKind::BoolLit, at);
-  e->intValue = v;
-  return e;
+  return AstMaker(u).boolLit(v, at);
 }
 inline Expr *binary(Unit &u, Op op, Expr *a, Expr *c, SMLoc at) {
-  Expr *e = u.make<Expr>(ExprKind::Binary, at);
-  e->op = op;
-  e->operands = {a, c};
-  return e;
+  return AstMaker(u).binary(op, a, c, at);
 }
 inline Stmt *assign(Unit &u, Expr *target, Expr *value, SMLoc at) {
-  Stmt *s = u.make<Stmt>(StmtKind::Assign, at);
-  s->target = target;
-  s->value = value;
-  return s;
+  return AstMaker(u).assign(target, value, at);
 }
 inline Stmt *when(Unit &u, Expr *cond, StmtList body, SMLoc at) {
-  Stmt *s = u.make<Stmt>(StmtKind::If, at);
-  s->arms.push_back({cond, std::move(body)});
-  return s;
+  return AstMaker(u).when(cond, std::move(body), at);
 }
-
-/// The internal copy of interface variable `name`.
 
 /// Service FBs netlift has a model of (whatever file declares them).
 bool isShipped(StringRef name);

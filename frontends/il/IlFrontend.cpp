@@ -123,7 +123,8 @@ private:
   }
   Expr *operand(IP::OperandContext *c);
   Expr *need(SMLoc at, StringRef op);
-  VarDecl *temp(const std::string &name, const char *type, bool infer);
+  /// A temporary of the POU (`type` empty: typed by its first value).
+  VarDecl *temp(const std::string &name, StringRef type);
   Expr *nameRef(VarDecl *v, SMLoc at);
   Expr *binary(Op op, Expr *a, Expr *b, SMLoc at);
   Expr *notOf(Expr *a, SMLoc at);
@@ -176,19 +177,8 @@ Expr *IlLowering::need(SMLoc at, StringRef op) {
   return cr;
 }
 
-VarDecl *IlLowering::temp(const std::string &name, const char *type,
-                          bool infer) {
-  VarDecl *v = unit.make<VarDecl>();
-  v->name = name;
-  v->loc = pou->loc;
-  v->section = VarSection::Temp;
-  v->inferType = infer;
-  if (type) {
-    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, pou->loc);
-    v->typeSyntax->name = type;
-  }
-  pou->vars.push_back(v);
-  return v;
+VarDecl *IlLowering::temp(const std::string &name, StringRef type) {
+  return AstMaker(unit).declare(*pou, name, type, pou->loc, VarSection::Temp);
 }
 
 Expr *IlLowering::nameRef(VarDecl *v, SMLoc at) {
@@ -249,7 +239,7 @@ void IlLowering::materializeIfReads(const std::set<std::string> &written,
     conflict |= reads.count(w) > 0;
   if (!conflict)
     return;
-  VarDecl *t = temp("_CR" + std::to_string(++temps), nullptr, true);
+  VarDecl *t = temp("_CR" + std::to_string(++temps), "");
   Stmt *s = unit.make<Stmt>(StmtKind::Assign, at);
   s->target = nameRef(t, at);
   s->value = cr;
@@ -488,8 +478,7 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     if (labelsSeen.count(label))
       refuse(at, "backward jump to '" + ops[0]->name +
                      "' is a loop netlift cannot bound; it is refused");
-    VarDecl *flag =
-        temp("_JMP" + std::to_string(flags.size() + 1), "BOOL", false);
+    VarDecl *flag = temp("_JMP" + std::to_string(flags.size() + 1), "BOOL");
     flags.push_back(flag);
     Expr *value = up == "JMP"    ? nullptr
                   : up == "JMPC" ? need(at, op)
@@ -502,7 +491,7 @@ void IlLowering::instruction(IP::InstructionContext *c) {
     if (cr && !startsFresh.count(label)) {
       VarDecl *&carry = labelCr[label];
       if (!carry)
-        carry = temp("_CR_" + ops[0]->name, nullptr, true);
+        carry = temp("_CR_" + ops[0]->name, "");
       Stmt *keep = unit.make<Stmt>(StmtKind::Assign, at);
       keep->target = nameRef(carry, at);
       keep->value = cr;

@@ -41,27 +41,13 @@ public:
   bool run();
 
 private:
-  bool hasJump(const StmtList &list) const;
+  static bool hasJump(StmtList &list);
   bool check(const StmtList &list, bool top, bool inLoop);
   StmtList rewrite(const StmtList &list, bool inLoop);
-  Expr *intLit(int64_t v, SMLoc at) {
-    Expr *e = make(ExprKind::IntLit, at);
-    e->intValue = v;
-    return e;
-  }
   Stmt *setSegment(int64_t k, SMLoc at) {
     return assign(nameRef(kSegment, at), intLit(k, at), at);
   }
   Expr *notTaken(SMLoc at) { return unary(Op::Not, nameRef(kTaken, at), at); }
-  void declare(StringRef name, StringRef type, SMLoc at) {
-    auto *v = unit.make<VarDecl>();
-    v->name = name.str();
-    v->loc = at;
-    v->section = VarSection::Temp;
-    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
-    v->typeSyntax->name = type.str();
-    pou.vars.push_back(v);
-  }
 
   Pou &pou;
   DiagEngine &diag;
@@ -85,16 +71,12 @@ void forEachNested(Stmt *s, llvm::function_ref<void(StmtList &, bool loop)> f) {
 
 } // namespace
 
-bool JumpExpander::hasJump(const StmtList &list) const {
-  for (Stmt *s : list) {
-    if (s->kind == StmtKind::Jump || s->kind == StmtKind::Label)
-      return true;
-    bool nested = false;
-    forEachNested(s, [&](StmtList &l, bool) { nested |= hasJump(l); });
-    if (nested)
-      return true;
-  }
-  return false;
+bool JumpExpander::hasJump(StmtList &list) {
+  bool found = false;
+  forEachStmt(list, [&](Stmt *s) {
+    found |= s->kind == StmtKind::Jump || s->kind == StmtKind::Label;
+  });
+  return found;
 }
 
 bool JumpExpander::check(const StmtList &list, bool top, bool inLoop) {
@@ -144,7 +126,8 @@ StmtList JumpExpander::rewrite(const StmtList &list, bool inLoop) {
         out.push_back(unit.make<Stmt>(StmtKind::Exit, s->loc));
       return out; // what follows a jump in its list never runs
     }
-    if (!hasJump({s})) {
+    StmtList one = {s};
+    if (!hasJump(one)) {
       out.push_back(s);
       continue;
     }
@@ -191,8 +174,8 @@ bool JumpExpander::run() {
     rewritten.push_back(rewrite(parts[k], false));
   }
   SMLoc at = pou.loc;
-  declare(kSegment, "DINT", at);
-  declare(kTaken, "BOOL", at);
+  declare(pou, kSegment, "DINT", at, VarSection::Temp);
+  declare(pou, kTaken, "BOOL", at, VarSection::Temp);
   StmtList body;
   body.push_back(setSegment(0, at));
   body.push_back(assign(nameRef(kTaken, at), boolLit(false, at), at));

@@ -4,6 +4,7 @@
 #include "llvm/ADT/StringExtras.h"
 
 using namespace netlift::plc;
+using llvm::SMLoc;
 using llvm::StringRef;
 
 bool netlift::plc::sameName(StringRef a, StringRef b) {
@@ -123,6 +124,22 @@ TypeDecl *Unit::findType(StringRef n) const {
     if (sameName(t->name, n))
       return t;
   return nullptr;
+}
+
+VarDecl *AstMaker::declare(Pou &pou, StringRef name, StringRef type, SMLoc at,
+                           VarSection section) {
+  VarDecl *v = unit.make<VarDecl>();
+  v->name = name.str();
+  v->loc = at;
+  v->section = section;
+  if (type.empty()) {
+    v->inferType = true;
+  } else {
+    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+    v->typeSyntax->name = type.str();
+  }
+  pou.vars.push_back(v);
+  return v;
 }
 
 void netlift::plc::forEachStmt(StmtList &l,

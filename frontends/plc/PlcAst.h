@@ -478,6 +478,11 @@ public:
     e->intValue = v;
     return e;
   }
+  Expr *intLit(int64_t v, llvm::SMLoc at) {
+    Expr *e = make(ExprKind::IntLit, at);
+    e->intValue = v;
+    return e;
+  }
   Expr *nameRef(llvm::StringRef name, llvm::SMLoc at) {
     Expr *e = make(ExprKind::Name, at);
     e->name = name.str();
@@ -512,6 +517,10 @@ public:
     s->arms.push_back({cond, std::move(body)});
     return s;
   }
+  /// A variable of `pou` of the named `type` (empty: typed by the first
+  /// value assigned to it, VarDecl::inferType).
+  VarDecl *declare(Pou &pou, llvm::StringRef name, llvm::StringRef type,
+                   llvm::SMLoc at, VarSection section = VarSection::Var);
 
 protected:
   Unit &unit;

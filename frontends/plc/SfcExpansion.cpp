@@ -50,11 +50,6 @@ private:
     return e;
   }
   Expr *negate(Expr *a, SMLoc at) { return unary(Op::Not, a, at); }
-  Expr *intLit(int64_t v, SMLoc at) {
-    Expr *e = make(ExprKind::IntLit, at);
-    e->intValue = v;
-    return e;
-  }
   Expr *boolToInt(Expr *b, SMLoc at) {
     Expr *c = make(ExprKind::Call, at);
     c->name = "BOOL_TO_INT";
@@ -100,14 +95,7 @@ private:
   }
   VarDecl *declare(StringRef n, StringRef type, SMLoc at,
                    VarSection section = VarSection::Var) {
-    auto *v = unit.make<VarDecl>();
-    v->name = n.str();
-    v->loc = at;
-    v->section = section;
-    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
-    v->typeSyntax->name = type.str();
-    pou.vars.push_back(v);
-    return v;
+    return AstMaker::declare(pou, n, type, at, section);
   }
 
   bool checkChart();
@@ -148,27 +136,9 @@ void forEachExpr(Expr *e, llvm::function_ref<void(Expr *)> f) {
     forEachExpr(a.value, f);
 }
 
-void forEachExpr(const StmtList &list, llvm::function_ref<void(Expr *)> f) {
-  for (Stmt *s : list) {
-    forEachExpr(s->target, f);
-    forEachExpr(s->value, f);
-    forEachExpr(s->from, f);
-    forEachExpr(s->to, f);
-    forEachExpr(s->by, f);
-    for (auto &[c, body] : s->arms) {
-      forEachExpr(c, f);
-      forEachExpr(body, f);
-    }
-    for (CaseArmSyntax &arm : s->caseArms) {
-      for (CaseLabel &l : arm.labels) {
-        forEachExpr(l.lo, f);
-        forEachExpr(l.hi, f);
-      }
-      forEachExpr(arm.body, f);
-    }
-    forEachExpr(s->elseBody, f);
-    forEachExpr(s->body, f);
-  }
+/// Every expression under the statements of `list`.
+void forEachExpr(StmtList &list, llvm::function_ref<void(Expr *)> f) {
+  forEachStmt(list, nullptr, [&](Expr *e) { forEachExpr(e, f); });
 }
 
 void forEachChartExpr(SfcChart &chart, llvm::function_ref<void(Expr *)> f) {

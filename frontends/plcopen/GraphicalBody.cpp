@@ -521,18 +521,7 @@ VarDecl *Network::declare(const std::string &name, StringRef type,
                  "' for this element, but POU '" + pou->name +
                  "' already declares one");
   }
-  VarDecl *v = unit.make<VarDecl>();
-  v->name = name;
-  v->loc = src.locOf(at);
-  v->section = section;
-  if (type.empty()) {
-    v->inferType = true;
-  } else {
-    v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, v->loc);
-    v->typeSyntax->name = type.str();
-  }
-  pou->vars.push_back(v);
-  return v;
+  return AstMaker::declare(*pou, name, type, src.locOf(at), section);
 }
 
 /// Statements between a taken forward jump and its label do not run.

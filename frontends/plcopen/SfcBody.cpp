@@ -199,13 +199,7 @@ Expr *SfcReader::condition(pugi::xml_node t) {
       if (!body || pou->find(name))
         fail(def, "transition '" + name +
                       "' has no body, or the name of a variable");
-      auto *v = unit.make<VarDecl>();
-      v->name = name;
-      v->loc = at;
-      v->section = VarSection::Temp;
-      v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
-      v->typeSyntax->name = "BOOL";
-      pou->vars.push_back(v);
+      AstMaker(unit).declare(*pou, name, "BOOL", at, VarSection::Temp);
       StmtList computed;
       if (!readBody(body, computed))
         throw Failure();
@@ -328,15 +322,9 @@ bool SfcReader::read(pugi::xml_node sfc, pugi::xml_node p) {
           wired[id] = "__SFC_CONDITION_" + std::to_string(id);
     }
     if (hasNetworks || !wired.empty()) {
-      for (auto &[id, var] : wired) {
-        auto *v = unit.make<VarDecl>();
-        v->name = var;
-        v->loc = src.locOf(byId[id]);
-        v->section = VarSection::Temp;
-        v->typeSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Named, v->loc);
-        v->typeSyntax->name = "BOOL";
-        pou->vars.push_back(v);
-      }
+      for (auto &[id, var] : wired)
+        AstMaker(unit).declare(*pou, var, "BOOL", src.locOf(byId[id]),
+                               VarSection::Temp);
       StmtList own = std::move(pou->body);
       pou->body.clear();
       bool ok = readGraphicalBody(sfc, src, diag, unit, pou, &wired);
