@@ -42,7 +42,7 @@ public:
 
 private:
   static bool hasJump(StmtList &list);
-  bool check(const StmtList &list, bool top, bool inLoop);
+  bool check(const StmtList &list, bool inLoop);
   StmtList rewrite(const StmtList &list, bool inLoop);
   Stmt *setSegment(int64_t k, SMLoc at) {
     return assign(nameRef(kSegment, at), intLit(k, at), at);
@@ -79,14 +79,10 @@ bool JumpExpander::hasJump(StmtList &list) {
   return found;
 }
 
-bool JumpExpander::check(const StmtList &list, bool top, bool inLoop) {
+// Labels stand at the top level only: the grammar reads `name :` inside
+// a structured statement as a case label or a syntax error.
+bool JumpExpander::check(const StmtList &list, bool inLoop) {
   for (Stmt *s : list) {
-    if (s->kind == StmtKind::Label && !top) {
-      diag.error(s->loc, "label '" + s->target->name +
-                             "' inside a structured statement: netlift "
-                             "takes labels at the top level of a body");
-      return false;
-    }
     if (s->kind == StmtKind::Jump &&
         !segments.count(StringRef(s->target->name).upper())) {
       diag.error(s->target->loc, "JMP to '" + s->target->name +
@@ -104,7 +100,7 @@ bool JumpExpander::check(const StmtList &list, bool top, bool inLoop) {
     }
     bool ok = true;
     forEachNested(s, [&](StmtList &l, bool loop) {
-      ok = ok && check(l, false, inLoop || loop);
+      ok = ok && check(l, inLoop || loop);
     });
     if (!ok)
       return false;
@@ -166,7 +162,7 @@ bool JumpExpander::run() {
     parts.emplace_back();
     starts.push_back(s->loc);
   }
-  if (!check(pou.body, true, false))
+  if (!check(pou.body, false))
     return false;
   std::vector<StmtList> rewritten;
   for (size_t k = 0; k < parts.size(); ++k) {

@@ -21,7 +21,7 @@ namespace netlift::plc {
 
 /// Rewrites the jumps and labels of `pou.body` (a body without any is left
 /// alone). Reports a jump to a label the body does not have, a label
-/// twice, or a label inside a structured statement, and returns false.
+/// twice, or EXIT/CONTINUE outside a loop, and returns false.
 bool expandJumps(Unit &unit, Pou &pou, DiagEngine &diag);
 
 } // namespace netlift::plc
