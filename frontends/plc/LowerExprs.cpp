@@ -452,11 +452,13 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
 
 NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
                             SMLoc at) {
-  if (to->kind == PTypeKind::Real)
-    return b.binary(net::BinaryOp::Mul, b.convert(floatType(to), v, at),
-                    b.realLit(double(tickNs) / double(unitNs), at), at);
-  // Whole units, truncated toward zero as 4diac's integer division does.
   NExpr *ns = b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs, at), at);
+  // A REAL is the nanoseconds divided once (one rounding, so 1500 ms is
+  // exactly 1.5 s); an integer counts whole units, truncated toward zero
+  // as 4diac's integer division does.
+  if (to->kind == PTypeKind::Real)
+    return b.binary(net::BinaryOp::Div, b.convert(floatType(to), ns, at),
+                    b.realLit(double(unitNs), at), at);
   NExpr *n = unitNs == 1
                  ? ns
                  : b.binary(net::BinaryOp::Div, ns, b.intLit(unitNs, at), at);
