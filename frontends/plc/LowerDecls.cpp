@@ -85,6 +85,10 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = tt.createRecord(design.save(name), fields);
     break;
   }
+  case PTypeKind::Reference:
+    // 0 is NULL, 1..n the places it may designate (LowerReferences.cpp).
+    r = tt.getRange(0, t->elem ? referenceCount(t->elem) : 0);
+    break;
   case PTypeKind::FunctionBlock:
   case PTypeKind::Void:
     refuse(at, "internal: no NetIR type for " + t->str());
@@ -133,6 +137,8 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
     return b.stringLit({}, at);
   case PTypeKind::Enum:
     return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[0]), at);
+  case PTypeKind::Reference:
+    return b.intLit(0, at); // NULL
   default:
     return nullptr; // aggregates: NetIR's defaults match IEC's
   }
@@ -238,6 +244,20 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
   }
   if (e->kind == ExprKind::IntLit && e->beyondInt64)
     return unsigned64Literal(uint64_t(e->intValue), e->loc);
+  if (t->kind == PTypeKind::Reference) {
+    // NULL, or REF/ADR of a place with constant indices: a number known
+    // now, in the instance being declared.
+    Frame here;
+    here.pou = v->owner;
+    here.prefix = v->owner ? declaringPrefix : "";
+    Sink pre;
+    NExpr *r = expr(e, here, pre);
+    if (!pre.empty() || !llvm::isa<net::IntLit>(r))
+      refuse(e->loc, "initial value of '" + v->name +
+                         "' must be NULL or REF/ADR of a variable with "
+                         "constant indices");
+    return r;
+  }
   std::optional<int64_t> c = constValue(e, none);
   if (!c)
     refuse(e->loc, "initial value of '" + v->name + "' must be a constant");
@@ -298,6 +318,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
   if (v->section == VarSection::External)
     return; // the global is declared once
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
+  declaringPrefix = programPrefix;
   if (t->kind == PTypeKind::FunctionBlock) {
     keepPragmas(name, v->attrs);
     declareInstance(name, t->fb, v->typeSyntax ? v->typeSyntax->init : nullptr);
@@ -378,6 +399,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     if (m->section == VarSection::External || m->section == VarSection::Stat)
       continue; // a global's; the block type's (staticVar)
     std::string name = path + "." + sanitize(m->name);
+    declaringPrefix = path + ".";
     if (!fb->isLibrary)
       keepPragmas(name, m->attrs);
     Initializer *mi = m->typeSyntax ? m->typeSyntax->init : nullptr;

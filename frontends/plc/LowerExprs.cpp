@@ -189,6 +189,8 @@ NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
 }
 
 NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
+  if (throughReference(e))
+    return placeThroughReference(e, f, pre, "bound to an output or passed");
   switch (e->kind) {
   case ExprKind::Name:
     if (!e->var)
@@ -246,6 +248,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
                      sanitize(e->type->enumerators[e->enumValue]),
                  e->loc);
   case ExprKind::Name:
+    if (e->type == nullType())
+      return b.intLit(0, e->loc);
     if (!e->var && e->enumValue >= 0)
       return b.ref(sanitize(e->type->name) + "#" +
                        sanitize(e->type->enumerators[e->enumValue]),
@@ -256,6 +260,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     return lvalue(e, f, pre);
   case ExprKind::Field:
   case ExprKind::Index:
+    if (throughReference(e))
+      return readThroughReference(e, f, pre);
     if (auto part = unionPart(e, f, pre))
       return unionRead(*part, f, pre, e->loc);
     return lvalue(e, f, pre);
@@ -268,7 +274,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     return b.binary(net::BinaryOp::Ne, bit, b.intLit(0, e->loc), e->loc);
   }
   case ExprKind::Deref:
-    refuse(e->loc, "dereference is not supported");
+    return readThroughReference(e, f, pre);
   case ExprKind::Unary: {
     NExpr *a = expr(e->operands[0], f, pre);
     switch (e->op) {
@@ -380,6 +386,11 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::Call:
     if (e->callee)
       return functionCall(e, f, pre);
+    if (e->name == "REF" || e->name == "ADR")
+      return addressOf(e, f, pre);
+    if (e->name == "__ISVALIDREF")
+      return b.binary(net::BinaryOp::Ne, expr(e->args[0].value, f, pre),
+                      b.intLit(0, e->loc), e->loc);
     return stdCall(e, f, pre);
   }
   refuse(e->loc, "unsupported expression");

@@ -193,6 +193,17 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   switch (s->kind) {
   case StmtKind::Assign: {
     NExpr *value = expr(s->value, f, out);
+    if (s->assignKind == AssignKind::Attempt) {
+      // `?=` between references to different types: never designates
+      // one of the target's, so NULL (SemaReferences.cpp).
+      out.push_back(
+          b.assign(lvalue(s->target, f, out), b.intLit(0, s->loc), s->loc));
+      return;
+    }
+    if (s->target->kind != ExprKind::BitAccess && throughReference(s->target)) {
+      writeThroughReference(s->target, value, s->value, f, out, s->loc);
+      return;
+    }
     if (s->target->kind == ExprKind::BitAccess) {
       // x.3 := v  is  x := v ? x | 8 : x & ~8  (masked to x's width).
       Expr *base = s->target->base();

@@ -336,7 +336,10 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
         !(v->area() == 'I' || v->section == VarSection::Input))
       continue;
     std::string port = (v->owner ? run.prefix : "") + sanitize(v->name);
-    std::string image = unique(run.prefix + "_in_" + sanitize(v->name));
+    std::string image = *inputImageName(run.prefix, v);
+    if (mod->lookup(image).kind != net::SymKind::None)
+      refuse(v->loc, "the copy of input '" + v->name + "' would be named '" +
+                         image + "', which the program already uses");
     declareTemp(image, v->type, v->loc);
     top.aliases[v] = b.ref(image, v->loc);
     action.push_back(
@@ -390,6 +393,7 @@ void Lowering::deadValueResets(ProgramRun &run) {
 void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
                              std::vector<ProgramRun> &runs) {
   startModule(name, loc);
+  adoptReferencePlan(planReferences(runs));
   for (ProgramRun &run : runs)
     declareProgram(run);
   for (ProgramRun &run : runs)
@@ -569,6 +573,7 @@ bool Lowering::run() {
     // Variables written anywhere are not constants.
     for (Pou *p : unit.pous)
       collectWritten(p->body, written);
+    markAddressTaken();
 
     // The tick.
     std::vector<int64_t> ns;
@@ -631,6 +636,27 @@ bool Lowering::run() {
                              "netlift does not model a shared instance");
         shared = true;
       }
+    // A reference's NetIR type is the same in every module: 0..the most
+    // places of its type any module has.
+    auto countPlaces = [&](llvm::ArrayRef<ProgramRun> group) {
+      for (auto &[key, table] : planReferences(group).tables)
+        refDomain[key] = std::max(refDomain[key], table.count);
+    };
+    if (!shared) {
+      for (ProgramRun &run : runs) {
+        ProgramRun alone = run;
+        alone.prefix.clear();
+        countPlaces({alone});
+      }
+    } else {
+      for (ProgramRun &run : runs) {
+        auto it = instanceOf.find(run.pou);
+        run.prefix = sanitize(it != instanceOf.end() ? it->second.first->name
+                                                     : run.pou->name) +
+                     ".";
+      }
+      countPlaces(runs);
+    }
     if (!shared) {
       for (ProgramRun &run : runs) {
         std::vector<ProgramRun> one{std::move(run)};
@@ -676,6 +702,10 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
   startModule(sanitize(pou->name), pou->loc);
   ProgramRun run;
   run.pou = pou;
+  ReferencePlan plan = planReferences({run});
+  for (auto &[key, table] : plan.tables)
+    refDomain[key] = std::max(refDomain[key], table.count);
+  adoptReferencePlan(std::move(plan));
   declareProgram(run);
   resets = std::move(run.resets); // its temporaries, reset after reactions
   std::map<std::string, uint32_t> eventPorts;

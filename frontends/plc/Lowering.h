@@ -72,6 +72,30 @@ struct InstanceUse {
   std::map<std::string, unsigned> given; // input member -> calls giving it
 };
 
+/// A step from a variable to a place a reference designates: an instance's
+/// member, a structure's field, or an array's elements (all of them: a
+/// family holds every element, numbered in row-major order).
+struct RefStep {
+  enum Kind : uint8_t { Member, Field, Index } kind = Field;
+  std::string name;                              // Member, Field
+  std::vector<std::pair<int64_t, int64_t>> dims; // Index
+};
+
+/// Places of one type a reference may designate, numbered offset ..
+/// offset + size - 1: `base` (a NetIR variable) and the steps from it.
+struct RefFamily {
+  std::string base;
+  std::vector<RefStep> steps;
+  int64_t offset = 1, size = 1;
+};
+
+/// The places of one designated type (by referenceKey) in one module.
+struct RefTable {
+  std::vector<RefFamily> families;
+  std::map<std::string, size_t> byKey; // base and steps -> family
+  int64_t count = 0;
+};
+
 struct ClockUse {
   std::string var;    // the clock variable
   std::string member; // the FB input bounding it (PT)
@@ -122,6 +146,52 @@ private:
   /// Picks the tick from the durations `ns` (and the options, or a model
   /// read before) and sets the design's timescale.
   void chooseTick(std::vector<int64_t> ns);
+
+  // References and pointers (LowerReferences.cpp).
+  struct ProgramRun;
+  struct ReferencePlan {
+    std::map<std::string, RefTable> tables; // by referenceKey
+  };
+  /// The places each reference type can designate in a module of `runs`.
+  ReferencePlan planReferences(llvm::ArrayRef<ProgramRun> runs);
+  /// The NetIR variables `v` is in each instance of its owner.
+  std::vector<std::string>
+  placeBases(VarDecl *v,
+             const std::map<Pou *, std::vector<std::string>> &instances,
+             llvm::ArrayRef<ProgramRun> runs);
+  /// The scan-local copy a written program input is read through.
+  static std::optional<std::string> inputImageName(const std::string &prefix,
+                                                   VarDecl *v);
+  void adoptReferencePlan(ReferencePlan plan);
+  /// Variables whose address is taken count as written everywhere.
+  void markAddressTaken();
+  /// The number of places a reference to `target` may designate in any
+  /// module (its NetIR type is 0..that).
+  int64_t referenceCount(const PType *target);
+  NExpr *checkedRange(NExpr *v, int64_t lo, int64_t hi, const std::string &what,
+                      Sink &pre, SMLoc at);
+  NExpr *addressOf(Expr *call, Frame &f, Sink &pre);
+  struct DerefTargets {
+    Expr *deref = nullptr;
+    const RefTable *table = nullptr;
+    std::string number; // the reference, checked to be 1..n
+  };
+  bool throughReference(Expr *e);
+  DerefTargets derefTargets(Expr *e, Frame &f, Sink &pre);
+  NExpr *familyPlace(const RefFamily &fam, const DerefTargets &t, Expr *e,
+                     Frame &f, Sink &pre);
+  NExpr *familyTest(const RefFamily &fam, const DerefTargets &t);
+  NExpr *readThroughReference(Expr *e, Frame &f, Sink &pre);
+  /// `e` as an lvalue when the reference has one possible family; `use`
+  /// says where, for the refusal otherwise.
+  NExpr *placeThroughReference(Expr *e, Frame &f, Sink &pre, StringRef use);
+  void writeThroughReference(Expr *target, NExpr *value, Expr *valueExpr,
+                             Frame &f, Sink &out, SMLoc at);
+  ReferencePlan refPlan;
+  /// The prefix of the instance whose variables are being declared (a
+  /// reference's initial value REF(x) is numbered in it).
+  std::string declaringPrefix;
+  std::map<std::string, int64_t> refDomain; // by referenceKey, all modules
 
   // Bodies.
   /// One program of a module: the prefix of its own names ("" when the

@@ -61,7 +61,7 @@ enum class ExprKind : uint8_t {
   Field,     // base.name
   BitAccess, // base.3
   Index,     // base[i, j]
-  Deref,     // base^ (refused)
+  Deref,     // base^: what a reference designates
   Unary,
   Binary,
   Call, // name(args): function call (or FB call as a statement)
@@ -135,14 +135,22 @@ struct Expr {
 //===----------------------------------------------------------------------===//
 
 enum class TypeSyntaxKind : uint8_t {
-  Named,    // INT, TON, MyStruct
-  Subrange, // INT(0..10)
-  Array,    // ARRAY[1..3, 0..1] OF T
-  Enum,     // (a, b := 2, c)
-  Struct,   // STRUCT ... END_STRUCT
-  String,   // STRING[20]
-  Refused,  // POINTER TO, REFERENCE TO: `refused` is the message
+  Named,     // INT, TON, MyStruct
+  Subrange,  // INT(0..10)
+  Array,     // ARRAY[1..3, 0..1] OF T
+  Enum,      // (a, b := 2, c)
+  Struct,    // STRUCT ... END_STRUCT
+  String,    // STRING[20]
+  Reference, // REF_TO T, POINTER TO T, REFERENCE TO T (elem: T)
+  Refused,   // a construct netlift refuses: `refused` is the message
 };
+
+/// Which of the three spellings of a reference a type was written with.
+/// They designate storage alike (docs/st.md, "References and pointers");
+/// they differ in what the program may write: a REFERENCE TO is
+/// dereferenced implicitly and bound with `REF=`, a POINTER TO takes
+/// ADR and compares with 0.
+enum class RefKind : uint8_t { RefTo, Pointer, Reference };
 
 struct Initializer;
 
@@ -160,7 +168,8 @@ struct TypeSyntax {
   Expr *lo = nullptr, *hi = nullptr;           // Subrange
   Expr *length = nullptr;                      // String: STRING[20]
   std::vector<std::pair<Expr *, Expr *>> dims; // Array
-  TypeSyntax *elem = nullptr;                  // Array
+  TypeSyntax *elem = nullptr;                  // Array, Reference
+  RefKind refKind = RefKind::RefTo;            // Reference
   std::vector<EnumValueSyntax> enumerators;    // Enum
   std::vector<VarDecl *> fields;               // Struct
   bool isUnion = false;        // Struct: UNION ... END_UNION (members overlap)
@@ -284,9 +293,15 @@ struct CaseArmSyntax {
   StmtList body;
 };
 
+/// How an Assign stores: `:=`, `REF=` (binds a REFERENCE TO, or sets any
+/// reference, to the target's address) or `?=` (an assignment attempt:
+/// NULL when the value does not designate a target of the type).
+enum class AssignKind : uint8_t { Value, BindReference, Attempt };
+
 struct Stmt {
   StmtKind kind;
   llvm::SMLoc loc;
+  AssignKind assignKind = AssignKind::Value; // Assign
   Expr *target = nullptr; // Assign; For: the loop variable (a Name)
   Expr *value = nullptr;  // Assign; Call (a Call expression); Case selector;
                           // While/Repeat condition

@@ -130,6 +130,7 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
     }
     named[key] = t;
     td->resolved = t;
+    completeReferences(key, t);
     return t;
   }
   if (Pou *p = unit.findPou(name)) {
@@ -248,6 +249,8 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
     t->name = ownerName.str();
     return t;
   }
+  case TypeSyntaxKind::Reference:
+    return resolveReference(ts, ownerName);
   case TypeSyntaxKind::Refused:
     error(ts->loc, ts->refused);
     return nullptr;

@@ -34,6 +34,7 @@ enum class PTypeKind : uint8_t {
   Array,
   Struct,
   FunctionBlock,
+  Reference, // REF_TO, POINTER TO, REFERENCE TO (see RefKind)
   Void,
 };
 
@@ -67,16 +68,28 @@ struct PType {
   bool isUnion = false;
   // FunctionBlock
   Pou *fb = nullptr;
+  // Reference: `elem` is the type designated (null for NULL's own type)
+  RefKind refKind = RefKind::RefTo;
 
   bool isInteger() const {
     return kind == PTypeKind::Int || kind == PTypeKind::AnyInt;
   }
   bool isString() const { return kind == PTypeKind::String && strLen > 0; }
+  bool isReference() const { return kind == PTypeKind::Reference; }
   bool isAnyBit() const {
     return kind == PTypeKind::Bool || (kind == PTypeKind::Int && isBits);
   }
   std::string str() const;
 };
+
+/// What makes two designated types one for references (REF_TO INT and
+/// REF_TO INT(0..9) designate the same storage; ARRAY[1..3] OF INT is the
+/// same written anywhere): the lowering numbers storage per key, and Sema
+/// lets a reference take another's value only when their keys agree.
+std::string referenceKey(const PType *target);
+
+/// The type of NULL: a reference to nothing, assignable to every one.
+const PType *nullType();
 
 /// The standard functions of IEC 61131-3 netlift knows by name.
 enum class StdFn : uint8_t {

@@ -62,6 +62,18 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
         probe.type = p->type;
         assignable(t, &probe, a.loc, "output '" + p->name + "'");
       }
+    } else if (p->type && p->type->isReference() &&
+               p->type->refKind == RefKind::Reference) {
+      // `fb(r := x)` binds the REFERENCE TO input r to x.
+      Expr *call = unit.make<Expr>(ExprKind::Call, a.value->loc);
+      call->name = "REF";
+      CallArg inner;
+      inner.value = a.value;
+      inner.loc = a.loc;
+      call->args.push_back(inner);
+      a.value = call;
+      if (expr(call))
+        assignable(p->type, call, a.loc, "argument '" + p->name + "'");
     } else if (expr(a.value)) {
       assignable(p->type, a.value, a.loc, "argument '" + p->name + "'");
     }
@@ -317,6 +329,8 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     }
     return p->resultType;
   }
+  if (auto t = referenceCall(e))
+    return *t;
   // SIZEOF(x) (CODESYS, TwinCAT): the bytes of x's type, a constant.
   if (sameName(e->name, "SIZEOF")) {
     if (e->args.size() != 1 || e->args[0].isOutput) {

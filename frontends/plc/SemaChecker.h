@@ -55,6 +55,29 @@ private:
   void checkInitializer(Initializer *init, const PType *t);
   void reshapeRowMajor(Initializer *init, const PType *t, size_t dim);
 
+  // References (SemaReferences.cpp).
+  const PType *resolveReference(TypeSyntax *ts, StringRef ownerName);
+  /// Gives the references waiting for the named type `key` their target.
+  void completeReferences(StringRef key, const PType *resolved);
+  std::vector<std::pair<PType *, std::string>> pendingTargets;
+  /// REF, ADR, __ISVALIDREF (and __NEW, refused): the result's type, null
+  /// after an error; nullopt when `e` calls none of them.
+  std::optional<const PType *> referenceCall(Expr *e);
+  const PType *derefType(Expr *e);
+  /// A REFERENCE TO read or written is its target: `e` becomes `e^`.
+  const PType *implicitDeref(Expr *e, const PType *t);
+  /// The expression whose REFERENCE TO is meant itself (REF='s target,
+  /// __ISVALIDREF's argument), not dereferenced.
+  Expr *keepReference = nullptr;
+  /// The references implicitDeref put under a `^` (checked again, they
+  /// stay references).
+  std::set<Expr *> implicitlyDereferenced;
+  bool referenceAssignable(const PType *to, Expr *from, SMLoc at,
+                           const Twine &what);
+  bool comparableReferences(const PType *a, const PType *b, Expr *e);
+  /// `r REF= x` and `r ?= q`.
+  void referenceAssign(Stmt *s);
+
   // Declarations.
   void declareVars(std::vector<VarDecl *> &vars, Pou *owner);
 

@@ -11,8 +11,12 @@ const PType *Checker::lvalue(Expr *e) {
   if (!t)
     return nullptr;
   Expr *root = e;
-  while (root->kind != ExprKind::Name && root->base())
+  while (root->kind != ExprKind::Name && root->base()) {
+    // Through a reference the storage written is its target's.
+    if (root->kind == ExprKind::Deref)
+      return t;
     root = root->base();
+  }
   if (root->kind != ExprKind::Name || !root->var) {
     error(e->loc, "cannot assign to this expression");
     return nullptr;
@@ -163,6 +167,10 @@ const PType *Checker::expr(Expr *e) {
       t = current->resultType;
       break;
     }
+    if (sameName(e->name, "NULL")) {
+      t = nullType();
+      break;
+    }
     const PType *et = nullptr;
     int64_t ev = lookupEnumerator(e->name, et);
     if (ev == -2 && expectedEnum)
@@ -262,8 +270,10 @@ const PType *Checker::expr(Expr *e) {
     break;
   }
   case ExprKind::Deref:
-    error(e->loc, "dereference is not supported");
-    return nullptr;
+    t = derefType(e);
+    if (!t)
+      return nullptr;
+    break;
   case ExprKind::Unary: {
     Expr *x = e->operands[0];
     if (e->op == Op::Neg && x->kind == ExprKind::IntLit && x->beyondInt64 &&
@@ -354,6 +364,9 @@ const PType *Checker::expr(Expr *e) {
         ok = true;
       else if (ab->kind == PTypeKind::Enum && ab == bb)
         ok = true;
+      else if ((ab->isReference() || bb->isReference()) &&
+               (e->op == Op::Eq || e->op == Op::Ne))
+        ok = comparableReferences(ab, bb, e);
       if (!ok) {
         error(e->loc, "cannot compare " + a->str() + " with " + b->str());
         return nullptr;
@@ -366,6 +379,11 @@ const PType *Checker::expr(Expr *e) {
     case Op::Mul:
     case Op::Div:
     case Op::Mod:
+      if (ab->isReference() || bb->isReference()) {
+        error(e->loc, "pointer arithmetic ('" + spelling(e->op) + "' on " +
+                          a->str() + " and " + b->str() + ") is not supported");
+        return nullptr;
+      }
       if (ab->kind == PTypeKind::Date || bb->kind == PTypeKind::Date) {
         t = dateArithmetic(e->op, ab, bb);
         if (!t) {
@@ -426,6 +444,9 @@ const PType *Checker::expr(Expr *e) {
       return nullptr;
     break;
   }
+  if (e->kind == ExprKind::Name || e->kind == ExprKind::Field ||
+      e->kind == ExprKind::Index)
+    t = implicitDeref(e, t);
   e->type = t;
   return t;
 }

@@ -14,6 +14,10 @@ void Checker::stmts(StmtList &list) {
 void Checker::stmt(Stmt *s) {
   switch (s->kind) {
   case StmtKind::Assign: {
+    if (s->assignKind != AssignKind::Value) {
+      referenceAssign(s);
+      return;
+    }
     if (s->target->kind == ExprKind::Name) {
       VarDecl *v = lookupVar(s->target->name);
       if (v && v->inferType && !v->type) {
@@ -170,6 +174,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     if (tb->kind == fb->kind && tb == fb)
       return true; // CHAR, WCHAR: refused when lowered
     return mismatch();
+  case PTypeKind::Reference:
+    return referenceAssignable(tb, from, at, what);
   case PTypeKind::Date:
     // LDT := DT and back: both hold nanoseconds.
     if (fb->kind == PTypeKind::Date && fb->dateKind == tb->dateKind)

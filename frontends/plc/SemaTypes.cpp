@@ -29,6 +29,13 @@ std::string PType::str() const {
     return isUnion ? "UNION" : "STRUCT";
   case PTypeKind::Void:
     return "no value";
+  case PTypeKind::Reference:
+    if (!elem)
+      return "NULL";
+    return std::string(refKind == RefKind::Pointer     ? "POINTER TO "
+                       : refKind == RefKind::Reference ? "REFERENCE TO "
+                                                       : "REF_TO ") +
+           elem->str();
   default:
     return "?";
   }
@@ -168,6 +175,8 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
   case PTypeKind::Real:
   case PTypeKind::Date:
     return MemoryLayout{t->width / 8, t->width / 8};
+  case PTypeKind::Reference: // a 64-bit target (TwinCAT x64, CODESYS x64)
+    return MemoryLayout{8, 8};
   case PTypeKind::Time: // TIME 32 bits (ms), LTIME 64 (ns)
     return t->name == "LTIME" ? MemoryLayout{8, 8} : MemoryLayout{4, 4};
   case PTypeKind::String: { // the characters and the terminating zero
@@ -203,6 +212,39 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
           "decides it)";
     return std::nullopt;
   }
+}
+
+std::string plc::referenceKey(const PType *t) {
+  if (!t)
+    return "NULL";
+  t = baseOf(t);
+  switch (t->kind) {
+  case PTypeKind::Array: {
+    std::string r = "ARRAY[";
+    for (size_t d = 0; d < t->dims.size(); ++d)
+      r += (d ? "," : "") + std::to_string(t->dims[d].first) + ".." +
+           std::to_string(t->dims[d].second);
+    return r + "] OF " + referenceKey(t->elem);
+  }
+  case PTypeKind::Reference:
+    return "REF_TO " + referenceKey(t->elem);
+  case PTypeKind::String:
+    if (t->isString())
+      return (t->width == 16 ? "WSTRING[" : "STRING[") +
+             std::to_string(t->strLen) + "]";
+    return t->str();
+  default:
+    // Named types are one by name; an anonymous structure or enumeration
+    // only with itself.
+    if (t->name.empty())
+      return t->str() + "@" + std::to_string(reinterpret_cast<uintptr_t>(t));
+    return llvm::StringRef(t->name).upper();
+  }
+}
+
+const PType *plc::nullType() {
+  static const PType t{PTypeKind::Reference};
+  return &t;
 }
 
 StdFnInfo plc::lookupStdFunction(StringRef name) {

@@ -28,7 +28,7 @@ tokens {
   JMP,
   // Operators
   OR, XOR, AND, NOT, MOD, AND_THEN, OR_ELSE, TRUE, FALSE,
-  ASSIGN, OUTPUT_ASSIGN, REF_ASSIGN, SET_ASSIGN, RESET_ASSIGN, EQ, NE, LT,
+  ASSIGN, OUTPUT_ASSIGN, REF_ASSIGN, ATTEMPT_ASSIGN, SET_ASSIGN, RESET_ASSIGN, EQ, NE, LT,
   LE, GT, GE, PLUS, MINUS, STAR, SLASH, POWER, AMP, CARET, LPAREN, RPAREN,
   LBRACKET, RBRACKET, COMMA, SEMI, COLON, DOT, DOTDOT, HASH,
   // Literals and names
@@ -244,7 +244,8 @@ bodyLabel : name=ident COLON ;
 statement
   : SEMI                                                        # emptyStmt
   | target=variable ASSIGN value=expression SEMI                # assignStmt
-  | target=variable op=(REF_ASSIGN | SET_ASSIGN | RESET_ASSIGN) value=expression SEMI # refusedAssignStmt
+  | target=variable op=(REF_ASSIGN | ATTEMPT_ASSIGN) value=expression SEMI # refAssignStmt
+  | target=variable op=(SET_ASSIGN | RESET_ASSIGN) value=expression SEMI # refusedAssignStmt
   | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN SEMI # callStmt
   | IF cond=expression THEN statementList
     (elsifPart)* (ELSE elseBody=statementList)? END_IF SEMI?    # ifStmt
@@ -300,7 +301,7 @@ primary
   ;
 
 // A variable access: a name, a direct address, then fields, indices,
-// bit accesses (`x.3`) and dereferences (`p^`, refused later).
+// bit accesses (`x.3`) and dereferences (`p^`).
 variable
   : (ident | DIRECT) selector*
   ;

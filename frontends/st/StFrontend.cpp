@@ -860,10 +860,14 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
   }
   // Refused where a translated POU uses the type, not where it is written:
   // a library's unused POUs may hold what netlift does not model.
-  if (auto *p = alt<P::PointerTypeContext>(c))
-    return refusedType(loc(p), p->getStart()->getText() +
-                                   " types (pointers and references) are not "
-                                   "supported");
+  if (auto *p = alt<P::PointerTypeContext>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Reference, loc(p));
+    t->refKind = p->POINTER()     ? RefKind::Pointer
+                 : p->REFERENCE() ? RefKind::Reference
+                                  : RefKind::RefTo;
+    t->elem = typeSpec0(p->typeSpec0());
+    return t->elem ? t : nullptr;
+  }
   if (auto *e = alt<P::EnumTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
     // CODESYS writes the base type after the values: (a := 1, b := 2) INT.
@@ -953,9 +957,17 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     s->value = expr(a->value);
     return s;
   }
+  if (auto *r = alt<P::RefAssignStmtContext>(c)) {
+    Stmt *s = unit.make<Stmt>(StmtKind::Assign, loc(r->op));
+    s->assignKind = r->op->getType() == P::REF_ASSIGN
+                        ? AssignKind::BindReference
+                        : AssignKind::Attempt;
+    s->target = variable(r->target);
+    s->value = expr(r->value);
+    return s;
+  }
   if (auto *r = alt<P::RefusedAssignStmtContext>(c))
-    return refuse(loc(r->op), "'" + r->op->getText() +
-                                  "' (reference assignment) is not supported");
+    return refuse(loc(r->op), "'" + r->op->getText() + "' is not supported");
   if (auto *call = alt<P::CallStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Call, loc(call));
     Expr *callee = variable(call->callee);
@@ -1178,8 +1190,9 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
         ie->operands.push_back(expr(x));
       e = ie;
     } else {
-      return refuse(loc(sel), "dereference '^' is not supported (pointers "
-                              "and references are refused)");
+      Expr *de = unit.make<Expr>(ExprKind::Deref, loc(sel));
+      de->operands.push_back(e);
+      e = de;
     }
   }
   return failed ? nullptr : e;

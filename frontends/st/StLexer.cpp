@@ -307,10 +307,13 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
         return make(type, start);
       }
     }
-    if (size_t kw = keywordType(word)) {
-      // `REF=` (CODESYS reference assignment) is refused by the parser.
-      return make(kw, start);
+    // `r REF= x` (CODESYS's and TwinCAT's reference binding), not `=>`.
+    if (word.equals_insensitive("REF") && peek(0) == '=' && peek(1) != '>') {
+      ++pos;
+      return make(P::REF_ASSIGN, start);
     }
+    if (size_t kw = keywordType(word))
+      return make(kw, start);
     return make(P::IDENT, start);
   }
 
@@ -405,7 +408,7 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
   case '?':
     if (peek(1) == '=') {
       pos += 2;
-      return make(P::REF_ASSIGN, start);
+      return make(P::ATTEMPT_ASSIGN, start);
     }
     break;
   case '<':

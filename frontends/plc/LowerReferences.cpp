@@ -1,0 +1,539 @@
+//===- LowerReferences.cpp - references and pointers in NetIR -------------===//
+//
+// A reference is a small integer: 0 is NULL, 1..n one of the n places of
+// the module that may hold a value of its designated type and whose
+// address the program takes (REF, ADR, REF=, a REFERENCE TO input bound at
+// a call). The places are found before anything is declared, by a
+// flow-insensitive, type-based points-to analysis over the instance tree:
+// a reference to T gets its value only from REF/ADR of a T, from another
+// reference to T, or NULL, so every place it can designate is one of the
+// places whose address is taken as a T somewhere in the module — in any
+// instance of the POU that takes it. Places come in families: REF(a[i].x)
+// takes every a[k].x, numbered in row-major order, so a run-time index
+// gives a run-time number. A dereference reads through a selection over
+// the families (an indexed access within each) and writes through an IF
+// over them; a NULL reference is a run-time error, caught by copying the
+// number into a variable of range 1..n first (docs/st.md, "References and
+// pointers").
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+//===----------------------------------------------------------------------===//
+// Planning: which places each reference type can designate
+//===----------------------------------------------------------------------===//
+
+/// Every REF/ADR argument in `l`, nested expressions included, and in the
+/// initial values of `vars`.
+static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
+                                llvm::function_ref<void(Expr *)> fn) {
+  std::function<void(Expr *)> walk = [&](Expr *e) {
+    if (!e)
+      return;
+    if (e->kind == ExprKind::Call && !e->callee && !e->var &&
+        (e->name == "REF" || e->name == "ADR") && e->args.size() == 1)
+      fn(e->args[0].value);
+    for (Expr *o : e->operands)
+      walk(o);
+    for (CallArg &a : e->args)
+      walk(a.value);
+  };
+  forEachStmt(
+      l, [](Stmt *) {}, walk);
+  std::function<void(Initializer *)> init = [&](Initializer *i) {
+    if (!i)
+      return;
+    walk(i->value);
+    for (auto &[n, e] : i->elems)
+      init(e);
+    for (auto &[n, e] : i->fields)
+      init(e);
+  };
+  for (VarDecl *v : vars)
+    if (v->typeSyntax)
+      init(v->typeSyntax->init);
+}
+
+/// The same over every POU and global of `unit`.
+static void forEachAddressTaken(Unit &unit,
+                                llvm::function_ref<void(Expr *)> fn) {
+  for (Pou *p : unit.pous)
+    forEachAddressTaken(p->body, p->vars, fn);
+  StmtList none;
+  forEachAddressTaken(none, unit.globals, fn);
+  for (Configuration *c : unit.configs)
+    forEachAddressTaken(none, c->globals, fn);
+}
+
+/// The variable at the root of a place expression, and whether a
+/// dereference lies on the way.
+static Expr *placeRoot(Expr *e, bool &throughDeref) {
+  throughDeref = false;
+  for (; e; e = e->base()) {
+    if (e->kind == ExprKind::Deref)
+      throughDeref = true;
+    if (e->kind == ExprKind::Name)
+      return e;
+  }
+  return nullptr;
+}
+
+/// The steps from the root of `place` to it, outermost first.
+static std::vector<Expr *> placeSelectors(Expr *place) {
+  std::vector<Expr *> chain;
+  for (Expr *e = place; e && e->kind != ExprKind::Name; e = e->base())
+    chain.push_back(e);
+  std::reverse(chain.begin(), chain.end());
+  return chain;
+}
+
+/// The family steps of the selectors (every index a wildcard).
+static std::vector<RefStep> familySteps(llvm::ArrayRef<Expr *> selectors) {
+  std::vector<RefStep> steps;
+  for (Expr *x : selectors) {
+    const PType *bt = x->base()->type;
+    RefStep s;
+    if (x->kind == ExprKind::Field) {
+      s.kind = bt && bt->kind == PTypeKind::FunctionBlock ? RefStep::Member
+                                                          : RefStep::Field;
+      s.name = s.kind == RefStep::Member && x->var ? x->var->name : x->name;
+    } else {
+      s.kind = RefStep::Index;
+      s.dims = bt->dims;
+    }
+    steps.push_back(std::move(s));
+  }
+  return steps;
+}
+
+static std::string familyKey(const std::string &base,
+                             llvm::ArrayRef<RefStep> steps) {
+  std::string key = base;
+  for (const RefStep &s : steps)
+    key += s.kind == RefStep::Index ? "[*]" : "." + s.name;
+  return key;
+}
+
+std::vector<std::string>
+Lowering::placeBases(VarDecl *v,
+                     const std::map<Pou *, std::vector<std::string>> &instances,
+                     llvm::ArrayRef<ProgramRun> runs) {
+  if (!v->owner)
+    return {sanitize(v->name)};
+  if (v->section == VarSection::InOut || v->owner->kind == PouKind::Function)
+    return {}; // refused where the REF is lowered
+  if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
+    return {"static." + sanitize(v->owner->name) + "." + sanitize(v->name)};
+  std::vector<std::string> bases;
+  if (v->owner->kind == PouKind::Program) {
+    for (const ProgramRun &run : runs)
+      if (run.pou == v->owner)
+        bases.push_back(inputImageName(run.prefix, v)
+                            .value_or(run.prefix + sanitize(v->name)));
+    return bases;
+  }
+  if (auto it = instances.find(v->owner); it != instances.end())
+    for (const std::string &path : it->second)
+      bases.push_back(path + "." + sanitize(v->name));
+  return bases;
+}
+
+std::optional<std::string> Lowering::inputImageName(const std::string &prefix,
+                                                    VarDecl *v) {
+  if (!v->writtenInput || !v->owner || v->owner->kind != PouKind::Program ||
+      !(v->area() == 'I' || v->section == VarSection::Input))
+    return std::nullopt;
+  return prefix + "_in_" + sanitize(v->name);
+}
+
+Lowering::ReferencePlan
+Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
+  // The instance tree: every path of every function block type.
+  std::map<Pou *, std::vector<std::string>> instances;
+  std::function<void(const std::string &, Pou *)> walk =
+      [&](const std::string &path, Pou *fb) {
+        auto &paths = instances[fb];
+        if (llvm::is_contained(paths, path))
+          return;
+        paths.push_back(path);
+        for (VarDecl *m : fb->vars)
+          if (m->type && m->type->kind == PTypeKind::FunctionBlock &&
+              m->section != VarSection::External &&
+              m->section != VarSection::InOut)
+            walk(path + "." + sanitize(m->name), m->type->fb);
+      };
+  for (const ProgramRun &run : runs) {
+    for (VarDecl *g : globalsUsedBy(run.pou))
+      if (g->type && g->type->kind == PTypeKind::FunctionBlock)
+        walk(sanitize(g->name), g->type->fb);
+    for (VarDecl *v : run.pou->vars)
+      if (v->type && v->type->kind == PTypeKind::FunctionBlock &&
+          v->section != VarSection::External)
+        walk(run.prefix + sanitize(v->name), v->type->fb);
+  }
+
+  ReferencePlan plan;
+  forEachAddressTaken(unit, [&](Expr *place) {
+    bool throughDeref;
+    Expr *root = placeRoot(place, throughDeref);
+    if (!root || !root->var || throughDeref || !place->type)
+      return; // REF(r^) is r; the rest is refused where it is lowered
+    std::vector<Expr *> selectors = placeSelectors(place);
+    std::vector<RefStep> steps = familySteps(selectors);
+    int64_t size = 1;
+    for (const RefStep &s : steps)
+      for (auto &[lo, hi] : s.dims)
+        size *= hi - lo + 1;
+    RefTable &table = plan.tables[referenceKey(place->type)];
+    for (const std::string &base : placeBases(root->var, instances, runs)) {
+      std::string key = familyKey(base, steps);
+      if (table.byKey.count(key))
+        continue;
+      table.byKey[key] = table.families.size();
+      RefFamily fam;
+      fam.base = base;
+      fam.steps = steps;
+      fam.size = size;
+      fam.offset = table.count + 1;
+      table.count += size;
+      table.families.push_back(std::move(fam));
+    }
+  });
+  return plan;
+}
+
+void Lowering::adoptReferencePlan(ReferencePlan plan) {
+  refPlan = std::move(plan);
+  // A place read through a reference is read from outside its instance.
+  for (auto &[key, table] : refPlan.tables)
+    for (RefFamily &fam : table.families) {
+      std::string name = fam.base;
+      externallyRead.insert(name);
+      for (const RefStep &s : fam.steps) {
+        if (s.kind != RefStep::Member)
+          break;
+        name += "." + sanitize(s.name);
+        externallyRead.insert(name);
+      }
+    }
+}
+
+void Lowering::markAddressTaken() {
+  forEachAddressTaken(unit, [&](Expr *place) {
+    bool throughDeref;
+    if (Expr *root = placeRoot(place, throughDeref); root && root->var) {
+      // Written through a reference, perhaps: not a constant.
+      written.insert(root->var);
+      writtenOtherwise.insert(root->var);
+    }
+  });
+}
+
+int64_t Lowering::referenceCount(const PType *target) {
+  auto it = refDomain.find(referenceKey(target));
+  return it == refDomain.end() ? 0 : it->second;
+}
+
+//===----------------------------------------------------------------------===//
+// REF and ADR
+//===----------------------------------------------------------------------===//
+
+/// `v`, known to lie in lo..hi when it is not a constant, copied into a
+/// fresh variable of that range first: an index outside is a run-time
+/// error naming `what`.
+NExpr *Lowering::checkedRange(NExpr *v, int64_t lo, int64_t hi,
+                              const std::string &what, Sink &pre, SMLoc at) {
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(v)) {
+    if (lit->value < lo || lit->value > hi)
+      refuse(at, "index " + Twine(lit->value) + " is outside " + Twine(lo) +
+                     ".." + Twine(hi) + " of " + what);
+    return v;
+  }
+  std::string name = unique(what);
+  b.addVar(name, design.types.getRange(lo, hi), b.intLit(lo, at), at);
+  if (resetNames.insert(name).second)
+    resets.push_back({name, b.intLit(lo, at)});
+  pre.push_back(b.assign(b.ref(name, at), v, at));
+  return b.ref(name, at);
+}
+
+NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
+  Expr *place = call->args[0].value;
+  SMLoc at = call->loc;
+  if (place->kind == ExprKind::Deref)
+    return expr(place->base(), f, pre); // REF(r^) is r
+  bool throughDeref;
+  Expr *root = placeRoot(place, throughDeref);
+  if (throughDeref)
+    refuse(at, call->name + " of a field or element reached through a "
+                            "reference is not supported");
+  VarDecl *v = root->var;
+  if (auto alias = f.aliases.find(v);
+      alias != f.aliases.end() && v->section == VarSection::InOut)
+    refuse(at, call->name + " of VAR_IN_OUT '" + v->name +
+                   "' (it designates the caller's variable) is not "
+                   "supported");
+  if (v->owner && v->owner->kind == PouKind::Function &&
+      v->section != VarSection::Stat)
+    refuse(at, call->name + " of '" + v->name + "', a variable of function '" +
+                   v->owner->name +
+                   "' (it lives only during a call), is not supported");
+  std::vector<Expr *> selectors = placeSelectors(place);
+  for (Expr *x : selectors)
+    if (x->base()->type && x->base()->type->kind == PTypeKind::Struct &&
+        x->base()->type->isUnion)
+      refuse(at, call->name + " of a UNION member is not supported");
+  // The family this frame's place belongs to.
+  std::string base;
+  if (!v->owner)
+    base = sanitize(v->name);
+  else if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
+    base = "static." + sanitize(v->owner->name) + "." + sanitize(v->name);
+  else if (v->owner->kind == PouKind::Program)
+    base = inputImageName(f.prefix, v).value_or(f.prefix + sanitize(v->name));
+  else
+    base = f.prefix + sanitize(v->name);
+  std::vector<RefStep> steps = familySteps(selectors);
+  auto table = refPlan.tables.find(referenceKey(place->type));
+  const RefFamily *fam = nullptr;
+  if (table != refPlan.tables.end())
+    if (auto it = table->second.byKey.find(familyKey(base, steps));
+        it != table->second.byKey.end())
+      fam = &table->second.families[it->second];
+  if (!fam)
+    refuse(at, "internal: no place planned for " + call->name + "(" +
+                   familyKey(base, steps) + ")");
+  // Its number: the family's first, plus the element's row-major offset
+  // (its constant part apart).
+  int64_t constant = 0;
+  NExpr *number = nullptr;
+  std::string what = sanitize(v->name) + "_index";
+  for (Expr *x : selectors) {
+    if (x->kind != ExprKind::Index)
+      continue;
+    const PType *array = x->base()->type;
+    for (size_t d = 0; d < array->dims.size(); ++d) {
+      auto [lo, hi] = array->dims[d];
+      int64_t extent = hi - lo + 1;
+      NExpr *i = checkedRange(expr(x->operands[d + 1], f, pre), lo, hi, what,
+                              pre, x->loc);
+      constant *= extent;
+      if (number)
+        number = b.binary(net::BinaryOp::Mul, number, b.intLit(extent, at), at);
+      if (auto *lit = llvm::dyn_cast<net::IntLit>(i)) {
+        constant += lit->value - lo;
+        continue;
+      }
+      NExpr *rel = b.binary(net::BinaryOp::Sub, i, b.intLit(lo, at), at);
+      number = number ? b.binary(net::BinaryOp::Add, number, rel, at) : rel;
+    }
+  }
+  constant += fam->offset;
+  if (!number)
+    return b.intLit(constant, at);
+  return b.binary(net::BinaryOp::Add, number, b.intLit(constant, at), at);
+}
+
+//===----------------------------------------------------------------------===//
+// Dereferences
+//===----------------------------------------------------------------------===//
+
+/// The dereference a place expression reads or writes through, if the
+/// selectors above it are fields and indices only.
+static Expr *derefBelow(Expr *e) {
+  for (; e; e = e->base()) {
+    if (e->kind == ExprKind::Deref)
+      return e;
+    if (e->kind != ExprKind::Field && e->kind != ExprKind::Index)
+      return nullptr;
+  }
+  return nullptr;
+}
+
+bool Lowering::throughReference(Expr *e) { return derefBelow(e) != nullptr; }
+
+Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
+  Expr *d = derefBelow(e);
+  DerefTargets t;
+  t.deref = d;
+  const PType *target = d->type;
+  auto it = refPlan.tables.find(referenceKey(target));
+  t.table = it == refPlan.tables.end() ? nullptr : &it->second;
+  int64_t n = t.table ? t.table->count : 0;
+  NExpr *ref = expr(d->base(), f, pre);
+  // NULL (0) or uninitialised: a run-time error naming the reference.
+  Expr *root = d->base();
+  while (root->base())
+    root = root->base();
+  std::string what =
+      (root->kind == ExprKind::Name ? sanitize(root->name) : "ref") + "_deref";
+  std::string name = unique(what);
+  b.addVar(name, design.types.getRange(1, std::max<int64_t>(n, 1)),
+           b.intLit(1, d->loc), d->loc);
+  if (resetNames.insert(name).second)
+    resets.push_back({name, b.intLit(1, d->loc)});
+  pre.push_back(b.assign(b.ref(name, d->loc), ref, d->loc));
+  t.number = name;
+  return t;
+}
+
+NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
+                             Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = t.deref->loc;
+  std::string name = fam.base;
+  NExpr *x = nullptr;
+  auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
+  // Row-major: the element number within the family, split per dimension.
+  NExpr *rel = nullptr;
+  if (fam.size > 1)
+    rel = b.binary(net::BinaryOp::Sub, b.ref(t.number, at),
+                   b.intLit(fam.offset, at), at);
+  int64_t stride = fam.size;
+  for (const RefStep &s : fam.steps) {
+    switch (s.kind) {
+    case RefStep::Member:
+      if (x)
+        refuse(at, "internal: an instance member after an element");
+      name += "." + sanitize(s.name);
+      break;
+    case RefStep::Field:
+      x = b.field(place(), sanitize(s.name), at);
+      break;
+    case RefStep::Index:
+      for (auto &[lo, hi] : s.dims) {
+        int64_t extent = hi - lo + 1;
+        stride /= extent;
+        NExpr *i = rel;
+        if (stride > 1)
+          i = b.binary(net::BinaryOp::Div, i, b.intLit(stride, at), at);
+        if (stride * extent < fam.size)
+          i = b.binary(net::BinaryOp::Mod, i, b.intLit(extent, at), at);
+        x = b.index(place(),
+                    b.binary(net::BinaryOp::Add, i, b.intLit(lo, at), at), at);
+      }
+      break;
+    }
+  }
+  // Then what the program selects in the place designated.
+  std::vector<Expr *> above;
+  for (Expr *s = e; s != t.deref; s = s->base())
+    above.push_back(s);
+  std::reverse(above.begin(), above.end());
+  for (Expr *s : above) {
+    const PType *bt = s->base()->type;
+    if (s->kind == ExprKind::Field) {
+      if (bt && bt->kind == PTypeKind::FunctionBlock) {
+        if (x)
+          refuse(s->loc, "internal: an instance member after an element");
+        name += "." + sanitize(s->var->name);
+      } else {
+        x = b.field(place(), sanitize(s->name), s->loc);
+      }
+      continue;
+    }
+    NExpr *r = place();
+    for (size_t i = 1; i < s->operands.size(); ++i)
+      r = b.index(r, expr(s->operands[i], f, pre), s->loc);
+    x = r;
+  }
+  return place();
+}
+
+NExpr *Lowering::familyTest(const RefFamily &fam, const DerefTargets &t) {
+  SMLoc at = t.deref->loc;
+  NExpr *k = b.ref(t.number, at);
+  if (fam.size == 1)
+    return b.binary(net::BinaryOp::Eq, k, b.intLit(fam.offset, at), at);
+  return b.binary(net::BinaryOp::And,
+                  b.binary(net::BinaryOp::Ge, k, b.intLit(fam.offset, at), at),
+                  b.binary(net::BinaryOp::Le, k,
+                           b.intLit(fam.offset + fam.size - 1, at), at),
+                  at);
+}
+
+NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
+  DerefTargets t = derefTargets(e, f, pre);
+  SMLoc at = e->loc;
+  if (!t.table || t.table->families.empty()) {
+    // Nothing of its type has its address taken: the reference is NULL
+    // whenever this runs, which the copy above reports.
+    if (NExpr *v = defaultValue(e->type, at))
+      return v;
+    refuse(at, "a reference to " + t.deref->type->str() +
+                   " is dereferenced, but no REF or ADR of a " +
+                   t.deref->type->str() + " gives it a value");
+  }
+  auto &fams = t.table->families;
+  if (fams.size() == 1)
+    return familyPlace(fams[0], t, e, f, pre);
+  const net::Type *nt = netType(e->type, at, "a dereferenced value");
+  if (nt->isScalar() || nt->isString()) {
+    NExpr *r = familyPlace(fams.back(), t, e, f, pre);
+    for (size_t i = fams.size() - 1; i-- > 0;)
+      r = b.cond(familyTest(fams[i], t), familyPlace(fams[i], t, e, f, pre), r,
+                 at);
+    return r;
+  }
+  // An array or a structure: copied whole from the place designated.
+  std::string value = unique(t.number + "_value");
+  declareTemp(value, e->type, at);
+  std::vector<net::IfArm> arms;
+  for (size_t i = 0; i + 1 < fams.size(); ++i) {
+    Sink body{
+        b.assign(b.ref(value, at), familyPlace(fams[i], t, e, f, pre), at)};
+    arms.push_back({familyTest(fams[i], t), design.copy(llvm::ArrayRef(body))});
+  }
+  Sink last{
+      b.assign(b.ref(value, at), familyPlace(fams.back(), t, e, f, pre), at)};
+  pre.push_back(b.ifStmt(arms, true, last, at));
+  return b.ref(value, at);
+}
+
+NExpr *Lowering::placeThroughReference(Expr *e, Frame &f, Sink &pre,
+                                       StringRef use) {
+  DerefTargets t = derefTargets(e, f, pre);
+  if (t.table && t.table->families.size() == 1)
+    return familyPlace(t.table->families[0], t, e, f, pre);
+  refuse(e->loc, "a dereference that may designate " +
+                     Twine(t.table ? t.table->families.size() : 0) +
+                     " different variables is " + use +
+                     " here; only an assignment writes through it");
+}
+
+void Lowering::writeThroughReference(Expr *target, NExpr *value,
+                                     Expr *valueExpr, Frame &f, Sink &out,
+                                     SMLoc at) {
+  DerefTargets t = derefTargets(target, f, out);
+  if (!t.table || t.table->families.empty()) {
+    // The copy above reports the NULL reference.
+    return;
+  }
+  auto &fams = t.table->families;
+  if (fams.size() == 1) {
+    assign(familyPlace(fams[0], t, target, f, out), value, target->type,
+           valueExpr, out, at);
+    return;
+  }
+  if (!llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value)) {
+    // The value once, then stored where the reference points.
+    std::string tmp = unique(t.number + "_value");
+    declareTemp(tmp, valueExpr ? valueExpr->type : target->type, at);
+    out.push_back(b.assign(b.ref(tmp, at), value, at));
+    value = b.ref(tmp, at);
+  }
+  std::vector<net::IfArm> arms;
+  for (size_t i = 0; i + 1 < fams.size(); ++i) {
+    Sink body;
+    NExpr *place = familyPlace(fams[i], t, target, f, out);
+    assign(place, value, target->type, valueExpr, body, at);
+    arms.push_back({familyTest(fams[i], t), design.copy(llvm::ArrayRef(body))});
+  }
+  Sink last;
+  assign(familyPlace(fams.back(), t, target, f, out), value, target->type,
+         valueExpr, last, at);
+  out.push_back(b.ifStmt(arms, true, last, at));
+}

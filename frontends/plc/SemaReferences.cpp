@@ -1,0 +1,222 @@
+//===- SemaReferences.cpp - checking references and pointers -------------===//
+//
+// REF_TO, POINTER TO and REFERENCE TO (IEC 61131-3 3rd edition 6.4.4.10,
+// CODESYS and TwinCAT): their types, REF/ADR, `^`, NULL, `REF=` and `?=`,
+// and the implicit dereference of a REFERENCE TO. The three spellings are
+// one type here; a reference to T takes the value of another only when
+// both designate the same type (referenceKey).
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+const PType *Checker::resolveReference(TypeSyntax *ts, StringRef ownerName) {
+  PType *t = make(PTypeKind::Reference);
+  t->refKind = ts->refKind;
+  // A structure may hold a reference to its own type (a linked list): the
+  // target is filled in once the type being resolved is (resolveNamed).
+  if (ts->elem->kind == TypeSyntaxKind::Named &&
+      !elementaryType(ts->elem->name)) {
+    std::string key = StringRef(ts->elem->name).upper();
+    if (resolving.count(key) && resolving[key] > 0) {
+      pendingTargets.push_back({t, key});
+      return t;
+    }
+  }
+  t->elem = resolve(ts->elem, ownerName);
+  return t->elem ? t : nullptr;
+}
+
+void Checker::completeReferences(StringRef key, const PType *resolved) {
+  for (auto &[ref, waiting] : pendingTargets)
+    if (waiting == key)
+      ref->elem = resolved;
+}
+
+/// `e` is an lvalue a reference can designate: a variable, or a field,
+/// element or dereference of one.
+static bool designatesStorage(Expr *e) {
+  for (; e; e = e->base()) {
+    switch (e->kind) {
+    case ExprKind::Name:
+      return e->var != nullptr;
+    case ExprKind::Field:
+    case ExprKind::Index:
+      continue;
+    case ExprKind::Deref:
+      return true;
+    default:
+      return false;
+    }
+  }
+  return false;
+}
+
+std::optional<const PType *> Checker::referenceCall(Expr *e) {
+  bool isRef = sameName(e->name, "REF"), isAdr = sameName(e->name, "ADR");
+  bool isValid = sameName(e->name, "__ISVALIDREF");
+  if (sameName(e->name, "__NEW") || sameName(e->name, "__DELETE")) {
+    error(e->loc, "dynamic memory (" + e->name + ") is not supported");
+    return nullptr;
+  }
+  if (!isRef && !isAdr && !isValid)
+    return std::nullopt;
+  if (e->args.size() != 1 || e->args[0].isOutput || !e->args[0].name.empty()) {
+    error(e->loc, e->name + " takes one variable");
+    return nullptr;
+  }
+  Expr *arg = e->args[0].value;
+  e->name = isRef ? "REF" : isAdr ? "ADR" : "__ISVALIDREF";
+  if (isValid) {
+    // The reference itself, not what it designates.
+    keepReference = arg;
+    const PType *t = expr(arg);
+    keepReference = nullptr;
+    if (t && !t->isReference()) {
+      error(arg->loc, "__ISVALIDREF takes a reference, not " + t->str());
+      return nullptr;
+    }
+    return t ? boolType() : nullptr;
+  }
+  const PType *t = expr(arg);
+  if (!t)
+    return nullptr;
+  if (!designatesStorage(arg)) {
+    error(arg->loc, e->name + " needs a variable, a field, an element or a "
+                              "dereference");
+    return nullptr;
+  }
+  for (Expr *x = arg; x; x = x->base())
+    if (x->kind == ExprKind::Name && x->var) {
+      if (x->var->constant) {
+        error(arg->loc, e->name + " of constant '" + x->var->name + "'");
+        return nullptr;
+      }
+      // Written through the reference, perhaps: the scan keeps a copy of
+      // the input image (as for any written input).
+      if (x->var->area() == 'I' ||
+          (x->var->section == VarSection::Input && x->var->owner &&
+           x->var->owner->kind == PouKind::Program))
+        x->var->writtenInput = true;
+    } else if (x->kind == ExprKind::Deref) {
+      break;
+    }
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = isAdr ? RefKind::Pointer : RefKind::RefTo;
+  r->elem = t;
+  return r;
+}
+
+const PType *Checker::derefType(Expr *e) {
+  // `r^` on a REFERENCE TO is explicit: r itself is dereferenced.
+  Expr *outer = keepReference;
+  keepReference = e->base();
+  const PType *bt = expr(e->base());
+  keepReference = outer;
+  if (!bt)
+    return nullptr;
+  if (!bt->isReference()) {
+    error(e->loc, "'^' applied to a value of type " + bt->str());
+    return nullptr;
+  }
+  if (!bt->elem) {
+    error(e->loc, "dereference of NULL");
+    return nullptr;
+  }
+  return bt->elem;
+}
+
+const PType *Checker::implicitDeref(Expr *e, const PType *t) {
+  if (!t || !t->isReference() || t->refKind != RefKind::Reference ||
+      e == keepReference || !t->elem || implicitlyDereferenced.count(e))
+    return t;
+  // `r` for a REFERENCE TO is what it designates: `r^`.
+  Expr *inner = unit.make<Expr>(*e);
+  inner->type = t;
+  implicitlyDereferenced.insert(inner);
+  e->kind = ExprKind::Deref;
+  e->operands = {inner};
+  e->name.clear();
+  e->var = nullptr;
+  e->args.clear();
+  return t->elem;
+}
+
+bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
+                                  const Twine &what) {
+  const PType *ft = from->type;
+  if (ft->isReference() &&
+      (!ft->elem || referenceKey(ft->elem) == referenceKey(to->elem)))
+    return true;
+  // CODESYS writes a null pointer as 0.
+  if (to->refKind == RefKind::Pointer && ft->kind == PTypeKind::AnyInt &&
+      from->kind == ExprKind::IntLit && from->intValue == 0)
+    return true;
+  error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
+                " to " + to->str());
+  return false;
+}
+
+bool Checker::comparableReferences(const PType *a, const PType *b, Expr *e) {
+  auto nullPointer = [](const PType *t, Expr *x) {
+    return t->kind == PTypeKind::AnyInt && x->kind == ExprKind::IntLit &&
+           x->intValue == 0;
+  };
+  if (a->isReference() && b->isReference())
+    return !a->elem || !b->elem ||
+           referenceKey(a->elem) == referenceKey(b->elem);
+  return (a->isReference() && nullPointer(b, e->operands[1])) ||
+         (b->isReference() && nullPointer(a, e->operands[0]));
+}
+
+void Checker::referenceAssign(Stmt *s) {
+  const char *op = s->assignKind == AssignKind::BindReference ? "REF=" : "?=";
+  keepReference = s->target;
+  const PType *t = lvalue(s->target);
+  keepReference = nullptr;
+  if (!t)
+    return;
+  if (!t->isReference()) {
+    error(s->loc, Twine("the target of '") + op +
+                      "' must be a reference, not " + t->str());
+    return;
+  }
+  if (s->assignKind == AssignKind::BindReference) {
+    // `r REF= x` is `r := REF(x)`; `r REF= NULL` clears it.
+    Expr *x = s->value;
+    if (x->kind == ExprKind::Name && sameName(x->name, "NULL") &&
+        !lookupVar(x->name)) {
+      expr(x);
+      return;
+    }
+    Expr *call = unit.make<Expr>(ExprKind::Call, x->loc);
+    call->name = "REF";
+    CallArg a;
+    a.value = x;
+    a.loc = x->loc;
+    call->args.push_back(a);
+    s->value = call;
+    s->assignKind = AssignKind::Value;
+    if (expr(call))
+      assignable(t, call, s->loc, "reference binding");
+    return;
+  }
+  keepReference = s->value;
+  const PType *vt = expr(s->value);
+  keepReference = nullptr;
+  if (!vt)
+    return;
+  if (!vt->isReference()) {
+    error(s->value->loc,
+          "the value of '?=' must be a reference, not " + vt->str());
+    return;
+  }
+  // Without EXTENDS and interfaces every type is only itself: the attempt
+  // succeeds exactly when both designate the same type, and stores NULL
+  // otherwise (the lowering reads assignKind).
+  if (!vt->elem || referenceKey(vt->elem) == referenceKey(t->elem))
+    s->assignKind = AssignKind::Value;
+}
