@@ -221,8 +221,19 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
   Expr callee(ExprKind::Name, call->loc);
   callee.var = call->var;
   callee.name = call->name;
-  std::string path = instancePath(&callee, f);
-  Pou *fb = call->var->type->fb;
+  instanceCall(call, call->var->type->fb, instancePath(&callee, f), f, out);
+}
+
+void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
+                            Frame &f, Sink &out) {
+  // An instance whose body is being lowered, called again: a call through
+  // a reference closed a cycle of calls.
+  if (llvm::is_contained(instancesLowering, path))
+    refuse(call->loc, "recursive call of function block instance '" + path +
+                          "' (of " + fb->name +
+                          ") through a reference: netlift inlines every call "
+                          "and does not model recursion");
+  instancesLowering.push_back(path);
   InstanceUse &use = instanceUses[path];
   ++use.calls;
   Frame nf;
@@ -293,4 +304,5 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
           coerce(v, param ? param->type : nullptr, a.value->type, a.loc),
           a.loc));
     }
+  instancesLowering.pop_back();
 }

@@ -294,6 +294,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     }
   }
   case ExprKind::Binary: {
+    if (e->type && e->type->isReference())
+      return pointerStep(e, f, pre);
     NExpr *l = expr(e->operands[0], f, pre);
     NExpr *r = expr(e->operands[1], f, pre);
     if (const PType *real = commonReal({e->operands[0], e->operands[1]})) {

@@ -537,3 +537,108 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
          valueExpr, last, at);
   out.push_back(b.ifStmt(arms, true, last, at));
 }
+
+//===----------------------------------------------------------------------===//
+// Pointer arithmetic
+//===----------------------------------------------------------------------===//
+
+NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
+  Expr *ptr = e->operands[0], *offset = e->operands[1];
+  if (!ptr->type->isReference())
+    std::swap(ptr, offset);
+  SMLoc at = e->loc;
+  const PType *elem = e->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(elem, why)->size;
+  NExpr *k = expr(ptr, f, pre);
+  NExpr *n = expr(offset, f, pre);
+  // Whole elements (Sema checked the offset is written as a multiple).
+  NExpr *d =
+      size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
+  if (e->op == Op::Sub)
+    d = b.unary(net::UnaryOp::Neg, d, at);
+  auto table = refPlan.tables.find(referenceKey(elem));
+  int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
+  Expr *root = ptr;
+  while (root->base())
+    root = root->base();
+  std::string stem =
+      root->kind == ExprKind::Name ? sanitize(root->name) : "pointer";
+  // NULL moves nowhere: a run-time error, as a dereference.
+  std::string number = unique(stem + "_deref");
+  b.addVar(number, design.types.getRange(1, std::max<int64_t>(count, 1)),
+           b.intLit(1, at), at);
+  if (resetNames.insert(number).second)
+    resets.push_back({number, b.intLit(1, at)});
+  pre.push_back(b.assign(b.ref(number, at), k, at));
+  if (count == 0)
+    return b.intLit(0, at);
+  std::string step = unique(stem + "_step");
+  b.addVar(step, design.types.getInt(64, true, net::Overflow::Wrap),
+           b.intLit(0, at), at);
+  if (resetNames.insert(step).second)
+    resets.push_back({step, b.intLit(0, at)});
+  pre.push_back(b.assign(b.ref(step, at), d, at));
+  // The element moved to stays in the block of its family it started in
+  // (an array's elements are contiguous; a family's blocks are not, and a
+  // single place moves nowhere): checked per family.
+  std::vector<net::IfArm> arms;
+  std::vector<std::pair<int64_t, int64_t>> blocks; // (offset, extent)
+  for (const RefFamily &fam : table->second.families) {
+    int64_t block = 1;
+    if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
+      for (auto &[lo, hi] : fam.steps.back().dims)
+        block *= hi - lo + 1;
+    DerefTargets t;
+    t.deref = e;
+    t.number = number;
+    std::string inBlock = unique(stem + "_element");
+    b.addVar(inBlock, design.types.getRange(0, block - 1), b.intLit(0, at), at);
+    if (resetNames.insert(inBlock).second)
+      resets.push_back({inBlock, b.intLit(0, at)});
+    NExpr *pos = b.binary(net::BinaryOp::Sub, b.ref(number, at),
+                          b.intLit(fam.offset, at), at);
+    if (block > 1)
+      pos = b.binary(net::BinaryOp::Mod, pos, b.intLit(block, at), at);
+    Sink body{b.assign(b.ref(inBlock, at),
+                       b.binary(net::BinaryOp::Add, pos, b.ref(step, at), at),
+                       at)};
+    arms.push_back(
+        {familyTest(fam, t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+  }
+  pre.push_back(b.ifStmt(arms, false, {}, at));
+  return b.binary(net::BinaryOp::Add, b.ref(number, at), b.ref(step, at), at);
+}
+
+//===----------------------------------------------------------------------===//
+// Calls through references
+//===----------------------------------------------------------------------===//
+
+void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
+  Expr *instance = call->operands[0];
+  Pou *fb = instance->type->fb;
+  DerefTargets t = derefTargets(instance, f, out);
+  if (!t.table || t.table->families.empty())
+    return; // the reference is NULL whenever this runs: reported above
+  auto pathOf = [&](const RefFamily &fam) {
+    auto *ref = llvm::dyn_cast<net::Ref>(familyPlace(fam, t, instance, f, out));
+    if (!ref)
+      refuse(call->loc, "internal: a function block instance in an element");
+    return ref->name.str();
+  };
+  auto &fams = t.table->families;
+  if (fams.size() == 1) {
+    instanceCall(call, fb, pathOf(fams[0]), f, out);
+    return;
+  }
+  std::vector<net::IfArm> arms;
+  for (size_t i = 0; i + 1 < fams.size(); ++i) {
+    Sink body;
+    instanceCall(call, fb, pathOf(fams[i]), f, body);
+    arms.push_back(
+        {familyTest(fams[i], t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+  }
+  Sink last;
+  instanceCall(call, fb, pathOf(fams.back()), f, last);
+  out.push_back(b.ifStmt(arms, true, last, call->loc));
+}

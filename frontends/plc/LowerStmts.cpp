@@ -231,6 +231,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   }
   case StmtKind::Call: {
     Expr *c = s->value;
+    if (!c->operands.empty()) {
+      callThroughReference(c, f, out);
+      return;
+    }
     if (c->var) {
       fbCall(c, f, out);
       return;

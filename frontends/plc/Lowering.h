@@ -187,6 +187,9 @@ private:
   NExpr *placeThroughReference(Expr *e, Frame &f, Sink &pre, StringRef use);
   void writeThroughReference(Expr *target, NExpr *value, Expr *valueExpr,
                              Frame &f, Sink &out, SMLoc at);
+  /// `p + n * SIZEOF(T)` and `p - ...`: the element n further in the array
+  /// p points into; leaving it is a run-time error.
+  NExpr *pointerStep(Expr *e, Frame &f, Sink &pre);
   ReferencePlan refPlan;
   /// The prefix of the instance whose variables are being declared (a
   /// reference's initial value REF(x) is numbered in it).
@@ -248,6 +251,13 @@ private:
   NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
   std::string instancePath(Expr *e, Frame &f);
   void fbCall(Expr *call, Frame &f, Sink &out);
+  /// The call `call` of the instance of `fb` at `path`.
+  void instanceCall(Expr *call, Pou *fb, const std::string &path, Frame &f,
+                    Sink &out);
+  /// The instances whose bodies are being lowered, outermost first.
+  std::vector<std::string> instancesLowering;
+  /// `r^(...)`: the call of the instance r designates.
+  void callThroughReference(Expr *call, Frame &f, Sink &out);
   void enabledBody(Pou *callee, const std::string &prefix, Expr *call,
                    Frame &nf, Sink &out);
   void noteClockBound(const std::string &member, Expr *value, Frame &f,

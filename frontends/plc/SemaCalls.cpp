@@ -277,6 +277,31 @@ bool Checker::drawnAsDeclared(Expr *e, Pou *type) {
 }
 
 const PType *Checker::call(Expr *e, bool asStatement) {
+  // `r^(...)`, or `r(...)` for a REFERENCE TO: the instance r designates.
+  if (VarDecl *v = e->operands.empty() ? lookupVar(e->name) : nullptr;
+      v && v->type && v->type->isReference() && v->type->elem &&
+      v->type->elem->kind == PTypeKind::FunctionBlock) {
+    Expr *r = unit.make<Expr>(ExprKind::Name, e->loc);
+    r->name = e->name;
+    e->operands.push_back(r);
+  }
+  if (!e->operands.empty()) {
+    const PType *t = expr(e->operands[0]);
+    if (!t)
+      return nullptr;
+    if (t->kind != PTypeKind::FunctionBlock) {
+      error(e->loc, "'" + e->name + "' is of type " + t->str() +
+                        ", not a function block instance");
+      return nullptr;
+    }
+    if (!asStatement) {
+      error(e->loc, "function block instance '" + e->name +
+                        "' cannot be called inside an expression");
+      return nullptr;
+    }
+    functionArgs(e, t->fb);
+    return voidType();
+  }
   // An FB instance call (statement only).
   if (VarDecl *v = lookupVar(e->name)) {
     if (!v->type)
@@ -337,7 +362,14 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       error(e->loc, "SIZEOF takes one variable");
       return nullptr;
     }
-    const PType *t = expr(e->args[0].value);
+    // A variable, or a type (SIZEOF(INT), SIZEOF(MyStruct)).
+    Expr *arg = e->args[0].value;
+    const PType *t = nullptr;
+    if (arg->kind == ExprKind::Name && !lookupVar(arg->name) &&
+        (elementaryType(arg->name) || unit.findType(arg->name)))
+      t = resolveNamed(arg->name, arg->loc);
+    else
+      t = expr(arg);
     if (!t)
       return nullptr;
     std::string why;

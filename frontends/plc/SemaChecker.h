@@ -75,6 +75,13 @@ private:
   bool referenceAssignable(const PType *to, Expr *from, SMLoc at,
                            const Twine &what);
   bool comparableReferences(const PType *a, const PType *b, Expr *e);
+  /// `p + n`, `n + p`, `p - n` on a POINTER TO T, n a whole number of T's
+  /// (a multiple of SIZEOF(T)): the pointer's type, or null after an error.
+  const PType *pointerArithmetic(Expr *e, const PType *a, const PType *b);
+  /// ADR(arr) where a pointer to arr's elements is wanted: ADR(arr[lo]),
+  /// as CODESYS's address of an array is its first element's. False when
+  /// `e` is no such ADR.
+  bool decayToElement(Expr *e, const PType *elem);
   /// `r REF= x` and `r ?= q`.
   void referenceAssign(Stmt *s);
 

@@ -380,9 +380,10 @@ const PType *Checker::expr(Expr *e) {
     case Op::Div:
     case Op::Mod:
       if (ab->isReference() || bb->isReference()) {
-        error(e->loc, "pointer arithmetic ('" + spelling(e->op) + "' on " +
-                          a->str() + " and " + b->str() + ") is not supported");
-        return nullptr;
+        t = pointerArithmetic(e, ab, bb);
+        if (!t)
+          return nullptr;
+        break;
       }
       if (ab->kind == PTypeKind::Date || bb->kind == PTypeKind::Date) {
         t = dateArithmetic(e->op, ab, bb);

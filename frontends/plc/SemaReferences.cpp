@@ -145,8 +145,75 @@ const PType *Checker::implicitDeref(Expr *e, const PType *t) {
   return t->elem;
 }
 
+bool Checker::decayToElement(Expr *e, const PType *elem) {
+  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
+      !e->type->elem || e->type->elem->kind != PTypeKind::Array ||
+      referenceKey(e->type->elem->elem) != referenceKey(elem))
+    return false;
+  const PType *array = e->type->elem;
+  Expr *place = e->args[0].value;
+  Expr *first = unit.make<Expr>(ExprKind::Index, place->loc);
+  first->operands.push_back(place);
+  for (auto &[lo, hi] : array->dims) {
+    Expr *i = unit.make<Expr>(ExprKind::IntLit, place->loc);
+    i->intValue = lo;
+    i->type = anyIntType();
+    first->operands.push_back(i);
+  }
+  first->type = array->elem;
+  e->args[0].value = first;
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = RefKind::Pointer;
+  r->elem = array->elem;
+  e->type = r;
+  return true;
+}
+
+const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
+                                        const PType *b) {
+  Expr *ptr = e->operands[0], *offset = e->operands[1];
+  if (!a->isReference())
+    std::swap(ptr, offset);
+  const PType *pt = ptr->type, *ot = baseOf(offset->type);
+  if (e->op == Op::Sub && ptr != e->operands[0])
+    pt = nullptr; // n - p
+  auto refuse = [&](const Twine &why) -> const PType * {
+    error(e->loc, "pointer arithmetic ('" + spelling(e->op) + "' on " +
+                      a->str() + " and " + b->str() + "): " + why);
+    return nullptr;
+  };
+  if (!pt || (e->op != Op::Add && e->op != Op::Sub) || !ot->isInteger())
+    return refuse("only a POINTER TO plus or minus an integer is supported");
+  if (pt->refKind != RefKind::Pointer || !pt->elem)
+    return refuse("only a POINTER TO moves");
+  // Stepping from an array's address steps through its elements.
+  if (pt->elem->kind == PTypeKind::Array && decayToElement(ptr, pt->elem->elem))
+    pt = ptr->type;
+  std::string why;
+  auto layout = memoryLayout(pt->elem, why);
+  if (!layout)
+    return refuse(why);
+  // A whole number of elements: a constant multiple of the size, or a
+  // product with one.
+  auto multiple = [&](Expr *x) {
+    int64_t v;
+    return constInt(x, v) && v % layout->size == 0;
+  };
+  bool whole =
+      multiple(offset) ||
+      (offset->kind == ExprKind::Binary && offset->op == Op::Mul &&
+       (multiple(offset->operands[0]) || multiple(offset->operands[1])));
+  if (!whole)
+    return refuse("the offset is not written as a whole number of " +
+                  pt->elem->str() + " (n * SIZEOF(" + pt->elem->str() +
+                  ") = n * " + Twine(layout->size) + ")");
+  return pt;
+}
+
 bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
                                   const Twine &what) {
+  if (to->elem && decayToElement(from, to->elem))
+    return true;
   const PType *ft = from->type;
   if (ft->isReference() &&
       (!ft->elem || referenceKey(ft->elem) == referenceKey(to->elem)))

@@ -973,12 +973,15 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     Expr *callee = variable(call->callee);
     if (!callee)
       return nullptr;
-    if (callee->kind != ExprKind::Name)
+    bool throughReference = callee->kind == ExprKind::Deref;
+    if (callee->kind != ExprKind::Name && !throughReference)
       return refuse(loc(call), "calling '" + call->callee->getText() +
                                    "' is not supported (methods and calls "
                                    "through selectors are refused)");
     Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
-    e->name = callee->name;
+    e->name = throughReference ? call->callee->getText() : callee->name;
+    if (throughReference)
+      e->operands.push_back(callee);
     callArgs(call->callArg(), e->args);
     s->value = e;
     return s;
