@@ -299,10 +299,12 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
       if (a.negated)
         v = b.unary(net::UnaryOp::Not, v, a.loc);
       VarDecl *param = fb->find(a.name);
-      out.push_back(b.assign(
-          lvalue(a.value, f, out),
-          coerce(v, param ? param->type : nullptr, a.value->type, a.loc),
-          a.loc));
+      v = coerce(v, param ? param->type : nullptr, a.value->type, a.loc);
+      if (throughReference(a.value)) {
+        writeThroughReference(a.value, v, nullptr, f, out, a.loc);
+        continue;
+      }
+      out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));
     }
   instancesLowering.pop_back();
 }

@@ -98,6 +98,7 @@ private:
   void functionArgs(Expr *e, Pou *fn);
   bool drawnAsDeclared(Expr *e, Pou *type);
   bool assignable(const PType *to, Expr *from, SMLoc at, const Twine &what);
+  static bool sameArrayType(const PType *a, const PType *b);
   /// The type of `a op b` when a date type takes part (TOD + TIME, DT - DT
   /// ...), null when IEC gives it none.
   const PType *dateArithmetic(Op op, const PType *a, const PType *b);

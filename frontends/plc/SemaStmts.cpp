@@ -187,10 +187,27 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
          (tb->kind != PTypeKind::Enum && tb->kind != PTypeKind::Struct &&
           tb->kind != PTypeKind::Array &&
           tb->kind != PTypeKind::FunctionBlock) ||
-         (!tb->name.empty() && tb->name == fb->name)))
+         (!tb->name.empty() && tb->name == fb->name) || sameArrayType(tb, fb)))
       return true;
     return mismatch();
   }
+}
+
+/// Arrays written alike in two places (a parameter's ARRAY[0..1] OF INT
+/// and the argument's) are one type: same bounds, same element type.
+bool Checker::sameArrayType(const PType *a, const PType *b) {
+  if (a->kind != PTypeKind::Array || b->kind != PTypeKind::Array ||
+      a->dims != b->dims)
+    return false;
+  const PType *x = a->elem, *y = b->elem;
+  if (x == y || sameArrayType(x, y))
+    return true;
+  if (x->isSubrange || y->isSubrange)
+    return x->isSubrange && y->isSubrange && x->lo == y->lo && x->hi == y->hi &&
+           baseOf(x) == baseOf(y);
+  return x->kind != PTypeKind::Struct && x->kind != PTypeKind::Enum &&
+         x->kind != PTypeKind::FunctionBlock &&
+         referenceKey(x) == referenceKey(y);
 }
 
 const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
