@@ -42,6 +42,7 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
     auto given = byName.find(StringRef(v->name).upper());
     if (v->section == VarSection::InOut) {
       nf.aliases[v] = lvalue(given->second->value, f, pre);
+      nf.aliasSources[v] = {given->second->value, &f};
       continue;
     }
     std::string name = prefix + sanitize(v->name);
@@ -252,6 +253,7 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
     VarDecl *p = fb->find(a.name);
     if (p->section == VarSection::InOut) {
       nf.aliases[p] = lvalue(a.value, f, out);
+      nf.aliasSources[p] = {a.value, &f};
       continue;
     }
     ++use.given[sanitize(p->name)];

@@ -176,32 +176,79 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         walk(run.prefix + sanitize(v->name), v->type->fb);
   }
 
+  // What every call binds to each VAR_IN_OUT: the address of an in-out
+  // parameter is that of the caller's argument.
+  std::map<VarDecl *, std::vector<Expr *>> inOutArguments;
+  auto noteArguments = [&](Expr *c) {
+    Pou *callee = c->callee;
+    if (!callee && c->var && c->var->type &&
+        c->var->type->kind == PTypeKind::FunctionBlock)
+      callee = c->var->type->fb;
+    if (!callee && !c->operands.empty() && c->operands[0]->type &&
+        c->operands[0]->type->kind == PTypeKind::FunctionBlock)
+      callee = c->operands[0]->type->fb;
+    if (!callee)
+      return;
+    for (CallArg &a : c->args)
+      if (VarDecl *p = callee->find(a.name);
+          p && p->section == VarSection::InOut && !a.isOutput)
+        inOutArguments[p].push_back(a.value);
+  };
+  std::function<void(Expr *)> calls = [&](Expr *e) {
+    if (!e)
+      return;
+    if (e->kind == ExprKind::Call)
+      noteArguments(e);
+    for (Expr *o : e->operands)
+      calls(o);
+    for (CallArg &a : e->args)
+      calls(a.value);
+  };
+  for (Pou *p : unit.pous)
+    forEachStmt(
+        p->body, [](Stmt *) {}, calls);
+
   ReferencePlan plan;
+  std::function<void(VarDecl *, std::vector<RefStep>, RefTable &, unsigned)>
+      addPlace = [&](VarDecl *v, std::vector<RefStep> steps, RefTable &table,
+                     unsigned depth) {
+        if (v->section == VarSection::InOut) {
+          for (Expr *arg : inOutArguments[v]) {
+            bool throughDeref;
+            Expr *root = placeRoot(arg, throughDeref);
+            if (!root || !root->var || throughDeref || depth > 32)
+              continue; // refused where the REF is lowered
+            std::vector<RefStep> outer = familySteps(placeSelectors(arg));
+            outer.insert(outer.end(), steps.begin(), steps.end());
+            addPlace(root->var, outer, table, depth + 1);
+          }
+          return;
+        }
+        int64_t size = 1;
+        for (const RefStep &s : steps)
+          for (auto &[lo, hi] : s.dims)
+            size *= hi - lo + 1;
+        for (const std::string &base : placeBases(v, instances, runs)) {
+          std::string key = familyKey(base, steps);
+          if (table.byKey.count(key))
+            continue;
+          table.byKey[key] = table.families.size();
+          RefFamily fam;
+          fam.base = base;
+          fam.steps = steps;
+          fam.size = size;
+          fam.offset = table.count + 1;
+          table.count += size;
+          table.families.push_back(std::move(fam));
+        }
+      };
   forEachAddressTaken(unit, [&](Expr *place) {
     bool throughDeref;
     Expr *root = placeRoot(place, throughDeref);
     if (!root || !root->var || throughDeref || !place->type)
       return; // REF(r^) is r; the rest is refused where it is lowered
-    std::vector<Expr *> selectors = placeSelectors(place);
-    std::vector<RefStep> steps = familySteps(selectors);
-    int64_t size = 1;
-    for (const RefStep &s : steps)
-      for (auto &[lo, hi] : s.dims)
-        size *= hi - lo + 1;
-    RefTable &table = plan.tables[referenceKey(place->type)];
-    for (const std::string &base : placeBases(root->var, instances, runs)) {
-      std::string key = familyKey(base, steps);
-      if (table.byKey.count(key))
-        continue;
-      table.byKey[key] = table.families.size();
-      RefFamily fam;
-      fam.base = base;
-      fam.steps = steps;
-      fam.size = size;
-      fam.offset = table.count + 1;
-      table.count += size;
-      table.families.push_back(std::move(fam));
-    }
+    addPlace(root->var, familySteps(placeSelectors(place)),
+             plan.tables[referenceKey(place->type)], 0);
   });
   return plan;
 }
@@ -271,33 +318,57 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   if (throughDeref)
     refuse(at, call->name + " of a field or element reached through a "
                             "reference is not supported");
+  // The selectors from the variable to the place, each with the frame its
+  // indices are computed in: a VAR_IN_OUT is the caller's argument, so
+  // the argument's selectors come first, in the caller's frame.
+  std::vector<std::pair<Expr *, Frame *>> selectors;
+  for (Expr *x : placeSelectors(place))
+    selectors.push_back({x, &f});
   VarDecl *v = root->var;
-  if (auto alias = f.aliases.find(v);
-      alias != f.aliases.end() && v->section == VarSection::InOut)
-    refuse(at, call->name + " of VAR_IN_OUT '" + v->name +
-                   "' (it designates the caller's variable) is not "
-                   "supported");
+  Frame *rf = &f;
+  while (v->section == VarSection::InOut) {
+    auto source = rf->aliasSources.find(v);
+    if (source == rf->aliasSources.end())
+      refuse(at, call->name + " of VAR_IN_OUT '" + v->name +
+                     "' (it designates the caller's variable) is not "
+                     "supported here");
+    auto [arg, caller] = source->second;
+    Expr *argRoot = placeRoot(arg, throughDeref);
+    if (throughDeref || !argRoot || !argRoot->var)
+      refuse(at, call->name + " of VAR_IN_OUT '" + v->name +
+                     "', bound to what a reference designates, is not "
+                     "supported");
+    std::vector<std::pair<Expr *, Frame *>> outer;
+    for (Expr *x : placeSelectors(arg))
+      outer.push_back({x, caller});
+    selectors.insert(selectors.begin(), outer.begin(), outer.end());
+    v = argRoot->var;
+    rf = caller;
+  }
   if (v->owner && v->owner->kind == PouKind::Function &&
       v->section != VarSection::Stat)
     refuse(at, call->name + " of '" + v->name + "', a variable of function '" +
                    v->owner->name +
                    "' (it lives only during a call), is not supported");
-  std::vector<Expr *> selectors = placeSelectors(place);
-  for (Expr *x : selectors)
+  std::vector<Expr *> chain;
+  for (auto &[x, fr] : selectors) {
+    chain.push_back(x);
     if (x->base()->type && x->base()->type->kind == PTypeKind::Struct &&
         x->base()->type->isUnion)
       refuse(at, call->name + " of a UNION member is not supported");
-  // The family this frame's place belongs to.
+  }
+  // The family this place belongs to.
   std::string base;
   if (!v->owner)
     base = sanitize(v->name);
   else if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
     base = "static." + sanitize(v->owner->name) + "." + sanitize(v->name);
   else if (v->owner->kind == PouKind::Program)
-    base = inputImageName(f.prefix, v).value_or(f.prefix + sanitize(v->name));
+    base =
+        inputImageName(rf->prefix, v).value_or(rf->prefix + sanitize(v->name));
   else
-    base = f.prefix + sanitize(v->name);
-  std::vector<RefStep> steps = familySteps(selectors);
+    base = rf->prefix + sanitize(v->name);
+  std::vector<RefStep> steps = familySteps(chain);
   auto table = refPlan.tables.find(referenceKey(place->type));
   const RefFamily *fam = nullptr;
   if (table != refPlan.tables.end())
@@ -312,14 +383,14 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   int64_t constant = 0;
   NExpr *number = nullptr;
   std::string what = sanitize(v->name) + "_index";
-  for (Expr *x : selectors) {
+  for (auto &[x, fr] : selectors) {
     if (x->kind != ExprKind::Index)
       continue;
     const PType *array = x->base()->type;
     for (size_t d = 0; d < array->dims.size(); ++d) {
       auto [lo, hi] = array->dims[d];
       int64_t extent = hi - lo + 1;
-      NExpr *i = checkedRange(expr(x->operands[d + 1], f, pre), lo, hi, what,
+      NExpr *i = checkedRange(expr(x->operands[d + 1], *fr, pre), lo, hi, what,
                               pre, x->loc);
       constant *= extent;
       if (number)

@@ -58,9 +58,12 @@ struct Frame {
   Pou *pou = nullptr;
   std::string prefix; // "" for the top program, "t1." for an instance
   std::map<VarDecl *, NExpr *> aliases; // VAR_IN_OUT -> caller's lvalue
-  std::string returnFlag;               // set when the body has RETURN
-  bool external = false; // program frame: reads of FB members count as
-                         // reads from outside the instance
+  /// VAR_IN_OUT -> the argument and the caller's frame it is lowered in
+  /// (REF of the parameter is REF of the argument).
+  std::map<VarDecl *, std::pair<Expr *, Frame *>> aliasSources;
+  std::string returnFlag; // set when the body has RETURN
+  bool external = false;  // program frame: reads of FB members count as
+                          // reads from outside the instance
 };
 
 struct LoopCtx {

@@ -200,7 +200,7 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
     return constInt(x, v) && v % layout->size == 0;
   };
   bool whole =
-      multiple(offset) ||
+      layout->size == 1 || multiple(offset) ||
       (offset->kind == ExprKind::Binary && offset->op == Op::Mul &&
        (multiple(offset->operands[0]) || multiple(offset->operands[1])));
   if (!whole)
