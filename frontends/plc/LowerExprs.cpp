@@ -390,6 +390,9 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       return functionCall(e, f, pre);
     if (e->name == "REF" || e->name == "ADR")
       return addressOf(e, f, pre);
+    if (e->name == "MEMCPY" || e->name == "MEMMOVE" || e->name == "MEMSET" ||
+        e->name == "MEMCMP")
+      return memoryCall(e, f, pre);
     if (e->name == "__ISVALIDREF")
       return b.binary(net::BinaryOp::Ne, expr(e->args[0].value, f, pre),
                       b.intLit(0, e->loc), e->loc);

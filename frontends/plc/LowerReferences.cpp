@@ -436,12 +436,23 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.table = it == refPlan.tables.end() ? nullptr : &it->second;
   int64_t n = t.table ? t.table->count : 0;
   NExpr *ref = expr(d->base(), f, pre);
-  // NULL (0) or uninitialised: a run-time error naming the reference.
   Expr *root = d->base();
   while (root->base())
     root = root->base();
   std::string what =
       (root->kind == ExprKind::Name ? sanitize(root->name) : "ref") + "_deref";
+  // A constant reference (ADR(x) stepped by constants) designates one
+  // place, known now.
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(ref);
+      lit && lit->value >= 1 && lit->value <= n) {
+    t.constant = lit->value;
+    for (const RefFamily &fam : t.table->families)
+      if (lit->value >= fam.offset && lit->value < fam.offset + fam.size)
+        t.only = &fam;
+    t.number = what;
+    return t;
+  }
+  // NULL (0) or uninitialised: a run-time error naming the reference.
   std::string name = unique(what);
   b.addVar(name, design.types.getRange(1, std::max<int64_t>(n, 1)),
            b.intLit(1, d->loc), d->loc);
@@ -459,10 +470,12 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
   NExpr *x = nullptr;
   auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
   // Row-major: the element number within the family, split per dimension.
-  NExpr *rel = nullptr;
-  if (fam.size > 1)
-    rel = b.binary(net::BinaryOp::Sub, b.ref(t.number, at),
-                   b.intLit(fam.offset, at), at);
+  std::optional<int64_t> known; // the element number, known now
+  if (t.constant || fam.size == 1)
+    known = t.constant ? *t.constant - fam.offset : 0;
+  NExpr *rel = known ? nullptr
+                     : b.binary(net::BinaryOp::Sub, numberOf(t, at),
+                                b.intLit(fam.offset, at), at);
   int64_t stride = fam.size;
   for (const RefStep &s : fam.steps) {
     switch (s.kind) {
@@ -478,6 +491,10 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
       for (auto &[lo, hi] : s.dims) {
         int64_t extent = hi - lo + 1;
         stride /= extent;
+        if (known) {
+          x = b.index(place(), b.intLit(*known / stride % extent + lo, at), at);
+          continue;
+        }
         NExpr *i = rel;
         if (stride > 1)
           i = b.binary(net::BinaryOp::Div, i, b.intLit(stride, at), at);
@@ -514,9 +531,13 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
   return place();
 }
 
+NExpr *Lowering::numberOf(const DerefTargets &t, SMLoc at) {
+  return t.constant ? b.intLit(*t.constant, at) : b.ref(t.number, at);
+}
+
 NExpr *Lowering::familyTest(const RefFamily &fam, const DerefTargets &t) {
   SMLoc at = t.deref->loc;
-  NExpr *k = b.ref(t.number, at);
+  NExpr *k = numberOf(t, at);
   if (fam.size == 1)
     return b.binary(net::BinaryOp::Eq, k, b.intLit(fam.offset, at), at);
   return b.binary(net::BinaryOp::And,
@@ -538,6 +559,8 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
                    " is dereferenced, but no REF or ADR of a " +
                    t.deref->type->str() + " gives it a value");
   }
+  if (t.only)
+    return familyPlace(*t.only, t, e, f, pre);
   auto &fams = t.table->families;
   if (fams.size() == 1)
     return familyPlace(fams[0], t, e, f, pre);
@@ -567,6 +590,8 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
 NExpr *Lowering::placeThroughReference(Expr *e, Frame &f, Sink &pre,
                                        StringRef use) {
   DerefTargets t = derefTargets(e, f, pre);
+  if (t.only)
+    return familyPlace(*t.only, t, e, f, pre);
   if (t.table && t.table->families.size() == 1)
     return familyPlace(t.table->families[0], t, e, f, pre);
   refuse(e->loc, "a dereference that may designate " +
@@ -584,9 +609,9 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
     return;
   }
   auto &fams = t.table->families;
-  if (fams.size() == 1) {
-    assign(familyPlace(fams[0], t, target, f, out), value, target->type,
-           valueExpr, out, at);
+  if (t.only || fams.size() == 1) {
+    assign(familyPlace(t.only ? *t.only : fams[0], t, target, f, out), value,
+           target->type, valueExpr, out, at);
     return;
   }
   if (!llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value)) {
@@ -628,6 +653,8 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
       size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
   if (e->op == Op::Sub)
     d = b.unary(net::UnaryOp::Neg, d, at);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
+    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
   auto table = refPlan.tables.find(referenceKey(elem));
   int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
   Expr *root = ptr;
@@ -635,6 +662,25 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
     root = root->base();
   std::string stem =
       root->kind == ExprKind::Name ? sanitize(root->name) : "pointer";
+  auto *kLit = llvm::dyn_cast<net::IntLit>(k);
+  auto *dLit = llvm::dyn_cast<net::IntLit>(d);
+  if (kLit && dLit && kLit->value >= 1 && kLit->value <= count) {
+    // Known now: moved now, and checked now.
+    for (const RefFamily &fam : table->second.families) {
+      if (kLit->value < fam.offset || kLit->value >= fam.offset + fam.size)
+        continue;
+      int64_t block = 1;
+      if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
+        for (auto &[lo, hi] : fam.steps.back().dims)
+          block *= hi - lo + 1;
+      int64_t pos = (kLit->value - fam.offset) % block + dLit->value;
+      if (pos < 0 || pos >= block)
+        refuse(at, "the pointer moves " + Twine(dLit->value) +
+                       " element(s) out of the " + Twine(block) +
+                       " of its array");
+    }
+    return b.intLit(kLit->value + dLit->value, at);
+  }
   // NULL moves nowhere: a run-time error, as a dereference.
   std::string number = unique(stem + "_deref");
   b.addVar(number, design.types.getRange(1, std::max<int64_t>(count, 1)),
@@ -654,7 +700,6 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   // (an array's elements are contiguous; a family's blocks are not, and a
   // single place moves nowhere): checked per family.
   std::vector<net::IfArm> arms;
-  std::vector<std::pair<int64_t, int64_t>> blocks; // (offset, extent)
   for (const RefFamily &fam : table->second.families) {
     int64_t block = 1;
     if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
@@ -698,8 +743,8 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
     return ref->name.str();
   };
   auto &fams = t.table->families;
-  if (fams.size() == 1) {
-    instanceCall(call, fb, pathOf(fams[0]), f, out);
+  if (t.only || fams.size() == 1) {
+    instanceCall(call, fb, pathOf(t.only ? *t.only : fams[0]), f, out);
     return;
   }
   std::vector<net::IfArm> arms;
@@ -712,4 +757,76 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
   Sink last;
   instanceCall(call, fb, pathOf(fams.back()), f, last);
   out.push_back(b.ifStmt(arms, true, last, call->loc));
+}
+
+//===----------------------------------------------------------------------===//
+// MEMCPY, MEMMOVE, MEMSET, MEMCMP
+//===----------------------------------------------------------------------===//
+
+NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
+  SMLoc at = call->loc;
+  Expr *dst = call->args[0].value, *src = call->args[1].value;
+  const PType *t = dst->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(t, why)->size;
+  // Element j of what `p` points to: (p + j * size)^.
+  auto element = [&](Expr *p, int64_t j) {
+    Expr *moved = p;
+    if (j) {
+      moved = unit.make<Expr>(ExprKind::Binary, at);
+      moved->op = Op::Add;
+      Expr *offset = unit.make<Expr>(ExprKind::IntLit, at);
+      offset->intValue = j * size;
+      offset->type = elementaryType("DINT");
+      moved->operands = {p, offset};
+      moved->type = p->type;
+    }
+    Expr *d = unit.make<Expr>(ExprKind::Deref, at);
+    d->operands.push_back(moved);
+    d->type = t;
+    return d;
+  };
+  int64_t k = call->intValue;
+  if (call->name == "MEMCMP") {
+    // The first element that differs decides, as unsigned bytes.
+    std::vector<std::pair<NExpr *, NExpr *>> pairs;
+    for (int64_t j = 0; j < k; ++j)
+      pairs.push_back({readThroughReference(element(dst, j), f, pre),
+                       readThroughReference(element(src, j), f, pre)});
+    NExpr *r = b.intLit(0, at);
+    for (size_t j = pairs.size(); j-- > 0;) {
+      auto [x, y] = pairs[j];
+      NExpr *sign = b.cond(b.binary(net::BinaryOp::Lt, x, y, at),
+                           b.intLit(-1, at), b.intLit(1, at), at);
+      r = b.cond(b.binary(net::BinaryOp::Ne, x, y, at), sign, r, at);
+    }
+    return r;
+  }
+  if (call->name == "MEMSET") {
+    NExpr *fill = expr(src, f, pre);
+    if (t->kind == PTypeKind::Bool)
+      fill = b.binary(net::BinaryOp::Ne, fill, b.intLit(0, at), at);
+    else if (auto *lit = llvm::dyn_cast<net::IntLit>(fill);
+             !lit && baseOf(t)->kind == PTypeKind::Int)
+      fill = maskTo(fill, baseOf(t), at); // the low byte
+    for (int64_t j = 0; j < k; ++j)
+      writeThroughReference(element(dst, j), fill, nullptr, f, pre, at);
+    return b.intLit(0, at);
+  }
+  // MEMCPY, MEMMOVE: every element read before any is written, so that
+  // overlapping places copy as MEMMOVE does.
+  std::vector<NExpr *> values;
+  for (int64_t j = 0; j < k; ++j) {
+    NExpr *v = readThroughReference(element(src, j), f, pre);
+    if (k > 1) {
+      std::string tmp = unique("_copy");
+      declareTemp(tmp, t, at);
+      pre.push_back(b.assign(b.ref(tmp, at), v, at));
+      v = b.ref(tmp, at);
+    }
+    values.push_back(v);
+  }
+  for (int64_t j = 0; j < k; ++j)
+    writeThroughReference(element(dst, j), values[j], nullptr, f, pre, at);
+  return b.intLit(0, at);
 }

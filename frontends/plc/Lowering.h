@@ -178,7 +178,11 @@ private:
     Expr *deref = nullptr;
     const RefTable *table = nullptr;
     std::string number; // the reference, checked to be 1..n
+    /// A reference known at translation, and the family it designates.
+    std::optional<int64_t> constant;
+    const RefFamily *only = nullptr;
   };
+  NExpr *numberOf(const DerefTargets &t, SMLoc at);
   bool throughReference(Expr *e);
   DerefTargets derefTargets(Expr *e, Frame &f, Sink &pre);
   NExpr *familyPlace(const RefFamily &fam, const DerefTargets &t, Expr *e,
@@ -193,6 +197,8 @@ private:
   /// `p + n * SIZEOF(T)` and `p - ...`: the element n further in the array
   /// p points into; leaving it is a run-time error.
   NExpr *pointerStep(Expr *e, Frame &f, Sink &pre);
+  /// MEMCPY, MEMMOVE, MEMSET (statements around nothing) and MEMCMP.
+  NExpr *memoryCall(Expr *call, Frame &f, Sink &pre);
   ReferencePlan refPlan;
   /// The prefix of the instance whose variables are being declared (a
   /// reference's initial value REF(x) is numbered in it).

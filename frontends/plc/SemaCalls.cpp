@@ -354,7 +354,7 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     }
     return p->resultType;
   }
-  if (auto t = referenceCall(e))
+  if (auto t = referenceCall(e, asStatement))
     return *t;
   // SIZEOF(x) (CODESYS, TwinCAT): the bytes of x's type, a constant.
   if (sameName(e->name, "SIZEOF")) {

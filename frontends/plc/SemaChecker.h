@@ -62,7 +62,10 @@ private:
   std::vector<std::pair<PType *, std::string>> pendingTargets;
   /// REF, ADR, __ISVALIDREF (and __NEW, refused): the result's type, null
   /// after an error; nullopt when `e` calls none of them.
-  std::optional<const PType *> referenceCall(Expr *e);
+  std::optional<const PType *> referenceCall(Expr *e, bool asStatement);
+  /// MEMCPY, MEMMOVE, MEMSET, MEMCMP over places of one type, a constant
+  /// number of whole elements (stored in `e->intValue`).
+  const PType *memoryCall(Expr *e, bool asStatement);
   const PType *derefType(Expr *e);
   /// A REFERENCE TO read or written is its target: `e` becomes `e^`.
   const PType *implicitDeref(Expr *e, const PType *t);

@@ -55,7 +55,12 @@ static bool designatesStorage(Expr *e) {
   return false;
 }
 
-std::optional<const PType *> Checker::referenceCall(Expr *e) {
+std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
+  for (const char *mem : {"MEMCPY", "MEMSET", "MEMCMP", "MEMMOVE"})
+    if (sameName(e->name, mem)) {
+      e->name = mem;
+      return memoryCall(e, asStatement);
+    }
   bool isRef = sameName(e->name, "REF"), isAdr = sameName(e->name, "ADR");
   bool isValid = sameName(e->name, "__ISVALIDREF");
   if (sameName(e->name, "__NEW") || sameName(e->name, "__DELETE")) {
@@ -286,4 +291,89 @@ void Checker::referenceAssign(Stmt *s) {
   // otherwise (the lowering reads assignKind).
   if (!vt->elem || referenceKey(vt->elem) == referenceKey(t->elem))
     s->assignKind = AssignKind::Value;
+}
+
+const PType *Checker::memoryCall(Expr *e, bool asStatement) {
+  bool set = e->name == "MEMSET", compare = e->name == "MEMCMP";
+  if (e->args.size() != 3 ||
+      llvm::any_of(e->args, [](CallArg &a) { return a.isOutput; })) {
+    error(e->loc, e->name + " takes three arguments");
+    return nullptr;
+  }
+  for (CallArg &a : e->args)
+    if (!expr(a.value))
+      return nullptr;
+  Expr *dst = e->args[0].value, *src = e->args[1].value,
+       *count = e->args[2].value;
+  auto designated = [&](Expr *p) -> const PType * {
+    if (!p->type->isReference() || !p->type->elem) {
+      error(p->loc, e->name + " takes addresses (ADR), not " + p->type->str());
+      return nullptr;
+    }
+    // The address of an array of scalars is its first element's: the
+    // elements are what is copied, set or compared.
+    const PType *t = p->type->elem;
+    if (t->kind == PTypeKind::Array && t->elem->kind != PTypeKind::Array &&
+        t->elem->kind != PTypeKind::Struct && decayToElement(p, t->elem))
+      t = p->type->elem;
+    return t;
+  };
+  const PType *t = designated(dst);
+  if (!t)
+    return nullptr;
+  if (!set) {
+    const PType *ts = designated(src);
+    if (!ts)
+      return nullptr;
+    if (referenceKey(ts) != referenceKey(t)) {
+      error(e->loc, e->name + " between " + t->str() + " and " + ts->str() +
+                        " reinterprets memory, which netlift does not model");
+      return nullptr;
+    }
+  } else if (!baseOf(src->type)->isInteger()) {
+    error(src->loc, "MEMSET fills with a byte, not " + src->type->str());
+    return nullptr;
+  }
+  std::string why;
+  auto layout = memoryLayout(t, why);
+  if (!layout) {
+    error(e->loc, e->name + ": " + why);
+    return nullptr;
+  }
+  int64_t n;
+  if (!constInt(count, n) || n < 0 || n % layout->size != 0) {
+    error(count->loc, e->name + " of " + t->str() +
+                          ": the size must be a constant number of whole " +
+                          t->str() + " (n * " + Twine(layout->size) + ")");
+    return nullptr;
+  }
+  e->intValue = n / layout->size;
+  if (e->intValue > 4096) {
+    error(count->loc, e->name + " of " + Twine(e->intValue) + " " + t->str() +
+                          ": netlift copies at most 4096 elements");
+    return nullptr;
+  }
+  bool scalar = t->kind != PTypeKind::Array && t->kind != PTypeKind::Struct &&
+                !t->isString();
+  int64_t fill;
+  if (set && (!scalar || layout->size != 1) &&
+      !(scalar && constInt(src, fill) && fill == 0)) {
+    error(e->loc, "MEMSET of " + t->str() +
+                      ": only bytes take any value, and other scalars 0");
+    return nullptr;
+  }
+  if (compare && (!scalar || layout->size != 1)) {
+    error(e->loc, "MEMCMP of " + t->str() +
+                      ": the sign of its result depends on the byte order; "
+                      "only one-byte elements are compared");
+    return nullptr;
+  }
+  if (compare)
+    return elementaryType("DINT");
+  if (!asStatement) {
+    error(e->loc, "the result of " + e->name +
+                      " (an address) is not modelled; call it as a statement");
+    return nullptr;
+  }
+  return voidType();
 }
