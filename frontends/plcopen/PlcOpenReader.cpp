@@ -138,10 +138,20 @@ TypeSyntax *Reader::type(pugi::xml_node holder) {
     auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, at);
     return variables(t, VarSection::Var, ts->fields) ? ts : nullptr;
   }
+  if (kind == "pointer") {
+    // <pointer><baseType>T</baseType></pointer>: POINTER TO T.
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Reference, at);
+    ts->refKind = RefKind::Pointer;
+    pugi::xml_node base = t.child("baseType");
+    if (!base) {
+      fail(t, "<pointer> has no <baseType>");
+      return nullptr;
+    }
+    ts->elem = type(base);
+    return ts->elem ? ts : nullptr;
+  }
   auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Refused, at);
-  ts->refused = kind == "pointer"
-                    ? "POINTER TO (<pointer>) is not supported"
-                    : "the PLCopen type <" + kind.str() + "> is not supported";
+  ts->refused = "the PLCopen type <" + kind.str() + "> is not supported";
   return ts;
 }
 
