@@ -289,6 +289,36 @@ int64_t Lowering::referenceCount(const PType *target) {
 // REF and ADR
 //===----------------------------------------------------------------------===//
 
+/// A variable of the scan (reset to `init` at its end) named after `stem`.
+std::string Lowering::scanVariable(const std::string &stem,
+                                   const net::Type *type, int64_t init,
+                                   SMLoc at) {
+  std::string name = unique(stem);
+  b.addVar(name, type, b.intLit(init, at), at);
+  if (resetNames.insert(name).second)
+    resets.push_back({name, b.intLit(init, at)});
+  return name;
+}
+
+/// The name a reference's checks are named after: its variable's.
+static std::string stemOf(Expr *reference) {
+  Expr *root = reference;
+  while (root->base())
+    root = root->base();
+  return root->kind == ExprKind::Name ? Lowering::sanitize(root->name)
+                                      : "pointer";
+}
+
+/// The elements of a family that lie next to each other in memory: those
+/// of its last index step (1 when it ends in a field or is one place).
+static int64_t contiguousBlock(const RefFamily &fam) {
+  int64_t block = 1;
+  if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
+    for (auto &[lo, hi] : fam.steps.back().dims)
+      block *= hi - lo + 1;
+  return block;
+}
+
 /// `v`, known to lie in lo..hi when it is not a constant, copied into a
 /// fresh variable of that range first: an index outside is a run-time
 /// error naming `what`.
@@ -300,10 +330,7 @@ NExpr *Lowering::checkedRange(NExpr *v, int64_t lo, int64_t hi,
                      ".." + Twine(hi) + " of " + what);
     return v;
   }
-  std::string name = unique(what);
-  b.addVar(name, design.types.getRange(lo, hi), b.intLit(lo, at), at);
-  if (resetNames.insert(name).second)
-    resets.push_back({name, b.intLit(lo, at)});
+  std::string name = scanVariable(what, design.types.getRange(lo, hi), lo, at);
   pre.push_back(b.assign(b.ref(name, at), v, at));
   return b.ref(name, at);
 }
@@ -436,11 +463,7 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.table = it == refPlan.tables.end() ? nullptr : &it->second;
   int64_t n = t.table ? t.table->count : 0;
   NExpr *ref = expr(d->base(), f, pre);
-  Expr *root = d->base();
-  while (root->base())
-    root = root->base();
-  std::string what =
-      (root->kind == ExprKind::Name ? sanitize(root->name) : "ref") + "_deref";
+  std::string what = stemOf(d->base()) + "_deref";
   // A constant reference (ADR(x) stepped by constants) designates one
   // place, known now.
   if (auto *lit = llvm::dyn_cast<net::IntLit>(ref);
@@ -453,11 +476,8 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
     return t;
   }
   // NULL (0) or uninitialised: a run-time error naming the reference.
-  std::string name = unique(what);
-  b.addVar(name, design.types.getRange(1, std::max<int64_t>(n, 1)),
-           b.intLit(1, d->loc), d->loc);
-  if (resetNames.insert(name).second)
-    resets.push_back({name, b.intLit(1, d->loc)});
+  std::string name = scanVariable(
+      what, design.types.getRange(1, std::max<int64_t>(n, 1)), 1, d->loc);
   pre.push_back(b.assign(b.ref(name, d->loc), ref, d->loc));
   t.number = name;
   return t;
@@ -657,11 +677,7 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
     d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
   auto table = refPlan.tables.find(referenceKey(elem));
   int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
-  Expr *root = ptr;
-  while (root->base())
-    root = root->base();
-  std::string stem =
-      root->kind == ExprKind::Name ? sanitize(root->name) : "pointer";
+  std::string stem = stemOf(ptr);
   auto *kLit = llvm::dyn_cast<net::IntLit>(k);
   auto *dLit = llvm::dyn_cast<net::IntLit>(d);
   if (kLit && dLit && kLit->value >= 1 && kLit->value <= count) {
@@ -669,10 +685,7 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
     for (const RefFamily &fam : table->second.families) {
       if (kLit->value < fam.offset || kLit->value >= fam.offset + fam.size)
         continue;
-      int64_t block = 1;
-      if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
-        for (auto &[lo, hi] : fam.steps.back().dims)
-          block *= hi - lo + 1;
+      int64_t block = contiguousBlock(fam);
       int64_t pos = (kLit->value - fam.offset) % block + dLit->value;
       if (pos < 0 || pos >= block)
         refuse(at, "the pointer moves " + Twine(dLit->value) +
@@ -682,36 +695,27 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
     return b.intLit(kLit->value + dLit->value, at);
   }
   // NULL moves nowhere: a run-time error, as a dereference.
-  std::string number = unique(stem + "_deref");
-  b.addVar(number, design.types.getRange(1, std::max<int64_t>(count, 1)),
-           b.intLit(1, at), at);
-  if (resetNames.insert(number).second)
-    resets.push_back({number, b.intLit(1, at)});
+  std::string number = scanVariable(
+      stem + "_deref", design.types.getRange(1, std::max<int64_t>(count, 1)), 1,
+      at);
   pre.push_back(b.assign(b.ref(number, at), k, at));
   if (count == 0)
     return b.intLit(0, at);
-  std::string step = unique(stem + "_step");
-  b.addVar(step, design.types.getInt(64, true, net::Overflow::Wrap),
-           b.intLit(0, at), at);
-  if (resetNames.insert(step).second)
-    resets.push_back({step, b.intLit(0, at)});
+  std::string step =
+      scanVariable(stem + "_step",
+                   design.types.getInt(64, true, net::Overflow::Wrap), 0, at);
   pre.push_back(b.assign(b.ref(step, at), d, at));
   // The element moved to stays in the block of its family it started in
   // (an array's elements are contiguous; a family's blocks are not, and a
   // single place moves nowhere): checked per family.
   std::vector<net::IfArm> arms;
   for (const RefFamily &fam : table->second.families) {
-    int64_t block = 1;
-    if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
-      for (auto &[lo, hi] : fam.steps.back().dims)
-        block *= hi - lo + 1;
+    int64_t block = contiguousBlock(fam);
     DerefTargets t;
     t.deref = e;
     t.number = number;
-    std::string inBlock = unique(stem + "_element");
-    b.addVar(inBlock, design.types.getRange(0, block - 1), b.intLit(0, at), at);
-    if (resetNames.insert(inBlock).second)
-      resets.push_back({inBlock, b.intLit(0, at)});
+    std::string inBlock = scanVariable(
+        stem + "_element", design.types.getRange(0, block - 1), 0, at);
     NExpr *pos = b.binary(net::BinaryOp::Sub, b.ref(number, at),
                           b.intLit(fam.offset, at), at);
     if (block > 1)

@@ -674,14 +674,10 @@ bool Lowering::run() {
         name = sanitize(it->second.second->name);
         at = it->second.second->loc;
       }
+      // Each program's names are under its instance's (set above).
       bool oneScan = true;
-      for (ProgramRun &run : runs) {
+      for (ProgramRun &run : runs)
         oneScan &= run.scan == runs[0].scan;
-        auto it = instanceOf.find(run.pou);
-        run.prefix = sanitize(it != instanceOf.end() ? it->second.first->name
-                                                     : run.pou->name) +
-                     ".";
-      }
       if (oneScan)
         for (ProgramRun &run : runs) {
           run.scan = "scan";

@@ -139,7 +139,11 @@ private:
                         size_t dim, SMLoc at);
   NExpr *defaultValue(const PType *t, SMLoc at);
   std::string unique(std::string name);
+
+public:
   static std::string sanitize(StringRef name);
+
+private:
   void declareProgramVar(VarDecl *v);
   void declareInstance(const std::string &path, Pou *fb, Initializer *init);
   std::string staticVar(VarDecl *v, SMLoc at);
@@ -171,6 +175,8 @@ private:
   /// The number of places a reference to `target` may designate in any
   /// module (its NetIR type is 0..that).
   int64_t referenceCount(const PType *target);
+  std::string scanVariable(const std::string &stem, const net::Type *type,
+                           int64_t init, SMLoc at);
   NExpr *checkedRange(NExpr *v, int64_t lo, int64_t hi, const std::string &what,
                       Sink &pre, SMLoc at);
   NExpr *addressOf(Expr *call, Frame &f, Sink &pre);

@@ -65,12 +65,7 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
     } else if (p->type && p->type->isReference() &&
                p->type->refKind == RefKind::Reference) {
       // `fb(r := x)` binds the REFERENCE TO input r to x.
-      Expr *call = unit.make<Expr>(ExprKind::Call, a.value->loc);
-      call->name = "REF";
-      CallArg inner;
-      inner.value = a.value;
-      inner.loc = a.loc;
-      call->args.push_back(inner);
+      Expr *call = addressCall(a.value);
       a.value = call;
       if (expr(call))
         assignable(p->type, call, a.loc, "argument '" + p->name + "'");

@@ -67,6 +67,9 @@ private:
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
   const PType *derefType(Expr *e);
+  /// `REF(place)`, unchecked: how REF= and a REFERENCE TO input take
+  /// their place.
+  Expr *addressCall(Expr *place);
   /// A REFERENCE TO read or written is its target: `e` becomes `e^`.
   const PType *implicitDeref(Expr *e, const PType *t);
   /// The expression whose REFERENCE TO is meant itself (REF='s target,

@@ -115,6 +115,16 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
   return r;
 }
 
+Expr *Checker::addressCall(Expr *place) {
+  Expr *call = unit.make<Expr>(ExprKind::Call, place->loc);
+  call->name = "REF";
+  CallArg a;
+  a.value = place;
+  a.loc = place->loc;
+  call->args.push_back(a);
+  return call;
+}
+
 const PType *Checker::derefType(Expr *e) {
   // `r^` on a REFERENCE TO is explicit: r itself is dereferenced.
   Expr *outer = keepReference;
@@ -264,12 +274,7 @@ void Checker::referenceAssign(Stmt *s) {
       expr(x);
       return;
     }
-    Expr *call = unit.make<Expr>(ExprKind::Call, x->loc);
-    call->name = "REF";
-    CallArg a;
-    a.value = x;
-    a.loc = x->loc;
-    call->args.push_back(a);
+    Expr *call = addressCall(x);
     s->value = call;
     s->assignKind = AssignKind::Value;
     if (expr(call))
