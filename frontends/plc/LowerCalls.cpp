@@ -61,7 +61,10 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
              pre, call->loc);
   }
   size_t bodyStart = pre.size();
+  activeCalls[fn].push_back(prefix);
   enabledBody(fn, prefix, call, nf, pre);
+  if (activeCalls[fn].pop_back(), activeCalls[fn].empty())
+    activeCalls.erase(fn);
   if (fn->isLibrary)
     atCallSite(llvm::ArrayRef<NStmt *>(pre).drop_front(bodyStart), call->loc);
   for (CallArg &a : call->args)

@@ -124,10 +124,12 @@ Lowering::placeBases(VarDecl *v,
                      llvm::ArrayRef<ProgramRun> runs) {
   if (!v->owner)
     return {sanitize(v->name)};
-  if (v->section == VarSection::InOut || v->owner->kind == PouKind::Function)
+  if (v->section == VarSection::InOut)
     return {}; // refused where the REF is lowered
   if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
     return {"static." + sanitize(v->owner->name) + "." + sanitize(v->name)};
+  if (v->owner->kind == PouKind::Function)
+    return {functionPlace(v)};
   std::vector<std::string> bases;
   if (v->owner->kind == PouKind::Program) {
     for (const ProgramRun &run : runs)
@@ -140,6 +142,10 @@ Lowering::placeBases(VarDecl *v,
     for (const std::string &path : it->second)
       bases.push_back(path + "." + sanitize(v->name));
   return bases;
+}
+
+std::string Lowering::functionPlace(VarDecl *v) {
+  return "@" + sanitize(v->owner->name) + "." + sanitize(v->name);
 }
 
 std::optional<std::string> Lowering::inputImageName(const std::string &prefix,
@@ -235,6 +241,11 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           table.byKey[key] = table.families.size();
           RefFamily fam;
           fam.base = base;
+          if (v->owner && v->owner->kind == PouKind::Function) {
+            // One family for every call: the running call's variable.
+            fam.function = v->owner;
+            fam.base = sanitize(v->name);
+          }
           fam.steps = steps;
           fam.size = size;
           fam.offset = table.count + 1;
@@ -372,11 +383,6 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
     v = argRoot->var;
     rf = caller;
   }
-  if (v->owner && v->owner->kind == PouKind::Function &&
-      v->section != VarSection::Stat)
-    refuse(at, call->name + " of '" + v->name + "', a variable of function '" +
-                   v->owner->name +
-                   "' (it lives only during a call), is not supported");
   std::vector<Expr *> chain;
   for (auto &[x, fr] : selectors) {
     chain.push_back(x);
@@ -390,6 +396,8 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
     base = sanitize(v->name);
   else if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
     base = "static." + sanitize(v->owner->name) + "." + sanitize(v->name);
+  else if (v->owner->kind == PouKind::Function)
+    base = functionPlace(v);
   else if (v->owner->kind == PouKind::Program)
     base =
         inputImageName(rf->prefix, v).value_or(rf->prefix + sanitize(v->name));
@@ -469,10 +477,15 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   if (auto *lit = llvm::dyn_cast<net::IntLit>(ref);
       lit && lit->value >= 1 && lit->value <= n) {
     t.constant = lit->value;
-    for (const RefFamily &fam : t.table->families)
-      if (lit->value >= fam.offset && lit->value < fam.offset + fam.size)
-        t.only = &fam;
     t.number = what;
+    for (const RefFamily &fam : t.table->families)
+      if (lit->value >= fam.offset && lit->value < fam.offset + fam.size) {
+        if (fam.function && !activeCalls.count(fam.function))
+          refuse(d->loc, "a reference to a variable of function '" +
+                             fam.function->name +
+                             "' is dereferenced outside its call");
+        t.live.push_back(&fam);
+      }
     return t;
   }
   // NULL (0) or uninitialised: a run-time error naming the reference.
@@ -480,6 +493,28 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
       what, design.types.getRange(1, std::max<int64_t>(n, 1)), 1, d->loc);
   pre.push_back(b.assign(b.ref(name, d->loc), ref, d->loc));
   t.number = name;
+  if (!t.table)
+    return t;
+  // A function's variables exist only while a call of it runs: a
+  // reference to them dereferenced elsewhere dangles, a run-time error.
+  NExpr *dangling = nullptr;
+  for (const RefFamily &fam : t.table->families) {
+    if (!fam.function || activeCalls.count(fam.function)) {
+      t.live.push_back(&fam);
+      continue;
+    }
+    NExpr *test = familyTest(fam, t);
+    dangling =
+        dangling ? b.binary(net::BinaryOp::Or, dangling, test, d->loc) : test;
+  }
+  if (dangling) {
+    std::string check = scanVariable(stemOf(d->base()) + "_dangling",
+                                     design.types.getRange(1, 1), 1, d->loc);
+    pre.push_back(b.assign(
+        b.ref(check, d->loc),
+        b.cond(dangling, b.intLit(0, d->loc), b.intLit(1, d->loc), d->loc),
+        d->loc));
+  }
   return t;
 }
 
@@ -487,6 +522,8 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
   SMLoc at = t.deref->loc;
   std::string name = fam.base;
+  if (fam.function)
+    name = activeCalls[fam.function].back() + fam.base;
   NExpr *x = nullptr;
   auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
   // Row-major: the element number within the family, split per dimension.
@@ -570,26 +607,25 @@ NExpr *Lowering::familyTest(const RefFamily &fam, const DerefTargets &t) {
 NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
   DerefTargets t = derefTargets(e, f, pre);
   SMLoc at = e->loc;
-  if (!t.table || t.table->families.empty()) {
-    // Nothing of its type has its address taken: the reference is NULL
-    // whenever this runs, which the copy above reports.
+  if (t.live.empty()) {
+    // Nothing of its type has its address taken (or only variables of
+    // functions not running here): the reference is NULL or dangling
+    // whenever this runs, which the checks above report.
     if (NExpr *v = defaultValue(e->type, at))
       return v;
     refuse(at, "a reference to " + t.deref->type->str() +
                    " is dereferenced, but no REF or ADR of a " +
-                   t.deref->type->str() + " gives it a value");
+                   t.deref->type->str() + " gives it a value here");
   }
-  if (t.only)
-    return familyPlace(*t.only, t, e, f, pre);
-  auto &fams = t.table->families;
+  auto &fams = t.live;
   if (fams.size() == 1)
-    return familyPlace(fams[0], t, e, f, pre);
+    return familyPlace(*fams[0], t, e, f, pre);
   const net::Type *nt = netType(e->type, at, "a dereferenced value");
   if (nt->isScalar() || nt->isString()) {
-    NExpr *r = familyPlace(fams.back(), t, e, f, pre);
+    NExpr *r = familyPlace(*fams.back(), t, e, f, pre);
     for (size_t i = fams.size() - 1; i-- > 0;)
-      r = b.cond(familyTest(fams[i], t), familyPlace(fams[i], t, e, f, pre), r,
-                 at);
+      r = b.cond(familyTest(*fams[i], t), familyPlace(*fams[i], t, e, f, pre),
+                 r, at);
     return r;
   }
   // An array or a structure: copied whole from the place designated.
@@ -598,11 +634,12 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
   std::vector<net::IfArm> arms;
   for (size_t i = 0; i + 1 < fams.size(); ++i) {
     Sink body{
-        b.assign(b.ref(value, at), familyPlace(fams[i], t, e, f, pre), at)};
-    arms.push_back({familyTest(fams[i], t), design.copy(llvm::ArrayRef(body))});
+        b.assign(b.ref(value, at), familyPlace(*fams[i], t, e, f, pre), at)};
+    arms.push_back(
+        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef(body))});
   }
   Sink last{
-      b.assign(b.ref(value, at), familyPlace(fams.back(), t, e, f, pre), at)};
+      b.assign(b.ref(value, at), familyPlace(*fams.back(), t, e, f, pre), at)};
   pre.push_back(b.ifStmt(arms, true, last, at));
   return b.ref(value, at);
 }
@@ -610,12 +647,9 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
 NExpr *Lowering::placeThroughReference(Expr *e, Frame &f, Sink &pre,
                                        StringRef use) {
   DerefTargets t = derefTargets(e, f, pre);
-  if (t.only)
-    return familyPlace(*t.only, t, e, f, pre);
-  if (t.table && t.table->families.size() == 1)
-    return familyPlace(t.table->families[0], t, e, f, pre);
-  refuse(e->loc, "a dereference that may designate " +
-                     Twine(t.table ? t.table->families.size() : 0) +
+  if (t.live.size() == 1)
+    return familyPlace(*t.live[0], t, e, f, pre);
+  refuse(e->loc, "a dereference that may designate " + Twine(t.live.size()) +
                      " different variables is " + use +
                      " here; only an assignment writes through it");
 }
@@ -624,14 +658,12 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
                                      Expr *valueExpr, Frame &f, Sink &out,
                                      SMLoc at) {
   DerefTargets t = derefTargets(target, f, out);
-  if (!t.table || t.table->families.empty()) {
-    // The copy above reports the NULL reference.
-    return;
-  }
-  auto &fams = t.table->families;
-  if (t.only || fams.size() == 1) {
-    assign(familyPlace(t.only ? *t.only : fams[0], t, target, f, out), value,
-           target->type, valueExpr, out, at);
+  auto &fams = t.live;
+  if (fams.empty())
+    return; // the checks above report the NULL or dangling reference
+  if (fams.size() == 1) {
+    assign(familyPlace(*fams[0], t, target, f, out), value, target->type,
+           valueExpr, out, at);
     return;
   }
   if (!llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value)) {
@@ -644,12 +676,13 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
   std::vector<net::IfArm> arms;
   for (size_t i = 0; i + 1 < fams.size(); ++i) {
     Sink body;
-    NExpr *place = familyPlace(fams[i], t, target, f, out);
+    NExpr *place = familyPlace(*fams[i], t, target, f, out);
     assign(place, value, target->type, valueExpr, body, at);
-    arms.push_back({familyTest(fams[i], t), design.copy(llvm::ArrayRef(body))});
+    arms.push_back(
+        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef(body))});
   }
   Sink last;
-  assign(familyPlace(fams.back(), t, target, f, out), value, target->type,
+  assign(familyPlace(*fams.back(), t, target, f, out), value, target->type,
          valueExpr, last, at);
   out.push_back(b.ifStmt(arms, true, last, at));
 }
@@ -738,7 +771,7 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
   Expr *instance = call->operands[0];
   Pou *fb = instance->type->fb;
   DerefTargets t = derefTargets(instance, f, out);
-  if (!t.table || t.table->families.empty())
+  if (t.live.empty())
     return; // the reference is NULL whenever this runs: reported above
   auto pathOf = [&](const RefFamily &fam) {
     auto *ref = llvm::dyn_cast<net::Ref>(familyPlace(fam, t, instance, f, out));
@@ -746,20 +779,20 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
       refuse(call->loc, "internal: a function block instance in an element");
     return ref->name.str();
   };
-  auto &fams = t.table->families;
-  if (t.only || fams.size() == 1) {
-    instanceCall(call, fb, pathOf(t.only ? *t.only : fams[0]), f, out);
+  auto &fams = t.live;
+  if (fams.size() == 1) {
+    instanceCall(call, fb, pathOf(*fams[0]), f, out);
     return;
   }
   std::vector<net::IfArm> arms;
   for (size_t i = 0; i + 1 < fams.size(); ++i) {
     Sink body;
-    instanceCall(call, fb, pathOf(fams[i]), f, body);
+    instanceCall(call, fb, pathOf(*fams[i]), f, body);
     arms.push_back(
-        {familyTest(fams[i], t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef<NStmt *>(body))});
   }
   Sink last;
-  instanceCall(call, fb, pathOf(fams.back()), f, last);
+  instanceCall(call, fb, pathOf(*fams.back()), f, last);
   out.push_back(b.ifStmt(arms, true, last, call->loc));
 }
 

@@ -88,6 +88,9 @@ struct RefStep {
 /// offset + size - 1: `base` (a NetIR variable) and the steps from it.
 struct RefFamily {
   std::string base;
+  /// Set for a function's variable: `base` is its name in the call running
+  /// where the reference is dereferenced (Lowering::activeCalls).
+  Pou *function = nullptr;
   std::vector<RefStep> steps;
   int64_t offset = 1, size = 1;
 };
@@ -184,10 +187,17 @@ private:
     Expr *deref = nullptr;
     const RefTable *table = nullptr;
     std::string number; // the reference, checked to be 1..n
-    /// A reference known at translation, and the family it designates.
+    /// A reference known at translation.
     std::optional<int64_t> constant;
-    const RefFamily *only = nullptr;
+    /// The families it may designate here (a function's variables only
+    /// while a call of it runs).
+    std::vector<const RefFamily *> live;
   };
+  /// The family key of a function's variable (one for all its calls).
+  static std::string functionPlace(VarDecl *v);
+  /// The prefixes of the calls of each function being lowered, innermost
+  /// last.
+  std::map<Pou *, std::vector<std::string>> activeCalls;
   NExpr *numberOf(const DerefTargets &t, SMLoc at);
   bool throughReference(Expr *e);
   DerefTargets derefTargets(Expr *e, Frame &f, Sink &pre);
