@@ -238,6 +238,7 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                           ") through a reference: netlift inlines every call "
                           "and does not model recursion");
   instancesLowering.push_back(path);
+  size_t knownBefore = knownConstants.size();
   InstanceUse &use = instanceUses[path];
   ++use.calls;
   Frame nf;
@@ -278,6 +279,11 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
     }
     assign(b.ref(member, a.loc), v, p->type, a.value, out, a.loc);
     noteClockBound(member, a.value, f, a.loc);
+    // A reference input given a constant (REF(x)) and never written in
+    // the block designates x throughout this call: no selection.
+    if (auto *lit = llvm::dyn_cast<net::IntLit>(v);
+        lit && p->type->isReference() && !written.count(p))
+      knownConstants.push_back({member, lit->value});
   }
   for (VarDecl *v : fb->vars)
     if (v->edge) {
@@ -296,6 +302,7 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
         out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
                                init, v->loc));
   enabledBody(fb, path + ".", call, nf, out);
+  knownConstants.resize(knownBefore);
   for (CallArg &a : call->args)
     if (a.isOutput) {
       std::string member = path + "." + sanitize(a.name);

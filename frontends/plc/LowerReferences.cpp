@@ -471,6 +471,12 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.table = it == refPlan.tables.end() ? nullptr : &it->second;
   int64_t n = t.table ? t.table->count : 0;
   NExpr *ref = expr(d->base(), f, pre);
+  if (auto *r = llvm::dyn_cast<net::Ref>(ref))
+    for (auto it = knownConstants.rbegin(); it != knownConstants.rend(); ++it)
+      if (r->name == it->first) {
+        ref = b.intLit(it->second, d->loc);
+        break;
+      }
   std::string what = stemOf(d->base()) + "_deref";
   // A constant reference (ADR(x) stepped by constants) designates one
   // place, known now.

@@ -551,10 +551,48 @@ void Lowering::runtimeFor(Stmt *s, Frame &f, Sink &out,
 //===----------------------------------------------------------------------===//
 
 static void writtenBy(Expr *target, std::set<VarDecl *> &w) {
-  while (target && target->kind != ExprKind::Name)
+  // Through a reference the place written is what it designates (counted
+  // where its address is taken), not the reference.
+  while (target && target->kind != ExprKind::Name) {
+    if (target->kind == ExprKind::Deref)
+      return;
     target = target->base();
+  }
   if (target && target->var)
     w.insert(target->var);
+}
+
+/// The POU a call runs: a function, or the type of the instance called
+/// (by name or through a reference).
+static Pou *calledPou(Expr *c) {
+  if (c->callee)
+    return c->callee;
+  if (c->var && c->var->type && c->var->type->kind == PTypeKind::FunctionBlock)
+    return c->var->type->fb;
+  if (!c->operands.empty() && c->operands[0]->type &&
+      c->operands[0]->type->kind == PTypeKind::FunctionBlock)
+    return c->operands[0]->type->fb;
+  return nullptr;
+}
+
+void netlift::plc::detail::collectInOutWritten(StmtList &l,
+                                               std::set<VarDecl *> &w) {
+  std::function<void(Expr *)> inOutArguments = [&](Expr *e) {
+    if (!e)
+      return;
+    if (e->kind == ExprKind::Call)
+      if (Pou *callee = calledPou(e))
+        for (CallArg &a : e->args)
+          if (VarDecl *p = callee->find(a.name);
+              p && p->section == VarSection::InOut && !a.isOutput)
+            writtenBy(a.value, w);
+    for (Expr *o : e->operands)
+      inOutArguments(o);
+    for (CallArg &a : e->args)
+      inOutArguments(a.value);
+  };
+  forEachStmt(
+      l, [](Stmt *) {}, inOutArguments);
 }
 
 void netlift::plc::detail::collectWritten(StmtList &l, std::set<VarDecl *> &w) {
@@ -566,6 +604,8 @@ void netlift::plc::detail::collectWritten(StmtList &l, std::set<VarDecl *> &w) {
         if (a.isOutput)
           writtenBy(a.value, w);
   });
+  // An argument bound to a VAR_IN_OUT is written by the callee.
+  collectInOutWritten(l, w);
 }
 
 void Lowering::collectAssignments(StmtList &l) {

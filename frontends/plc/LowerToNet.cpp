@@ -571,8 +571,11 @@ bool Lowering::run() {
     for (Pou *p : unit.pous)
       collectAssignments(p->body);
     // Variables written anywhere are not constants.
-    for (Pou *p : unit.pous)
+    for (Pou *p : unit.pous) {
       collectWritten(p->body, written);
+      // Written by a callee: no bound from the values assigned directly.
+      collectInOutWritten(p->body, writtenOtherwise);
+    }
     markAddressTaken();
 
     // The tick.

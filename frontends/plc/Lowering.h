@@ -279,6 +279,9 @@ private:
   /// The call `call` of the instance of `fb` at `path`.
   void instanceCall(Expr *call, Pou *fb, const std::string &path, Frame &f,
                     Sink &out);
+  /// Reference inputs known to hold a constant while the body of the
+  /// call that gave it is lowered (innermost last).
+  std::vector<std::pair<std::string, int64_t>> knownConstants;
   /// The instances whose bodies are being lowered, outermost first.
   std::vector<std::string> instancesLowering;
   /// `r^(...)`: the call of the instance r designates.
@@ -430,6 +433,9 @@ private:
 /// The variables a statement list assigns (through fields and indices),
 /// nested statements included.
 void collectWritten(StmtList &l, std::set<VarDecl *> &w);
+/// The variables a statement list binds to VAR_IN_OUT parameters (the
+/// callee may write them).
+void collectInOutWritten(StmtList &l, std::set<VarDecl *> &w);
 
 } // namespace netlift::plc::detail
 
