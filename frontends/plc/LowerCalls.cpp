@@ -279,10 +279,12 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
     }
     assign(b.ref(member, a.loc), v, p->type, a.value, out, a.loc);
     noteClockBound(member, a.value, f, a.loc);
-    // A reference input given a constant (REF(x)) and never written in
-    // the block designates x throughout this call: no selection.
+    // A reference input given a constant (REF(x)), never written in the
+    // block nor through a reference, designates x throughout this call:
+    // no selection.
     if (auto *lit = llvm::dyn_cast<net::IntLit>(v);
-        lit && p->type->isReference() && !written.count(p))
+        lit && p->type->isReference() && !written.count(p) &&
+        !addressTaken.count(member))
       knownConstants.push_back({member, lit->value});
   }
   for (VarDecl *v : fb->vars)

@@ -271,11 +271,13 @@ void Lowering::adoptReferencePlan(ReferencePlan plan) {
     for (RefFamily &fam : table.families) {
       std::string name = fam.base;
       externallyRead.insert(name);
+      addressTaken.insert(name);
       for (const RefStep &s : fam.steps) {
         if (s.kind != RefStep::Member)
           break;
         name += "." + sanitize(s.name);
         externallyRead.insert(name);
+        addressTaken.insert(name);
       }
     }
 }

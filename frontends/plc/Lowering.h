@@ -282,6 +282,8 @@ private:
   /// Reference inputs known to hold a constant while the body of the
   /// call that gave it is lowered (innermost last).
   std::vector<std::pair<std::string, int64_t>> knownConstants;
+  /// The variables (and instance members) a reference may designate.
+  std::set<std::string> addressTaken;
   /// The instances whose bodies are being lowered, outermost first.
   std::vector<std::string> instancesLowering;
   /// `r^(...)`: the call of the instance r designates.
