@@ -249,7 +249,7 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
     // now, in the instance being declared.
     Frame here;
     here.pou = v->owner;
-    here.prefix = v->owner ? declaringPrefix : "";
+    here.prefix = declaringPrefix; // a structure field's too
     Sink pre;
     NExpr *r = expr(e, here, pre);
     if (!pre.empty() || !llvm::isa<net::IntLit>(r))

@@ -69,6 +69,18 @@ static void forEachAddressTaken(Unit &unit,
     forEachAddressTaken(none, c->globals, fn);
 }
 
+/// The dereference a place expression reads or writes through, if the
+/// selectors above it are fields and indices only.
+static Expr *derefBelow(Expr *e) {
+  for (; e; e = e->base()) {
+    if (e->kind == ExprKind::Deref)
+      return e;
+    if (e->kind != ExprKind::Field && e->kind != ExprKind::Index)
+      return nullptr;
+  }
+  return nullptr;
+}
+
 /// The variable at the root of a place expression, and whether a
 /// dereference lies on the way.
 static Expr *placeRoot(Expr *e, bool &throughDeref) {
@@ -240,6 +252,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
             continue;
           table.byKey[key] = table.families.size();
           RefFamily fam;
+          fam.key = key;
           fam.base = base;
           if (v->owner && v->owner->kind == PouKind::Function) {
             // One family for every call: the running call's variable.
@@ -253,14 +266,59 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           table.families.push_back(std::move(fam));
         }
       };
+  std::vector<Expr *> throughReferences;
   forEachAddressTaken(unit, [&](Expr *place) {
     bool throughDeref;
     Expr *root = placeRoot(place, throughDeref);
-    if (!root || !root->var || throughDeref || !place->type)
-      return; // REF(r^) is r; the rest is refused where it is lowered
-    addPlace(root->var, familySteps(placeSelectors(place)),
-             plan.tables[referenceKey(place->type)], 0);
+    if (!place->type || place->kind == ExprKind::Deref)
+      return; // REF(r^) is r
+    if (throughDeref) {
+      throughReferences.push_back(place);
+      return;
+    }
+    if (root && root->var)
+      addPlace(root->var, familySteps(placeSelectors(place)),
+               plan.tables[referenceKey(place->type)], 0);
   });
+  // REF(r^.f): the field f of every place r may designate, itself
+  // perhaps designated through another such REF: to a fixpoint.
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (Expr *place : throughReferences) {
+      Expr *d = derefBelow(place);
+      if (!d)
+        continue; // refused where it is lowered
+      std::vector<Expr *> above;
+      for (Expr *x = place; x != d; x = x->base())
+        above.push_back(x);
+      std::reverse(above.begin(), above.end());
+      std::vector<RefStep> steps = familySteps(above);
+      int64_t extent = 1;
+      for (const RefStep &s : steps)
+        for (auto &[lo, hi] : s.dims)
+          extent *= hi - lo + 1;
+      auto from = plan.tables.find(referenceKey(d->type));
+      if (from == plan.tables.end())
+        continue;
+      RefTable &table = plan.tables[referenceKey(place->type)];
+      // `table` may be `from` (a list's REF(r^.next^)): copy first.
+      std::vector<RefFamily> sources = from->second.families;
+      for (const RefFamily &source : sources) {
+        std::string key = familyKey(source.key, steps);
+        if (table.byKey.count(key))
+          continue;
+        grew = true;
+        table.byKey[key] = table.families.size();
+        RefFamily fam = source;
+        fam.key = key;
+        fam.steps.insert(fam.steps.end(), steps.begin(), steps.end());
+        fam.size = source.size * extent;
+        fam.offset = table.count + 1;
+        table.count += fam.size;
+        table.families.push_back(std::move(fam));
+      }
+    }
+  }
   return plan;
 }
 
@@ -356,8 +414,7 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   bool throughDeref;
   Expr *root = placeRoot(place, throughDeref);
   if (throughDeref)
-    refuse(at, call->name + " of a field or element reached through a "
-                            "reference is not supported");
+    return addressThroughReference(call, f, pre);
   // The selectors from the variable to the place, each with the frame its
   // indices are computed in: a VAR_IN_OUT is the caller's argument, so
   // the argument's selectors come first, in the caller's frame.
@@ -415,11 +472,20 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   if (!fam)
     refuse(at, "internal: no place planned for " + call->name + "(" +
                    familyKey(base, steps) + ")");
-  // Its number: the family's first, plus the element's row-major offset
-  // (its constant part apart).
+  // Its number: the family's first, plus the element's row-major offset.
+  auto [constant, number] =
+      elementOffset(selectors, sanitize(v->name) + "_index", pre, at);
+  constant += fam->offset;
+  if (!number)
+    return b.intLit(constant, at);
+  return b.binary(net::BinaryOp::Add, number, b.intLit(constant, at), at);
+}
+
+std::pair<int64_t, NExpr *>
+Lowering::elementOffset(llvm::ArrayRef<std::pair<Expr *, Frame *>> selectors,
+                        const std::string &what, Sink &pre, SMLoc at) {
   int64_t constant = 0;
   NExpr *number = nullptr;
-  std::string what = sanitize(v->name) + "_index";
   for (auto &[x, fr] : selectors) {
     if (x->kind != ExprKind::Index)
       continue;
@@ -440,27 +506,66 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
       number = number ? b.binary(net::BinaryOp::Add, number, rel, at) : rel;
     }
   }
-  constant += fam->offset;
-  if (!number)
-    return b.intLit(constant, at);
-  return b.binary(net::BinaryOp::Add, number, b.intLit(constant, at), at);
+  return {constant, number};
+}
+
+NExpr *Lowering::addressThroughReference(Expr *call, Frame &f, Sink &pre) {
+  Expr *place = call->args[0].value;
+  SMLoc at = call->loc;
+  Expr *d = derefBelow(place);
+  if (!d)
+    refuse(at, call->name + " of a place reached through a reference and "
+                            "then a bit or a call is not supported");
+  std::vector<Expr *> above;
+  for (Expr *x = place; x != d; x = x->base())
+    above.push_back(x);
+  std::reverse(above.begin(), above.end());
+  std::vector<std::pair<Expr *, Frame *>> selectors;
+  int64_t extent = 1; // the elements each designated place spans
+  for (Expr *x : above) {
+    selectors.push_back({x, &f});
+    if (x->kind == ExprKind::Index)
+      for (auto &[lo, hi] : x->base()->type->dims)
+        extent *= hi - lo + 1;
+  }
+  std::vector<RefStep> steps = familySteps(above);
+  DerefTargets t = derefTargets(place, f, pre);
+  auto [constant, offset] =
+      elementOffset(selectors, stemOf(d->base()) + "_index", pre, at);
+  auto table = refPlan.tables.find(referenceKey(place->type));
+  // In each family the reference may designate, the same selection: a
+  // family of its own (planned), whose elements follow the designated
+  // place's, each spanning `extent`.
+  NExpr *r = nullptr;
+  for (size_t i = t.live.size(); i-- > 0;) {
+    const RefFamily &from = *t.live[i];
+    const RefFamily *to = nullptr;
+    if (table != refPlan.tables.end())
+      if (auto it = table->second.byKey.find(familyKey(from.key, steps));
+          it != table->second.byKey.end())
+        to = &table->second.families[it->second];
+    if (!to)
+      refuse(at, "internal: no place planned for " + call->name + "(" +
+                     familyKey(from.key, steps) + ")");
+    NExpr *n = b.intLit(to->offset + constant, at);
+    if (from.size > 1 || offset) {
+      NExpr *rel = b.binary(net::BinaryOp::Sub, numberOf(t, at),
+                            b.intLit(from.offset, at), at);
+      NExpr *within =
+          b.binary(net::BinaryOp::Mul, rel, b.intLit(extent, at), at);
+      if (offset)
+        within = b.binary(net::BinaryOp::Add, within, offset, at);
+      n = b.binary(net::BinaryOp::Add, within, n, at);
+    }
+    r = r ? b.cond(familyTest(from, t), n, r, at) : n;
+  }
+  // NULL or dangling: the checks made by derefTargets have reported it.
+  return r ? r : b.intLit(0, at);
 }
 
 //===----------------------------------------------------------------------===//
 // Dereferences
 //===----------------------------------------------------------------------===//
-
-/// The dereference a place expression reads or writes through, if the
-/// selectors above it are fields and indices only.
-static Expr *derefBelow(Expr *e) {
-  for (; e; e = e->base()) {
-    if (e->kind == ExprKind::Deref)
-      return e;
-    if (e->kind != ExprKind::Field && e->kind != ExprKind::Index)
-      return nullptr;
-  }
-  return nullptr;
-}
 
 bool Lowering::throughReference(Expr *e) { return derefBelow(e) != nullptr; }
 

@@ -87,6 +87,7 @@ struct RefStep {
 /// Places of one type a reference may designate, numbered offset ..
 /// offset + size - 1: `base` (a NetIR variable) and the steps from it.
 struct RefFamily {
+  std::string key; // base and steps, as familyKey spells them
   std::string base;
   /// Set for a function's variable: `base` is its name in the call running
   /// where the reference is dereferenced (Lowering::activeCalls).
@@ -183,6 +184,13 @@ private:
   NExpr *checkedRange(NExpr *v, int64_t lo, int64_t hi, const std::string &what,
                       Sink &pre, SMLoc at);
   NExpr *addressOf(Expr *call, Frame &f, Sink &pre);
+  /// REF(r^.f[i]): in the family r designates, the same selection.
+  NExpr *addressThroughReference(Expr *call, Frame &f, Sink &pre);
+  /// The row-major offset of the element the index selectors choose (a
+  /// constant part, and the rest or null), each index checked.
+  std::pair<int64_t, NExpr *>
+  elementOffset(llvm::ArrayRef<std::pair<Expr *, Frame *>> selectors,
+                const std::string &what, Sink &pre, SMLoc at);
   struct DerefTargets {
     Expr *deref = nullptr;
     const RefTable *table = nullptr;
