@@ -93,6 +93,8 @@ bool netlift::net::isStringBuiltin(Builtin b) {
   case Builtin::Delete:
   case Builtin::Replace:
   case Builtin::Find:
+  case Builtin::Code:
+  case Builtin::WithCode:
   case Builtin::FormatDuration:
   case Builtin::FormatDate:
   case Builtin::FormatTod:

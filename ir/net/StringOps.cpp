@@ -100,6 +100,28 @@ net::applyStringBuiltin(Builtin fn, llvm::ArrayRef<StringValue> strs,
     out = a.substr(0, size_t(p)) + strs[1] + a.substr(size_t(p));
     return std::nullopt;
   }
+  case Builtin::WithCode: {
+    int64_t p = ints[0], c = ints[1];
+    if (p < 1)
+      return "with_code(): position " + std::to_string(p) + " is below 1";
+    if (c < 0 || c > 0xffff)
+      return "with_code(): code " + std::to_string(c) + " is outside 0..65535";
+    if (c == 0) { // a terminator: the string ends before p
+      out = uint64_t(p) <= a.size() ? a.substr(0, size_t(p - 1)) : a;
+      return std::nullopt;
+    }
+    if (uint64_t(p) > a.size() + 1)
+      return "with_code(): position " + std::to_string(p) +
+             " is beyond the terminator (position " +
+             std::to_string(a.size() + 1) + ") of a string of length " +
+             std::to_string(a.size());
+    out = a;
+    if (uint64_t(p) == a.size() + 1)
+      out.push_back(char16_t(c));
+    else
+      out[size_t(p - 1)] = char16_t(c);
+    return std::nullopt;
+  }
   case Builtin::Replace: {
     if (auto err = checkSpan("replace", a.size(), ints[0], ints[1]))
       return err;
@@ -127,6 +149,14 @@ std::optional<std::string> net::parseTimeText(Builtin fn, const StringValue &s,
             : want == IecTimeKind::Date      ? "date"
             : want == IecTimeKind::TimeOfDay ? "time of day"
                                              : "date and time");
+  return std::nullopt;
+}
+
+std::optional<std::string> net::codeAt(const StringValue &s, int64_t p,
+                                       int64_t &code) {
+  if (p < 1)
+    return "code(): position " + std::to_string(p) + " is below 1";
+  code = uint64_t(p) <= s.size() ? int64_t(s[size_t(p - 1)]) : 0;
   return std::nullopt;
 }
 

@@ -1,10 +1,10 @@
 //===- StringOps.h - what NetIR's string functions compute ------*- C++ -*-===//
 //
 // The values of NetIR's string built-ins (len, left, right, mid, concat,
-// insert, delete, replace, find), of comparisons between strings, and of
-// conversions between strings and numbers, on values held as sequences of
-// 16-bit code units (a `string[n]` uses only 0..255). The rules are
-// IEC 61131-3's (positions count from 1; docs/netir.md, "Strings" writes
+// insert, delete, replace, find, code, with_code), of comparisons between
+// strings, and of conversions between strings and numbers, on values held as
+// sequences of 16-bit code units (a `string[n]` uses only 0..255). The rules
+// are IEC 61131-3's (positions count from 1; docs/netir.md, "Strings" writes
 // down where the standard leaves a choice); a position or length outside
 // them is an error the caller reports with its location. Also the text of a
 // string literal in NetIR, read and written. One definition for every
@@ -41,6 +41,9 @@ std::optional<std::string> parseTimeText(Builtin fn, const StringValue &s,
                                          int64_t &ns);
 /// find(a, b) and len(s), which give integers.
 int64_t findString(const StringValue &a, const StringValue &b);
+/// code(s, p): the p-th code unit of s, 0 past its end; an error for p < 1.
+std::optional<std::string> codeAt(const StringValue &s, int64_t p,
+                                  int64_t &code);
 /// `a op b` for a comparison: code unit by code unit, a proper prefix
 /// before the longer string.
 bool compareStrings(BinaryOp op, const StringValue &a, const StringValue &b);

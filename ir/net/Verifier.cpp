@@ -880,7 +880,8 @@ const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
   // Operand kinds per built-in: 's' a string, 'i' an integer.
   StringRef shape = llvm::StringSwitch<StringRef>(spelling(c->fn))
                         .Case("len", "s")
-                        .Cases("left", "right", "si")
+                        .Cases("left", "right", "code", "si")
+                        .Case("with_code", "sii")
                         .Cases("mid", "delete", "sii")
                         .Cases("concat", "find", "ss")
                         .Case("insert", "ssi")
@@ -912,8 +913,8 @@ const Type *ModuleVerifier::checkStringCall(CallExpr *c) {
     return c->type = types.getString(uint32_t(std::min<uint64_t>(len, 65535)),
                                      both->isWideString());
   }
-  if (c->fn == Builtin::Len || shape == "s")
-    return c->type = types.getInteger(); // len, parse_*
+  if (c->fn == Builtin::Len || c->fn == Builtin::Code || shape == "s")
+    return c->type = types.getInteger(); // len, code, parse_*
   if (shape == "i") // format_*: the longest, LTIME's, is 35 characters
     return c->type = types.getString(40, false);
   return c->type = x->type; // left, right, mid, delete: no longer than s

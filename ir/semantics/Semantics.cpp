@@ -249,6 +249,12 @@ struct Semantics::Impl {
       StringValue out;
       if (auto err = applyStringBuiltin(c->fn, strs, ints, out))
         fail(c, "'" + exprToString(c) + "': " + *err);
+      // A character written over the terminator of a full string would
+      // not fit it: memory past the string.
+      if (c->fn == Builtin::WithCode && out.size() > c->args[0]->type->maxLen)
+        fail(c, "'" + exprToString(c) + "': writes past the " +
+                    std::to_string(c->args[0]->type->maxLen) +
+                    " characters of the string");
       return out;
     }
     case ExprKind::Ref:
@@ -271,6 +277,12 @@ struct Semantics::Impl {
       return int64_t(evalStr(c->args[0], v).size());
     if (c->fn == Builtin::Find)
       return findString(evalStr(c->args[0], v), evalStr(c->args[1], v));
+    if (c->fn == Builtin::Code) {
+      int64_t code = 0;
+      if (auto err = codeAt(evalStr(c->args[0], v), eval(c->args[1], v), code))
+        fail(c, "'" + exprToString(c) + "': " + *err);
+      return code;
+    }
     if (isStringBuiltin(c->fn) && c->args[0]->type->isString()) {
       // parse_duration, parse_date, parse_tod, parse_dt
       StringValue text = evalStr(c->args[0], v);
