@@ -27,7 +27,7 @@ using namespace netlift::plc::detail;
 // Planning: which places each reference type can designate
 //===----------------------------------------------------------------------===//
 
-/// Every REF/ADR argument in `l`, nested expressions included, and in the
+/// Every REF/ADR call in `l`, nested expressions included, and in the
 /// initial values of `vars`.
 static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
                                 llvm::function_ref<void(Expr *)> fn) {
@@ -36,7 +36,7 @@ static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
       return;
     if (e->kind == ExprKind::Call && !e->callee && !e->var &&
         (e->name == "REF" || e->name == "ADR") && e->args.size() == 1)
-      fn(e->args[0].value);
+      fn(e);
     for (Expr *o : e->operands)
       walk(o);
     for (CallArg &a : e->args)
@@ -120,6 +120,24 @@ static std::vector<RefStep> familySteps(llvm::ArrayRef<Expr *> selectors) {
     steps.push_back(std::move(s));
   }
   return steps;
+}
+
+/// What an ADR takes the address of: the place, or (ADR of a STRING
+/// where a POINTER TO BYTE or to an ARRAY OF BYTE is wanted, Sema's
+/// "BYTES") the bytes the string is held in.
+static RefView viewOf(Expr *call) {
+  RefView view;
+  if (call->typeName != "BYTES")
+    return view;
+  const PType *target = call->type->elem;
+  view.bytes = int64_t(baseOf(call->args[0].value->type)->strLen) + 1;
+  if (target->kind == PTypeKind::Array) {
+    view.kind = RefView::ByteArray;
+    view.lo = target->dims[0].first;
+  } else {
+    view.kind = RefView::Bytes;
+  }
+  return view;
 }
 
 static std::string familyKey(const std::string &base,
@@ -227,9 +245,10 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         p->body, [](Stmt *) {}, calls);
 
   ReferencePlan plan;
-  std::function<void(VarDecl *, std::vector<RefStep>, RefTable &, unsigned)>
+  std::function<void(VarDecl *, std::vector<RefStep>, RefTable &, RefView,
+                     unsigned)>
       addPlace = [&](VarDecl *v, std::vector<RefStep> steps, RefTable &table,
-                     unsigned depth) {
+                     RefView view, unsigned depth) {
         if (v->section == VarSection::InOut) {
           for (Expr *arg : inOutArguments[v]) {
             bool throughDeref;
@@ -238,22 +257,23 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
               continue; // refused where the REF is lowered
             std::vector<RefStep> outer = familySteps(placeSelectors(arg));
             outer.insert(outer.end(), steps.begin(), steps.end());
-            addPlace(root->var, outer, table, depth + 1);
+            addPlace(root->var, outer, table, view, depth + 1);
           }
           return;
         }
-        int64_t size = 1;
+        int64_t size = view.kind == RefView::Bytes ? view.bytes : 1;
         for (const RefStep &s : steps)
           for (auto &[lo, hi] : s.dims)
             size *= hi - lo + 1;
         for (const std::string &base : placeBases(v, instances, runs)) {
-          std::string key = familyKey(base, steps);
+          std::string key = familyKey(base, steps) + view.suffix();
           if (table.byKey.count(key))
             continue;
           table.byKey[key] = table.families.size();
           RefFamily fam;
           fam.key = key;
           fam.base = base;
+          fam.view = view;
           if (v->owner && v->owner->kind == PouKind::Function) {
             // One family for every call: the running call's variable.
             fam.function = v->owner;
@@ -267,7 +287,8 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         }
       };
   std::vector<Expr *> throughReferences;
-  forEachAddressTaken(unit, [&](Expr *place) {
+  forEachAddressTaken(unit, [&](Expr *call) {
+    Expr *place = call->args[0].value;
     bool throughDeref;
     Expr *root = placeRoot(place, throughDeref);
     if (!place->type || place->kind == ExprKind::Deref)
@@ -276,9 +297,13 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
       throughReferences.push_back(place);
       return;
     }
-    if (root && root->var)
-      addPlace(root->var, familySteps(placeSelectors(place)),
-               plan.tables[referenceKey(place->type)], 0);
+    if (!root || !root->var)
+      return;
+    RefView view = viewOf(call);
+    addPlace(root->var, familySteps(placeSelectors(place)),
+             plan.tables[referenceKey(
+                 view.kind == RefView::Plain ? place->type : call->type->elem)],
+             view, 0);
   });
   // REF(r^.f): the field f of every place r may designate, itself
   // perhaps designated through another such REF: to a fixpoint.
@@ -341,7 +366,8 @@ void Lowering::adoptReferencePlan(ReferencePlan plan) {
 }
 
 void Lowering::markAddressTaken() {
-  forEachAddressTaken(unit, [&](Expr *place) {
+  forEachAddressTaken(unit, [&](Expr *call) {
+    Expr *place = call->args[0].value;
     bool throughDeref;
     if (Expr *root = placeRoot(place, throughDeref); root && root->var) {
       // Written through a reference, perhaps: not a constant.
@@ -383,6 +409,8 @@ static std::string stemOf(Expr *reference) {
 /// The elements of a family that lie next to each other in memory: those
 /// of its last index step (1 when it ends in a field or is one place).
 static int64_t contiguousBlock(const RefFamily &fam) {
+  if (fam.view.kind == RefView::Bytes)
+    return fam.view.bytes; // one string's
   int64_t block = 1;
   if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
     for (auto &[lo, hi] : fam.steps.back().dims)
@@ -463,10 +491,13 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   else
     base = rf->prefix + sanitize(v->name);
   std::vector<RefStep> steps = familySteps(chain);
-  auto table = refPlan.tables.find(referenceKey(place->type));
+  RefView view = viewOf(call);
+  auto table = refPlan.tables.find(referenceKey(
+      view.kind == RefView::Plain ? place->type : call->type->elem));
   const RefFamily *fam = nullptr;
   if (table != refPlan.tables.end())
-    if (auto it = table->second.byKey.find(familyKey(base, steps));
+    if (auto it =
+            table->second.byKey.find(familyKey(base, steps) + view.suffix());
         it != table->second.byKey.end())
       fam = &table->second.families[it->second];
   if (!fam)
@@ -475,6 +506,12 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   // Its number: the family's first, plus the element's row-major offset.
   auto [constant, number] =
       elementOffset(selectors, sanitize(v->name) + "_index", pre, at);
+  if (view.kind == RefView::Bytes) { // the first byte of the string chosen
+    constant *= view.bytes;
+    if (number)
+      number =
+          b.binary(net::BinaryOp::Mul, number, b.intLit(view.bytes, at), at);
+  }
   constant += fam->offset;
   if (!number)
     return b.intLit(constant, at);
@@ -631,15 +668,16 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   return t;
 }
 
-NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
-                             Expr *e, Frame &f, Sink &pre) {
+NExpr *Lowering::familyRoot(const RefFamily &fam, const DerefTargets &t,
+                            std::string &name) {
   SMLoc at = t.deref->loc;
-  std::string name = fam.base;
+  name = fam.base;
   if (fam.function)
     name = activeCalls[fam.function].back() + fam.base;
   NExpr *x = nullptr;
   auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
-  // Row-major: the element number within the family, split per dimension.
+  // Row-major: the element number within the family, split per dimension
+  // (a string's bytes, innermost, are not a step).
   std::optional<int64_t> known; // the element number, known now
   if (t.constant || fam.size == 1)
     known = t.constant ? *t.constant - fam.offset : 0;
@@ -676,6 +714,18 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
       break;
     }
   }
+  return x;
+}
+
+NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
+                             Expr *e, Frame &f, Sink &pre) {
+  if (fam.view.kind != RefView::Plain)
+    refuse(e->loc, "the bytes of a STRING seen through a pointer are read "
+                   "and assigned here, not bound, passed or called");
+  std::string name;
+  NExpr *x = familyRoot(fam, t, name);
+  SMLoc at = t.deref->loc;
+  auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
   // Then what the program selects in the place designated.
   std::vector<Expr *> above;
   for (Expr *s = e; s != t.deref; s = s->base())
@@ -699,6 +749,70 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
     x = r;
   }
   return place();
+}
+
+/// Where in a string seen as bytes the dereference `e` lands: the 1-based
+/// position of the byte, checked to lie in the string's bytes.
+NExpr *Lowering::bytePosition(const RefFamily &fam, const DerefTargets &t,
+                              Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = e->loc;
+  if (fam.view.kind == RefView::Bytes) {
+    if (e != t.deref)
+      refuse(e->loc, "internal: a selection in a byte");
+    if (t.constant)
+      return b.intLit((*t.constant - fam.offset) % fam.view.bytes + 1, at);
+    NExpr *rel = b.binary(net::BinaryOp::Sub, numberOf(t, at),
+                          b.intLit(fam.offset, at), at);
+    if (fam.size > fam.view.bytes)
+      rel = b.binary(net::BinaryOp::Mod, rel, b.intLit(fam.view.bytes, at), at);
+    return b.binary(net::BinaryOp::Add, rel, b.intLit(1, at), at);
+  }
+  // POINTER TO ARRAY[lo..hi] OF BYTE over a STRING: pt^[i] is byte i - lo,
+  // which must lie among the string's.
+  if (e->kind != ExprKind::Index || e->base() != t.deref ||
+      e->operands.size() != 2)
+    refuse(e->loc, "the bytes of a STRING seen as an array are read and "
+                   "written one element at a time (pt^[i])");
+  int64_t lo = fam.view.lo;
+  NExpr *index = expr(e->operands[1], f, pre);
+  // Checked only where the reference designates this family (a read
+  // selects among families after every check has run).
+  if (!llvm::isa<net::IntLit>(index) && !t.constant)
+    index = b.cond(familyTest(fam, t), index, b.intLit(lo, at), at);
+  NExpr *i = checkedRange(index, lo, lo + fam.view.bytes - 1,
+                          t.number + "_byte", pre, e->operands[1]->loc);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(i))
+    return b.intLit(lit->value - lo + 1, at);
+  return b.binary(net::BinaryOp::Sub, i, b.intLit(lo - 1, at), at);
+}
+
+NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
+                             Expr *e, Frame &f, Sink &pre) {
+  if (fam.view.kind == RefView::Plain)
+    return familyPlace(fam, t, e, f, pre);
+  std::string name;
+  NExpr *x = familyRoot(fam, t, name);
+  NExpr *text = x ? x : b.ref(name, e->loc);
+  return b.call(net::Builtin::Code, {text, bytePosition(fam, t, e, f, pre)},
+                e->loc);
+}
+
+void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
+                           Expr *target, NExpr *value, Expr *valueExpr,
+                           Frame &f, Sink &pre, Sink &out, SMLoc at) {
+  if (fam.view.kind == RefView::Plain) {
+    assign(familyPlace(fam, t, target, f, pre), value, target->type, valueExpr,
+           out, at);
+    return;
+  }
+  NExpr *pos = bytePosition(fam, t, target, f, pre);
+  std::string name;
+  NExpr *x = familyRoot(fam, t, name);
+  NExpr *text = x ? x : b.ref(name, at);
+  NExpr *again = familyRoot(fam, t, name);
+  NExpr *place = again ? again : b.ref(name, at);
+  out.push_back(b.assign(
+      place, b.call(net::Builtin::WithCode, {text, pos, value}, at), at));
 }
 
 NExpr *Lowering::numberOf(const DerefTargets &t, SMLoc at) {
@@ -732,12 +846,12 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
   }
   auto &fams = t.live;
   if (fams.size() == 1)
-    return familyPlace(*fams[0], t, e, f, pre);
+    return familyValue(*fams[0], t, e, f, pre);
   const net::Type *nt = netType(e->type, at, "a dereferenced value");
   if (nt->isScalar() || nt->isString()) {
-    NExpr *r = familyPlace(*fams.back(), t, e, f, pre);
+    NExpr *r = familyValue(*fams.back(), t, e, f, pre);
     for (size_t i = fams.size() - 1; i-- > 0;)
-      r = b.cond(familyTest(*fams[i], t), familyPlace(*fams[i], t, e, f, pre),
+      r = b.cond(familyTest(*fams[i], t), familyValue(*fams[i], t, e, f, pre),
                  r, at);
     return r;
   }
@@ -775,8 +889,7 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
   if (fams.empty())
     return; // the checks above report the NULL or dangling reference
   if (fams.size() == 1) {
-    assign(familyPlace(*fams[0], t, target, f, out), value, target->type,
-           valueExpr, out, at);
+    familyStore(*fams[0], t, target, value, valueExpr, f, out, out, at);
     return;
   }
   if (!llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value)) {
@@ -789,14 +902,12 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
   std::vector<net::IfArm> arms;
   for (size_t i = 0; i + 1 < fams.size(); ++i) {
     Sink body;
-    NExpr *place = familyPlace(*fams[i], t, target, f, out);
-    assign(place, value, target->type, valueExpr, body, at);
+    familyStore(*fams[i], t, target, value, valueExpr, f, body, body, at);
     arms.push_back(
         {familyTest(*fams[i], t), design.copy(llvm::ArrayRef(body))});
   }
   Sink last;
-  assign(familyPlace(*fams.back(), t, target, f, out), value, target->type,
-         valueExpr, last, at);
+  familyStore(*fams.back(), t, target, value, valueExpr, f, last, last, at);
   out.push_back(b.ifStmt(arms, true, last, at));
 }
 

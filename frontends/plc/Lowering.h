@@ -84,9 +84,20 @@ struct RefStep {
   std::vector<std::pair<int64_t, int64_t>> dims; // Index
 };
 
+/// How a family's places are seen: as themselves, or (the address of a
+/// STRING taken as a POINTER TO BYTE or TO ARRAY[lo..] OF BYTE) as the
+/// `bytes` bytes the string is held in, terminator included.
+struct RefView {
+  enum Kind : uint8_t { Plain, Bytes, ByteArray } kind = Plain;
+  int64_t bytes = 0;
+  int64_t lo = 0; // ByteArray: the array's first index
+  std::string suffix() const { return kind == Plain ? "" : "#bytes"; }
+};
+
 /// Places of one type a reference may designate, numbered offset ..
 /// offset + size - 1: `base` (a NetIR variable) and the steps from it.
 struct RefFamily {
+  RefView view;
   std::string key; // base and steps, as familyKey spells them
   std::string base;
   /// Set for a function's variable: `base` is its name in the call running
@@ -212,6 +223,20 @@ private:
   NExpr *familyPlace(const RefFamily &fam, const DerefTargets &t, Expr *e,
                      Frame &f, Sink &pre);
   NExpr *familyTest(const RefFamily &fam, const DerefTargets &t);
+  /// The variable and steps of a family's place (`name` while no step has
+  /// made an expression of it; then the expression).
+  NExpr *familyRoot(const RefFamily &fam, const DerefTargets &t,
+                    std::string &name);
+  NExpr *bytePosition(const RefFamily &fam, const DerefTargets &t, Expr *e,
+                      Frame &f, Sink &pre);
+  /// What `e` reads in a family's place (a byte of a string: code()).
+  NExpr *familyValue(const RefFamily &fam, const DerefTargets &t, Expr *e,
+                     Frame &f, Sink &pre);
+  /// `target := value` in a family's place (a byte: with_code()); the
+  /// index computations go to `pre`, the store to `out`.
+  void familyStore(const RefFamily &fam, const DerefTargets &t, Expr *target,
+                   NExpr *value, Expr *valueExpr, Frame &f, Sink &pre,
+                   Sink &out, SMLoc at);
   NExpr *readThroughReference(Expr *e, Frame &f, Sink &pre);
   /// `e` as an lvalue when the reference has one possible family; `use`
   /// says where, for the refusal otherwise.

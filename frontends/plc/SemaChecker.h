@@ -88,6 +88,10 @@ private:
   /// as CODESYS's address of an array is its first element's. False when
   /// `e` is no such ADR.
   bool decayToElement(Expr *e, const PType *elem);
+  /// ADR(s) of a STRING where a POINTER TO a one-byte type or to an ARRAY
+  /// of one is wanted: the bytes s is held in (CODESYS's address of a
+  /// string is its first byte's). Marks the call "BYTES".
+  bool viewAsBytes(Expr *e, const PType *elem);
   /// `r REF= x` and `r ?= q`.
   void referenceAssign(Stmt *s);
 

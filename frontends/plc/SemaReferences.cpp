@@ -184,6 +184,27 @@ bool Checker::decayToElement(Expr *e, const PType *elem) {
   return true;
 }
 
+bool Checker::viewAsBytes(Expr *e, const PType *elem) {
+  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
+      !e->type->elem || e->typeName == "BYTES")
+    return false;
+  const PType *text = baseOf(e->type->elem);
+  auto oneByte = [](const PType *t) {
+    t = baseOf(t);
+    return t->kind == PTypeKind::Int && t->width == 8;
+  };
+  if (!text->isString() || text->width != 8 ||
+      !(oneByte(elem) || (elem->kind == PTypeKind::Array &&
+                          elem->dims.size() == 1 && oneByte(elem->elem))))
+    return false;
+  e->typeName = "BYTES"; // read by the lowering (LowerReferences.cpp)
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = RefKind::Pointer;
+  r->elem = elem;
+  e->type = r;
+  return true;
+}
+
 const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
                                         const PType *b) {
   Expr *ptr = e->operands[0], *offset = e->operands[1];
@@ -201,8 +222,11 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
     return refuse("only a POINTER TO plus or minus an integer is supported");
   if (pt->refKind != RefKind::Pointer || !pt->elem)
     return refuse("only a POINTER TO moves");
-  // Stepping from an array's address steps through its elements.
+  // Stepping from an array's address steps through its elements, from a
+  // STRING's through its bytes.
   if (pt->elem->kind == PTypeKind::Array && decayToElement(ptr, pt->elem->elem))
+    pt = ptr->type;
+  else if (viewAsBytes(ptr, elementaryType("BYTE")))
     pt = ptr->type;
   std::string why;
   auto layout = memoryLayout(pt->elem, why);
@@ -227,7 +251,8 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
 
 bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
                                   const Twine &what) {
-  if (to->elem && decayToElement(from, to->elem))
+  if (to->elem &&
+      (decayToElement(from, to->elem) || viewAsBytes(from, to->elem)))
     return true;
   const PType *ft = from->type;
   if (ft->isReference() &&
