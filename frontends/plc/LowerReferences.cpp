@@ -958,9 +958,10 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   pre.push_back(b.assign(b.ref(number, at), k, at));
   if (count == 0)
     return b.intLit(0, at);
+  // A step longer than every place of the type leaves any array: the
+  // range check reports it (and the exports take a small range).
   std::string step =
-      scanVariable(stem + "_step",
-                   design.types.getInt(64, true, net::Overflow::Wrap), 0, at);
+      scanVariable(stem + "_step", design.types.getRange(-count, count), 0, at);
   pre.push_back(b.assign(b.ref(step, at), d, at));
   // The element moved to stays in the block of its family it started in
   // (an array's elements are contiguous; a family's blocks are not, and a
