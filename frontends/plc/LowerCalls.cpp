@@ -237,6 +237,34 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                           "' (of " + fb->name +
                           ") through a reference: netlift inlines every call "
                           "and does not model recursion");
+  // A VAR_IN_OUT bound to a dereference that may designate several
+  // places: the call once per place, chosen by the reference.
+  for (CallArg &a : call->args) {
+    VarDecl *p = a.isOutput ? nullptr : fb->find(a.name);
+    if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
+        inOutPlaces.count(a.value))
+      continue;
+    DerefTargets t = derefTargets(a.value, f, out);
+    if (t.live.size() < 2) {
+      if (!t.live.empty())
+        inOutPlaces[a.value] = familyPlace(*t.live[0], t, a.value, f, out);
+      instanceCall(call, fb, path, f, out);
+      inOutPlaces.erase(a.value);
+      return;
+    }
+    std::vector<Sink> bodies(t.live.size());
+    for (size_t i = 0; i < t.live.size(); ++i) {
+      inOutPlaces[a.value] = familyPlace(*t.live[i], t, a.value, f, bodies[i]);
+      instanceCall(call, fb, path, f, bodies[i]);
+      inOutPlaces.erase(a.value);
+    }
+    std::vector<net::IfArm> arms;
+    for (size_t i = 0; i + 1 < t.live.size(); ++i)
+      arms.push_back({familyTest(*t.live[i], t),
+                      design.copy(llvm::ArrayRef<NStmt *>(bodies[i]))});
+    out.push_back(b.ifStmt(arms, true, bodies.back(), call->loc));
+    return;
+  }
   instancesLowering.push_back(path);
   size_t knownBefore = knownConstants.size();
   InstanceUse &use = instanceUses[path];
@@ -256,7 +284,9 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
       continue;
     VarDecl *p = fb->find(a.name);
     if (p->section == VarSection::InOut) {
-      nf.aliases[p] = lvalue(a.value, f, out);
+      auto chosen = inOutPlaces.find(a.value);
+      nf.aliases[p] = chosen != inOutPlaces.end() ? chosen->second
+                                                  : lvalue(a.value, f, out);
       nf.aliasSources[p] = {a.value, &f};
       continue;
     }

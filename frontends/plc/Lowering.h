@@ -317,6 +317,9 @@ private:
   std::vector<std::pair<std::string, int64_t>> knownConstants;
   /// The variables (and instance members) a reference may designate.
   std::set<std::string> addressTaken;
+  /// The place chosen for a VAR_IN_OUT argument that is a dereference of
+  /// several possible places, while the call for that place is lowered.
+  std::map<Expr *, NExpr *> inOutPlaces;
   /// The instances whose bodies are being lowered, outermost first.
   std::vector<std::string> instancesLowering;
   /// `r^(...)`: the call of the instance r designates.
