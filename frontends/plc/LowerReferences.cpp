@@ -31,16 +31,12 @@ using namespace netlift::plc::detail;
 /// initial values of `vars`.
 static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
                                 llvm::function_ref<void(Expr *)> fn) {
-  std::function<void(Expr *)> walk = [&](Expr *e) {
-    if (!e)
-      return;
-    if (e->kind == ExprKind::Call && !e->callee && !e->var &&
-        (e->name == "REF" || e->name == "ADR") && e->args.size() == 1)
-      fn(e);
-    for (Expr *o : e->operands)
-      walk(o);
-    for (CallArg &a : e->args)
-      walk(a.value);
+  auto walk = [&](Expr *top) {
+    forEachNestedExpr(top, [&](Expr *e) {
+      if (e->kind == ExprKind::Call && !e->callee && !e->var &&
+          (e->name == "REF" || e->name == "ADR") && e->args.size() == 1)
+        fn(e);
+    });
   };
   forEachStmt(
       l, [](Stmt *) {}, walk);
@@ -216,13 +212,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
   // parameter is that of the caller's argument.
   std::map<VarDecl *, std::vector<Expr *>> inOutArguments;
   auto noteArguments = [&](Expr *c) {
-    Pou *callee = c->callee;
-    if (!callee && c->var && c->var->type &&
-        c->var->type->kind == PTypeKind::FunctionBlock)
-      callee = c->var->type->fb;
-    if (!callee && !c->operands.empty() && c->operands[0]->type &&
-        c->operands[0]->type->kind == PTypeKind::FunctionBlock)
-      callee = c->operands[0]->type->fb;
+    Pou *callee = c->kind == ExprKind::Call ? calledPou(c) : nullptr;
     if (!callee)
       return;
     for (CallArg &a : c->args)
@@ -230,19 +220,10 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           p && p->section == VarSection::InOut && !a.isOutput)
         inOutArguments[p].push_back(a.value);
   };
-  std::function<void(Expr *)> calls = [&](Expr *e) {
-    if (!e)
-      return;
-    if (e->kind == ExprKind::Call)
-      noteArguments(e);
-    for (Expr *o : e->operands)
-      calls(o);
-    for (CallArg &a : e->args)
-      calls(a.value);
-  };
   for (Pou *p : unit.pous)
     forEachStmt(
-        p->body, [](Stmt *) {}, calls);
+        p->body, [](Stmt *) {},
+        [&](Expr *e) { forEachNestedExpr(e, noteArguments); });
 
   ReferencePlan plan;
   std::function<void(VarDecl *, std::vector<RefStep>, RefTable &, RefView,

@@ -562,37 +562,18 @@ static void writtenBy(Expr *target, std::set<VarDecl *> &w) {
     w.insert(target->var);
 }
 
-/// The POU a call runs: a function, or the type of the instance called
-/// (by name or through a reference).
-static Pou *calledPou(Expr *c) {
-  if (c->callee)
-    return c->callee;
-  if (c->var && c->var->type && c->var->type->kind == PTypeKind::FunctionBlock)
-    return c->var->type->fb;
-  if (!c->operands.empty() && c->operands[0]->type &&
-      c->operands[0]->type->kind == PTypeKind::FunctionBlock)
-    return c->operands[0]->type->fb;
-  return nullptr;
-}
-
 void netlift::plc::detail::collectInOutWritten(StmtList &l,
                                                std::set<VarDecl *> &w) {
-  std::function<void(Expr *)> inOutArguments = [&](Expr *e) {
-    if (!e)
-      return;
-    if (e->kind == ExprKind::Call)
-      if (Pou *callee = calledPou(e))
-        for (CallArg &a : e->args)
-          if (VarDecl *p = callee->find(a.name);
-              p && p->section == VarSection::InOut && !a.isOutput)
-            writtenBy(a.value, w);
-    for (Expr *o : e->operands)
-      inOutArguments(o);
-    for (CallArg &a : e->args)
-      inOutArguments(a.value);
+  auto inOutArguments = [&](Expr *e) {
+    Pou *callee = e->kind == ExprKind::Call ? calledPou(e) : nullptr;
+    if (callee)
+      for (CallArg &a : e->args)
+        if (VarDecl *p = callee->find(a.name);
+            p && p->section == VarSection::InOut && !a.isOutput)
+          writtenBy(a.value, w);
   };
   forEachStmt(
-      l, [](Stmt *) {}, inOutArguments);
+      l, [](Stmt *) {}, [&](Expr *e) { forEachNestedExpr(e, inOutArguments); });
 }
 
 void netlift::plc::detail::collectWritten(StmtList &l, std::set<VarDecl *> &w) {

@@ -142,6 +142,17 @@ VarDecl *AstMaker::declare(Pou &pou, StringRef name, StringRef type, SMLoc at,
   return v;
 }
 
+void netlift::plc::forEachNestedExpr(Expr *e,
+                                     llvm::function_ref<void(Expr *)> fn) {
+  if (!e)
+    return;
+  fn(e);
+  for (Expr *o : e->operands)
+    forEachNestedExpr(o, fn);
+  for (CallArg &a : e->args)
+    forEachNestedExpr(a.value, fn);
+}
+
 void netlift::plc::forEachStmt(StmtList &l,
                                llvm::function_ref<void(Stmt *)> stmt,
                                llvm::function_ref<void(Expr *)> expr) {

@@ -563,6 +563,10 @@ void keepRefusedPou(Unit &unit, size_t pousBefore, PouKind kind,
 void forEachStmt(StmtList &l, llvm::function_ref<void(Stmt *)> stmt,
                  llvm::function_ref<void(Expr *)> expr = nullptr);
 
+/// Visits `e` and every expression nested in it (operands, call
+/// arguments), outermost first.
+void forEachNestedExpr(Expr *e, llvm::function_ref<void(Expr *)> fn);
+
 } // namespace netlift::plc
 
 #endif

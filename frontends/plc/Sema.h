@@ -165,6 +165,10 @@ bool checkUnit(Unit &unit, DiagEngine &diag, const CheckOptions &options = {});
 /// unit order; every POU when there is no top.
 std::vector<Pou *> reachedPous(const Unit &unit, llvm::StringRef top);
 
+/// The POU a checked call runs: a function, or the type of the instance
+/// called by name or through a reference; null for a standard function.
+Pou *calledPou(const Expr *call);
+
 /// The PLC type of an elementary type name (BOOL, INT, TIME...), or null.
 const PType *elementaryType(llvm::StringRef name);
 

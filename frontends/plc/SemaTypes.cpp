@@ -242,6 +242,17 @@ std::string plc::referenceKey(const PType *t) {
   }
 }
 
+Pou *plc::calledPou(const Expr *c) {
+  if (c->callee)
+    return c->callee;
+  if (c->var && c->var->type && c->var->type->kind == PTypeKind::FunctionBlock)
+    return c->var->type->fb;
+  if (!c->operands.empty() && c->operands[0]->type &&
+      c->operands[0]->type->kind == PTypeKind::FunctionBlock)
+    return c->operands[0]->type->fb;
+  return nullptr;
+}
+
 const PType *plc::nullType() {
   static const PType t{PTypeKind::Reference};
   return &t;

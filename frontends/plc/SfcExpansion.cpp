@@ -125,30 +125,19 @@ private:
 
 std::string key(StringRef name) { return name.upper(); }
 
-/// Every expression under `e`, `e` first.
-void forEachExpr(Expr *e, llvm::function_ref<void(Expr *)> f) {
-  if (!e)
-    return;
-  f(e);
-  for (Expr *o : e->operands)
-    forEachExpr(o, f);
-  for (CallArg &a : e->args)
-    forEachExpr(a.value, f);
-}
-
 /// Every expression under the statements of `list`.
 void forEachExpr(StmtList &list, llvm::function_ref<void(Expr *)> f) {
-  forEachStmt(list, nullptr, [&](Expr *e) { forEachExpr(e, f); });
+  forEachStmt(list, nullptr, [&](Expr *e) { forEachNestedExpr(e, f); });
 }
 
 void forEachChartExpr(SfcChart &chart, llvm::function_ref<void(Expr *)> f) {
   for (SfcTransition *t : chart.transitions)
-    forEachExpr(t->condition, f);
+    forEachNestedExpr(t->condition, f);
   for (SfcAction *a : chart.actions)
     forEachExpr(a->body, f);
   for (SfcStep *s : chart.steps)
     for (SfcAssociation &a : s->actions)
-      forEachExpr(a.time, f);
+      forEachNestedExpr(a.time, f);
 }
 
 } // namespace
@@ -275,7 +264,7 @@ Expr *Expander::stepTimeCap(SfcStep *step) {
     for (VarDecl *v : pou.vars)
       if (v->typeSyntax && v->typeSyntax->init &&
           v->typeSyntax->init->kind == Initializer::Value)
-        forEachExpr(v->typeSyntax->init->value, see);
+        forEachNestedExpr(v->typeSyntax->init->value, see);
     if (longest == 0) {
       diag.error(at, "the chart reads the elapsed time of step '" + step->name +
                          "' (.T), but '" + pou.name +
