@@ -90,10 +90,12 @@ static Expr *placeRoot(Expr *e, bool &throughDeref) {
   return nullptr;
 }
 
-/// The steps from the root of `place` to it, outermost first.
-static std::vector<Expr *> placeSelectors(Expr *place) {
+/// The selectors from the root of `place` (or from `from`, a dereference
+/// under it) to it, outermost first.
+static std::vector<Expr *> placeSelectors(Expr *place, Expr *from = nullptr) {
   std::vector<Expr *> chain;
-  for (Expr *e = place; e && e->kind != ExprKind::Name; e = e->base())
+  for (Expr *e = place; e && e != from && e->kind != ExprKind::Name;
+       e = e->base())
     chain.push_back(e);
   std::reverse(chain.begin(), chain.end());
   return chain;
@@ -134,6 +136,15 @@ static RefView viewOf(Expr *call) {
     view.kind = RefView::Bytes;
   }
   return view;
+}
+
+/// The elements the index steps of `steps` span together.
+static int64_t elementsOf(llvm::ArrayRef<RefStep> steps) {
+  int64_t n = 1;
+  for (const RefStep &s : steps)
+    for (auto &[lo, hi] : s.dims)
+      n *= hi - lo + 1;
+  return n;
 }
 
 static std::string familyKey(const std::string &base,
@@ -242,10 +253,8 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           }
           return;
         }
-        int64_t size = view.kind == RefView::Bytes ? view.bytes : 1;
-        for (const RefStep &s : steps)
-          for (auto &[lo, hi] : s.dims)
-            size *= hi - lo + 1;
+        int64_t size =
+            elementsOf(steps) * (view.kind == RefView::Bytes ? view.bytes : 1);
         for (const std::string &base : placeBases(v, instances, runs)) {
           std::string key = familyKey(base, steps) + view.suffix();
           if (table.byKey.count(key))
@@ -294,15 +303,8 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
       Expr *d = derefBelow(place);
       if (!d)
         continue; // refused where it is lowered
-      std::vector<Expr *> above;
-      for (Expr *x = place; x != d; x = x->base())
-        above.push_back(x);
-      std::reverse(above.begin(), above.end());
-      std::vector<RefStep> steps = familySteps(above);
-      int64_t extent = 1;
-      for (const RefStep &s : steps)
-        for (auto &[lo, hi] : s.dims)
-          extent *= hi - lo + 1;
+      std::vector<RefStep> steps = familySteps(placeSelectors(place, d));
+      int64_t extent = elementsOf(steps);
       auto from = plan.tables.find(referenceKey(d->type));
       if (from == plan.tables.end())
         continue;
@@ -392,11 +394,9 @@ static std::string stemOf(Expr *reference) {
 static int64_t contiguousBlock(const RefFamily &fam) {
   if (fam.view.kind == RefView::Bytes)
     return fam.view.bytes; // one string's
-  int64_t block = 1;
   if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
-    for (auto &[lo, hi] : fam.steps.back().dims)
-      block *= hi - lo + 1;
-  return block;
+    return elementsOf(fam.steps.back());
+  return 1;
 }
 
 /// `v`, known to lie in lo..hi when it is not a constant, copied into a
@@ -534,19 +534,12 @@ NExpr *Lowering::addressThroughReference(Expr *call, Frame &f, Sink &pre) {
   if (!d)
     refuse(at, call->name + " of a place reached through a reference and "
                             "then a bit or a call is not supported");
-  std::vector<Expr *> above;
-  for (Expr *x = place; x != d; x = x->base())
-    above.push_back(x);
-  std::reverse(above.begin(), above.end());
+  std::vector<Expr *> above = placeSelectors(place, d);
   std::vector<std::pair<Expr *, Frame *>> selectors;
-  int64_t extent = 1; // the elements each designated place spans
-  for (Expr *x : above) {
+  for (Expr *x : above)
     selectors.push_back({x, &f});
-    if (x->kind == ExprKind::Index)
-      for (auto &[lo, hi] : x->base()->type->dims)
-        extent *= hi - lo + 1;
-  }
   std::vector<RefStep> steps = familySteps(above);
+  int64_t extent = elementsOf(steps); // what each designated place spans
   DerefTargets t = derefTargets(place, f, pre);
   auto [constant, offset] =
       elementOffset(selectors, stemOf(d->base()) + "_index", pre, at);
@@ -708,11 +701,7 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
   SMLoc at = t.deref->loc;
   auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
   // Then what the program selects in the place designated.
-  std::vector<Expr *> above;
-  for (Expr *s = e; s != t.deref; s = s->base())
-    above.push_back(s);
-  std::reverse(above.begin(), above.end());
-  for (Expr *s : above) {
+  for (Expr *s : placeSelectors(e, t.deref)) {
     const PType *bt = s->base()->type;
     if (s->kind == ExprKind::Field) {
       if (bt && bt->kind == PTypeKind::FunctionBlock) {

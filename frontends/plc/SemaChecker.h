@@ -75,6 +75,8 @@ private:
   /// The expression whose REFERENCE TO is meant itself (REF='s target,
   /// __ISVALIDREF's argument), not dereferenced.
   Expr *keepReference = nullptr;
+  /// `e` checked with keepReference set (as an lvalue when `asTarget`).
+  const PType *referenceItself(Expr *e, bool asTarget);
   /// The references implicitDeref put under a `^` (checked again, they
   /// stay references).
   std::set<Expr *> implicitlyDereferenced;

@@ -77,9 +77,7 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
   e->name = isRef ? "REF" : isAdr ? "ADR" : "__ISVALIDREF";
   if (isValid) {
     // The reference itself, not what it designates.
-    keepReference = arg;
-    const PType *t = expr(arg);
-    keepReference = nullptr;
+    const PType *t = referenceItself(arg, /*asTarget=*/false);
     if (t && !t->isReference()) {
       error(arg->loc, "__ISVALIDREF takes a reference, not " + t->str());
       return nullptr;
@@ -127,10 +125,7 @@ Expr *Checker::addressCall(Expr *place) {
 
 const PType *Checker::derefType(Expr *e) {
   // `r^` on a REFERENCE TO is explicit: r itself is dereferenced.
-  Expr *outer = keepReference;
-  keepReference = e->base();
-  const PType *bt = expr(e->base());
-  keepReference = outer;
+  const PType *bt = referenceItself(e->base(), /*asTarget=*/false);
   if (!bt)
     return nullptr;
   if (!bt->isReference()) {
@@ -142,6 +137,14 @@ const PType *Checker::derefType(Expr *e) {
     return nullptr;
   }
   return bt->elem;
+}
+
+const PType *Checker::referenceItself(Expr *e, bool asTarget) {
+  Expr *outer = keepReference;
+  keepReference = e;
+  const PType *t = asTarget ? lvalue(e) : expr(e);
+  keepReference = outer;
+  return t;
 }
 
 const PType *Checker::implicitDeref(Expr *e, const PType *t) {
@@ -281,9 +284,7 @@ bool Checker::comparableReferences(const PType *a, const PType *b, Expr *e) {
 
 void Checker::referenceAssign(Stmt *s) {
   const char *op = s->assignKind == AssignKind::BindReference ? "REF=" : "?=";
-  keepReference = s->target;
-  const PType *t = lvalue(s->target);
-  keepReference = nullptr;
+  const PType *t = referenceItself(s->target, /*asTarget=*/true);
   if (!t)
     return;
   if (!t->isReference()) {
@@ -306,9 +307,7 @@ void Checker::referenceAssign(Stmt *s) {
       assignable(t, call, s->loc, "reference binding");
     return;
   }
-  keepReference = s->value;
-  const PType *vt = expr(s->value);
-  keepReference = nullptr;
+  const PType *vt = referenceItself(s->value, /*asTarget=*/false);
   if (!vt)
     return;
   if (!vt->isReference()) {
