@@ -530,10 +530,9 @@ Lowering::elementOffset(llvm::ArrayRef<std::pair<Expr *, Frame *>> selectors,
 NExpr *Lowering::addressThroughReference(Expr *call, Frame &f, Sink &pre) {
   Expr *place = call->args[0].value;
   SMLoc at = call->loc;
+  // Sema lets only fields and indices stand above the dereference.
   Expr *d = derefBelow(place);
-  if (!d)
-    refuse(at, call->name + " of a place reached through a reference and "
-                            "then a bit or a call is not supported");
+  assert(d && "REF through a reference of something not a place");
   std::vector<Expr *> above = placeSelectors(place, d);
   std::vector<std::pair<Expr *, Frame *>> selectors;
   for (Expr *x : above)
