@@ -115,19 +115,19 @@ void Lowering::enabledBody(Pou *callee, const std::string &prefix, Expr *call,
       given |= !a.isOutput && sameName(a.name, "EN");
     if (!given)
       out.push_back(
-          b.assign(b.ref(prefix + "EN", at), b.boolLit(true, at), at));
+          b.assign(b.ref(prefix + en->name, at), b.boolLit(true, at), at));
   }
   if (eno)
-    out.push_back(b.assign(b.ref(prefix + "ENO", at),
-                           en ? b.ref(prefix + "EN", at) : b.boolLit(true, at),
-                           at));
+    out.push_back(
+        b.assign(b.ref(prefix + eno->name, at),
+                 en ? b.ref(prefix + en->name, at) : b.boolLit(true, at), at));
   if (!en) {
     body(callee->body, nf, out, {});
     return;
   }
   Sink guarded;
   body(callee->body, nf, guarded, {});
-  net::IfArm arm{b.ref(prefix + "EN", at),
+  net::IfArm arm{b.ref(prefix + en->name, at),
                  design.copy(llvm::ArrayRef<NStmt *>(guarded))};
   out.push_back(b.ifStmt({arm}, false, {}, at));
 }
@@ -241,6 +241,28 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
   // places: the call once per place, chosen by the reference.
   for (CallArg &a : call->args) {
     VarDecl *p = a.isOutput ? nullptr : fb->find(a.name);
+    // An instance passed in-out that is an element chosen at run time:
+    // the call once per element.
+    if (p && p->section == VarSection::InOut && instanceBlock(p->type) &&
+        !throughReference(a.value) && !inOutInstances.count(a.value) &&
+        chosenAtRunTime(a.value, f)) {
+      std::vector<InstanceChoice> choices = instanceChoices(a.value, f, out);
+      std::vector<net::IfArm> arms;
+      Sink last;
+      for (size_t i = 0; i < choices.size(); ++i) {
+        inOutInstances[a.value] = choices[i].path;
+        Sink body;
+        instanceCall(call, fb, path, f, body);
+        if (i + 1 == choices.size())
+          last = std::move(body);
+        else
+          arms.push_back(
+              {choices[i].test, design.copy(llvm::ArrayRef<NStmt *>(body))});
+      }
+      inOutInstances.erase(a.value);
+      out.push_back(b.ifStmt(arms, true, last, call->loc));
+      return;
+    }
     if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
         inOutPlaces.count(a.value))
       continue;
@@ -283,6 +305,12 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
     if (a.isOutput)
       continue;
     VarDecl *p = fb->find(a.name);
+    if (p->section == VarSection::InOut && instanceBlock(p->type)) {
+      // The caller's instance itself: the block calls it and reads its
+      // outputs under the caller's names.
+      nf.instanceAliases[p] = boundInstance(a.value, f);
+      continue;
+    }
     if (p->section == VarSection::InOut) {
       auto chosen = inOutPlaces.find(a.value);
       nf.aliases[p] = chosen != inOutPlaces.end() ? chosen->second
@@ -328,8 +356,7 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                                b.boolLit(false, v->loc), v->loc));
     }
   for (VarDecl *v : fb->vars)
-    if (v->section == VarSection::Temp &&
-        v->type->kind != PTypeKind::FunctionBlock)
+    if (v->section == VarSection::Temp && !instanceBlock(v->type))
       if (NExpr *init = defaultValue(v->type, v->loc))
         out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
                                init, v->loc));

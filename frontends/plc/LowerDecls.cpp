@@ -319,14 +319,14 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return; // the global is declared once
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   declaringPrefix = programPrefix;
-  if (t->kind == PTypeKind::FunctionBlock) {
-    keepPragmas(name, v->attrs);
-    declareInstance(name, t->fb, v->typeSyntax ? v->typeSyntax->init : nullptr);
-    return;
-  }
   if (v->section == VarSection::InOut)
     refuse(v->loc, "VAR_IN_OUT of the translated program '" +
                        currentProgram->name + "' has nothing to refer to");
+  if (instanceBlock(t)) {
+    keepPragmas(name, v->attrs);
+    declareInstances(name, t, v->typeSyntax ? v->typeSyntax->init : nullptr);
+    return;
+  }
   keepPragmas(name, v->attrs);
   // An input bound to a global by a program argument is fed from it.
   bool isInput = (v->area() == 'I' || v->section == VarSection::Input) &&
@@ -407,12 +407,12 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       for (auto &[fname, finit] : init->fields)
         if (sameName(fname, m->name))
           mi = finit;
-    if (m->type->kind == PTypeKind::FunctionBlock) {
-      declareInstance(name, m->type->fb, mi);
+    if (m->section == VarSection::InOut)
+      continue; // an alias of the caller's variable (or instance) per call
+    if (instanceBlock(m->type)) {
+      declareInstances(name, m->type, mi);
       continue;
     }
-    if (m->section == VarSection::InOut)
-      continue; // an alias of the caller's variable at each call
     varTypes[name] = m->type;
     bool isClock = false;
     std::string bound;

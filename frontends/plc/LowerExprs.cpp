@@ -166,17 +166,6 @@ NExpr *Lowering::wrapTo(NExpr *v, const PType *t, Range r, SMLoc at) {
                   b.intLit(half, at), at);
 }
 
-std::string Lowering::instancePath(Expr *e, Frame &f) {
-  // An FB instance is a Name (a variable of this frame or a global).
-  if (e->kind != ExprKind::Name || !e->var)
-    refuse(e->loc, "function block instances must be named directly (arrays "
-                   "and structures of instances are not supported)");
-  VarDecl *v = e->var;
-  if (!v->owner)
-    return sanitize(v->name);
-  return f.prefix + sanitize(v->name);
-}
-
 NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
   auto alias = f.aliases.find(v);
   if (alias != f.aliases.end())
@@ -215,6 +204,10 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
     return b.field(lvalue(base, f, pre), sanitize(e->name), e->loc);
   }
   case ExprKind::Index: {
+    if (e->type && e->type->kind == PTypeKind::FunctionBlock)
+      refuse(e->loc, "an element of an array of function block instances is "
+                     "called, or its inputs and outputs are read or "
+                     "assigned, but it is not passed or bound");
     NExpr *r = lvalue(e->base(), f, pre);
     for (size_t i = 1; i < e->operands.size(); ++i)
       r = b.index(r, expr(e->operands[i], f, pre), e->loc);
@@ -262,6 +255,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::Index:
     if (throughReference(e))
       return readThroughReference(e, f, pre);
+    if (memberOfChosenInstance(e, f))
+      return chosenMemberRead(e, f, pre);
     if (auto part = unionPart(e, f, pre))
       return unionRead(*part, f, pre, e->loc);
     return lvalue(e, f, pre);

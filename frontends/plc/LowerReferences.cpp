@@ -204,19 +204,24 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           return;
         paths.push_back(path);
         for (VarDecl *m : fb->vars)
-          if (m->type && m->type->kind == PTypeKind::FunctionBlock &&
-              m->section != VarSection::External &&
+          if (Pou *inner = m->type ? instanceBlock(m->type) : nullptr;
+              inner && m->section != VarSection::External &&
               m->section != VarSection::InOut)
-            walk(path + "." + sanitize(m->name), m->type->fb);
+            for (const std::string &p :
+                 instancePaths(path + "." + sanitize(m->name), m->type))
+              walk(p, inner);
       };
+  auto walkVariable = [&](const std::string &path, VarDecl *v) {
+    if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr)
+      for (const std::string &p : instancePaths(path, v->type))
+        walk(p, fb);
+  };
   for (const ProgramRun &run : runs) {
     for (VarDecl *g : globalsUsedBy(run.pou))
-      if (g->type && g->type->kind == PTypeKind::FunctionBlock)
-        walk(sanitize(g->name), g->type->fb);
+      walkVariable(sanitize(g->name), g);
     for (VarDecl *v : run.pou->vars)
-      if (v->type && v->type->kind == PTypeKind::FunctionBlock &&
-          v->section != VarSection::External)
-        walk(run.prefix + sanitize(v->name), v->type->fb);
+      if (v->section != VarSection::External)
+        walkVariable(run.prefix + sanitize(v->name), v);
   }
 
   // What every call binds to each VAR_IN_OUT: the address of an in-out
@@ -973,21 +978,10 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
       refuse(call->loc, "internal: a function block instance in an element");
     return ref->name.str();
   };
-  auto &fams = t.live;
-  if (fams.size() == 1) {
-    instanceCall(call, fb, pathOf(*fams[0]), f, out);
-    return;
-  }
-  std::vector<net::IfArm> arms;
-  for (size_t i = 0; i + 1 < fams.size(); ++i) {
-    Sink body;
-    instanceCall(call, fb, pathOf(*fams[i]), f, body);
-    arms.push_back(
-        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef<NStmt *>(body))});
-  }
-  Sink last;
-  instanceCall(call, fb, pathOf(*fams.back()), f, last);
-  out.push_back(b.ifStmt(arms, true, last, call->loc));
+  std::vector<InstanceChoice> choices;
+  for (const RefFamily *fam : t.live)
+    choices.push_back({familyTest(*fam, t), pathOf(*fam)});
+  callChosenInstance(call, fb, choices, f, out);
 }
 
 //===----------------------------------------------------------------------===//

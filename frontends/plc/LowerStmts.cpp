@@ -223,6 +223,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
       out.push_back(unionWrite(*part, value, s->value->type, f, out, s->loc));
       return;
     }
+    if (memberOfChosenInstance(s->target, f)) {
+      chosenMemberWrite(s, value, f, out);
+      return;
+    }
     NExpr *target = lvalue(s->target, f, out);
     if (auto *r = llvm::dyn_cast<net::Ref>(target))
       noteClockBound(r->name.str(), s->value, f, s->loc);
@@ -232,7 +236,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   case StmtKind::Call: {
     Expr *c = s->value;
     if (!c->operands.empty()) {
-      callThroughReference(c, f, out);
+      if (throughReference(c->operands[0]))
+        callThroughReference(c, f, out);
+      else
+        elementCall(c, f, out);
       return;
     }
     if (c->var) {
@@ -601,14 +608,14 @@ void Lowering::collectAssignments(StmtList &l) {
       writtenBy(s->target, writtenOtherwise);
     if (s->kind != StmtKind::Call)
       return;
-    // A function block call passes values to the type's inputs.
-    VarDecl *inst = s->value->var;
+    // A function block call passes values to the type's inputs (whether
+    // the instance is named, an element or designated by a reference).
+    Pou *callee = calledPou(s->value);
     for (CallArg &a : s->value->args)
       if (a.isOutput)
         writtenBy(a.value, writtenOtherwise);
-      else if (inst && inst->type &&
-               inst->type->kind == PTypeKind::FunctionBlock)
-        if (VarDecl *p = inst->type->fb->find(a.name))
+      else if (callee && callee->kind == PouKind::FunctionBlock)
+        if (VarDecl *p = callee->find(a.name))
           assignedValues[p].push_back(a.value);
   });
 }

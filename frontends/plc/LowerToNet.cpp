@@ -43,9 +43,9 @@ void Lowering::collectTimesExpr(Expr *e, std::set<Pou *> &seen,
     collectTimesExpr(a.value, seen, ns);
   if (e->callee)
     collectTimes(e->callee, seen, ns);
-  if (e->kind == ExprKind::Call && e->var && e->var->type &&
-      e->var->type->kind == PTypeKind::FunctionBlock)
-    collectTimes(e->var->type->fb, seen, ns);
+  if (Pou *callee = e->kind == ExprKind::Call ? calledPou(e) : nullptr;
+      callee && !e->callee)
+    collectTimes(callee, seen, ns);
 }
 
 void Lowering::collectTimesStmts(StmtList &l, std::set<Pou *> &seen,
@@ -83,8 +83,8 @@ void Lowering::collectTimes(Pou *p, std::set<Pou *> &seen,
   for (VarDecl *v : p->vars) {
     if (v->typeSyntax)
       initTimes(v->typeSyntax->init, ns);
-    if (v->type && v->type->kind == PTypeKind::FunctionBlock)
-      collectTimes(v->type->fb, seen, ns);
+    if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr)
+      collectTimes(fb, seen, ns);
   }
   collectTimesStmts(p->body, seen, ns);
 }
@@ -193,9 +193,9 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
     for (Stmt *s : l) {
       for (Expr *e : {s->target, s->value, s->from, s->to, s->by})
         scanExpr(e);
-      if (s->kind == StmtKind::Call && s->value->var &&
-          s->value->var->type->kind == PTypeKind::FunctionBlock)
-        scanPou(s->value->var->type->fb);
+      if (s->kind == StmtKind::Call)
+        if (Pou *callee = calledPou(s->value))
+          scanPou(callee);
       if (s->value && s->value->callee)
         scanPou(s->value->callee);
       for (auto &[c, body] : s->arms) {
@@ -633,7 +633,7 @@ bool Lowering::run() {
       for (VarDecl *g : globalsUsedBy(run.pou)) {
         if (g->constant || ++users[g] < 2)
           continue;
-        if (g->type && g->type->kind == PTypeKind::FunctionBlock)
+        if (g->type && instanceBlock(g->type))
           refuse(g->loc, "function block instance '" + g->name +
                              "' is a global called by several programs; "
                              "netlift does not model a shared instance");

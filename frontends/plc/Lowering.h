@@ -4,7 +4,8 @@
 // unit into NetIR, shared by the files that implement it by concept —
 // LowerToNet.cpp (time, modules, the entry points), LowerDecls.cpp (types
 // and declarations), LowerExprs.cpp (expressions and standard functions),
-// LowerCalls.cpp (function and function block calls), LowerStmts.cpp
+// LowerCalls.cpp (function and function block calls),
+// LowerInstanceArrays.cpp (arrays of instances), LowerStmts.cpp
 // (statements and loops), LowerReals.cpp, LowerStrings.cpp and
 // LowerDates.cpp and LowerUnions.cpp (the data types that need more than
 // integers). LowerToNet.h is
@@ -61,6 +62,8 @@ struct Frame {
   /// VAR_IN_OUT -> the argument and the caller's frame it is lowered in
   /// (REF of the parameter is REF of the argument).
   std::map<VarDecl *, std::pair<Expr *, Frame *>> aliasSources;
+  /// VAR_IN_OUT of a function block type -> the caller's instance prefix.
+  std::map<VarDecl *, std::string> instanceAliases;
   std::string returnFlag; // set when the body has RETURN
   bool external = false;  // program frame: reads of FB members count as
                           // reads from outside the instance
@@ -307,7 +310,41 @@ private:
   NExpr *expr(Expr *e, Frame &f, Sink &pre);
   NExpr *lvalue(Expr *e, Frame &f, Sink &pre);
   NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
+  // Arrays of function block instances (LowerInstanceArrays.cpp).
+  /// The prefix of the element `index` of the instances at `path`.
+  static std::string elementPath(const std::string &path,
+                                 llvm::ArrayRef<int64_t> index);
+  /// The instance, or every element of the array of instances, at `path`.
+  void declareInstances(const std::string &path, const PType *t,
+                        Initializer *init);
+  void declareInstances(const std::string &path, const PType *t,
+                        Initializer *init, size_t dim,
+                        std::vector<int64_t> &index);
+  /// Every instance prefix a variable of type `t` at `path` holds.
+  static std::vector<std::string> instancePaths(const std::string &path,
+                                                const PType *t);
+  /// An instance the program may designate: its prefix, and when it is
+  /// one of several (chosen at run time), the condition that chooses it.
+  struct InstanceChoice {
+    NExpr *test;
+    std::string path;
+  };
+  std::vector<InstanceChoice> instanceChoices(Expr *e, Frame &f, Sink &pre);
+  /// Does an index in `instance` (an element of an array of instances)
+  /// become known only at run time?
+  bool chosenAtRunTime(Expr *instance, Frame &f);
+  /// The prefix of an instance known at translation.
   std::string instancePath(Expr *e, Frame &f);
+  /// The call of whichever of `choices` is chosen.
+  void callChosenInstance(Expr *call, Pou *fb,
+                          llvm::ArrayRef<InstanceChoice> choices, Frame &f,
+                          Sink &out);
+  /// `timers[i](...)`.
+  void elementCall(Expr *call, Frame &f, Sink &out);
+  /// `timers[i].Q`, an index known only at run time.
+  bool memberOfChosenInstance(Expr *e, Frame &f);
+  NExpr *chosenMemberRead(Expr *e, Frame &f, Sink &pre);
+  void chosenMemberWrite(Stmt *s, NExpr *value, Frame &f, Sink &out);
   void fbCall(Expr *call, Frame &f, Sink &out);
   /// The call `call` of the instance of `fb` at `path`.
   void instanceCall(Expr *call, Pou *fb, const std::string &path, Frame &f,
@@ -320,6 +357,10 @@ private:
   /// The place chosen for a VAR_IN_OUT argument that is a dereference of
   /// several possible places, while the call for that place is lowered.
   std::map<Expr *, NExpr *> inOutPlaces;
+  /// The same for an instance passed in-out that is chosen at run time.
+  std::map<Expr *, std::string> inOutInstances;
+  /// The prefix of the instance an in-out argument designates.
+  std::string boundInstance(Expr *argument, Frame &f);
   /// The instances whose bodies are being lowered, outermost first.
   std::vector<std::string> instancesLowering;
   /// `r^(...)`: the call of the instance r designates.

@@ -239,6 +239,14 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
       f->type = resolve(f->typeSyntax, f->name);
       if (!f->type)
         return nullptr;
+      // A structure is a value netlift copies whole; an instance is not.
+      if (Pou *fb = instanceBlock(f->type)) {
+        error(f->loc, "structure member '" + f->name +
+                          "' holds a function block instance (" + fb->name +
+                          "): declare the instance as a variable of the "
+                          "program or block instead");
+        return nullptr;
+      }
       for (VarDecl *g : t->fields)
         if (sameName(g->name, f->name)) {
           error(f->loc, "field '" + f->name + "' appears twice");
@@ -327,7 +335,7 @@ void Checker::reshapeRowMajor(Initializer *init, const PType *t, size_t dim) {
     return;
   std::vector<Initializer *> flat;
   for (auto &[count, inner] : init->elems) {
-    if (!inner || inner->kind != Initializer::Value)
+    if (!inner || inner->kind == Initializer::Array)
       return; // nested already (or empty): rows as written
     for (int64_t k = 0; k < count; ++k)
       flat.push_back(inner);
@@ -642,11 +650,9 @@ void Checker::checkPou(Pou *p) {
          (v->type && v->type->kind != PTypeKind::Bool)))
       error(v->loc, Twine(v->edge == 'R' ? "R_EDGE" : "F_EDGE") +
                         " is allowed only on BOOL inputs of function blocks");
-    if (v->type && v->type->kind == PTypeKind::FunctionBlock &&
-        v->type->fb == p)
+    if (v->type && instanceBlock(v->type) == p)
       error(v->loc, "function block '" + p->name + "' contains itself");
-    if (p->kind == PouKind::Function && v->type &&
-        v->type->kind == PTypeKind::FunctionBlock)
+    if (p->kind == PouKind::Function && v->type && instanceBlock(v->type))
       error(v->loc, "a function cannot hold a function block instance "
                     "(functions have no memory)");
   }

@@ -165,6 +165,11 @@ bool checkUnit(Unit &unit, DiagEngine &diag, const CheckOptions &options = {});
 /// unit order; every POU when there is no top.
 std::vector<Pou *> reachedPous(const Unit &unit, llvm::StringRef top);
 
+/// The block whose instances a variable of type `t` holds: `t`'s own for
+/// an instance, the element's for an array of instances (of any depth);
+/// null otherwise.
+Pou *instanceBlock(const PType *t);
+
 /// The POU a checked call runs: a function, or the type of the instance
 /// called by name or through a reference; null for a standard function.
 Pou *calledPou(const Expr *call);

@@ -242,6 +242,12 @@ std::string plc::referenceKey(const PType *t) {
   }
 }
 
+Pou *plc::instanceBlock(const PType *t) {
+  while (t && t->kind == PTypeKind::Array)
+    t = t->elem;
+  return t && t->kind == PTypeKind::FunctionBlock ? t->fb : nullptr;
+}
+
 Pou *plc::calledPou(const Expr *c) {
   if (c->callee)
     return c->callee;

@@ -973,14 +973,17 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     Expr *callee = variable(call->callee);
     if (!callee)
       return nullptr;
-    bool throughReference = callee->kind == ExprKind::Deref;
-    if (callee->kind != ExprKind::Name && !throughReference)
+    // `r^(...)` calls the instance r designates, `timers[i](...)` an
+    // element of an array of instances.
+    bool selected =
+        callee->kind == ExprKind::Deref || callee->kind == ExprKind::Index;
+    if (callee->kind != ExprKind::Name && !selected)
       return refuse(loc(call), "calling '" + call->callee->getText() +
                                    "' is not supported (methods and calls "
                                    "through selectors are refused)");
     Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
-    e->name = throughReference ? call->callee->getText() : callee->name;
-    if (throughReference)
+    e->name = selected ? call->callee->getText() : callee->name;
+    if (selected)
       e->operands.push_back(callee);
     callArgs(call->callArg(), e->args);
     s->value = e;

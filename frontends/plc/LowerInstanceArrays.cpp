@@ -1,0 +1,268 @@
+//===- LowerInstanceArrays.cpp - arrays of function block instances -------===//
+//
+// `timers : ARRAY[1..8] OF TON` (IEC 61131-3 3rd edition, CODESYS,
+// TwinCAT): every element is an instance of its own, flattened like any
+// instance into the NetIR variables of its members under the prefix
+// `timers_1` (`timers_1_2` for two dimensions, `timers_m1` for index -1).
+// An element chosen by a constant index is that instance; one chosen at
+// run time (`timers[i](IN := ...)`, `x := timers[i].Q`) is a choice over
+// the elements, the index checked against the array's bounds as any
+// index is (a scan variable `timers_index` of range lo..hi: leaving it is
+// a run-time error with a trace).
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+std::string Lowering::elementPath(const std::string &path,
+                                  llvm::ArrayRef<int64_t> index) {
+  std::string p = path;
+  for (int64_t i : index)
+    p += i < 0 ? "_m" + std::to_string(-i) : "_" + std::to_string(i);
+  return p;
+}
+
+/// The initialisers of the elements of dimension `dim`'s rows, one per
+/// index from lo (repeats expanded; null where none is given).
+static std::vector<Initializer *> rowInitializers(Initializer *init,
+                                                  int64_t count) {
+  std::vector<Initializer *> out;
+  if (init && init->kind == Initializer::Array)
+    for (auto &[repeat, inner] : init->elems)
+      for (int64_t k = 0; k < std::max<int64_t>(repeat, 1); ++k)
+        out.push_back(inner);
+  out.resize(count, nullptr);
+  return out;
+}
+
+void Lowering::declareInstances(const std::string &path, const PType *t,
+                                Initializer *init, size_t dim,
+                                std::vector<int64_t> &index) {
+  if (t->kind == PTypeKind::FunctionBlock) {
+    declareInstance(path, t->fb, init);
+    return;
+  }
+  auto [lo, hi] = t->dims[dim];
+  std::vector<Initializer *> rows = rowInitializers(init, hi - lo + 1);
+  for (int64_t i = lo; i <= hi; ++i) {
+    index.push_back(i);
+    Initializer *row = rows[i - lo];
+    if (dim + 1 < t->dims.size()) {
+      declareInstances(path, t, row, dim + 1, index);
+    } else {
+      std::vector<int64_t> inner;
+      declareInstances(elementPath(path, index), t->elem, row, 0, inner);
+    }
+    index.pop_back();
+  }
+}
+
+void Lowering::declareInstances(const std::string &path, const PType *t,
+                                Initializer *init) {
+  std::vector<int64_t> index;
+  declareInstances(path, t, init, 0, index);
+}
+
+std::vector<std::string> Lowering::instancePaths(const std::string &path,
+                                                 const PType *t) {
+  if (t->kind == PTypeKind::FunctionBlock)
+    return {path};
+  std::vector<std::string> out;
+  std::vector<int64_t> index(t->dims.size());
+  for (size_t d = 0; d < index.size(); ++d)
+    index[d] = t->dims[d].first;
+  for (;;) {
+    for (std::string &p : instancePaths(elementPath(path, index), t->elem))
+      out.push_back(std::move(p));
+    size_t d = index.size();
+    while (d-- > 0 && ++index[d] > t->dims[d].second)
+      index[d] = t->dims[d].first;
+    if (d == size_t(-1))
+      return out;
+  }
+}
+
+std::vector<Lowering::InstanceChoice>
+Lowering::instanceChoices(Expr *e, Frame &f, Sink &pre) {
+  if (e->kind == ExprKind::Name) {
+    if (!e->var)
+      refuse(e->loc, "internal: an unresolved instance");
+    if (auto alias = f.instanceAliases.find(e->var);
+        alias != f.instanceAliases.end())
+      return {{nullptr, alias->second}};
+    return {{nullptr, e->var->owner ? f.prefix + sanitize(e->var->name)
+                                    : sanitize(e->var->name)}};
+  }
+  if (e->kind != ExprKind::Index || !e->base()->type ||
+      e->base()->type->kind != PTypeKind::Array)
+    refuse(e->loc, "function block instances are named directly or by an "
+                   "index into an array of instances (instances in "
+                   "structures are not supported)");
+  std::vector<InstanceChoice> bases = instanceChoices(e->base(), f, pre);
+  const PType *at = e->base()->type;
+  // Each index: one value known now, or every value of its dimension
+  // tested against a checked copy of it.
+  std::vector<std::vector<std::pair<NExpr *, int64_t>>> perDim;
+  for (size_t d = 0; d < at->dims.size(); ++d) {
+    auto [lo, hi] = at->dims[d];
+    Expr *ix = e->operands[d + 1];
+    std::vector<std::pair<NExpr *, int64_t>> values;
+    if (auto c = constValue(ix, f)) {
+      if (*c < lo || *c > hi)
+        refuse(ix->loc, "index " + Twine(*c) + " is outside " + Twine(lo) +
+                            ".." + Twine(hi) + " of '" + e->base()->name + "'");
+      values.push_back({nullptr, *c});
+    } else {
+      std::string stem =
+          (e->base()->kind == ExprKind::Name ? sanitize(e->base()->name)
+                                             : std::string("instance")) +
+          "_index";
+      std::string k =
+          scanVariable(stem, design.types.getRange(lo, hi), lo, ix->loc);
+      pre.push_back(b.assign(b.ref(k, ix->loc), expr(ix, f, pre), ix->loc));
+      for (int64_t i = lo; i <= hi; ++i)
+        values.push_back({b.binary(net::BinaryOp::Eq, b.ref(k, ix->loc),
+                                   b.intLit(i, ix->loc), ix->loc),
+                          i});
+    }
+    perDim.push_back(std::move(values));
+  }
+  auto both = [&](NExpr *x, NExpr *y) {
+    return !x ? y : !y ? x : b.binary(net::BinaryOp::And, x, y, e->loc);
+  };
+  std::vector<InstanceChoice> out;
+  std::vector<int64_t> index(perDim.size());
+  std::function<void(const InstanceChoice &, size_t, NExpr *)> expand =
+      [&](const InstanceChoice &base, size_t d, NExpr *test) {
+        if (d == perDim.size()) {
+          out.push_back({test, elementPath(base.path, index)});
+          return;
+        }
+        for (auto &[t, i] : perDim[d]) {
+          index[d] = i;
+          expand(base, d + 1, both(test, t));
+        }
+      };
+  for (const InstanceChoice &base : bases)
+    expand(base, 0, base.test);
+  return out;
+}
+
+bool Lowering::chosenAtRunTime(Expr *instance, Frame &f) {
+  for (Expr *x = instance; x && x->kind == ExprKind::Index; x = x->base())
+    for (size_t i = 1; i < x->operands.size(); ++i)
+      if (!constValue(x->operands[i], f))
+        return true;
+  return false;
+}
+
+std::string Lowering::instancePath(Expr *e, Frame &f) {
+  if (chosenAtRunTime(e, f))
+    refuse(e->loc, "an instance chosen by an index known only at run time "
+                   "is called, or its inputs and outputs are read or "
+                   "assigned, but it is not passed or bound");
+  Sink none;
+  return instanceChoices(e, f, none).front().path;
+}
+
+std::string Lowering::boundInstance(Expr *argument, Frame &f) {
+  if (auto chosen = inOutInstances.find(argument);
+      chosen != inOutInstances.end())
+    return chosen->second;
+  if (auto place = inOutPlaces.find(argument); place != inOutPlaces.end()) {
+    if (auto *r = llvm::dyn_cast<net::Ref>(place->second))
+      return r->name.str();
+    refuse(argument->loc, "internal: an instance in an element");
+  }
+  if (throughReference(argument)) {
+    Sink none;
+    NExpr *place =
+        placeThroughReference(argument, f, none, "passed to a VAR_IN_OUT");
+    if (auto *r = llvm::dyn_cast<net::Ref>(place))
+      return r->name.str();
+    refuse(argument->loc, "internal: an instance in an element");
+  }
+  return instancePath(argument, f);
+}
+
+void Lowering::callChosenInstance(Expr *call, Pou *fb,
+                                  llvm::ArrayRef<InstanceChoice> choices,
+                                  Frame &f, Sink &out) {
+  if (choices.size() == 1) {
+    instanceCall(call, fb, choices[0].path, f, out);
+    return;
+  }
+  // The last choice is what the others leave: the index (or reference)
+  // was checked to designate one of them.
+  std::vector<net::IfArm> arms;
+  for (const InstanceChoice &c : choices.drop_back()) {
+    Sink body;
+    instanceCall(call, fb, c.path, f, body);
+    arms.push_back({c.test, design.copy(llvm::ArrayRef<NStmt *>(body))});
+  }
+  Sink last;
+  instanceCall(call, fb, choices.back().path, f, last);
+  out.push_back(b.ifStmt(arms, true, last, call->loc));
+}
+
+void Lowering::elementCall(Expr *call, Frame &f, Sink &out) {
+  Expr *instance = call->operands[0];
+  std::vector<InstanceChoice> choices = instanceChoices(instance, f, out);
+  callChosenInstance(call, instance->type->fb, choices, f, out);
+}
+
+bool Lowering::memberOfChosenInstance(Expr *e, Frame &f) {
+  return e->kind == ExprKind::Field && e->base()->type &&
+         e->base()->type->kind == PTypeKind::FunctionBlock &&
+         e->base()->kind == ExprKind::Index && !throughReference(e) &&
+         chosenAtRunTime(e->base(), f);
+}
+
+NExpr *Lowering::chosenMemberRead(Expr *e, Frame &f, Sink &pre) {
+  std::vector<InstanceChoice> choices = instanceChoices(e->base(), f, pre);
+  std::string member = "." + sanitize(e->var->name);
+  NExpr *r = nullptr;
+  for (auto it = choices.rbegin(); it != choices.rend(); ++it) {
+    if (f.external)
+      externallyRead.insert(it->path + member);
+    NExpr *value = b.ref(it->path + member, e->loc);
+    r = r ? b.cond(it->test, value, r, e->loc) : value;
+  }
+  return r;
+}
+
+void Lowering::chosenMemberWrite(Stmt *s, NExpr *value, Frame &f, Sink &out) {
+  std::vector<InstanceChoice> choices =
+      instanceChoices(s->target->base(), f, out);
+  std::string member = "." + sanitize(s->target->var->name);
+  // Evaluated once, before the choice (then already of the member's type).
+  Expr *valueExpr = s->value;
+  if (!llvm::isa<net::IntLit>(value) && !llvm::isa<net::BoolLit>(value) &&
+      !llvm::isa<net::Ref>(value)) {
+    std::string tmp = unique(sanitize(s->target->var->name) + "_value");
+    declareTemp(tmp, s->target->type, s->loc);
+    assign(b.ref(tmp, s->loc), value, s->target->type, s->value, out, s->loc);
+    value = b.ref(tmp, s->loc);
+    valueExpr = nullptr;
+  }
+  std::vector<net::IfArm> arms;
+  Sink last;
+  for (size_t i = 0; i < choices.size(); ++i) {
+    noteClockBound(choices[i].path + member, s->value, f, s->loc);
+    Sink body;
+    assign(b.ref(choices[i].path + member, s->loc), value, s->target->type,
+           valueExpr, body, s->loc);
+    if (i + 1 == choices.size())
+      last = std::move(body);
+    else
+      arms.push_back(
+          {choices[i].test, design.copy(llvm::ArrayRef<NStmt *>(body))});
+  }
+  if (arms.empty())
+    out.insert(out.end(), last.begin(), last.end());
+  else
+    out.push_back(b.ifStmt(arms, true, last, s->loc));
+}
