@@ -636,9 +636,69 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
     return realMath(e, a, at);
   case StdFn::StringOp:
     return stringFunction(e, a, at);
+  case StdFn::Bcd:
+    return bcdConversion(e, info, a[0], pre, at);
   case StdFn::Refused:
   case StdFn::None:
     break;
   }
   refuse(at, "standard function '" + e->name + "' is not supported");
+}
+
+NExpr *Lowering::bcdConversion(Expr *call, const StdFnInfo &info, NExpr *v,
+                               Sink &pre, SMLoc at) {
+  const PType *src = baseOf(call->args[0].value->type);
+  std::string stem =
+      unique(sanitize(call->name) + "_" + std::to_string(++callSites));
+  if (!info.toBcd) {
+    // Each nibble a decimal digit (a larger one is a run-time error, the
+    // check variable holding the largest), weighted by its power of ten.
+    const PType *bits = info.from ? info.from : src;
+    unsigned digits = (bits->kind == PTypeKind::AnyInt ? 32 : bits->width) / 4;
+    std::vector<NExpr *> nibbles;
+    for (unsigned k = 0; k < digits; ++k)
+      nibbles.push_back(
+          b.binary(net::BinaryOp::BitAnd,
+                   b.binary(net::BinaryOp::Shr, v, b.intLit(4 * k, at), at),
+                   b.intLit(15, at), at));
+    std::string digit =
+        scanVariable(stem + ".digit", design.types.getRange(0, 9), 0, at);
+    NExpr *largest = nibbles[0];
+    for (unsigned k = 1; k < digits; ++k)
+      largest = b.call(net::Builtin::Max, {largest, nibbles[k]}, at);
+    pre.push_back(b.assign(b.ref(digit, at), largest, at));
+    NExpr *sum = nullptr;
+    int64_t weight = 1;
+    for (unsigned k = 0; k < digits; ++k, weight *= 10) {
+      NExpr *term = weight == 1 ? nibbles[k]
+                                : b.binary(net::BinaryOp::Mul, nibbles[k],
+                                           b.intLit(weight, at), at);
+      sum = sum ? b.binary(net::BinaryOp::Add, sum, term, at) : term;
+    }
+    return convert(sum, elementaryType("LINT"), info.to, at);
+  }
+  // The integer, checked to fit the digits, one decimal digit per nibble
+  // (as many as the bit string the context gave INT_TO_BCD holds).
+  unsigned digits = baseOf(call->type)->width / 4;
+  int64_t limit = 1;
+  for (unsigned k = 0; k < digits; ++k)
+    limit *= 10;
+  std::string value =
+      scanVariable(stem + ".value", design.types.getRange(0, limit - 1), 0, at);
+  pre.push_back(b.assign(b.ref(value, at), v, at));
+  NExpr *r = nullptr;
+  int64_t weight = 1;
+  for (unsigned k = 0; k < digits; ++k, weight *= 10) {
+    NExpr *digit =
+        b.binary(net::BinaryOp::Mod,
+                 weight == 1 ? b.ref(value, at)
+                             : b.binary(net::BinaryOp::Div, b.ref(value, at),
+                                        b.intLit(weight, at), at),
+                 b.intLit(10, at), at);
+    NExpr *placed =
+        k == 0 ? digit
+               : b.binary(net::BinaryOp::Shl, digit, b.intLit(4 * k, at), at);
+    r = r ? b.binary(net::BinaryOp::BitOr, r, placed, at) : placed;
+  }
+  return r;
 }

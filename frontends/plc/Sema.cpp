@@ -12,6 +12,8 @@
 #include "frontends/plc/SemaChecker.h"
 #include "ir/support/Suggest.h"
 
+#include "llvm/ADT/ScopeExit.h"
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -486,7 +488,10 @@ VarDecl *Checker::enEno(Pou *p, StringRef name) {
 /// an input (`:=`) or output (`=>`) of the program and binds it to a global
 /// variable of matching type (IEC 61131-3 2.7.1).
 void Checker::checkProgramArgs(ProgramInstance &pi, Pou *p) {
+  std::vector<CallArg> kept;
+  auto keep = llvm::make_scope_exit([&] { pi.args = std::move(kept); });
   for (CallArg &a : pi.args) {
+    kept.push_back(a);
     if (a.name.empty()) {
       error(a.loc, "arguments of program instance '" + pi.name +
                        "' must be named ('IN := g' or 'OUT => g')");
@@ -503,10 +508,26 @@ void Checker::checkProgramArgs(ProgramInstance &pi, Pou *p) {
       error(a.loc, "a negated program argument is not supported");
     if (a.value && a.value->kind == ExprKind::Name &&
         StringRef(a.value->name).startswith("%")) {
-      error(a.value->loc, "binding '" + a.name + "' to the direct address " +
-                              a.value->name +
-                              " is not supported: declare the variable AT " +
-                              a.value->name + " in the program");
+      // `IN := %IX0.0`, `OUT => %QX4.0` (IEC 61131-3 Annex F): the
+      // variable is located there, as if declared AT the address.
+      StringRef addr(a.value->name);
+      char area = addr.size() > 1 ? char(std::toupper(addr[1])) : 0;
+      if (a.isOutput ? area != 'Q' && area != 'M' : area != 'I') {
+        error(a.value->loc, "binding " +
+                                Twine(a.isOutput ? "output '" : "input '") +
+                                a.name + "' to " + addr +
+                                ": an input is bound to an input address "
+                                "(%I...), an output to an output or memory "
+                                "address (%Q..., %M...)");
+        continue;
+      }
+      if (!v->location.empty() && !sameName(v->location, addr)) {
+        error(a.value->loc, "'" + a.name + "' is located at " + v->location +
+                                ", bound here to " + addr);
+        continue;
+      }
+      v->location = addr.str();
+      kept.pop_back(); // located: nothing is left to pass
       continue;
     }
     unsigned errorsBefore = diag.numErrors();

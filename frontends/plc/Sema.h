@@ -123,7 +123,8 @@ enum class StdFn : uint8_t {
   Convert,  // X_TO_Y and TO_Y between BOOL, integer and bit-string types
   RealMath, // SQRT, SIN, EXPT, TRUNC, ...
   StringOp, // LEN, LEFT, RIGHT, MID, CONCAT, INSERT, DELETE, REPLACE, FIND
-  Refused,  // recognised but not supported at all (BCD)
+  Bcd,      // BCD_TO_INT, WORD_BCD_TO_UINT, INT_TO_BCD, UINT_TO_BCD_WORD
+  Refused,  // recognised but not supported at all (NOW)
 };
 
 struct StdFnInfo {
@@ -133,6 +134,8 @@ struct StdFnInfo {
   /// Convert: 4diac's TIME_IN_S/MS/US/NS_TO_x count the TIME in this unit
   /// (ns); 0 for the others.
   int64_t unitNs = 0;
+  /// Bcd: from an integer to its BCD bits (else from BCD bits).
+  bool toBcd = false;
 };
 
 StdFnInfo lookupStdFunction(llvm::StringRef name);

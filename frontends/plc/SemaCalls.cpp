@@ -562,17 +562,37 @@ const PType *Checker::call(Expr *e, bool asStatement) {
   }
   case StdFn::StringOp:
     return stringCall(e, types);
-  case StdFn::Refused:
-    if (StringRef(e->name).upper().find("BCD") == std::string::npos) {
-      error(e->loc, "'" + e->name +
-                        "' reads the runtime's clock, which grows without "
-                        "bound: it is not modelled (measure time with a "
-                        "timer, TON or E_DELAY)");
+  case StdFn::Bcd: {
+    if (!arity(1, 1))
+      return nullptr;
+    const PType *src = baseOf(types[0]);
+    bool fits = info.toBcd ? src->isInteger() && !src->isBits
+                           : src->kind == PTypeKind::AnyInt ||
+                                 (src->kind == PTypeKind::Int && src->isBits);
+    if (!fits ||
+        (info.from && src->kind != PTypeKind::AnyInt && src != info.from)) {
+      error(e->args[0].loc,
+            "'" + e->name + "' converts " +
+                (info.from ? info.from->str()
+                           : std::string("a bit string (BYTE, WORD, ...)")) +
+                (info.toBcd ? " to BCD" : " holding BCD digits") + ", given " +
+                src->str());
       return nullptr;
     }
+    if (info.to->width > 32 || (info.from && info.from->width > 32) ||
+        src->width > 32) {
+      error(e->loc, "'" + e->name +
+                        "': BCD conversions of 64-bit values are not "
+                        "supported");
+      return nullptr;
+    }
+    return info.to;
+  }
+  case StdFn::Refused:
     error(e->loc, "'" + e->name +
-                      "' is not supported (BCD conversions are "
-                      "refused)");
+                      "' reads the runtime's clock, which grows without "
+                      "bound: it is not modelled (measure time with a "
+                      "timer, TON or E_DELAY)");
     return nullptr;
   case StdFn::None:
     break;

@@ -120,6 +120,17 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
   if (!to || !ft)
     return true; // already reported
   const PType *tb = baseOf(to), *fb = baseOf(ft);
+  // INT_TO_BCD(n) writes the bit string its context wants (IEC 61131-3's
+  // ANY_BIT result): as many digits as the target holds.
+  if (from->kind == ExprKind::Call && tb->kind == PTypeKind::Int &&
+      tb->isBits && tb->width <= 32 &&
+      StringRef(from->name).upper().size() > 7 &&
+      StringRef(from->name).upper().substr(from->name.size() - 7) ==
+          "_TO_BCD" &&
+      lookupStdFunction(from->name).fn == StdFn::Bcd) {
+    from->type = tb;
+    return true;
+  }
   auto mismatch = [&] {
     error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
                   " to " + to->str());

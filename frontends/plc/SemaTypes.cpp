@@ -318,9 +318,36 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
   size_t pos = u.find("_TO_");
   if (pos != StringRef::npos) {
     StringRef from = u.substr(0, pos), to = u.substr(pos + 4);
-    if (from == "BCD" || to == "BCD" || from.endswith("_BCD") ||
-        to.startswith("BCD_")) {
-      info.fn = StdFn::Refused;
+    // BCD_TO_INT and BYTE_BCD_TO_USINT read BCD bits; INT_TO_BCD and
+    // UINT_TO_BCD_WORD write them (without a bit-string type named: the
+    // one as wide as the integer).
+    if (from == "BCD" || from.endswith("_BCD")) {
+      const PType *bits =
+          from == "BCD" ? nullptr : elementaryType(from.drop_back(4));
+      const PType *t = elementaryType(to);
+      if (t && t->kind == PTypeKind::Int && (from == "BCD" || bits)) {
+        info.fn = StdFn::Bcd;
+        info.from = bits;
+        info.to = t;
+      }
+      return info;
+    }
+    if (to == "BCD" || to.startswith("BCD_")) {
+      const PType *f = elementaryType(from);
+      if (!f || f->kind != PTypeKind::Int)
+        return info;
+      const char *wide = f->width <= 8    ? "BYTE"
+                         : f->width <= 16 ? "WORD"
+                         : f->width <= 32 ? "DWORD"
+                                          : "LWORD";
+      const PType *bits =
+          elementaryType(to == "BCD" ? StringRef(wide) : to.drop_front(4));
+      if (bits && bits->kind == PTypeKind::Int && bits->isBits) {
+        info.fn = StdFn::Bcd;
+        info.toBcd = true;
+        info.from = f;
+        info.to = bits;
+      }
       return info;
     }
     const PType *f = elementaryType(from), *t = elementaryType(to);

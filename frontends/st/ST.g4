@@ -320,5 +320,5 @@ literal
   | DURATION                                                    # durationLiteral
   | (TOD_LIT | DATE_LIT | DT_LIT)                               # dateLiteral
   | (STRING_LIT | WSTRING_LIT)                                  # stringLiteral
-  | type=IDENT HASH sign=(MINUS | PLUS)? (value=(INTEGER | REAL_LIT | TRUE | FALSE | STRING_LIT) | enumName=ident) # typedLiteral
+  | type=(IDENT | STRING_KW | WSTRING_KW) HASH sign=(MINUS | PLUS)? (value=(INTEGER | REAL_LIT | TRUE | FALSE | STRING_LIT | WSTRING_LIT) | enumName=ident) # typedLiteral
   ;

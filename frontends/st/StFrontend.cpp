@@ -1283,7 +1283,8 @@ Expr *AstBuilder::literal(P::LiteralContext *c) {
     e->intValue = t->value->getType() == P::TRUE;
     return e;
   }
-  case P::STRING_LIT: {
+  case P::STRING_LIT:
+  case P::WSTRING_LIT: {
     Expr *e = unit.make<Expr>(ExprKind::StringLit, at);
     e->typeName = typeName;
     e->name = value;
