@@ -39,6 +39,9 @@ struct FrontendOptions {
   std::string fbSemantics;
   /// --sfc-dialect: the order of an SFC scan, iec (default) or codesys.
   bool sfcCodesys = false;
+  /// --time-unit: what TIME_TO_INT and the like count in, "s" or "ms";
+  /// empty: what the inputs show (plc::TimeNumbers).
+  std::string timeUnit;
   /// -Wunused-refused: warn about refused constructs in PLC POUs the
   /// translation does not use.
   bool warnUnusedRefused = false;

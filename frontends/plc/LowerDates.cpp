@@ -34,8 +34,8 @@ NExpr *Lowering::nsToTicks(NExpr *ns, SMLoc at) {
     return ns;
   if (!notedTickRounding) {
     notedTickRounding = true;
-    diag.note(at, "a duration computed from dates or times of day is "
-                  "rounded up to whole ticks of " +
+    diag.note(at, "a duration computed at run time (from dates, times of "
+                  "day or numbers) is rounded up to whole ticks of " +
                       formatDuration(tickNs));
   }
   // ns / tick, plus one when a positive remainder is left: no overflow

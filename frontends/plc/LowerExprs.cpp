@@ -409,7 +409,15 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
   if (from->kind == PTypeKind::String || to->kind == PTypeKind::String)
     return convertString(v, from, to, at);
   if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Real)
-    return timeInUnit(v, 1000000, to, at); // milliseconds, as CODESYS
+    return timeInUnit(v, timeNumberNs(at), to, at);
+  if (from->kind == PTypeKind::Real && to->kind == PTypeKind::Time) {
+    // That many seconds or milliseconds, rounded up to whole ticks.
+    NExpr *ns = b.binary(net::BinaryOp::Mul, coerce(v, from, anyRealType(), at),
+                         b.realLit(double(timeNumberNs(at)), at), at);
+    return nsToTicks(
+        b.convert(design.types.getInt(64, true, net::Overflow::Error), ns, at),
+        at);
+  }
   if (from->kind == PTypeKind::Real || to->kind == PTypeKind::Real)
     return convertReal(v, from, to, at);
   if (to->kind == PTypeKind::Bool) {
@@ -440,6 +448,17 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
       isU64(from))
     return convert(fromUnsigned64(v, elementaryType("LINT"), at),
                    elementaryType("LINT"), to, at);
+  if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int &&
+      timeNumberNs(at) != 1000000)
+    return timeInUnit(v, timeNumberNs(at), to, at);
+  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time) {
+    // That many seconds or milliseconds: whole ticks, else rounded up.
+    int64_t unitNs = timeNumberNs(at);
+    if (unitNs % tickNs == 0)
+      return b.binary(net::BinaryOp::Mul, v, b.intLit(unitNs / tickNs, at), at);
+    return nsToTicks(b.binary(net::BinaryOp::Mul, v, b.intLit(unitNs, at), at),
+                     at);
+  }
   if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int) {
     // TIME converts to milliseconds.
     if (tickNs % 1000000 != 0)
@@ -450,15 +469,22 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
         b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs / 1000000, at), at);
     return wrapTo(ms, to, {0, 0, false}, at);
   }
-  if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time) {
-    if (1000000 % tickNs != 0)
-      refuse(at, "integer to TIME conversion reads milliseconds, but a "
-                 "millisecond is not a whole number of ticks");
-    return b.binary(net::BinaryOp::Mul, v, b.intLit(1000000 / tickNs, at), at);
-  }
   if (from->kind == to->kind && from->kind == PTypeKind::Time)
     return v;
   return convertReal(v, from, to, at);
+}
+
+int64_t Lowering::timeNumberNs(SMLoc at) {
+  if (!notedTimeNumbers) {
+    notedTimeNumbers = true;
+    diag.note(at, "TIME converts to and from numbers in " +
+                      (unit.timeNumbersWhy.empty()
+                           ? std::string("milliseconds, as CODESYS and "
+                                         "TwinCAT convert")
+                           : unit.timeNumbersWhy) +
+                      " (--time-unit s or ms chooses)");
+  }
+  return unit.timeNumbers == TimeNumbers::Seconds ? 1000000000 : 1000000;
 }
 
 NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
@@ -624,9 +650,12 @@ NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
   case StdFn::Convert: {
     // LTIME_TO_STRING(a TIME) writes an LTIME: TIME and LTIME (and DT and
     // LDT...) share their representation, so the name says which it is.
+    // An untyped literal is of the type the name converts from
+    // (DINT_TO_TIME(3) is 3 DINT units, not 3 ticks).
     const PType *from = src[0]->type;
     if (info.from && (info.from->kind == PTypeKind::Time ||
-                      info.from->kind == PTypeKind::Date))
+                      info.from->kind == PTypeKind::Date ||
+                      baseOf(from)->kind == PTypeKind::AnyInt))
       from = info.from;
     if (info.unitNs)
       return timeInUnit(a[0], info.unitNs, info.to, at);

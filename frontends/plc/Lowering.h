@@ -393,6 +393,10 @@ private:
   /// A TIME (in ticks) counted in `unitNs` units as the integer or REAL
   /// type `to` (4diac's TIME_IN_MS_TO_LINT...).
   NExpr *timeInUnit(NExpr *v, int64_t unitNs, const PType *to, SMLoc at);
+  /// The nanoseconds a number converted to or from TIME counts (the
+  /// unit's TimeNumbers), noted once per translation.
+  int64_t timeNumberNs(SMLoc at);
+  bool notedTimeNumbers = false;
   /// A ULINT/LWORD constant past 2^63 - 1, where NetIR's literals stop:
   /// uint64(v - 2^63) + (2^63 - 1) + 1, computed in uint64.
   NExpr *unsigned64Literal(uint64_t v, SMLoc at);

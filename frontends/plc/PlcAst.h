@@ -439,10 +439,20 @@ enum class SfcDialect : uint8_t {
   Codesys, // run the actions of the current activity, then evolve
 };
 
+/// What TIME_TO_INT, TIME_TO_REAL, INT_TO_TIME and REAL_TO_TIME count in,
+/// which IEC 61131-3 leaves to the implementation: seconds in matiec
+/// (OpenPLC, Beremiz), milliseconds in CODESYS and TwinCAT.
+enum class TimeNumbers : uint8_t { Milliseconds, Seconds };
+
 class Unit {
 public:
   /// --sfc-dialect, read by expandSfc.
   SfcDialect sfcDialect = SfcDialect::Iec;
+  /// --time-unit, or what the inputs show (a textual CONFIGURATION, a
+  /// PLCopen file written by Beremiz or OpenPLC: seconds); `timeNumbersWhy`
+  /// says why, for the note the lowering gives where it converts.
+  TimeNumbers timeNumbers = TimeNumbers::Milliseconds;
+  std::string timeNumbersWhy;
   /// The Instruction List reader (il::parseInstructionListBody), for an SFC
   /// transition condition written in IL inside ST; set by the frontend
   /// that owns both languages (the ST library cannot depend on IL's).

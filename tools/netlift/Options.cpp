@@ -137,6 +137,14 @@ static cl::opt<plc::SfcDialect> sfcDialect(
                           "run the actions of the current step activity, "
                           "then evolve (CODESYS, TwinCAT)")),
     NETLIFT_READING);
+static cl::opt<std::string> timeUnit(
+    "time-unit",
+    cl::desc("PLC input: what TIME_TO_INT, TIME_TO_REAL, INT_TO_TIME and "
+             "REAL_TO_TIME count in: s (matiec: OpenPLC, Beremiz) or ms "
+             "(CODESYS, TwinCAT); default: s for ST with a textual "
+             "CONFIGURATION and PLCopen XML not written by CODESYS or "
+             "TwinCAT, else ms (docs/st.md)"),
+    cl::value_desc("s|ms"), NETLIFT_READING);
 // Hidden knobs, so that tests can make small ST inputs take the grouped
 // parse of long parts.
 static cl::opt<unsigned> stLongPartTokens(
@@ -195,6 +203,13 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
   fo.sfcCodesys = sfcDialect == plc::SfcDialect::Codesys;
+  fo.timeUnit = timeUnit;
+  if (!fo.timeUnit.empty() && fo.timeUnit != "s" && fo.timeUnit != "ms") {
+    diag.error(llvm::SMLoc(),
+               "--time-unit=" + fo.timeUnit +
+                   ": expected s (seconds) or ms (milliseconds)");
+    return false;
+  }
   fo.warnUnusedRefused = warnUnusedRefused;
   fo.stLongPartTokens = stLongPartTokens;
   fo.stGroupTokens = stGroupTokens;
