@@ -493,9 +493,14 @@ NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
   // A REAL is the nanoseconds divided once (one rounding, so 1500 ms is
   // exactly 1.5 s); an integer counts whole units, truncated toward zero
   // as 4diac's integer division does.
-  if (to->kind == PTypeKind::Real)
-    return b.binary(net::BinaryOp::Div, b.convert(floatType(to), ns, at),
-                    b.realLit(double(unitNs), at), at);
+  // A REAL is computed in LREAL and narrowed once, as matiec does (and as
+  // CODESYS's whole milliseconds convert).
+  if (to->kind == PTypeKind::Real) {
+    const net::Type *wide = floatType(elementaryType("LREAL"));
+    NExpr *r = b.binary(net::BinaryOp::Div, b.convert(wide, ns, at),
+                        b.realLit(double(unitNs), at), at);
+    return floatType(to) == wide ? r : b.convert(floatType(to), r, at);
+  }
   NExpr *n = unitNs == 1
                  ? ns
                  : b.binary(net::BinaryOp::Div, ns, b.intLit(unitNs, at), at);

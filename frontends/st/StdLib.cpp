@@ -439,6 +439,95 @@ FUNCTION ADD_LTIME : LTIME
   ADD_LTIME := IN1 + IN2;
 END_FUNCTION
 
+(* The additional blocks of IEC 61131-3 2nd edition, Annex F, which
+   matiec, OpenPLC and Beremiz ship with every program. Their sampling
+   period CYCLE counts in seconds, whatever the dialect converts TIME to
+   numbers in. *)
+FUNCTION_BLOCK HYSTERESIS
+  VAR_INPUT XIN1, XIN2, EPS : REAL; END_VAR
+  VAR_OUTPUT Q : BOOL := FALSE; END_VAR
+  (* Q rises above the band around XIN2 and falls below it. *)
+  IF Q AND XIN1 < XIN2 - EPS THEN
+    Q := FALSE;
+  ELSIF NOT Q AND XIN1 > XIN2 + EPS THEN
+    Q := TRUE;
+  END_IF;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK INTEGRAL
+  VAR_INPUT RUN, R1 : BOOL; XIN, X0 : REAL; CYCLE : TIME; END_VAR
+  VAR_OUTPUT Q : BOOL; XOUT : REAL; END_VAR
+  (* R1 resets to X0 and overrides RUN; RUN integrates XIN over CYCLE,
+     otherwise XOUT holds. *)
+  Q := NOT R1;
+  IF R1 THEN
+    XOUT := X0;
+  ELSIF RUN THEN
+    XOUT := XOUT + XIN * TIME_IN_S_TO_REAL(CYCLE);
+  END_IF;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK DERIVATIVE
+  VAR_INPUT RUN : BOOL; XIN : REAL; CYCLE : TIME; END_VAR
+  VAR_OUTPUT XOUT : REAL; END_VAR
+  VAR X1, X2, X3 : REAL; END_VAR
+  (* A four-point difference over the last three samples; without RUN
+     the output is 0 and the samples follow XIN. *)
+  IF NOT RUN THEN
+    XOUT := 0.0;
+    X3 := XIN;
+    X2 := XIN;
+    X1 := XIN;
+  ELSE
+    XOUT := (3.0 * (XIN - X3) + X1 - X2) / (10.0 * TIME_IN_S_TO_REAL(CYCLE));
+    X3 := X2;
+    X2 := X1;
+    X1 := XIN;
+  END_IF;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK PID
+  VAR_INPUT AUTO : BOOL; PV, SP, X0, KP, TR, TD : REAL; CYCLE : TIME; END_VAR
+  VAR_OUTPUT XOUT : REAL; END_VAR
+  VAR ERROR : REAL; ITERM : INTEGRAL; DTERM : DERIVATIVE; END_VAR
+  (* Manual (AUTO false) holds the integral at the value that makes XOUT
+     follow X0. *)
+  ERROR := PV - SP;
+  ITERM(RUN := AUTO, R1 := NOT AUTO, XIN := ERROR, X0 := TR * (X0 - ERROR),
+        CYCLE := CYCLE);
+  DTERM(RUN := AUTO, XIN := ERROR, CYCLE := CYCLE);
+  XOUT := KP * (ERROR + ITERM.XOUT / TR + DTERM.XOUT * TD);
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK RAMP
+  VAR_INPUT RUN : BOOL; X0, X1 : REAL; TR, CYCLE : TIME; END_VAR
+  VAR_OUTPUT BUSY : BOOL; XOUT : REAL := 0.0; END_VAR
+  VAR XI : REAL; T : TIME := T#0s; END_VAR
+  (* Without RUN: XOUT tracks X0. With RUN: a straight line from where
+     it was to X1 over TR, in steps of CYCLE, then X1. *)
+  BUSY := RUN;
+  IF NOT RUN THEN
+    XOUT := X0;
+    XI := X0;
+    T := T#0s;
+  ELSIF T < TR THEN
+    XOUT := XI + (X1 - XI) * TIME_IN_S_TO_REAL(T) / TIME_IN_S_TO_REAL(TR);
+    T := T + CYCLE;
+  ELSE
+    BUSY := FALSE;
+    XOUT := X1;
+  END_IF;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK SEMA
+  VAR_INPUT CLAIM, RELEASE : BOOL; END_VAR
+  VAR_OUTPUT BUSY : BOOL; END_VAR
+  VAR HELD : BOOL; END_VAR
+  (* Taken by CLAIM (which wins over RELEASE), given back by RELEASE. *)
+  HELD := CLAIM OR (HELD AND NOT RELEASE);
+  BUSY := HELD;
+END_FUNCTION_BLOCK
+
 (* The steps of a Sequential Function Chart (frontends/plc/SfcExpansion.cpp
    calls them): X is the step flag. ACTIVATED_WHILE_ACTIVE is 1 when a
    transition activates the step while it is active and stays so (an
@@ -506,7 +595,8 @@ END_FUNCTION
 bool st::isStandardFunctionBlock(llvm::StringRef name) {
   for (const char *fb :
        {"R_TRIG", "F_TRIG", "SR", "RS", "CTU", "CTD", "CTUD", "TON", "TOF",
-        "TP", "NETLIFT_SFC_STEP", "NETLIFT_SFC_TIMED_STEP"})
+        "TP", "HYSTERESIS", "INTEGRAL", "DERIVATIVE", "PID", "RAMP", "SEMA",
+        "NETLIFT_SFC_STEP", "NETLIFT_SFC_TIMED_STEP"})
     if (name.equals_insensitive(fb))
       return true;
   return false;
