@@ -508,6 +508,31 @@ NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
 }
 
 NExpr *Lowering::stdCall(Expr *e, Frame &f, Sink &pre) {
+  if (!e->enable && !e->enableOut)
+    return stdValue(e, f, pre);
+  // With EN and ENO (matiec's rule): FALSE gives the type's initial value
+  // and clears ENO.
+  SMLoc at = e->loc;
+  NExpr *en = e->enable ? expr(e->enable, f, pre) : b.boolLit(true, at);
+  if (!llvm::isa<net::Ref>(en) && !llvm::isa<net::BoolLit>(en)) {
+    std::string flag = unique(sanitize(e->name) + "_EN");
+    declareTemp(flag, elementaryType("BOOL"), at);
+    pre.push_back(b.assign(b.ref(flag, at), en, at));
+    en = b.ref(flag, at);
+  }
+  if (e->enableOut)
+    assign(lvalue(e->enableOut, f, pre), en, e->enableOut->type, nullptr, pre,
+           at);
+  NExpr *value = stdValue(e, f, pre);
+  if (auto *lit = llvm::dyn_cast<net::BoolLit>(en); lit && lit->value)
+    return value;
+  NExpr *initial = defaultValue(e->type, at);
+  if (!initial)
+    refuse(at, "'" + e->name + "' with EN: its result has no initial value");
+  return b.cond(en, value, initial, at);
+}
+
+NExpr *Lowering::stdValue(Expr *e, Frame &f, Sink &pre) {
   StdFnInfo info = lookupStdFunction(e->name);
   std::vector<NExpr *> a;
   std::vector<Expr *> src;

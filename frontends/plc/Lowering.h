@@ -372,6 +372,8 @@ private:
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
   void atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at);
   NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
+  /// A standard function's result, EN aside.
+  NExpr *stdValue(Expr *call, Frame &f, Sink &pre);
   /// BCD_TO_x and x_TO_BCD: digits checked (a nibble above 9, a value
   /// beyond the digits, is a run-time error).
   NExpr *bcdConversion(Expr *call, const StdFnInfo &info, NExpr *v, Sink &pre,

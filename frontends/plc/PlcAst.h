@@ -119,6 +119,8 @@ struct Expr {
                                 // Deref: base, Index: base then indices
   std::vector<CallArg> args;    // Call
   DrawnBlock *drawn = nullptr;  // Call: the graphical block it was drawn as
+  /// Call of a standard function: its EN argument and ENO target, if given.
+  Expr *enable = nullptr, *enableOut = nullptr;
 
   // Filled in by Sema.
   const PType *type = nullptr;

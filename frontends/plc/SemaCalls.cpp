@@ -385,6 +385,32 @@ const PType *Checker::call(Expr *e, bool asStatement) {
           "unknown function '" + e->name + "'" + suggestFunction(e->name));
     return nullptr;
   }
+  // EN and ENO, as OpenPLC and Beremiz write FBD blocks in ST: the
+  // function runs only when EN is TRUE, else gives its type's initial
+  // value, and ENO says which (matiec's rule).
+  for (size_t i = 0; i < e->args.size();) {
+    CallArg &a = e->args[i];
+    bool en = !a.isOutput && sameName(a.name, "EN");
+    bool eno = a.isOutput && sameName(a.name, "ENO");
+    if (!en && !eno) {
+      ++i;
+      continue;
+    }
+    (en ? e->enable : e->enableOut) = a.value;
+    e->args.erase(e->args.begin() + i);
+  }
+  if (e->enable && (!expr(e->enable) ||
+                    !assignable(boolType(), e->enable, e->enable->loc, "EN")))
+    return nullptr;
+  if (e->enableOut) {
+    const PType *t = lvalue(e->enableOut);
+    if (!t)
+      return nullptr;
+    if (baseOf(t)->kind != PTypeKind::Bool) {
+      error(e->enableOut->loc, "ENO goes to a BOOL, not " + t->str());
+      return nullptr;
+    }
+  }
   if (!orderStdArgs(e, info.fn))
     return nullptr;
   std::vector<const PType *> types;
