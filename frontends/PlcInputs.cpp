@@ -154,9 +154,12 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   plc::CheckOptions co;
   co.top = fo.top;
   co.warnUnusedRefused = fo.warnUnusedRefused;
-  if (!plc::checkUnit(*unit, diag, co))
-    return false;
-  return plc::lowerToNet(*unit, opts, diag, design);
+  bool checked = plc::checkUnit(*unit, diag, co);
+  // A library of function blocks: each translated that can be, each that
+  // cannot reported.
+  if (fo.top.empty() && plc::isLibrary(*unit))
+    return plc::lowerLibrary(*unit, opts, diag, design) && checked;
+  return checked && plc::lowerToNet(*unit, opts, diag, design);
 }
 
 //===----------------------------------------------------------------------===//

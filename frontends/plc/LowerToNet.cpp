@@ -533,8 +533,10 @@ bool Lowering::run() {
           break;
         }
       if (at.isValid()) {
-        diag.error(at, "no PROGRAM to translate (use --top NAME to "
-                       "translate a function block as the controller)");
+        diag.error(at, "no PROGRAM or function block to translate: the "
+                       "input declares functions only (each was checked; "
+                       "a function is translated where a program calls "
+                       "it)");
         return false;
       }
       at = !unit.types.empty()     ? unit.types[0]->loc
@@ -793,4 +795,52 @@ bool plc::lowerToNet(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
                      net::Design &design) {
   Lowering l(unit, opts, diag, design);
   return l.run();
+}
+
+bool plc::isLibrary(const Unit &unit) {
+  for (Configuration *c : unit.configs)
+    if (!c->programs.empty())
+      return false;
+  bool blocks = false;
+  for (Pou *p : unit.pous) {
+    if (p->isLibrary)
+      continue;
+    if (p->kind == PouKind::Program)
+      return false;
+    blocks |= p->kind == PouKind::FunctionBlock;
+  }
+  return blocks;
+}
+
+bool plc::lowerLibrary(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
+                       net::Design &design) {
+  std::vector<Pou *> blocks;
+  for (Pou *p : unit.pous)
+    if (!p->isLibrary && p->kind == PouKind::FunctionBlock)
+      blocks.push_back(p);
+  // One tick for every block: the durations of them all.
+  LowerOptions each = opts;
+  std::set<Pou *> seen;
+  for (Pou *fb : blocks)
+    Lowering::collectTimes(fb, seen, each.extraTimesNs);
+  unsigned translated = 0;
+  for (Pou *fb : blocks) {
+    bool clean = true;
+    for (Pou *p : reachedPous(unit, fb->name))
+      clean &= !p->checkFailed;
+    if (!clean)
+      continue; // its errors are reported
+    each.top = fb->name;
+    // (Errors reported for other blocks make lowerToNet's answer false.)
+    unsigned errorsBefore = diag.numErrors();
+    lowerToNet(unit, each, diag, design);
+    translated += diag.numErrors() == errorsBefore;
+  }
+  diag.note(blocks.front()->loc,
+            "no PROGRAM: the input is a library; each of its " +
+                llvm::Twine(blocks.size()) +
+                " function blocks is a module of its own (" +
+                llvm::Twine(translated) +
+                " translated; --top NAME translates one)");
+  return translated == blocks.size();
 }

@@ -105,6 +105,16 @@ const net::Type *scalarNetType(const PType *t, net::TypeTable &types);
 bool lowerToNet(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
                 net::Design &design);
 
+/// Is the unit a library: function blocks, no PROGRAM, no configuration
+/// running one?
+bool isLibrary(const Unit &unit);
+
+/// A library: each of its function blocks lowered as a module of its own
+/// (as `--top` would), those Sema refused skipped (their errors are
+/// reported), one tick for all. Returns false if any was refused.
+bool lowerLibrary(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
+                  net::Design &design);
+
 } // namespace netlift::plc
 
 #endif

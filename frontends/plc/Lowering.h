@@ -138,12 +138,16 @@ private:
     throw Refusal{};
   }
 
-  // Time.
-  void collectTimes(Pou *p, std::set<Pou *> &seen, std::vector<int64_t> &ns);
-  void collectTimesExpr(Expr *e, std::set<Pou *> &seen,
-                        std::vector<int64_t> &ns);
-  void collectTimesStmts(StmtList &l, std::set<Pou *> &seen,
-                         std::vector<int64_t> &ns);
+public:
+  // Time: the durations a POU and what it calls write.
+  static void collectTimes(Pou *p, std::set<Pou *> &seen,
+                           std::vector<int64_t> &ns);
+  static void collectTimesExpr(Expr *e, std::set<Pou *> &seen,
+                               std::vector<int64_t> &ns);
+  static void collectTimesStmts(StmtList &l, std::set<Pou *> &seen,
+                                std::vector<int64_t> &ns);
+
+private:
   int64_t ticks(int64_t ns, SMLoc at);
 
   // Types and declarations.

@@ -390,6 +390,9 @@ struct Pou {
   llvm::SMLoc refusalLoc;
 
   // Filled in by Sema.
+  /// Sema reported an error in this POU (or its refusal): a library's
+  /// blocks that reach it are not lowered.
+  bool checkFailed = false;
   const PType *resultType = nullptr;
   VarDecl *resultVar = nullptr; // functions: the variable named like it
   /// The variable declared with this name (case-insensitive), or null.

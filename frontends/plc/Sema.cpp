@@ -585,6 +585,7 @@ bool Checker::run() {
         checked.push_back(p);
     } else if (isReached.count(p)) {
       error(p->refusalLoc, p->refusal);
+      p->checkFailed = true;
     } else if (options.warnUnusedRefused) {
       diag.warning(p->refusalLoc, p->refusal + " (in '" + p->name +
                                       "', which the translation does not "
@@ -606,7 +607,9 @@ bool Checker::run() {
       checkInitializer(g->typeSyntax ? g->typeSyntax->init : nullptr, g->type);
   for (Pou *p : checked) {
     current = p;
+    unsigned errorsBefore = diag.numErrors();
     declareVars(p->vars, p);
+    p->checkFailed |= diag.numErrors() != errorsBefore;
     if (p->kind == PouKind::Function && !p->resultSyntax) {
       p->resultType = voidType();
     } else if (p->kind == PouKind::Function) {
@@ -627,8 +630,11 @@ bool Checker::run() {
   for (Pou *p : checked)
     for (VarDecl *v : p->vars)
       indexEnum(v->type);
-  for (Pou *p : checked)
+  for (Pou *p : checked) {
+    unsigned errorsBefore = diag.numErrors();
     checkPou(p);
+    p->checkFailed |= diag.numErrors() != errorsBefore;
+  }
   for (Configuration *c : unit.configs) {
     current = nullptr;
     for (ProgramInstance &pi : c->programs) {
