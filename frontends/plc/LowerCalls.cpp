@@ -171,6 +171,35 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
       return std::nullopt;
     return r;
   }
+  // An element of an array written only by its initial value
+  // (`PT := presets[i]`): the largest element (or 0, a default one's).
+  if (e->kind == ExprKind::Index) {
+    Expr *root = e;
+    while (root->kind == ExprKind::Index)
+      root = root->base();
+    VarDecl *a = root->kind == ExprKind::Name ? root->var : nullptr;
+    if (!a || a->area() == 'I' || a->section == VarSection::Input ||
+        a->section == VarSection::InOut || writtenOtherwise.count(a) ||
+        !assignedValues[a].empty())
+      return std::nullopt;
+    int64_t best = 0;
+    std::function<bool(Initializer *)> elements = [&](Initializer *init) {
+      if (!init)
+        return true;
+      if (init->kind == Initializer::Struct)
+        return false;
+      if (init->kind == Initializer::Array)
+        return llvm::all_of(init->elems,
+                            [&](auto &elem) { return elements(elem.second); });
+      auto b = upperBound(init->value, f, visiting);
+      if (b)
+        best = std::max(best, *b);
+      return b.has_value();
+    };
+    if (!elements(a->typeSyntax ? a->typeSyntax->init : nullptr))
+      return std::nullopt;
+    return best;
+  }
   // A function block's input takes what its calls pass (any instance's:
   // an upper bound is all the clock needs); a program's input is free.
   VarDecl *v = e->kind == ExprKind::Name ? e->var : nullptr;
