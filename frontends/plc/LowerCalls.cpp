@@ -136,8 +136,14 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
                                             std::set<VarDecl *> &visiting) {
   if (auto c = constValue(e, f))
     return c;
-  if (Range r = rangeOf(e); r.exact)
-    return r.hi;
+  // A variable's own type may bound it more loosely than what it is
+  // given: the smaller bound.
+  if (Range r = rangeOf(e); r.exact) {
+    if (e->kind != ExprKind::Name)
+      return r.hi;
+    auto given = variableBound(e, f, visiting);
+    return given ? std::min(*given, r.hi) : r.hi;
+  }
   if (e->kind == ExprKind::Call) {
     // SEL, MUX, MAX, MIN, LIMIT and MOVE yield one of their value inputs.
     StdFnInfo info = e->callee ? StdFnInfo{} : lookupStdFunction(e->name);
@@ -200,6 +206,11 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
       return std::nullopt;
     return best;
   }
+  return variableBound(e, f, visiting);
+}
+
+std::optional<int64_t> Lowering::variableBound(Expr *e, Frame &f,
+                                               std::set<VarDecl *> &visiting) {
   // A function block's input takes what its calls pass (any instance's:
   // an upper bound is all the clock needs); a program's input is free.
   VarDecl *v = e->kind == ExprKind::Name ? e->var : nullptr;
@@ -227,6 +238,16 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
     if (!b)
       return std::nullopt;
     best = std::max(best, *b);
+  }
+  // A FOR loop's control variable goes from its start past its end by
+  // one step.
+  for (Stmt *loop : forLoopsOf[v]) {
+    auto from = upperBound(loop->from, f, visiting);
+    auto to = upperBound(loop->to, f, visiting);
+    auto by = loop->by ? constValue(loop->by, f) : std::optional<int64_t>(1);
+    if (!from || !to || !by)
+      return std::nullopt;
+    best = std::max({best, *from, *by > 0 ? *to + *by : *from});
   }
   return best;
 }

@@ -604,6 +604,9 @@ void Lowering::collectAssignments(StmtList &l) {
          (s->target->kind == ExprKind::Field &&
           s->target->var->section == VarSection::Input)))
       assignedValues[s->target->var].push_back(s->value);
+    else if (s->kind == StmtKind::For && s->target->kind == ExprKind::Name &&
+             s->target->var)
+      forLoopsOf[s->target->var].push_back(s);
     else if (s->kind == StmtKind::Assign || s->kind == StmtKind::For)
       writtenBy(s->target, writtenOtherwise);
     if (s->kind != StmtKind::Call)

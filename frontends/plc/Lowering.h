@@ -496,6 +496,8 @@ private:
   /// variables also written otherwise (an output binding, a field).
   std::map<VarDecl *, std::vector<Expr *>> assignedValues;
   std::set<VarDecl *> writtenOtherwise;
+  /// The FOR loops each variable is the control variable of.
+  std::map<VarDecl *, std::vector<Stmt *>> forLoopsOf;
   void collectAssignments(StmtList &l);
   /// The largest value `e` can take, if netlift can bound it: a constant,
   /// an exact interval, or a variable only ever assigned such values.
@@ -503,6 +505,9 @@ private:
   /// bound).
   std::optional<int64_t> upperBound(Expr *e, Frame &f,
                                     std::set<VarDecl *> &visiting);
+  /// The same for a variable, from the values it is ever given.
+  std::optional<int64_t> variableBound(Expr *e, Frame &f,
+                                       std::set<VarDecl *> &visiting);
   std::map<VarDecl *, std::pair<int64_t, int64_t>> inputRanges;
   unsigned callSites = 0, flags = 0, loopVars = 0;
   /// The configuration's instance of each translated program.
