@@ -37,13 +37,12 @@ plc::Unit &FrontendContext::plcUnit() {
     plc = std::make_unique<plc::Unit>();
     plc->sfcDialect =
         options.sfcCodesys ? plc::SfcDialect::Codesys : plc::SfcDialect::Iec;
-    if (options.timeUnit == "s") {
-      plc->timeNumbers = plc::TimeNumbers::Seconds;
-      plc->timeNumbersWhy = "seconds (--time-unit s)";
-    } else if (options.timeUnit == "ms") {
-      plc->timeNumbers = plc::TimeNumbers::Milliseconds;
-      plc->timeNumbersWhy = "milliseconds (--time-unit ms)";
-    }
+    if (options.timeUnit == "s")
+      plc->inferTimeNumbers(plc::TimeNumbers::Seconds,
+                            "seconds (--time-unit s)");
+    else if (options.timeUnit == "ms")
+      plc->inferTimeNumbers(plc::TimeNumbers::Milliseconds,
+                            "milliseconds (--time-unit ms)");
     plc->instructionListReader = [](llvm::StringRef body, DiagEngine &diag,
                                     plc::Unit &unit, plc::Pou *pou,
                                     plc::Expr **result) {
@@ -204,11 +203,9 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
     diag.error(at(0), "not a TwinCAT file (no TcPlcObject element)");
     return false;
   }
-  plc::Unit &unit = unitFor(ctx, bufferID);
-  if (unit.timeNumbersWhy.empty()) {
-    unit.timeNumbers = plc::TimeNumbers::Milliseconds;
-    unit.timeNumbersWhy = "milliseconds, as TwinCAT converts";
-  }
+  unitFor(ctx, bufferID)
+      .inferTimeNumbers(plc::TimeNumbers::Milliseconds,
+                        "milliseconds, as TwinCAT converts");
   std::string blanked(text.size(), ' ');
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n')

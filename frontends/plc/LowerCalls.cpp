@@ -297,20 +297,15 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
         !throughReference(a.value) && !inOutInstances.count(a.value) &&
         chosenAtRunTime(a.value, f)) {
       std::vector<InstanceChoice> choices = instanceChoices(a.value, f, out);
-      std::vector<net::IfArm> arms;
-      Sink last;
+      std::vector<NExpr *> tests;
+      std::vector<Sink> bodies(choices.size());
       for (size_t i = 0; i < choices.size(); ++i) {
         inOutInstances[a.value] = choices[i].path;
-        Sink body;
-        instanceCall(call, fb, path, f, body);
-        if (i + 1 == choices.size())
-          last = std::move(body);
-        else
-          arms.push_back(
-              {choices[i].test, design.copy(llvm::ArrayRef<NStmt *>(body))});
+        tests.push_back(choices[i].test);
+        instanceCall(call, fb, path, f, bodies[i]);
       }
       inOutInstances.erase(a.value);
-      out.push_back(b.ifStmt(arms, true, last, call->loc));
+      emitChoice(tests, bodies, out, call->loc);
       return;
     }
     if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
@@ -324,17 +319,15 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
       inOutPlaces.erase(a.value);
       return;
     }
+    std::vector<NExpr *> tests;
     std::vector<Sink> bodies(t.live.size());
     for (size_t i = 0; i < t.live.size(); ++i) {
       inOutPlaces[a.value] = familyPlace(*t.live[i], t, a.value, f, bodies[i]);
+      tests.push_back(familyTest(*t.live[i], t));
       instanceCall(call, fb, path, f, bodies[i]);
       inOutPlaces.erase(a.value);
     }
-    std::vector<net::IfArm> arms;
-    for (size_t i = 0; i + 1 < t.live.size(); ++i)
-      arms.push_back({familyTest(*t.live[i], t),
-                      design.copy(llvm::ArrayRef<NStmt *>(bodies[i]))});
-    out.push_back(b.ifStmt(arms, true, bodies.back(), call->loc));
+    emitChoice(tests, bodies, out, call->loc);
     return;
   }
   instancesLowering.push_back(path);

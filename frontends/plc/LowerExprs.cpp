@@ -448,9 +448,6 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
       isU64(from))
     return convert(fromUnsigned64(v, elementaryType("LINT"), at),
                    elementaryType("LINT"), to, at);
-  if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int &&
-      timeNumberNs(at) != 1000000)
-    return timeInUnit(v, timeNumberNs(at), to, at);
   if (from->kind == PTypeKind::Int && to->kind == PTypeKind::Time) {
     // That many seconds or milliseconds: whole ticks, else rounded up.
     int64_t unitNs = timeNumberNs(at);
@@ -460,7 +457,10 @@ NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
                      at);
   }
   if (from->kind == PTypeKind::Time && to->kind == PTypeKind::Int) {
-    // TIME converts to milliseconds.
+    // Whole seconds, truncated toward zero; or milliseconds, which the
+    // tick must hold whole.
+    if (timeNumberNs(at) != 1000000)
+      return timeInUnit(v, timeNumberNs(at), to, at);
     if (tickNs % 1000000 != 0)
       refuse(at, "TIME to integer conversion gives milliseconds, but a tick "
                  "is not a whole number of milliseconds (choose "
@@ -490,11 +490,10 @@ int64_t Lowering::timeNumberNs(SMLoc at) {
 NExpr *Lowering::timeInUnit(NExpr *v, int64_t unitNs, const PType *to,
                             SMLoc at) {
   NExpr *ns = b.binary(net::BinaryOp::Mul, v, b.intLit(tickNs, at), at);
-  // A REAL is the nanoseconds divided once (one rounding, so 1500 ms is
-  // exactly 1.5 s); an integer counts whole units, truncated toward zero
-  // as 4diac's integer division does.
-  // A REAL is computed in LREAL and narrowed once, as matiec does (and as
-  // CODESYS's whole milliseconds convert).
+  // A REAL is the nanoseconds divided once in LREAL (so 1500 ms is exactly
+  // 1.5 s), then narrowed once, as matiec does (and as CODESYS's whole
+  // milliseconds convert); an integer counts whole units, truncated toward
+  // zero as 4diac's integer division does.
   if (to->kind == PTypeKind::Real) {
     const net::Type *wide = floatType(elementaryType("LREAL"));
     NExpr *r = b.binary(net::BinaryOp::Div, b.convert(wide, ns, at),

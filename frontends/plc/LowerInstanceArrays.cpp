@@ -25,45 +25,54 @@ std::string Lowering::elementPath(const std::string &path,
   return p;
 }
 
-/// The initialisers of the elements of dimension `dim`'s rows, one per
-/// index from lo (repeats expanded; null where none is given).
-static std::vector<Initializer *> rowInitializers(Initializer *init,
-                                                  int64_t count) {
-  std::vector<Initializer *> out;
-  if (init && init->kind == Initializer::Array)
-    for (auto &[repeat, inner] : init->elems)
-      for (int64_t k = 0; k < std::max<int64_t>(repeat, 1); ++k)
-        out.push_back(inner);
-  out.resize(count, nullptr);
-  return out;
+/// Calls `fn` with every index of an array's dimensions, in row-major
+/// order.
+static void forEachIndex(const PType *array,
+                         llvm::function_ref<void(llvm::ArrayRef<int64_t>)> fn) {
+  std::vector<int64_t> index;
+  for (auto &[lo, hi] : array->dims)
+    index.push_back(lo);
+  for (;;) {
+    fn(index);
+    size_t d = index.size();
+    while (d-- > 0 && ++index[d] > array->dims[d].second)
+      index[d] = array->dims[d].first;
+    if (d == size_t(-1))
+      return;
+  }
 }
 
-void Lowering::declareInstances(const std::string &path, const PType *t,
-                                Initializer *init, size_t dim,
-                                std::vector<int64_t> &index) {
-  if (t->kind == PTypeKind::FunctionBlock) {
-    declareInstance(path, t->fb, init);
-    return;
-  }
-  auto [lo, hi] = t->dims[dim];
-  std::vector<Initializer *> rows = rowInitializers(init, hi - lo + 1);
-  for (int64_t i = lo; i <= hi; ++i) {
-    index.push_back(i);
-    Initializer *row = rows[i - lo];
-    if (dim + 1 < t->dims.size()) {
-      declareInstances(path, t, row, dim + 1, index);
-    } else {
-      std::vector<int64_t> inner;
-      declareInstances(elementPath(path, index), t->elem, row, 0, inner);
+/// The initialiser of the element at `index` (nested rows, repeats
+/// counted; null where none is given).
+static Initializer *elementInitializer(Initializer *init, const PType *array,
+                                       llvm::ArrayRef<int64_t> index) {
+  for (size_t d = 0; d < index.size() && init; ++d) {
+    if (init->kind != Initializer::Array)
+      return nullptr;
+    int64_t wanted = index[d] - array->dims[d].first, at = 0;
+    Initializer *found = nullptr;
+    for (auto &[repeat, inner] : init->elems) {
+      at += std::max<int64_t>(repeat, 1);
+      if (wanted < at) {
+        found = inner;
+        break;
+      }
     }
-    index.pop_back();
+    init = found;
   }
+  return init;
 }
 
 void Lowering::declareInstances(const std::string &path, const PType *t,
                                 Initializer *init) {
-  std::vector<int64_t> index;
-  declareInstances(path, t, init, 0, index);
+  if (t->kind == PTypeKind::FunctionBlock) {
+    declareInstance(path, t->fb, init);
+    return;
+  }
+  forEachIndex(t, [&](llvm::ArrayRef<int64_t> index) {
+    declareInstances(elementPath(path, index), t->elem,
+                     elementInitializer(init, t, index));
+  });
 }
 
 std::vector<std::string> Lowering::instancePaths(const std::string &path,
@@ -71,18 +80,11 @@ std::vector<std::string> Lowering::instancePaths(const std::string &path,
   if (t->kind == PTypeKind::FunctionBlock)
     return {path};
   std::vector<std::string> out;
-  std::vector<int64_t> index(t->dims.size());
-  for (size_t d = 0; d < index.size(); ++d)
-    index[d] = t->dims[d].first;
-  for (;;) {
+  forEachIndex(t, [&](llvm::ArrayRef<int64_t> index) {
     for (std::string &p : instancePaths(elementPath(path, index), t->elem))
       out.push_back(std::move(p));
-    size_t d = index.size();
-    while (d-- > 0 && ++index[d] > t->dims[d].second)
-      index[d] = t->dims[d].first;
-    if (d == size_t(-1))
-      return out;
-  }
+  });
+  return out;
 }
 
 std::vector<Lowering::InstanceChoice>
@@ -188,24 +190,38 @@ std::string Lowering::boundInstance(Expr *argument, Frame &f) {
   return instancePath(argument, f);
 }
 
+void Lowering::emitChoice(llvm::ArrayRef<NExpr *> tests,
+                          std::vector<Sink> &bodies, Sink &out, SMLoc at) {
+  if (bodies.size() == 1) {
+    out.insert(out.end(), bodies[0].begin(), bodies[0].end());
+    return;
+  }
+  std::vector<net::IfArm> arms;
+  for (size_t i = 0; i + 1 < bodies.size(); ++i)
+    arms.push_back({tests[i], design.copy(llvm::ArrayRef<NStmt *>(bodies[i]))});
+  out.push_back(b.ifStmt(arms, true, bodies.back(), at));
+}
+
+NExpr *Lowering::valueOnce(NExpr *value, const PType *type,
+                           const std::string &stem, Sink &out, SMLoc at) {
+  if (llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value))
+    return value;
+  std::string tmp = unique(stem + "_value");
+  declareTemp(tmp, type, at);
+  out.push_back(b.assign(b.ref(tmp, at), value, at));
+  return b.ref(tmp, at);
+}
+
 void Lowering::callChosenInstance(Expr *call, Pou *fb,
                                   llvm::ArrayRef<InstanceChoice> choices,
                                   Frame &f, Sink &out) {
-  if (choices.size() == 1) {
-    instanceCall(call, fb, choices[0].path, f, out);
-    return;
+  std::vector<NExpr *> tests;
+  std::vector<Sink> bodies(choices.size());
+  for (size_t i = 0; i < choices.size(); ++i) {
+    tests.push_back(choices[i].test);
+    instanceCall(call, fb, choices[i].path, f, bodies[i]);
   }
-  // The last choice is what the others leave: the index (or reference)
-  // was checked to designate one of them.
-  std::vector<net::IfArm> arms;
-  for (const InstanceChoice &c : choices.drop_back()) {
-    Sink body;
-    instanceCall(call, fb, c.path, f, body);
-    arms.push_back({c.test, design.copy(llvm::ArrayRef<NStmt *>(body))});
-  }
-  Sink last;
-  instanceCall(call, fb, choices.back().path, f, last);
-  out.push_back(b.ifStmt(arms, true, last, call->loc));
+  emitChoice(tests, bodies, out, call->loc);
 }
 
 void Lowering::elementCall(Expr *call, Frame &f, Sink &out) {
@@ -238,31 +254,16 @@ void Lowering::chosenMemberWrite(Stmt *s, NExpr *value, Frame &f, Sink &out) {
   std::vector<InstanceChoice> choices =
       instanceChoices(s->target->base(), f, out);
   std::string member = "." + sanitize(s->target->var->name);
-  // Evaluated once, before the choice (then already of the member's type).
-  Expr *valueExpr = s->value;
-  if (!llvm::isa<net::IntLit>(value) && !llvm::isa<net::BoolLit>(value) &&
-      !llvm::isa<net::Ref>(value)) {
-    std::string tmp = unique(sanitize(s->target->var->name) + "_value");
-    declareTemp(tmp, s->target->type, s->loc);
-    assign(b.ref(tmp, s->loc), value, s->target->type, s->value, out, s->loc);
-    value = b.ref(tmp, s->loc);
-    valueExpr = nullptr;
-  }
-  std::vector<net::IfArm> arms;
-  Sink last;
+  // Evaluated once, before the choice.
+  value = valueOnce(value, s->value->type, sanitize(s->target->var->name), out,
+                    s->loc);
+  std::vector<NExpr *> tests;
+  std::vector<Sink> bodies(choices.size());
   for (size_t i = 0; i < choices.size(); ++i) {
     noteClockBound(choices[i].path + member, s->value, f, s->loc);
-    Sink body;
+    tests.push_back(choices[i].test);
     assign(b.ref(choices[i].path + member, s->loc), value, s->target->type,
-           valueExpr, body, s->loc);
-    if (i + 1 == choices.size())
-      last = std::move(body);
-    else
-      arms.push_back(
-          {choices[i].test, design.copy(llvm::ArrayRef<NStmt *>(body))});
+           s->value, bodies[i], s->loc);
   }
-  if (arms.empty())
-    out.insert(out.end(), last.begin(), last.end());
-  else
-    out.push_back(b.ifStmt(arms, true, last, s->loc));
+  emitChoice(tests, bodies, out, s->loc);
 }

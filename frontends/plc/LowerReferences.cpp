@@ -832,16 +832,14 @@ NExpr *Lowering::readThroughReference(Expr *e, Frame &f, Sink &pre) {
   // An array or a structure: copied whole from the place designated.
   std::string value = unique(t.number + "_value");
   declareTemp(value, e->type, at);
-  std::vector<net::IfArm> arms;
-  for (size_t i = 0; i + 1 < fams.size(); ++i) {
-    Sink body{
-        b.assign(b.ref(value, at), familyPlace(*fams[i], t, e, f, pre), at)};
-    arms.push_back(
-        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef(body))});
+  std::vector<NExpr *> tests;
+  std::vector<Sink> bodies;
+  for (const RefFamily *fam : fams) {
+    tests.push_back(familyTest(*fam, t));
+    bodies.push_back(
+        {b.assign(b.ref(value, at), familyPlace(*fam, t, e, f, pre), at)});
   }
-  Sink last{
-      b.assign(b.ref(value, at), familyPlace(*fams.back(), t, e, f, pre), at)};
-  pre.push_back(b.ifStmt(arms, true, last, at));
+  emitChoice(tests, bodies, pre, at);
   return b.ref(value, at);
 }
 
@@ -866,23 +864,17 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
     familyStore(*fams[0], t, target, value, valueExpr, f, out, out, at);
     return;
   }
-  if (!llvm::isa<net::IntLit, net::BoolLit, net::Ref>(value)) {
-    // The value once, then stored where the reference points.
-    std::string tmp = unique(t.number + "_value");
-    declareTemp(tmp, valueExpr ? valueExpr->type : target->type, at);
-    out.push_back(b.assign(b.ref(tmp, at), value, at));
-    value = b.ref(tmp, at);
+  // The value once, then stored where the reference points.
+  value = valueOnce(value, valueExpr ? valueExpr->type : target->type, t.number,
+                    out, at);
+  std::vector<NExpr *> tests;
+  std::vector<Sink> bodies(fams.size());
+  for (size_t i = 0; i < fams.size(); ++i) {
+    tests.push_back(familyTest(*fams[i], t));
+    familyStore(*fams[i], t, target, value, valueExpr, f, bodies[i], bodies[i],
+                at);
   }
-  std::vector<net::IfArm> arms;
-  for (size_t i = 0; i + 1 < fams.size(); ++i) {
-    Sink body;
-    familyStore(*fams[i], t, target, value, valueExpr, f, body, body, at);
-    arms.push_back(
-        {familyTest(*fams[i], t), design.copy(llvm::ArrayRef(body))});
-  }
-  Sink last;
-  familyStore(*fams.back(), t, target, value, valueExpr, f, last, last, at);
-  out.push_back(b.ifStmt(arms, true, last, at));
+  emitChoice(tests, bodies, out, at);
 }
 
 //===----------------------------------------------------------------------===//

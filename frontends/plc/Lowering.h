@@ -321,9 +321,6 @@ private:
   /// The instance, or every element of the array of instances, at `path`.
   void declareInstances(const std::string &path, const PType *t,
                         Initializer *init);
-  void declareInstances(const std::string &path, const PType *t,
-                        Initializer *init, size_t dim,
-                        std::vector<int64_t> &index);
   /// Every instance prefix a variable of type `t` at `path` holds.
   static std::vector<std::string> instancePaths(const std::string &path,
                                                 const PType *t);
@@ -339,6 +336,15 @@ private:
   bool chosenAtRunTime(Expr *instance, Frame &f);
   /// The prefix of an instance known at translation.
   std::string instancePath(Expr *e, Frame &f);
+  /// One of `bodies`, chosen by `tests` (one per body; the last body is
+  /// the else: the choice was checked to be one of them), into `out`; a
+  /// single body goes in inline.
+  void emitChoice(llvm::ArrayRef<NExpr *> tests, std::vector<Sink> &bodies,
+                  Sink &out, SMLoc at);
+  /// `value` once into a temporary of `type` (named after `stem`) when it
+  /// is more than a literal or a name: stored in several places after.
+  NExpr *valueOnce(NExpr *value, const PType *type, const std::string &stem,
+                   Sink &out, SMLoc at);
   /// The call of whichever of `choices` is chosen.
   void callChosenInstance(Expr *call, Pou *fb,
                           llvm::ArrayRef<InstanceChoice> choices, Frame &f,

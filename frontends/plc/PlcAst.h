@@ -458,6 +458,14 @@ public:
   /// says why, for the note the lowering gives where it converts.
   TimeNumbers timeNumbers = TimeNumbers::Milliseconds;
   std::string timeNumbersWhy;
+  /// What an input shows of the unit: the option, else the first input
+  /// that shows one, decides.
+  void inferTimeNumbers(TimeNumbers t, std::string why) {
+    if (!timeNumbersWhy.empty())
+      return;
+    timeNumbers = t;
+    timeNumbersWhy = std::move(why);
+  }
   /// The Instruction List reader (il::parseInstructionListBody), for an SFC
   /// transition condition written in IL inside ST; set by the frontend
   /// that owns both languages (the ST library cannot depend on IL's).

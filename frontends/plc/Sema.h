@@ -134,8 +134,9 @@ struct StdFnInfo {
   /// Convert: 4diac's TIME_IN_S/MS/US/NS_TO_x count the TIME in this unit
   /// (ns); 0 for the others.
   int64_t unitNs = 0;
-  /// Bcd: from an integer to its BCD bits (else from BCD bits).
-  bool toBcd = false;
+  /// Bcd: from an integer to its BCD bits (else from BCD bits); for
+  /// INT_TO_BCD, which names no bit string, the context chooses one.
+  bool toBcd = false, bitsFromContext = false;
 };
 
 StdFnInfo lookupStdFunction(llvm::StringRef name);

@@ -122,12 +122,9 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
   const PType *tb = baseOf(to), *fb = baseOf(ft);
   // INT_TO_BCD(n) writes the bit string its context wants (IEC 61131-3's
   // ANY_BIT result): as many digits as the target holds.
-  if (from->kind == ExprKind::Call && tb->kind == PTypeKind::Int &&
-      tb->isBits && tb->width <= 32 &&
-      StringRef(from->name).upper().size() > 7 &&
-      StringRef(from->name).upper().substr(from->name.size() - 7) ==
-          "_TO_BCD" &&
-      lookupStdFunction(from->name).fn == StdFn::Bcd) {
+  if (from->kind == ExprKind::Call && !from->callee &&
+      tb->kind == PTypeKind::Int && tb->isBits && tb->width <= 32 &&
+      lookupStdFunction(from->name).bitsFromContext) {
     from->type = tb;
     return true;
   }

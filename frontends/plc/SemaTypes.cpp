@@ -345,6 +345,7 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
       if (bits && bits->kind == PTypeKind::Int && bits->isBits) {
         info.fn = StdFn::Bcd;
         info.toBcd = true;
+        info.bitsFromContext = to == "BCD";
         info.from = f;
         info.to = bits;
       }

@@ -507,25 +507,23 @@ bool plcopen::readPlcOpen(unsigned bufferID, DiagEngine &diag, Unit &unit) {
   // PLCopen XML written by CODESYS or TwinCAT converts TIME to numbers in
   // milliseconds; Beremiz's and OpenPLC's (and unnamed editors') go
   // through matiec, in seconds.
-  if (unit.timeNumbersWhy.empty()) {
-    pugi::xml_node header = root.child("fileHeader");
-    std::string who =
-        StringRef(std::string(header.attribute("companyName").value()) + " " +
-                  header.attribute("productName").value())
-            .lower();
-    bool codesys = StringRef(who).contains("codesys") ||
-                   StringRef(who).contains("3s") ||
-                   StringRef(who).contains("twincat") ||
-                   StringRef(who).contains("beckhoff");
-    unit.timeNumbers =
-        codesys ? TimeNumbers::Milliseconds : TimeNumbers::Seconds;
-    unit.timeNumbersWhy =
-        codesys ? "milliseconds, as CODESYS and TwinCAT convert: the PLCopen "
-                  "file was written by " +
-                      who
-                : "seconds, as matiec (OpenPLC, Beremiz) converts: the "
-                  "PLCopen file was not written by CODESYS or TwinCAT";
-  }
+  pugi::xml_node header = root.child("fileHeader");
+  std::string who =
+      StringRef(std::string(header.attribute("companyName").value()) + " " +
+                header.attribute("productName").value())
+          .lower();
+  if (llvm::any_of(std::initializer_list<StringRef>{"codesys", "3s-smart",
+                                                    "twincat", "beckhoff"},
+                   [&](StringRef v) { return StringRef(who).contains(v); }))
+    unit.inferTimeNumbers(TimeNumbers::Milliseconds,
+                          "milliseconds, as CODESYS and TwinCAT convert: the "
+                          "PLCopen file was written by " +
+                              who);
+  else
+    unit.inferTimeNumbers(TimeNumbers::Seconds,
+                          "seconds, as matiec (OpenPLC, Beremiz) converts: "
+                          "the PLCopen file was not written by CODESYS or "
+                          "TwinCAT");
   Reader reader(src, diag, unit);
   return reader.project(root);
 }

@@ -670,11 +670,9 @@ void AstBuilder::typeDecl(P::TypeDeclContext *c) {
 void AstBuilder::configuration(P::ConfigurationDeclContext *c) {
   // Only matiec's family (OpenPLC, Beremiz) writes configurations as text;
   // it converts TIME to and from numbers in seconds.
-  if (unit.timeNumbersWhy.empty()) {
-    unit.timeNumbers = TimeNumbers::Seconds;
-    unit.timeNumbersWhy = "seconds, as matiec (OpenPLC, Beremiz) converts: "
-                          "the program comes with a textual CONFIGURATION";
-  }
+  unit.inferTimeNumbers(TimeNumbers::Seconds,
+                        "seconds, as matiec (OpenPLC, Beremiz) converts: "
+                        "the program comes with a textual CONFIGURATION");
   Configuration *cfg = unit.make<Configuration>();
   cfg->name = c->name->getText();
   cfg->loc = loc(c->name);
