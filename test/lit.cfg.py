@@ -33,6 +33,13 @@ config.environment["PATH"] = os.pathsep.join(
 if lit_config.params.get("roundtrip", "0") not in ("0", ""):
     config.environment["NETLIFT_VERIFY_ROUNDTRIP"] = "1"
 
+# `lit --param inputs=enumerate` (or split): the exploring commands' default
+# for free inputs, so that the whole suite runs in each mode and shows the
+# two give the same state spaces (tests that are about one mode say so).
+inputs_mode = lit_config.params.get("inputs", "")
+if inputs_mode:
+    config.environment["NETLIFT_INPUTS"] = inputs_mode
+
 # spin (Debian package, installed by scripts/setup.sh) and a C compiler:
 # the Promela export is cross-checked by running spin's verifier.
 import shutil

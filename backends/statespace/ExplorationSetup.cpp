@@ -69,10 +69,19 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   net::Module *top = explorableTop(design, options.top, diag, command);
   if (!top)
     return nullptr;
+  // Enumerating, every value of every input is tried at every step; split
+  // on demand, only the values the program tells apart (and strings are
+  // still too many).
+  bool split = options.semantics.splitInputs;
+  auto unenumerable = [&](const net::Type *t) -> const char * {
+    const char *what = net::executedOnlyData(t);
+    return !split || (what && llvm::StringRef(what) == "a string") ? what
+                                                                   : nullptr;
+  };
   if (options.enumeratesInputs)
     for (const net::Port &p : top->ports)
       if (const char *what =
-              p.isInput() && p.type ? net::executedOnlyData(p.type) : nullptr) {
+              p.isInput() && p.type ? unenumerable(p.type) : nullptr) {
         diag.error(p.loc, "free input '" + p.name + "' of type " +
                               p.type->str() + ": " + command +
                               " cannot enumerate its values (" + what +
@@ -81,7 +90,7 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
                               "value in the program");
         return nullptr;
       }
-  if (options.enumeratesInputs)
+  if (options.enumeratesInputs && !split)
     for (const net::Attribute &a : top->attributes) {
       if (a.key != net::kNeedsRangeAttribute)
         continue;
@@ -91,9 +100,10 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
       auto [source, type] = a.value.split(" : ");
       diag.error(a.loc, "input '" + source + "' of type " + type +
                             " has no range: " + command +
-                            " would enumerate every value at every step; give "
-                            "its range with a pragma {range LO..HI} before the "
-                            "declaration, a subrange type, or --ranges FILE");
+                            " would enumerate every value at every step "
+                            "(--inputs=enumerate); give its range with a "
+                            "pragma {range LO..HI} before the declaration, a "
+                            "subrange type, or --ranges FILE");
       return nullptr;
     }
   return std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
@@ -130,8 +140,9 @@ void statespace::reportRuntimeError(const ExploreResult &r, bool started,
                                     Explorer &explorer,
                                     sem::Semantics &semantics,
                                     DiagEngine &diag) {
+  std::string what = r.error->limit ? "" : "runtime error: ";
   if (r.error->loc.isValid())
-    diag.error(r.error->loc, "runtime error: " + r.error->message);
+    diag.error(r.error->loc, what + r.error->message);
   else
     diag.error(llvm::SMLoc(), r.error->message);
   if (started) {

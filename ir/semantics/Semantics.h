@@ -9,8 +9,8 @@
 // strong timing with saturating place clocks and clock variables; actions
 // that read the pre-state and write together, with write conflicts, range
 // errors, division by zero and token overflow reported as runtime errors;
-// free inputs enumerated at every step. Every analysis uses this one
-// implementation.
+// free inputs split into classes of valuations on demand (or enumerated).
+// Every analysis uses this one implementation.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_IR_SEMANTICS_SEMANTICS_H
@@ -36,8 +36,14 @@ struct Options {
   Timing timing = Timing::Weak;
   /// Bits for the marking of unbounded places (an overflow is an error).
   unsigned unboundedBits = 8;
-  /// Most input valuations enumerated per state before refusing.
-  uint64_t maxInputValuations = 1u << 16;
+  /// Split the free inputs into classes on demand (docs/semantics.md,
+  /// "Free inputs"); off, every valuation is enumerated at every step.
+  bool splitInputs = true;
+  /// Enumerating: most valuations of all free inputs per state. Splitting:
+  /// most values one input is decided into at one point (a value stored,
+  /// an expression of it that is not a comparison), and most values an
+  /// expression is evaluated at to find where its value changes.
+  uint64_t maxInputValues = 1u << 16;
   /// The watchdog: most loop iterations one transition's firing may run
   /// (every loop of its action counted together) before it is a runtime
   /// error, as a PLC's watchdog stops the CPU.
@@ -52,6 +58,9 @@ struct Options {
 struct RuntimeError {
   std::string message;
   llvm::SMLoc loc;
+  /// Not an error of the model but a limit of the exploration (an input
+  /// with more values than --max-input-values where each is needed).
+  bool limit = false;
 };
 
 class Semantics {
@@ -76,6 +85,9 @@ public:
   /// that changes nothing is not a successor. Returns false and sets `err`
   /// on a runtime error.
   bool successors(const uint64_t *state, Callback cb, RuntimeError &err);
+  /// Classes of input valuations the last successors() call ran the step
+  /// for (valuations, when enumerating; 1 without free inputs).
+  uint64_t lastInputClasses() const;
 
   /// Restricts successors() and evalInState() to one valuation of the free
   /// inputs (the Mealy view of a controller: one input vector per step).
@@ -97,10 +109,12 @@ public:
   net::StringValue evalStringInState(const net::Expr *e, const uint64_t *state,
                                      RuntimeError &err);
 
+  /// The interpreter behind this API (internal: SemanticsImpl.h).
+  struct Impl;
+
 private:
   /// The state's slots and the inputs as evalInState reads them.
   std::vector<int64_t> &predicateValuation(const uint64_t *state);
-  struct Impl;
   const net::Module &m;
   const StateLayout &L;
   Options opts;

@@ -6,6 +6,8 @@
 
 #include "llvm/Support/Path.h"
 
+#include <cstdlib>
+
 using namespace netlift;
 using namespace netlift::driver;
 
@@ -181,6 +183,22 @@ static cl::opt<uint64_t> maxLoopIterations(
     cl::desc("Watchdog: most loop iterations one firing may run "
              "(default 100000)"),
     cl::init(100000), NETLIFT_EXPLORING);
+enum class InputsMode { Split, Enumerate };
+static cl::opt<InputsMode> inputsMode(
+    "inputs",
+    cl::desc("Free inputs at each step (docs/semantics.md); default split, "
+             "or the NETLIFT_INPUTS environment variable"),
+    cl::values(clEnumValN(InputsMode::Split, "split",
+                          "split their values into classes on demand"),
+               clEnumValN(InputsMode::Enumerate, "enumerate",
+                          "enumerate every valuation")),
+    NETLIFT_EXPLORING);
+static cl::opt<uint64_t> maxInputValues(
+    "max-input-values",
+    cl::desc("Most values one free input is split into at one point, or "
+             "(enumerating) most valuations of all free inputs per step "
+             "(default 65536)"),
+    cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -232,6 +250,23 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.semantics.unboundedBits = placeBits;
   eo.semantics.compilePT = !interpreter;
   eo.semantics.maxLoopIterations = maxLoopIterations;
+  eo.semantics.maxInputValues = maxInputValues;
+  eo.semantics.splitInputs = true;
+  if (inputsMode.getNumOccurrences())
+    eo.semantics.splitInputs = inputsMode == InputsMode::Split;
+  else if (const char *env = std::getenv("NETLIFT_INPUTS")) {
+    llvm::StringRef mode(env);
+    if (mode != "split" && mode != "enumerate" && !mode.empty()) {
+      diag.error(llvm::SMLoc(), "NETLIFT_INPUTS=" + mode.str() +
+                                    ": expected split or enumerate");
+      return false;
+    }
+    eo.semantics.splitInputs = mode != "enumerate";
+  }
+  if (maxInputValues < 1) {
+    diag.error(llvm::SMLoc(), "--max-input-values must be at least 1");
+    return false;
+  }
   eo.maxStates = maxStates;
   eo.timeLimit = timeLimit;
   if (!maxMemory.empty() &&
