@@ -164,6 +164,7 @@ bool Explorer::run(ExploreResult &r) {
             b.words[at + i] = succ[i];
         },
         b.err);
+    ++r.inputClasses[sem.lastInputClasses()];
   };
   auto prefetchCandidates = [&](const Batch &b) {
     for (const Pending &p : b.pending)

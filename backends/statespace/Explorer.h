@@ -18,6 +18,7 @@
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringMap.h"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,9 @@ struct ExploreResult {
   std::optional<sem::RuntimeError> error;
   uint32_t errorState = 0; // the state whose successors raised `error`
   std::optional<uint32_t> found;
+  /// How many classes of input valuations the step ran for, per expanded
+  /// state: classes -> states (what splitting saved, --summary json).
+  std::map<uint64_t, uint64_t> inputClasses;
 };
 
 class Explorer {
@@ -63,6 +67,7 @@ public:
   bool run(ExploreResult &result);
 
   const StateStore &store() const { return states; }
+  const sem::Semantics &semantics() const { return sem; }
   const std::vector<Edge, HugePageAllocator<Edge>> &edges() const {
     return edgeList;
   }

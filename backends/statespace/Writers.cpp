@@ -289,6 +289,27 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
       x.store().wordsPerState() * 8, r.complete ? "true" : "false");
   if (!r.limitReached.empty())
     os << ",\"limit\":\"" << r.limitReached << "\"";
+  // Executions of the step per expanded state: one per class of input
+  // valuations (split) or per valuation (enumerate).
+  uint64_t expanded = 0, runs = 0;
+  for (auto &[classes, n] : r.inputClasses) {
+    expanded += n;
+    runs += classes * n;
+  }
+  if (expanded && x.semantics().hasFreeInputs()) {
+    uint64_t median = 0, seen = 0;
+    for (auto &[classes, n] : r.inputClasses)
+      if ((seen += n) * 2 >= expanded) {
+        median = classes;
+        break;
+      }
+    os << fmt::format(
+        ",\"inputs\":\"{}\",\"input_classes\":{{\"min\":{},"
+        "\"median\":{},\"max\":{},\"mean\":{:.2f}}}",
+        x.semantics().options().splitInputs ? "split" : "enumerate",
+        r.inputClasses.begin()->first, median, r.inputClasses.rbegin()->first,
+        double(runs) / double(expanded));
+  }
   os << "}\n";
 }
 

@@ -289,6 +289,10 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
 
 uint64_t Semantics::lastInputClasses() const { return impl->classes; }
 
+bool Semantics::hasFreeInputs() const {
+  return !impl->inputSlots.empty() || !impl->eventInputs.empty();
+}
+
 void Semantics::fixInputs(llvm::ArrayRef<int64_t> leafValues,
                           llvm::ArrayRef<uint8_t> eventsPresent) {
   Impl &I = *impl;

@@ -88,6 +88,8 @@ public:
   /// Classes of input valuations the last successors() call ran the step
   /// for (valuations, when enumerating; 1 without free inputs).
   uint64_t lastInputClasses() const;
+  /// Does the module have free inputs (cond, data or event input ports)?
+  bool hasFreeInputs() const;
 
   /// Restricts successors() and evalInState() to one valuation of the free
   /// inputs (the Mealy view of a controller: one input vector per step).
