@@ -29,6 +29,7 @@ using namespace netlift::sem;
 using namespace netlift::sem::detail;
 
 using Segment = InputSplitter::Segment;
+using InputUseOf = Semantics::Impl::InputUse;
 
 // --- Order keys -------------------------------------------------------------
 
@@ -240,23 +241,41 @@ Semantics::Impl::InputUse Semantics::Impl::analyseUse(const Expr *e) {
     break;
   }
   if (u.leaf >= 0 && !u.identity) {
-    // Thresholds: a comparison of the input itself with an input-free
-    // value of the same order, or only such comparisons below.
-    auto *b = llvm::dyn_cast<BinaryExpr>(e);
-    if (b && isComparison(b->op) && kids.size() == 2 &&
-        (kids[0].identity ? kids[1].leaf == -1 : kids[0].leaf == -1) &&
-        b->lhs->type && b->rhs->type && b->lhs->type->isScalar() &&
-        keyKindOf(b->lhs->type) == keyKindOf(b->rhs->type) &&
-        (!b->lhs->type->isFloat() ||
-         b->lhs->type->width == b->rhs->type->width)) {
-      u.thresholds = true;
-    } else {
-      u.thresholds = true;
+    auto none = [](const InputUse &x) { return x.leaf == -1; };
+    auto numeric = [](const Type *t) {
+      return t && (t->isInteger() || t->isFloat());
+    };
+    if (auto *un = llvm::dyn_cast<UnaryExpr>(e))
+      u.chain = un->op == UnaryOp::Neg && kids[0].chain && numeric(e->type);
+    if (auto *b = llvm::dyn_cast<BinaryExpr>(e)) {
+      if (b->op == BinaryOp::Add || b->op == BinaryOp::Sub ||
+          b->op == BinaryOp::Mul)
+        u.chain = numeric(e->type) && ((kids[0].chain && none(kids[1])) ||
+                                       (kids[1].chain && none(kids[0])));
+      else if (b->op == BinaryOp::Div)
+        u.chain = numeric(e->type) && kids[0].chain && none(kids[1]);
+      // `(x + 2^(n-1)) & (2^n - 1)`: how a frontend wraps to n bits; the
+      // identity where x stays within the mask (checked where evaluated).
+      else if (b->op == BinaryOp::BitAnd)
+        u.chain = e->type && e->type->isInteger() &&
+                  ((kids[0].chain && none(kids[1])) ||
+                   (kids[1].chain && none(kids[0])));
+      else if (isComparison(b->op))
+        u.cuttable = (kids[0].chain && none(kids[1])) ||
+                     (kids[1].chain && none(kids[0]));
+    }
+    if (auto *c = llvm::dyn_cast<CallExpr>(e))
+      u.chain = c->fn == Builtin::Convert && kids.size() == 1 &&
+                kids[0].chain && numeric(c->args[0]->type) && numeric(e->type);
+    if (!u.cuttable && !u.chain) {
+      u.cuttable = true;
       for (const InputUse &k : kids)
-        if (k.leaf != -1 && !k.thresholds)
-          u.thresholds = false;
+        if (k.leaf != -1 && !k.cuttable)
+          u.cuttable = false;
     }
   }
+  if (u.identity)
+    u.chain = true;
   inputUse[e] = u;
   return u;
 }
@@ -411,57 +430,374 @@ static void cutsAround(const Semantics::Impl &I, uint32_t k, int64_t value,
   }
 }
 
-/// Collects the cut keys of every comparison of leaf `k` in `e` (an
-/// expression in threshold form).
-static void collectCuts(Semantics::Impl &I, uint32_t k, const Expr *e,
+static bool collectCuts(Semantics::Impl &I, uint32_t k, const Expr *e,
+                        const std::vector<int64_t> &v,
+                        std::vector<int64_t> &starts);
+
+/// The order of two values compared as `cmp` compares them: -1, 0, 1, or
+/// 2 when unordered (a NaN).
+static int compareValues(const BinaryExpr *cmp, int64_t a, int64_t b) {
+  const Type *lt = cmp->lhs->type, *rt = cmp->rhs->type;
+  if (lt->isFloat() || rt->isFloat()) {
+    unsigned w = lt->isFloat() ? lt->width : rt->width;
+    double x = floatValue(w, a), y = floatValue(w, b);
+    if (std::isnan(x) || std::isnan(y))
+      return 2;
+    return x < y ? -1 : x > y ? 1 : 0;
+  }
+  if (lt->isUnsigned64() || rt->isUnsigned64())
+    return uint64_t(a) < uint64_t(b) ? -1 : uint64_t(a) > uint64_t(b) ? 1 : 0;
+  return a < b ? -1 : a > b ? 1 : 0;
+}
+
+/// The value of an integer of type `t` as a number (a uint64's bits
+/// unsigned).
+static __int128 numberOf(const Type *t, int64_t v) {
+  return t->isUnsigned64() ? __int128(uint64_t(v)) : __int128(v);
+}
+
+namespace {
+/// One step of a chain: node `n` computes from the chain operand `a` and
+/// the input-free operand `o` (null for negation and conversions).
+struct ChainStep {
+  const Expr *n, *a, *o;
+  int64_t ov;
+};
+
+/// How an integer step's exact result becomes its value: kept within
+/// [lo, lo + span) by wrapping (`wraps`), or else out of range is not
+/// modelled here (the step is not monotone-checked).
+struct StepRange {
+  __int128 lo, span;
+  bool wraps;
+};
+
+StepRange rangeOf(const ChainStep &s) {
+  auto *b = llvm::dyn_cast<BinaryExpr>(s.n);
+  if (b && b->op == BinaryOp::BitAnd) // x & (2^n - 1) is x mod 2^n
+    return {0, __int128(numberOf(s.o->type, s.ov)) + 1, true};
+  const Type *t = s.n->type;
+  if (t->kind == TypeKind::Int) {
+    __int128 lo = numberOf(t, t->lo);
+    __int128 hi = t->isUnsigned64() ? __int128(UINT64_MAX) : numberOf(t, t->hi);
+    if (t->isUnsigned64())
+      lo = 0;
+    return {lo, hi - lo + 1, t->overflow == Overflow::Wrap};
+  }
+  return {INT64_MIN, (__int128(1) << 64), false};
+}
+
+/// The exact result of an integer step for chain operand value `av`;
+/// false when it has none (a division by zero, a mask that is not 2^n - 1).
+bool exactStep(const ChainStep &s, int64_t av, __int128 &r) {
+  __int128 x = numberOf(s.a->type, av);
+  __int128 c = s.o ? numberOf(s.o->type, s.ov) : 0;
+  if (llvm::isa<UnaryExpr>(s.n)) {
+    r = -x;
+    return true;
+  }
+  auto *b = llvm::dyn_cast<BinaryExpr>(s.n);
+  if (!b) {
+    r = x; // a conversion between integers keeps the value
+    return true;
+  }
+  switch (b->op) {
+  case BinaryOp::Add:
+    r = x + c;
+    return true;
+  case BinaryOp::Sub:
+    r = b->lhs == s.a ? x - c : c - x;
+    return true;
+  case BinaryOp::Mul:
+    r = x * c;
+    return true;
+  case BinaryOp::Div:
+    if (c == 0)
+      return false;
+    r = x / c; // truncates toward zero, as the PLC does
+    return true;
+  case BinaryOp::BitAnd:
+    if (c < 0 || (c & (c + 1)) != 0)
+      return false;
+    r = x;
+    return true;
+  default:
+    return false;
+  }
+}
+
+__int128 floorDiv(__int128 a, __int128 b) {
+  __int128 q = a / b;
+  return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+
+/// Is a float step monotone without making a NaN? Rounding is monotone;
+/// a non-finite constant or a division by zero could make one (inf - inf,
+/// 0 * inf, 0 / 0).
+bool floatStepSafe(const ChainStep &s, int64_t aLo, int64_t aHi) {
+  if (!s.o)
+    return true;
+  if (!s.o->type->isFloat())
+    return false;
+  double c = floatValue(s.o->type->width, s.ov);
+  if (!std::isfinite(c))
+    return false;
+  auto *b = llvm::dyn_cast<BinaryExpr>(s.n);
+  if (b && b->op == BinaryOp::Div && c == 0)
+    return false;
+  if (b && b->op == BinaryOp::Mul && c == 0 && s.a->type->isFloat() &&
+      !(std::isfinite(floatValue(s.a->type->width, aLo)) &&
+        std::isfinite(floatValue(s.a->type->width, aHi))))
+    return false;
+  return true;
+}
+
+/// Finds the cuts of `f OP c` for a chain `steps` (leaf first) over
+/// [lo, hi]: each step is checked monotone there (a wrapping integer step
+/// that wraps inside the interval splits it where it wraps, and each piece
+/// is checked again), then binary search finds where f reaches c and
+/// passes it. False when a step cannot be shown monotone.
+class ChainCutter {
+public:
+  ChainCutter(Semantics::Impl &I, uint32_t k, const BinaryExpr *cmp,
+              const Expr *f, int64_t c, const std::vector<int64_t> &v,
+              std::vector<int64_t> &starts)
+      : I(I), k(k), cmp(cmp), f(f), c(c), v(v), starts(starts) {}
+
+  bool build() {
+    for (const Expr *n = f; !I.inputUse.find(n)->second.identity;) {
+      ChainStep s{n, nullptr, nullptr, 0};
+      if (auto *u = llvm::dyn_cast<UnaryExpr>(n)) {
+        s.a = u->operand;
+      } else if (auto *b = llvm::dyn_cast<BinaryExpr>(n)) {
+        bool left = I.inputUse.count(b->lhs);
+        s.a = left ? b->lhs : b->rhs;
+        s.o = left ? b->rhs : b->lhs;
+      } else {
+        s.a = cast<CallExpr>(n)->args[0];
+      }
+      if (s.o) {
+        try {
+          s.ov = I.eval(s.o, v);
+        } catch (const EvalError &) {
+          return false;
+        }
+      }
+      steps.insert(steps.begin(), s);
+      n = s.a;
+    }
+    return true;
+  }
+
+  bool cut(int64_t lo, int64_t hi) {
+    if (++pieces > kMaxPieces)
+      return false;
+    for (const ChainStep &s : steps) {
+      auto [aLo, f1] = at(s.a, lo);
+      auto [aHi, f2] = at(s.a, hi);
+      if (f1 || f2)
+        return false;
+      if (s.n->type->isFloat()) {
+        if (!floatStepSafe(s, aLo, aHi))
+          return false;
+        continue;
+      }
+      if (!s.n->type->isInteger())
+        return false;
+      if (s.a->type->isFloat()) {
+        // Float to integer: monotone; it must not fail at either end.
+        if (at(s.n, lo).second || at(s.n, hi).second)
+          return false;
+        continue;
+      }
+      __int128 eLo, eHi;
+      if (!exactStep(s, aLo, eLo) || !exactStep(s, aHi, eHi))
+        return false;
+      StepRange r = rangeOf(s);
+      __int128 mLo = floorDiv(eLo - r.lo, r.span);
+      __int128 mHi = floorDiv(eHi - r.lo, r.span);
+      if (mLo == mHi) {
+        if (mLo != 0 && !r.wraps)
+          return false;
+        continue; // the same wrap everywhere: monotone
+      }
+      if (!r.wraps)
+        return false;
+      // Wraps inside: cut where the exact result crosses each multiple of
+      // the span, and check each piece again.
+      bool up = mLo < mHi;
+      std::vector<int64_t> at;
+      for (__int128 m = std::min(mLo, mHi) + 1; m <= std::max(mLo, mHi); ++m) {
+        __int128 bound = r.lo + m * r.span; // first exact value of wrap m
+        int64_t key = firstKey(lo, hi, [&](int64_t key) {
+          __int128 e;
+          exactStep(s, this->at(s.a, key).first, e);
+          return up ? e >= bound : e < bound;
+        });
+        at.push_back(key);
+        if (at.size() > kMaxPieces)
+          return false;
+      }
+      std::sort(at.begin(), at.end());
+      int64_t a = lo;
+      for (int64_t key : at) {
+        starts.push_back(key);
+        if (!cut(a, key - 1))
+          return false;
+        a = key;
+      }
+      return cut(a, hi);
+    }
+    // Every step monotone on [lo, hi]: where f reaches c, and passes it.
+    auto [fLo, e1] = at(f, lo);
+    auto [fHi, e2] = at(f, hi);
+    int dir = compareValues(cmp, fLo, fHi);
+    if (e1 || e2 || dir == 2)
+      return false;
+    if (dir == 0)
+      return true; // constant here
+    auto order = [&](int64_t key) {
+      return compareValues(cmp, at(f, key).first, c);
+    };
+    if (dir < 0) { // increasing
+      pushFirst(lo, hi, [&](int64_t key) { return order(key) >= 0; });
+      pushFirst(lo, hi, [&](int64_t key) { return order(key) == 1; });
+    } else {
+      pushFirst(lo, hi, [&](int64_t key) { return order(key) <= 0; });
+      pushFirst(lo, hi, [&](int64_t key) { return order(key) == -1; });
+    }
+    return true;
+  }
+
+private:
+  static constexpr unsigned kMaxPieces = 256;
+  std::pair<int64_t, bool> at(const Expr *x, int64_t key) {
+    return atKey(I, k, key, [&] { return I.eval(x, v); });
+  }
+  /// The first key of [lo, hi] where the monotone `holds` does (hi + 1
+  /// reported as none).
+  template <typename P> int64_t firstKey(int64_t lo, int64_t hi, P holds) {
+    if (!holds(hi))
+      return hi; // not reached: callers cut before hi at most
+    while (lo < hi) {
+      int64_t mid = lo + int64_t((uint64_t(hi) - uint64_t(lo)) / 2);
+      if (holds(mid))
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    return lo;
+  }
+  template <typename P> void pushFirst(int64_t lo, int64_t hi, P holds) {
+    if (holds(hi))
+      starts.push_back(firstKey(lo, hi, holds));
+  }
+
+  Semantics::Impl &I;
+  uint32_t k;
+  const BinaryExpr *cmp;
+  const Expr *f;
+  int64_t c;
+  const std::vector<int64_t> &v;
+  std::vector<int64_t> &starts;
+  std::vector<ChainStep> steps;
+  unsigned pieces = 0;
+};
+} // namespace
+
+/// Cuts for `f OP c` where `f` is a chain of leaf `k` (ChainCutter); for a
+/// float input, -inf, +inf and NaN are apart and the chain is checked on
+/// the finite values between.
+static bool monotoneCuts(Semantics::Impl &I, uint32_t k, const BinaryExpr *cmp,
+                         const Expr *f, int64_t c,
+                         const std::vector<int64_t> &v,
+                         std::vector<int64_t> &starts) {
+  using K = Semantics::Impl::KeyKind;
+  int64_t lo = I.dlo[k], hi = I.dhi[k];
+  K kind = I.leaves[k].keys;
+  if (kind == K::Float32 || kind == K::Float64) {
+    int64_t negInf = I.leaves[k].lo, nan = I.leaves[k].hi, posInf = nan - 1;
+    starts.push_back(negInf + 1);
+    starts.push_back(posInf);
+    starts.push_back(nan);
+    lo = std::max(lo, negInf + 1);
+    hi = std::min(hi, posInf - 1);
+    if (lo > hi)
+      return true;
+  }
+  ChainCutter cutter(I, k, cmp, f, c, v, starts);
+  return cutter.build() && cutter.cut(lo, hi);
+}
+
+/// Collects the cut keys of every comparison of leaf `k` in `e` (a
+/// cuttable expression); false when a chain is not monotone here.
+static bool collectCuts(Semantics::Impl &I, uint32_t k, const Expr *e,
                         const std::vector<int64_t> &v,
                         std::vector<int64_t> &starts) {
   auto it = I.inputUse.find(e);
   if (it == I.inputUse.end())
-    return; // reads no input
+    return true; // reads no input
   auto *b = llvm::dyn_cast<BinaryExpr>(e);
   if (b && isComparison(b->op)) {
-    auto isLeaf = [&](const Expr *x) {
+    auto use = [&](const Expr *x) {
       auto u = I.inputUse.find(x);
-      return u != I.inputUse.end() && u->second.identity;
+      return u == I.inputUse.end() ? InputUseOf() : u->second;
     };
-    const Expr *other = isLeaf(b->lhs)   ? b->rhs
-                        : isLeaf(b->rhs) ? b->lhs
-                                         : nullptr;
-    if (other && !I.inputUse.count(other)) {
+    auto l = use(b->lhs), r = use(b->rhs);
+    const Expr *f = nullptr, *other = nullptr;
+    if (l.chain && r.leaf == -1) {
+      f = b->lhs;
+      other = b->rhs;
+    } else if (r.chain && l.leaf == -1) {
+      f = b->rhs;
+      other = b->lhs;
+    }
+    if (f) {
+      int64_t c;
       try {
-        cutsAround(I, k, I.eval(other, v), starts);
+        c = I.eval(other, v);
       } catch (const EvalError &) {
-        // Its value fails wherever it is evaluated: no cut depends on it.
+        // Fails wherever it is evaluated: no cut depends on it.
+        return true;
       }
-      return;
+      if (use(f).identity &&
+          keyKindOf(b->lhs->type) == keyKindOf(b->rhs->type) &&
+          (!b->lhs->type->isFloat() ||
+           b->lhs->type->width == b->rhs->type->width)) {
+        cutsAround(I, k, c, starts);
+        return true;
+      }
+      return monotoneCuts(I, k, b, f, c, v, starts);
     }
   }
+  bool ok = true;
+  auto sub = [&](const Expr *x) { ok = ok && collectCuts(I, k, x, v, starts); };
   switch (e->getKind()) {
   case ExprKind::Unary:
-    collectCuts(I, k, cast<UnaryExpr>(e)->operand, v, starts);
-    return;
+    sub(cast<UnaryExpr>(e)->operand);
+    break;
   case ExprKind::Binary:
-    collectCuts(I, k, cast<BinaryExpr>(e)->lhs, v, starts);
-    collectCuts(I, k, cast<BinaryExpr>(e)->rhs, v, starts);
-    return;
+    sub(cast<BinaryExpr>(e)->lhs);
+    sub(cast<BinaryExpr>(e)->rhs);
+    break;
   case ExprKind::Cond:
-    collectCuts(I, k, cast<CondExpr>(e)->cond, v, starts);
-    collectCuts(I, k, cast<CondExpr>(e)->thenExpr, v, starts);
-    collectCuts(I, k, cast<CondExpr>(e)->elseExpr, v, starts);
-    return;
+    sub(cast<CondExpr>(e)->cond);
+    sub(cast<CondExpr>(e)->thenExpr);
+    sub(cast<CondExpr>(e)->elseExpr);
+    break;
   case ExprKind::Call:
     for (const Expr *a : cast<CallExpr>(e)->args)
-      collectCuts(I, k, a, v, starts);
-    return;
+      sub(a);
+    break;
   case ExprKind::Ref:
     if (auto *r = cast<Ref>(e);
         r->sym.kind == SymKind::Port && I.m.ports[r->sym.index].definition)
-      collectCuts(I, k, I.m.ports[r->sym.index].definition, v, starts);
-    return;
+      sub(I.m.ports[r->sym.index].definition);
+    break;
   default:
-    return;
+    break;
   }
+  return ok;
 }
 
 /// Sorted, unique, inside (lo, hi].
@@ -482,10 +818,10 @@ int64_t Semantics::Impl::splitEval(const Expr *e, const InputUse &u,
     if (u.identity)
       return eachValue(*this, k, e, out);
     std::vector<int64_t> starts;
-    if (u.thresholds) {
-      collectCuts(*this, k, e, v, starts);
+    if (u.cuttable && collectCuts(*this, k, e, v, starts)) {
       normaliseStarts(starts, lo, hi);
     } else {
+      starts.clear();
       uint64_t span = spanOf(lo, hi);
       if (span >= opts.maxInputValues)
         tooManyValues(*this, k, e, span);

@@ -92,14 +92,18 @@ struct Semantics::Impl {
   /// also 0 outside successors() and with --inputs=enumerate).
   uint32_t unsplit = 0;
   /// What an expression reads of the inputs: one leaf (`leaf` >= 0), which
-  /// it designates (`identity`), and whether every read of it is an operand
-  /// of a comparison with an input-free expression (`thresholds`: the
-  /// comparisons' values are all the expression depends on). Expressions
-  /// that read no input are absent; several leaves: leaf == -2.
+  /// it designates (`identity`) or computes monotonically from with
+  /// input-free operands (`chain`: + - * / by constants, negation, numeric
+  /// conversions, when they neither fail nor wrap where it is evaluated),
+  /// and whether every read of it is in a chain compared with an input-free
+  /// value (`cuttable`: those comparisons' values are all the expression
+  /// depends on). Expressions that read no input are absent; several
+  /// leaves: leaf == -2.
   struct InputUse {
     int32_t leaf = -1;
     bool identity = false;
-    bool thresholds = false;
+    bool chain = false;
+    bool cuttable = false;
   };
   llvm::DenseMap<const Expr *, InputUse> inputUse;
   InputSplitter splitter;

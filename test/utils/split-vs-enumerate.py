@@ -7,6 +7,7 @@ relation (as a set of (state, label, state) triples). State numbers may
 differ: the two modes meet successors in different orders.
 
 Usage: split-vs-enumerate.py NETLIFT [--max-states N] [--extra ARG]...
+         [--split-extra ARG]... (--split-extra: for the split run only)
          [--list FILE] MODEL...
 (--list: a file naming one model per line, taken in sorted order.)
 Prints one line per model ("same: NAME: S states, E edges"; "skipped" when
@@ -27,9 +28,9 @@ ENUMERATION_LIMITS = ["has no range", "cannot enumerate its values",
                       "valuations per step"]
 
 
-def space(netlift, model, mode, extra):
+def space(netlift, model, mode, extra, split_extra):
     cmd = [netlift, "reach", model, "--format", "json", "-o", "-",
-           "--inputs=" + mode] + extra
+           "--inputs=" + mode] + extra + (split_extra if mode == "split" else [])
     out = subprocess.run(cmd, capture_output=True, text=True, errors="replace")
     try:
         data = json.loads(out.stdout)  # also when stopped at --max-states
@@ -46,11 +47,14 @@ def main():
     args = sys.argv[1:]
     netlift = args.pop(0)
     extra = []
+    split_extra = []
     models = []
     while args:
         a = args.pop(0)
         if a == "--extra":
             extra.append(args.pop(0))
+        elif a == "--split-extra":
+            split_extra.append(args.pop(0))
         elif a == "--list":
             with open(args.pop(0)) as f:
                 models += sorted(line.strip() for line in f if line.strip())
@@ -61,8 +65,8 @@ def main():
     counts = {"same": 0, "skipped": 0, "both refuse": 0, "split only": 0}
     for model in models:
         name = os.path.basename(model)
-        split, err_split = space(netlift, model, "split", extra)
-        enum, err_enum = space(netlift, model, "enumerate", extra)
+        split, err_split = space(netlift, model, "split", extra, split_extra)
+        enum, err_enum = space(netlift, model, "enumerate", extra, split_extra)
         if split is None or enum is None:
             if split is None and enum is None:
                 print("both refuse: %s" % name)
