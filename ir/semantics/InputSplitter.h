@@ -68,6 +68,11 @@ public:
   uint64_t classesRun() const { return runs; }
   /// Decisions the current class has taken so far.
   size_t depth() const { return cursor; }
+  /// The current class's decisions: (input, number of segments).
+  template <typename F> void forEachDecision(F f) const {
+    for (const Decision &d : decisions)
+      f(d.input, d.count);
+  }
 
 private:
   struct Decision {

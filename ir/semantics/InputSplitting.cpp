@@ -147,6 +147,7 @@ void Semantics::Impl::analyseInputUses() {
   leafBySlot.assign(L.numSlots() - L.numPacked(), -1);
   for (size_t k = 0; k < leaves.size(); ++k)
     leafBySlot[leaves[k].slot - L.numPacked()] = int32_t(k);
+  decidedAt.assign(leaves.size(), llvm::SMLoc());
   dlo.assign(leaves.size(), 0);
   dhi.assign(leaves.size(), 0);
   if (leaves.empty())
@@ -407,6 +408,7 @@ void Semantics::Impl::decideValues(uint32_t first, uint32_t n, const Expr *at) {
       eachValue(*this, uint32_t(k), at, out);
     });
     narrow(uint32_t(k), seg.lo, seg.hi);
+    decidedAt[k] = at->loc;
   }
 }
 
@@ -832,6 +834,7 @@ int64_t Semantics::Impl::splitEval(const Expr *e, const InputUse &u,
         *this, k, lo, hi, starts, [&] { return eval(e, v); }, out);
   });
   narrow(k, seg.lo, seg.hi);
+  decidedAt[k] = e->loc;
   if (seg.fails) {
     // The failure itself, with its message: at the segment's first value.
     narrow(k, seg.lo, seg.lo);
@@ -885,6 +888,37 @@ bool Semantics::Impl::splitCase(const CaseStmt *c,
     }
   });
   narrow(k, seg.lo, seg.hi);
+  decidedAt[k] = c->selector->loc;
   arm = int32_t(seg.value);
   return true;
+}
+
+void Semantics::Impl::tooManyClasses() {
+  // The inputs of the current class's decisions, most segments first.
+  std::vector<std::pair<uint64_t, uint32_t>> told; // (segments, leaf)
+  std::vector<uint64_t> most(leaves.size(), 0);
+  splitter.forEachDecision([&](uint32_t input, uint32_t count) {
+    if (input < leaves.size())
+      most[input] = std::max<uint64_t>(most[input], count);
+  });
+  for (uint32_t k = 0; k < leaves.size(); ++k)
+    if (most[k] > 1)
+      told.push_back({most[k], k});
+  std::sort(told.begin(), told.end(),
+            [](auto &a, auto &b) { return a.first > b.first; });
+  std::string names;
+  for (size_t i = 0; i < told.size() && i < 4; ++i)
+    names += std::string(i ? ", " : "") + "'" +
+             L.slots()[leaves[told[i].second].slot].name + "' (" +
+             std::to_string(told[i].first) + " classes)";
+  llvm::SMLoc loc = told.empty() ? llvm::SMLoc() : decidedAt[told[0].second];
+  throw EvalError{"the free inputs split into more than " +
+                      std::to_string(opts.maxInputValues) +
+                      " classes of valuations in one step (more than "
+                      "--max-input-values): the step tells apart the values " +
+                      "of " +
+                      (names.empty() ? std::string("its inputs") : names) +
+                      " (the first decided here); give them narrower ranges "
+                      "or connect them",
+                  loc, true};
 }

@@ -185,6 +185,8 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
       if (split && n > 0) {
         if (!I.splitter.advance())
           break;
+        if (I.splitter.classesRun() > opts.maxInputValues)
+          I.tooManyClasses();
         I.startClass();
       } else if (n > 0) {
         // Next valuation: an odometer over event inputs, then data inputs.

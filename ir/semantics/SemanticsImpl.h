@@ -109,6 +109,12 @@ struct Semantics::Impl {
   InputSplitter splitter;
   /// Classes the last successors() call ran.
   uint64_t classes = 1;
+  /// Where each leaf was last decided (for the message when a step has
+  /// too many classes).
+  std::vector<llvm::SMLoc> decidedAt;
+  /// A step ran --max-input-values classes and has more: the inputs whose
+  /// values it tells apart, named.
+  [[noreturn]] void tooManyClasses();
 
   static int64_t keyOf(KeyKind k, int64_t value);
   static int64_t valueOf(KeyKind k, int64_t key);
