@@ -913,9 +913,9 @@ void Semantics::Impl::tooManyClasses() {
              std::to_string(told[i].first) + " classes)";
   llvm::SMLoc loc = told.empty() ? llvm::SMLoc() : decidedAt[told[0].second];
   throw EvalError{"the free inputs split into more than " +
-                      std::to_string(opts.maxInputValues) +
+                      std::to_string(opts.maxInputClasses) +
                       " classes of valuations in one step (more than "
-                      "--max-input-values): the step tells apart the values " +
+                      "--max-input-classes): the step tells apart the values " +
                       "of " +
                       (names.empty() ? std::string("its inputs") : names) +
                       " (the first decided here); give them narrower ranges "

@@ -185,7 +185,7 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
       if (split && n > 0) {
         if (!I.splitter.advance())
           break;
-        if (I.splitter.classesRun() > opts.maxInputValues)
+        if (I.splitter.classesRun() > opts.maxInputClasses)
           I.tooManyClasses();
         I.startClass();
       } else if (n > 0) {

@@ -44,6 +44,9 @@ struct Options {
   /// an expression of it that is not a comparison), and most values an
   /// expression is evaluated at to find where its value changes.
   uint64_t maxInputValues = 1u << 16;
+  /// Splitting: most classes of input valuations one step may split into
+  /// (the bound enumeration had per state).
+  uint64_t maxInputClasses = 1u << 16;
   /// The watchdog: most loop iterations one transition's firing may run
   /// (every loop of its action counted together) before it is a runtime
   /// error, as a PLC's watchdog stops the CPU.

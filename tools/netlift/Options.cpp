@@ -199,6 +199,11 @@ static cl::opt<uint64_t> maxInputValues(
              "(enumerating) most valuations of all free inputs per step "
              "(default 65536)"),
     cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
+static cl::opt<uint64_t> maxInputClasses(
+    "max-input-classes",
+    cl::desc("Most classes of input valuations one step may split into "
+             "(default 65536)"),
+    cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -251,6 +256,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.semantics.compilePT = !interpreter;
   eo.semantics.maxLoopIterations = maxLoopIterations;
   eo.semantics.maxInputValues = maxInputValues;
+  eo.semantics.maxInputClasses = maxInputClasses;
   eo.semantics.splitInputs = true;
   if (inputsMode.getNumOccurrences())
     eo.semantics.splitInputs = inputsMode == InputsMode::Split;
@@ -263,8 +269,9 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
     }
     eo.semantics.splitInputs = mode != "enumerate";
   }
-  if (maxInputValues < 1) {
-    diag.error(llvm::SMLoc(), "--max-input-values must be at least 1");
+  if (maxInputValues < 1 || maxInputClasses < 1) {
+    diag.error(llvm::SMLoc(),
+               "--max-input-values and --max-input-classes must be at least 1");
     return false;
   }
   eo.maxStates = maxStates;
