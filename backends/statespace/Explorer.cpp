@@ -53,6 +53,15 @@ private:
 Explorer::Explorer(sem::Semantics &s, ExploreOptions o)
     : sem(s), opts(o), states(s.layout().numWords()) {}
 
+uint32_t Explorer::internConditionLabel(llvm::ArrayRef<uint32_t> step,
+                                        llvm::StringRef condition) {
+  std::string l = labels[internLabel(step)] + " " + condition.str();
+  auto [it, fresh] = labelIds.try_emplace(l, labels.size());
+  if (fresh)
+    labels.push_back(l);
+  return it->second;
+}
+
 uint32_t Explorer::internNewLabel(llvm::ArrayRef<uint32_t> step) {
   if (step.size() <= 1) {
     uint32_t key = step.empty() ? 0 : step[0] + 1;
@@ -157,7 +166,10 @@ bool Explorer::run(ExploreResult &r) {
         [&](llvm::ArrayRef<uint32_t> st, const uint64_t *succ) {
           uint32_t h = states.hash(succ);
           states.prefetchBucket(h);
-          b.pending.push_back({h, internLabel(st), st.empty()});
+          uint32_t label = opts.inputLabels && !sem.edgeCondition().empty()
+                               ? internConditionLabel(st, sem.edgeCondition())
+                               : internLabel(st);
+          b.pending.push_back({h, label, st.empty()});
           size_t at = b.words.size();
           b.words.resize(at + W);
           for (uint32_t i = 0; i < W; ++i) // a few words: no memcpy call

@@ -32,6 +32,9 @@ struct ExploreOptions {
   double timeLimit = 0;   // seconds; 0: no limit
   bool recordEdges = false;
   bool progress = false; // print progress on stderr
+  /// Label each edge also with the input valuations that take it
+  /// (--edge-labels inputs; the semantics must record them).
+  bool inputLabels = false;
   /// Stop at the first state satisfying this (checked as states are
   /// found); set `found` in the result.
   llvm::function_ref<bool(const uint64_t *)> stopAt = nullptr;
@@ -92,6 +95,9 @@ private:
     return internNewLabel(step);
   }
   uint32_t internNewLabel(llvm::ArrayRef<uint32_t> step);
+  /// The label of `step` followed by the input condition, interned.
+  uint32_t internConditionLabel(llvm::ArrayRef<uint32_t> step,
+                                llvm::StringRef condition);
 
   sem::Semantics &sem;
   ExploreOptions opts;

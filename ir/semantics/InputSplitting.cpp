@@ -922,3 +922,69 @@ void Semantics::Impl::tooManyClasses() {
                       "or connect them",
                   loc, true};
 }
+
+Semantics::Impl::ClassBox Semantics::Impl::currentClass() const {
+  ClassBox box;
+  for (size_t k = 0; k < leaves.size(); ++k)
+    box.push_back({dlo[k], dhi[k]});
+  for (size_t e = 0; e < eventInputs.size(); ++e)
+    box.push_back({present[e], present[e]});
+  return box;
+}
+
+std::string Semantics::Impl::conditionText(std::vector<ClassBox> boxes) const {
+  // Two boxes equal but in one input whose intervals touch are one box
+  // (repeated until none merges; only for a readable number of boxes).
+  size_t n = leaves.size() + eventInputs.size();
+  for (bool merged = boxes.size() <= 256; merged;) {
+    merged = false;
+    for (size_t a = 0; a < boxes.size() && !merged; ++a)
+      for (size_t b = a + 1; b < boxes.size() && !merged; ++b) {
+        size_t differ = n, count = 0;
+        for (size_t i = 0; i < n && count < 2; ++i)
+          if (boxes[a][i] != boxes[b][i]) {
+            differ = i;
+            ++count;
+          }
+        if (count != 1)
+          continue;
+        auto &x = boxes[a][differ], &y = boxes[b][differ];
+        if (x.second != INT64_MAX && x.second + 1 == y.first)
+          x.second = y.second;
+        else if (y.second != INT64_MAX && y.second + 1 == x.first)
+          x.first = y.first;
+        else
+          continue;
+        boxes.erase(boxes.begin() + b);
+        merged = true;
+      }
+  }
+  std::string out;
+  for (const ClassBox &box : boxes) {
+    std::string cube;
+    auto add = [&](const std::string &s) {
+      cube += (cube.empty() ? "[" : ", ") + s;
+    };
+    for (size_t k = 0; k < leaves.size(); ++k) {
+      auto [lo, hi] = box[k];
+      if (lo == leaves[k].lo && hi == leaves[k].hi)
+        continue; // any value
+      const Slot &s = L.slots()[leaves[k].slot];
+      auto text = [&](int64_t key) {
+        int64_t v = valueOf(leaves[k].keys, key);
+        if (s.type && s.type->kind == TypeKind::Enum && v >= 0 &&
+            size_t(v) < s.type->enumerators.size())
+          return s.type->enumerators[size_t(v)].str();
+        return s.type ? formatScalar(s.type, v) : std::to_string(v);
+      };
+      add(s.name + "=" + text(lo) + (lo == hi ? "" : ".." + text(hi)));
+    }
+    for (size_t e = 0; e < eventInputs.size(); ++e) {
+      auto [lo, hi] = box[leaves.size() + e];
+      if (lo == hi)
+        add(m.ports[eventInputs[e]].name.str() + "=" + (lo ? "1" : "0"));
+    }
+    out += (out.empty() ? "" : " | ") + (cube.empty() ? "[any" : cube) + "]";
+  }
+  return out;
+}

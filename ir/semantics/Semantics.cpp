@@ -170,10 +170,24 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   succ.resize(L.numWords());
   if (dedupe)
     I.emitted.clear();
+  // With input conditions, an edge is reported once every class has run,
+  // with the classes that take it.
+  bool conditions = split && opts.inputConditions && manyValuations;
+  I.edgeCond.clear();
+  if (conditions)
+    I.recordClasses.clear();
   auto emit = [&](llvm::ArrayRef<uint32_t> step) {
-    if (dedupe && !I.emitted.insert(step, succ))
+    bool fresh = !dedupe || I.emitted.insert(step, succ);
+    if (conditions) {
+      uint32_t r = I.emitted.lastRecord();
+      if (r >= I.recordClasses.size())
+        I.recordClasses.resize(r + 1);
+      if (!step.empty())
+        I.recordClasses[r].push_back(I.currentClass());
       return;
-    cb(step, succ.data());
+    }
+    if (fresh)
+      cb(step, succ.data());
   };
   if (split)
     I.splitter.reset();
@@ -281,6 +295,17 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
     I.unsplit = 0;
     if (tickAllowed && I.tick(succ.data()))
       emit({});
+    if (conditions) {
+      llvm::SmallVector<uint32_t, 8> step;
+      for (uint32_t r = 0; r < I.emitted.size(); ++r) {
+        const uint64_t *words = I.emitted.record(r, step);
+        I.edgeCond.clear();
+        if (r < I.recordClasses.size() && !I.recordClasses[r].empty())
+          I.edgeCond = I.conditionText(std::move(I.recordClasses[r]));
+        cb(step, words);
+      }
+      I.edgeCond.clear();
+    }
   } catch (const EvalError &e) {
     I.unsplit = 0;
     err = {e.message, e.loc, e.limit};
@@ -290,6 +315,8 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
 }
 
 uint64_t Semantics::lastInputClasses() const { return impl->classes; }
+
+const std::string &Semantics::edgeCondition() const { return impl->edgeCond; }
 
 bool Semantics::hasFreeInputs() const {
   return !impl->inputSlots.empty() || !impl->eventInputs.empty();

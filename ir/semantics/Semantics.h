@@ -47,6 +47,9 @@ struct Options {
   /// Splitting: most classes of input valuations one step may split into
   /// (the bound enumeration had per state).
   uint64_t maxInputClasses = 1u << 16;
+  /// Splitting: say for each edge which input valuations take it
+  /// (edgeCondition()); successors are then reported once all classes ran.
+  bool inputConditions = false;
   /// The watchdog: most loop iterations one transition's firing may run
   /// (every loop of its action counted together) before it is a runtime
   /// error, as a PLC's watchdog stops the CPU.
@@ -91,6 +94,11 @@ public:
   /// Classes of input valuations the last successors() call ran the step
   /// for (valuations, when enumerating; 1 without free inputs).
   uint64_t lastInputClasses() const;
+  /// While `successors` reports an edge, with Options::inputConditions:
+  /// the classes of input valuations that take it, `[go=1, level=91..100]
+  /// | [go=0]` (inputs a class leaves free are not listed); empty for a
+  /// tick and without free inputs.
+  const std::string &edgeCondition() const;
   /// Does the module have free inputs (cond, data or event input ports)?
   bool hasFreeInputs() const;
 

@@ -109,6 +109,17 @@ struct Semantics::Impl {
   InputSplitter splitter;
   /// Classes the last successors() call ran.
   uint64_t classes = 1;
+  /// --edge-labels inputs: per emitted record, the classes that took it;
+  /// the condition of the edge being reported.
+  /// A class as a box: per leaf, then per event input, its interval (keys;
+  /// an event 0..1).
+  using ClassBox = std::vector<std::pair<int64_t, int64_t>>;
+  std::vector<std::vector<ClassBox>> recordClasses;
+  std::string edgeCond;
+  ClassBox currentClass() const;
+  /// The classes of one edge, merged where two differ in one input by
+  /// neighbouring intervals, written as a condition on the inputs.
+  std::string conditionText(std::vector<ClassBox> boxes) const;
   /// Where each leaf was last decided (for the message when a step has
   /// too many classes).
   std::vector<llvm::SMLoc> decidedAt;
@@ -811,8 +822,11 @@ struct Semantics::Impl {
       size_t mask = index.size() - 1;
       size_t i = h & mask;
       for (; index[i]; i = (i + 1) & mask)
-        if (same(index[i] - 1, step, succ))
+        if (same(index[i] - 1, step, succ)) {
+          last = index[i] - 1;
           return false;
+        }
+      last = uint32_t(starts.size());
       starts.push_back(records.size());
       records.push_back(step.size());
       records.insert(records.end(), step.begin(), step.end());
@@ -822,7 +836,18 @@ struct Semantics::Impl {
       return true;
     }
 
+    /// The record the last insert() found or added.
+    uint32_t lastRecord() const { return last; }
+    uint32_t size() const { return uint32_t(starts.size()); }
+    /// Record r's step (into `step`) and successor words.
+    const uint64_t *record(uint32_t r, llvm::SmallVectorImpl<uint32_t> &step) {
+      const uint64_t *p = &records[starts[r]];
+      step.assign(p + 1, p + 1 + p[0]);
+      return p + 1 + p[0];
+    }
+
   private:
+    uint32_t last = 0;
     bool same(uint32_t r, llvm::ArrayRef<uint32_t> step,
               llvm::ArrayRef<uint64_t> succ) const {
       const uint64_t *p = &records[starts[r]];

@@ -41,6 +41,16 @@ static cl::opt<bool> depthFirst("dfs", cl::desc("Depth-first order"),
                                 cl::sub(reachCommand()), cl::cat(category()));
 static cl::opt<bool> noProgress("q", cl::desc("No progress output"),
                                 cl::sub(reachCommand()), cl::cat(category()));
+enum class EdgeLabels { Transitions, Inputs };
+static cl::opt<EdgeLabels> edgeLabels(
+    "edge-labels", cl::desc("What an edge's label says"),
+    cl::init(EdgeLabels::Transitions),
+    cl::values(clEnumValN(EdgeLabels::Transitions, "transitions",
+                          "the transitions of the step (the default)"),
+               clEnumValN(EdgeLabels::Inputs, "inputs",
+                          "also the classes of input valuations that take "
+                          "it, [go=1, level=91..100] | [go=0]")),
+    cl::sub(reachCommand()), cl::cat(category()));
 
 /// Exit codes (docs/reach.md): 0 complete, 1 error, 2 a limit stopped the
 /// search, 3 the property checked is violated.
@@ -50,6 +60,15 @@ int driver::runReach(DiagEngine &diag) {
   statespace::ExplorationOptions xo;
   if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
     return 1;
+  if (edgeLabels == EdgeLabels::Inputs) {
+    if (!xo.semantics.splitInputs) {
+      diag.error(llvm::SMLoc(), "--edge-labels=inputs needs --inputs=split "
+                                "(enumerated, an edge's inputs are every "
+                                "valuation taking it)");
+      return 1;
+    }
+    xo.semantics.inputConditions = true;
+  }
   auto setup = statespace::ExplorationSetup::create(design, xo, diag, "reach");
   if (!setup)
     return 1;
@@ -68,6 +87,7 @@ int driver::runReach(DiagEngine &diag) {
   eo.depthFirst = depthFirst;
   eo.recordEdges = graphFormat != GraphFormat::None || !edgesFile.empty();
   eo.progress = !noProgress;
+  eo.inputLabels = edgeLabels == EdgeLabels::Inputs;
   sem::RuntimeError findErr;
   auto stop = [&](const uint64_t *s) {
     return semantics.evalPredicate(findExpr, s, findErr);
