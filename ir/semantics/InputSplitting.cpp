@@ -284,15 +284,28 @@ Semantics::Impl::InputUse Semantics::Impl::analyseUse(const Expr *e) {
 // --- Classes
 // ------------------------------------------------------------------
 
-void Semantics::Impl::startClass() {
-  splitter.start();
-  unsplit = 0;
+void Semantics::Impl::resetLeaves() {
+  wholeUnsplit = 0;
   for (size_t k = 0; k < leaves.size(); ++k) {
     dlo[k] = leaves[k].lo;
     dhi[k] = leaves[k].hi;
     vals[leaves[k].slot] = valueOf(leaves[k].keys, leaves[k].lo);
-    unsplit += dlo[k] != dhi[k];
+    wholeUnsplit += dlo[k] != dhi[k];
   }
+  isNarrowed.assign(leaves.size(), 0);
+  narrowed.clear();
+}
+
+void Semantics::Impl::startClass() {
+  splitter.start();
+  // Only the leaves the last class narrowed need their whole domain back.
+  for (uint32_t k : narrowed) {
+    dlo[k] = leaves[k].lo;
+    dhi[k] = leaves[k].hi;
+    isNarrowed[k] = 0;
+  }
+  narrowed.clear();
+  unsplit = wholeUnsplit;
   // Event inputs are few: decided up front, present or not (the first
   // one innermost, so that classes come in the enumeration's order).
   for (size_t e = present.size(); e-- > 0;)
@@ -306,6 +319,10 @@ void Semantics::Impl::startClass() {
 }
 
 void Semantics::Impl::narrow(uint32_t k, int64_t lo, int64_t hi) {
+  if (!isNarrowed[k]) {
+    isNarrowed[k] = 1;
+    narrowed.push_back(k);
+  }
   if (dlo[k] != dhi[k] && lo == hi)
     --unsplit;
   dlo[k] = lo;

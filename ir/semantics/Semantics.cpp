@@ -77,6 +77,8 @@ Semantics::Semantics(const Module &mod, const StateLayout &layout, Options o)
   I.vals.assign(L.numSlots(), 0);
   I.present.assign(I.eventInputs.size(), 0);
   I.en.assign(m.transitions.size(), 0);
+  if (opts.splitInputs)
+    I.resetLeaves();
 }
 
 bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {

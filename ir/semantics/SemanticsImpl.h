@@ -131,8 +131,14 @@ struct Semantics::Impl {
   static int64_t valueOf(KeyKind k, int64_t key);
   void analyseInputUses();
   InputUse analyseUse(const Expr *e);
-  /// Before each execution of a class: every leaf at its whole domain.
+  /// Before each execution of a class: every leaf at its whole domain
+  /// (those the last class narrowed are reset).
   void startClass();
+  /// Every leaf at its whole domain, its value where it has one.
+  void resetLeaves();
+  std::vector<uint32_t> narrowed;
+  std::vector<char> isNarrowed;
+  uint32_t wholeUnsplit = 0;
   /// Narrows leaf `k` to [lo, hi]; a single value is written where the
   /// interpreter reads it.
   void narrow(uint32_t k, int64_t lo, int64_t hi);
