@@ -44,6 +44,7 @@ bench: build
 	bash bench/reach-bench.sh $(BUILD)
 	bash bench/enforce-bench.sh $(BUILD)
 	bash bench/st-bench.sh $(BUILD)
+	bash bench/inputs-bench.sh $(BUILD)
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
