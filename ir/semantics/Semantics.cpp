@@ -311,6 +311,10 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   } catch (const EvalError &e) {
     I.unsplit = 0;
     err = {e.message, e.loc, e.limit};
+    // Which inputs the failing step saw: its class, as far as it was split.
+    if (split && manyValuations && !e.limit)
+      err.message +=
+          " (inputs of the step: " + I.conditionText({I.currentClass()}) + ")";
     return false;
   }
   return true;
