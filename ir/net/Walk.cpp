@@ -7,37 +7,42 @@ using namespace netlift::net;
 using llvm::cast;
 using llvm::dyn_cast;
 
-void net::walkExpr(const Expr *e, llvm::function_ref<void(const Expr *)> f) {
-  if (!e)
-    return;
-  f(e);
+void net::forEachOperand(const Expr *e,
+                         llvm::function_ref<void(const Expr *)> f) {
   switch (e->getKind()) {
   case ExprKind::Index:
-    walkExpr(cast<IndexExpr>(e)->base, f);
-    walkExpr(cast<IndexExpr>(e)->index, f);
+    f(cast<IndexExpr>(e)->base);
+    f(cast<IndexExpr>(e)->index);
     break;
   case ExprKind::Field:
-    walkExpr(cast<FieldExpr>(e)->base, f);
+    f(cast<FieldExpr>(e)->base);
     break;
   case ExprKind::Unary:
-    walkExpr(cast<UnaryExpr>(e)->operand, f);
+    f(cast<UnaryExpr>(e)->operand);
     break;
   case ExprKind::Binary:
-    walkExpr(cast<BinaryExpr>(e)->lhs, f);
-    walkExpr(cast<BinaryExpr>(e)->rhs, f);
+    f(cast<BinaryExpr>(e)->lhs);
+    f(cast<BinaryExpr>(e)->rhs);
     break;
   case ExprKind::Cond:
-    walkExpr(cast<CondExpr>(e)->cond, f);
-    walkExpr(cast<CondExpr>(e)->thenExpr, f);
-    walkExpr(cast<CondExpr>(e)->elseExpr, f);
+    f(cast<CondExpr>(e)->cond);
+    f(cast<CondExpr>(e)->thenExpr);
+    f(cast<CondExpr>(e)->elseExpr);
     break;
   case ExprKind::Call:
     for (const Expr *a : cast<CallExpr>(e)->args)
-      walkExpr(a, f);
+      f(a);
     break;
   default:
     break;
   }
+}
+
+void net::walkExpr(const Expr *e, llvm::function_ref<void(const Expr *)> f) {
+  if (!e)
+    return;
+  f(e);
+  forEachOperand(e, [&](const Expr *x) { walkExpr(x, f); });
 }
 
 namespace {

@@ -18,6 +18,11 @@
 
 namespace netlift::net {
 
+/// Calls `f` on each direct operand of `e` (indexed base and index, field
+/// base, operands, condition and arms, call arguments; not the elements of
+/// an aggregate literal).
+void forEachOperand(const Expr *e, llvm::function_ref<void(const Expr *)> f);
+
 /// Calls `f` on `e` and every sub-expression.
 void walkExpr(const Expr *e, llvm::function_ref<void(const Expr *)> f);
 

@@ -195,50 +195,20 @@ Semantics::Impl::InputUse Semantics::Impl::analyseUse(const Expr *e) {
     }
     break;
   }
-  case ExprKind::Index: {
-    auto *x = cast<IndexExpr>(e);
-    if (inputRoot(m, e)) {
-      u.leaf = -2; // which input depends on the index
-      analyseUse(x->index);
-      break;
-    }
-    visit(x->base);
-    visit(x->index);
-    break;
-  }
-  case ExprKind::Field: {
-    auto *f = cast<FieldExpr>(e);
-    if (inputRoot(m, e)) {
-      u.leaf = -2;
-      analyseUse(f->base);
-      break;
-    }
-    visit(f->base);
-    break;
-  }
-  case ExprKind::Unary:
-    visit(cast<UnaryExpr>(e)->operand);
-    break;
-  case ExprKind::Binary:
-    visit(cast<BinaryExpr>(e)->lhs);
-    visit(cast<BinaryExpr>(e)->rhs);
-    break;
-  case ExprKind::Cond: {
-    auto *c = cast<CondExpr>(e);
-    visit(c->cond);
-    visit(c->thenExpr);
-    visit(c->elseExpr);
-    break;
-  }
-  case ExprKind::Call:
-    for (const Expr *a : cast<CallExpr>(e)->args)
-      visit(a);
-    break;
   case ExprKind::Aggregate:
     for (const Expr *a : cast<AggregateLit>(e)->elems)
       visit(a);
     break;
   default:
+    if (inputRoot(m, e)) {
+      // An element or member of an input chosen at run time (`in[i]`, a
+      // field of one): which leaf is known only there. Its index is
+      // analysed for its own reads.
+      u.leaf = -2;
+      forEachOperand(e, [&](const Expr *x) { analyseUse(x); });
+      break;
+    }
+    forEachOperand(e, visit);
     break;
   }
   if (u.leaf >= 0 && !u.identity) {
@@ -791,31 +761,11 @@ static bool collectCuts(Semantics::Impl &I, uint32_t k, const Expr *e,
   }
   bool ok = true;
   auto sub = [&](const Expr *x) { ok = ok && collectCuts(I, k, x, v, starts); };
-  switch (e->getKind()) {
-  case ExprKind::Unary:
-    sub(cast<UnaryExpr>(e)->operand);
-    break;
-  case ExprKind::Binary:
-    sub(cast<BinaryExpr>(e)->lhs);
-    sub(cast<BinaryExpr>(e)->rhs);
-    break;
-  case ExprKind::Cond:
-    sub(cast<CondExpr>(e)->cond);
-    sub(cast<CondExpr>(e)->thenExpr);
-    sub(cast<CondExpr>(e)->elseExpr);
-    break;
-  case ExprKind::Call:
-    for (const Expr *a : cast<CallExpr>(e)->args)
-      sub(a);
-    break;
-  case ExprKind::Ref:
-    if (auto *r = cast<Ref>(e);
-        r->sym.kind == SymKind::Port && I.m.ports[r->sym.index].definition)
-      sub(I.m.ports[r->sym.index].definition);
-    break;
-  default:
-    break;
-  }
+  if (auto *r = llvm::dyn_cast<Ref>(e);
+      r && r->sym.kind == SymKind::Port && I.m.ports[r->sym.index].definition)
+    sub(I.m.ports[r->sym.index].definition);
+  else
+    forEachOperand(e, sub);
   return ok;
 }
 

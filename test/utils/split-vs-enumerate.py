@@ -88,18 +88,12 @@ def main():
         if split[2] != enum[2]:
             print("DIFFERENT: %s: one exploration incomplete" % name)
             return 1
-        if split[0] != enum[0]:
-            only_s = sorted(split[0] - enum[0])[:3]
-            only_e = sorted(enum[0] - split[0])[:3]
-            print("DIFFERENT: %s: states only split %s, only enumerate %s" %
-                  (name, only_s, only_e))
-            return 1
-        if split[1] != enum[1]:
-            only_s = sorted(split[1] - enum[1])[:3]
-            only_e = sorted(enum[1] - split[1])[:3]
-            print("DIFFERENT: %s: edges only split %s, only enumerate %s" %
-                  (name, only_s, only_e))
-            return 1
+        for what, s, e in (("states", split[0], enum[0]),
+                           ("edges", split[1], enum[1])):
+            if s != e:
+                print("DIFFERENT: %s: %s only split %s, only enumerate %s" %
+                      (name, what, sorted(s - e)[:3], sorted(e - s)[:3]))
+                return 1
         print("same: %s: %d states, %d edges" %
               (name, len(split[0]), len(split[1])))
         counts["same"] += 1
