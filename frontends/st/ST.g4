@@ -184,8 +184,9 @@ pouVarBlock : varBlock ;
 
 varBlock
   : kind=(VAR | VAR_INPUT | VAR_OUTPUT | VAR_IN_OUT | VAR_EXTERNAL | VAR_GLOBAL
-          | VAR_TEMP | VAR_ACCESS | VAR_CONFIG | VAR_STAT | VAR_INST)
+          | VAR_TEMP | VAR_CONFIG | VAR_STAT | VAR_INST)
     varQualifier* varDecl* END_VAR
+  | kind=VAR_ACCESS accessDecl* END_VAR
   ;
 
 globalVarBlock : varBlock ;
@@ -197,6 +198,12 @@ varDecl
   | AT DIRECT COLON typeSpec SEMI
   | accessPath COLON typeSpec SEMI
   ;
+
+// A VAR_ACCESS entry: `Level : C.R.inst.level : INT READ_ONLY;`.
+accessDecl
+  : accessName=ident COLON accessTarget COLON typeSpec direction=IDENT? SEMI
+  ;
+accessTarget : ident (DOT ident)* ;
 
 // VAR_CONFIG and VAR_ACCESS entries (refused; parsed to name them).
 accessPath : ident (DOT ident)+ (AT DIRECT)? ;

@@ -360,6 +360,8 @@ private:
   void typeDecl(P::TypeDeclContext *c);
   void configuration(P::ConfigurationDeclContext *c);
   void varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out);
+  /// VAR_ACCESS: read-only access paths noted, read-write ones refused.
+  void accessBlock(P::VarBlockContext *c);
   TypeSyntax *typeSpec(P::TypeSpecContext *c);
   TypeSyntax *typeSpec0(P::TypeSpec0Context *c);
   Initializer *initializer(P::InitializerContext *c);
@@ -755,6 +757,8 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
     // is an ordinary variable.
     break;
   case P::VAR_ACCESS:
+    accessBlock(c);
+    return;
   case P::VAR_CONFIG:
     refuse(loc(c->kind), c->kind->getText() + " is not supported");
     return;
@@ -782,6 +786,34 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
           failed = true; // reported where it is
           return;
         }
+}
+
+void AstBuilder::accessBlock(P::VarBlockContext *c) {
+  // IEC 61131-3 access paths name variables a remote client (a SCADA, an
+  // HMI) may read, or also write. Reading changes nothing the program
+  // does; a write from outside at any time would make the variable an
+  // input of the environment, which netlift does not model yet.
+  for (auto *d : c->accessDecl()) {
+    std::string direction =
+        d->direction ? StringRef(d->direction->getText()).upper() : "";
+    std::string target = d->accessTarget()->getText();
+    if (direction == "READ_WRITE") {
+      refuse(loc(d->direction),
+             "VAR_ACCESS '" + d->accessName->getText() +
+                 "' lets a remote client write '" + target +
+                 "' (READ_WRITE): writes from outside the program are not "
+                 "supported");
+      return;
+    }
+    if (!direction.empty() && direction != "READ_ONLY") {
+      refuse(loc(d->direction), "expected READ_ONLY or READ_WRITE, found '" +
+                                    d->direction->getText() + "'");
+      return;
+    }
+    diag.note(loc(d), "VAR_ACCESS '" + d->accessName->getText() +
+                          "' gives remote clients read access to '" + target +
+                          "': it does not change what the program does");
+  }
 }
 
 void AstBuilder::declare(P::VarDeclContext *d, VarSection section,
