@@ -157,6 +157,7 @@ bool Explorer::run(ExploreResult &r) {
   };
   TokenStats tokenStats(L);
   const uint32_t W = L.numWords();
+  const bool freeInputs = sem.hasFreeInputs();
   auto generate = [&](uint32_t s, Batch &b) {
     b.from = s;
     b.pending.clear();
@@ -176,7 +177,8 @@ bool Explorer::run(ExploreResult &r) {
             b.words[at + i] = succ[i];
         },
         b.err);
-    ++r.inputClasses[sem.lastInputClasses()];
+    if (freeInputs) // what splitting saved; nothing to count otherwise
+      ++r.inputClasses[sem.lastInputClasses()];
   };
   auto prefetchCandidates = [&](const Batch &b) {
     for (const Pending &p : b.pending)

@@ -296,7 +296,7 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
     expanded += n;
     runs += classes * n;
   }
-  if (expanded && x.semantics().hasFreeInputs()) {
+  if (expanded) { // counted only for models with free inputs
     uint64_t median = 0, seen = 0;
     for (auto &[classes, n] : r.inputClasses)
       if ((seen += n) * 2 >= expanded) {

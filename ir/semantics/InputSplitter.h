@@ -66,8 +66,6 @@ public:
 
   /// Executions since reset(): the number of classes run.
   uint64_t classesRun() const { return runs; }
-  /// Decisions the current class has taken so far.
-  size_t depth() const { return cursor; }
   /// The current class's decisions: (input, number of segments).
   template <typename F> void forEachDecision(F f) const {
     for (const Decision &d : decisions)

@@ -123,7 +123,7 @@ void Semantics::Impl::analyseInputUses() {
   leaves.clear();
   for (uint32_t s : inputSlots) {
     const Slot &slot = L.slots()[s];
-    InputLeaf leaf{s, KeyKind::Signed, slot.lo, slot.hi};
+    InputLeaf leaf{KeyKind::Signed, slot.lo, slot.hi};
     if (slot.type)
       leaf.keys = keyKindOf(slot.type);
     switch (leaf.keys) {
@@ -146,7 +146,7 @@ void Semantics::Impl::analyseInputUses() {
   }
   leafBySlot.assign(L.numSlots() - L.numPacked(), -1);
   for (size_t k = 0; k < leaves.size(); ++k)
-    leafBySlot[leaves[k].slot - L.numPacked()] = int32_t(k);
+    leafBySlot[inputSlots[k] - L.numPacked()] = int32_t(k);
   decidedAt.assign(leaves.size(), llvm::SMLoc());
   dlo.assign(leaves.size(), 0);
   dhi.assign(leaves.size(), 0);
@@ -259,7 +259,7 @@ void Semantics::Impl::resetLeaves() {
   for (size_t k = 0; k < leaves.size(); ++k) {
     dlo[k] = leaves[k].lo;
     dhi[k] = leaves[k].hi;
-    vals[leaves[k].slot] = valueOf(leaves[k].keys, leaves[k].lo);
+    vals[inputSlots[k]] = valueOf(leaves[k].keys, leaves[k].lo);
     wholeUnsplit += dlo[k] != dhi[k];
   }
   isNarrowed.assign(leaves.size(), 0);
@@ -298,7 +298,7 @@ void Semantics::Impl::narrow(uint32_t k, int64_t lo, int64_t hi) {
   dlo[k] = lo;
   dhi[k] = hi;
   if (lo == hi) {
-    uint32_t s = leaves[k].slot;
+    uint32_t s = inputSlots[k];
     int64_t value = valueOf(leaves[k].keys, lo);
     vals[s] = value;
     if (local.size() > s)
@@ -312,7 +312,7 @@ namespace {
 template <typename F>
 std::pair<int64_t, bool> atKey(Semantics::Impl &I, uint32_t k, int64_t key,
                                F f) {
-  uint32_t s = I.leaves[k].slot;
+  uint32_t s = I.inputSlots[k];
   int64_t lo = I.dlo[k], hi = I.dhi[k], saved = I.vals[s];
   bool hasLocal = I.local.size() > s;
   int64_t savedLocal = hasLocal ? I.local[s] : 0;
@@ -359,7 +359,7 @@ void segmentsFrom(Semantics::Impl &I, uint32_t k, int64_t lo, int64_t hi,
 
 [[noreturn]] static void tooManyValues(const Semantics::Impl &I, uint32_t k,
                                        const Expr *at, uint64_t span) {
-  const Slot &s = I.L.slots()[I.leaves[k].slot];
+  const Slot &s = I.L.slots()[I.inputSlots[k]];
   std::string count =
       span == UINT64_MAX ? std::string("2^64") : std::to_string(span + 1);
   throw EvalError{"the free input '" + s.name + "' takes " + count +
@@ -876,7 +876,7 @@ void Semantics::Impl::tooManyClasses() {
   std::string names;
   for (size_t i = 0; i < told.size() && i < 4; ++i)
     names += std::string(i ? ", " : "") + "'" +
-             L.slots()[leaves[told[i].second].slot].name + "' (" +
+             L.slots()[inputSlots[told[i].second]].name + "' (" +
              std::to_string(told[i].first) + " classes)";
   llvm::SMLoc loc = told.empty() ? llvm::SMLoc() : decidedAt[told[0].second];
   throw EvalError{"the free inputs split into more than " +
@@ -936,7 +936,7 @@ std::string Semantics::Impl::conditionText(std::vector<ClassBox> boxes) const {
       auto [lo, hi] = box[k];
       if (lo == leaves[k].lo && hi == leaves[k].hi)
         continue; // any value
-      const Slot &s = L.slots()[leaves[k].slot];
+      const Slot &s = L.slots()[inputSlots[k]];
       auto text = [&](int64_t key) {
         int64_t v = valueOf(leaves[k].keys, key);
         if (s.type && s.type->kind == TypeKind::Enum && v >= 0 &&

@@ -81,11 +81,10 @@ struct Semantics::Impl {
   /// NaN above +inf; a uint64's bits with the sign bit flipped).
   enum class KeyKind : uint8_t { Signed, Unsigned64, Float32, Float64 };
   struct InputLeaf {
-    uint32_t slot;
     KeyKind keys;
     int64_t lo, hi; // the whole domain, as keys
   };
-  std::vector<InputLeaf> leaves; // parallel to inputSlots
+  std::vector<InputLeaf> leaves; // leaf k is held in slot inputSlots[k]
   /// The current class: each leaf's interval of keys.
   std::vector<int64_t> dlo, dhi;
   /// Leaves whose interval holds more than one value (0: nothing to split;
@@ -109,11 +108,11 @@ struct Semantics::Impl {
   InputSplitter splitter;
   /// Classes the last successors() call ran.
   uint64_t classes = 1;
-  /// --edge-labels inputs: per emitted record, the classes that took it;
-  /// the condition of the edge being reported.
   /// A class as a box: per leaf, then per event input, its interval (keys;
   /// an event 0..1).
   using ClassBox = std::vector<std::pair<int64_t, int64_t>>;
+  /// --edge-labels inputs: per emitted record, the classes that took it;
+  /// the condition of the edge being reported.
   std::vector<std::vector<ClassBox>> recordClasses;
   std::string edgeCond;
   ClassBox currentClass() const;
@@ -123,8 +122,8 @@ struct Semantics::Impl {
   /// Where each leaf was last decided (for the message when a step has
   /// too many classes).
   std::vector<llvm::SMLoc> decidedAt;
-  /// A step ran --max-input-values classes and has more: the inputs whose
-  /// values it tells apart, named.
+  /// A step ran --max-input-classes classes and has more: the inputs
+  /// whose values it tells apart, named.
   [[noreturn]] void tooManyClasses();
 
   static int64_t keyOf(KeyKind k, int64_t value);
