@@ -225,6 +225,11 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       return unsigned64Literal(uint64_t(e->intValue), e->loc);
     if (e->type && e->type->kind == PTypeKind::Bool)
       return b.boolLit(e->intValue != 0, e->loc);
+    // LWORD#1 is a uint64 where it stands, also under NOT or in SHL(...):
+    // a bare NetIR constant would make `~1` a negative integer there.
+    if (e->type && isUnsigned64(baseOf(e->type)))
+      return b.convert(design.types.getInt(64, false, net::Overflow::Wrap),
+                       b.intLit(e->intValue, e->loc), e->loc);
     return b.intLit(e->intValue, e->loc);
   case ExprKind::BoolLit:
     return b.boolLit(e->intValue != 0, e->loc);
@@ -260,14 +265,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     if (auto part = unionPart(e, f, pre))
       return unionRead(*part, f, pre, e->loc);
     return lvalue(e, f, pre);
-  case ExprKind::BitAccess: {
-    NExpr *base = expr(e->base(), f, pre);
-    NExpr *shifted = b.binary(net::BinaryOp::Shr, base,
-                              b.intLit(e->intValue, e->loc), e->loc);
-    NExpr *bit =
-        b.binary(net::BinaryOp::BitAnd, shifted, b.intLit(1, e->loc), e->loc);
-    return b.binary(net::BinaryOp::Ne, bit, b.intLit(0, e->loc), e->loc);
-  }
+  case ExprKind::BitAccess:
+    return partRead(e, f, pre);
   case ExprKind::Deref:
     return readThroughReference(e, f, pre);
   case ExprKind::Unary: {

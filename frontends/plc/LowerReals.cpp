@@ -20,10 +20,6 @@ const net::Type *Lowering::floatType(const PType *t) {
   return design.types.getFloat(t->width == 32 ? 32 : 64);
 }
 
-static bool isUnsigned64(const PType *t) {
-  return t && t->kind == PTypeKind::Int && t->width == 64 && !t->isSigned;
-}
-
 NExpr *Lowering::unsigned64Literal(uint64_t v, SMLoc at) {
   const net::Type *u64 = design.types.getInt(64, false, net::Overflow::Wrap);
   NExpr *low =

@@ -205,18 +205,7 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
       return;
     }
     if (s->target->kind == ExprKind::BitAccess) {
-      // x.3 := v  is  x := v ? x | 8 : x & ~8  (masked to x's width).
-      Expr *base = s->target->base();
-      NExpr *target = lvalue(base, f, out);
-      const PType *t = base->type->isSubrange ? base->type->base : base->type;
-      int64_t bit = int64_t(1) << s->target->intValue;
-      NExpr *set = b.binary(net::BinaryOp::BitOr, lvalue(base, f, out),
-                            b.intLit(bit, s->loc), s->loc);
-      NExpr *clear = b.binary(net::BinaryOp::BitAnd, lvalue(base, f, out),
-                              b.intLit(~bit, s->loc), s->loc);
-      NExpr *r =
-          b.cond(value, wrapTo(set, t, {0, 0, false}, s->loc), clear, s->loc);
-      out.push_back(b.assign(target, r, s->loc));
+      partWrite(s->target, value, f, out, s->loc);
       return;
     }
     if (auto part = unionPart(s->target, f, out)) {
@@ -626,3 +615,63 @@ void Lowering::collectAssignments(StmtList &l) {
 /// Names read anywhere in NetIR statements (assignment targets excluded,
 /// except the bases of indexed or field targets, which are read-modify-
 /// write).
+
+NExpr *Lowering::partRead(Expr *e, Frame &f, Sink &pre) {
+  NExpr *base = expr(e->base(), f, pre);
+  const PType *t = baseOf(e->base()->type);
+  if (e->partWidth >= 64)
+    return base; // LWORD.%L0: all of it
+  NExpr *shifted =
+      b.binary(net::BinaryOp::Shr, base,
+               b.intLit(e->intValue * e->partWidth, e->loc), e->loc);
+  NExpr *part = b.binary(net::BinaryOp::BitAnd, shifted,
+                         b.intLit(partMask(e->partWidth), e->loc), e->loc);
+  if (e->partWidth == 1)
+    return b.binary(net::BinaryOp::Ne, part, b.intLit(0, e->loc), e->loc);
+  return isUnsigned64(t) ? fromUnsigned64(part, baseOf(e->type), e->loc) : part;
+}
+
+void Lowering::partWrite(Expr *target, NExpr *value, Frame &f, Sink &out,
+                         SMLoc at) {
+  Expr *base = target->base();
+  const PType *t = baseOf(base->type);
+  bool wide = isUnsigned64(t);
+  unsigned width = target->partWidth;
+  if (width == 1 && !wide) {
+    // x.3 := v  is  x := v ? x | 8 : x & ~8  (masked to x's width).
+    int64_t bit = int64_t(1) << target->intValue;
+    NExpr *set = b.binary(net::BinaryOp::BitOr, lvalue(base, f, out),
+                          b.intLit(bit, at), at);
+    NExpr *clear = b.binary(net::BinaryOp::BitAnd, lvalue(base, f, out),
+                            b.intLit(~bit, at), at);
+    NExpr *r = b.cond(value, wrapTo(set, t, {0, 0, false}, at), clear, at);
+    out.push_back(b.assign(lvalue(base, f, out), r, at));
+    return;
+  }
+  const PType *partType = baseOf(target->type);
+  if (width >= 64) {
+    out.push_back(b.assign(lvalue(base, f, out), value, at));
+    return;
+  }
+  // x.%B1 := v  is  x := (x & ~(255 << 8)) | ((v & 255) << 8), wrapped to
+  // x's type (computed in uint64 for a ULINT or LWORD).
+  NExpr *bits =
+      width == 1 ? b.cond(value, b.intLit(1, at), b.intLit(0, at), at) : value;
+  int64_t shift = target->intValue * width;
+  uint64_t mask = uint64_t(partMask(width));
+  uint64_t keep = ~(mask << shift);
+  if (!wide)
+    keep &= uint64_t(partMask(t->width));
+  NExpr *keepLit = keep > uint64_t(INT64_MAX) ? unsigned64Literal(keep, at)
+                                              : b.intLit(int64_t(keep), at);
+  NExpr *kept =
+      b.binary(net::BinaryOp::BitAnd, lvalue(base, f, out), keepLit, at);
+  NExpr *masked =
+      b.binary(net::BinaryOp::BitAnd, bits, b.intLit(int64_t(mask), at), at);
+  if (wide)
+    masked = asUnsigned64(masked, width == 1 ? t : partType, at);
+  NExpr *part = b.binary(net::BinaryOp::Shl, masked, b.intLit(shift, at), at);
+  NExpr *r = b.binary(net::BinaryOp::BitOr, kept, part, at);
+  out.push_back(b.assign(lvalue(base, f, out),
+                         wide ? r : wrapTo(r, t, {0, 0, false}, at), at));
+}

@@ -48,6 +48,17 @@ using Sink = std::vector<NStmt *>;
 /// lowerToNet. (One refusal per run: later ones would mostly be echoes.)
 struct Refusal {};
 
+/// ULINT and LWORD: NetIR's uint64, which integer literals past INT64_MAX
+/// and mixed arithmetic need handled apart.
+inline bool isUnsigned64(const PType *t) {
+  return t && t->kind == PTypeKind::Int && t->width == 64 && !t->isSigned;
+}
+
+/// The mask of a partial access `x.%B1` of `width` bits (all ones for 64).
+inline int64_t partMask(unsigned width) {
+  return width >= 64 ? int64_t(-1) : int64_t((uint64_t(1) << width) - 1);
+}
+
 struct Range {
   int64_t lo, hi;
   bool exact; // false: unknown (treat as unbounded)
@@ -465,6 +476,10 @@ private:
   NExpr *unionInitialValue(VarDecl *v, Initializer *init, const PType *t,
                            SMLoc at);
   NExpr *wrapTo(NExpr *v, const PType *t, Range r, SMLoc at);
+  /// `x.3`, `x.%B1`: reading and writing a part of an integer's bits
+  /// (LowerStmts.cpp).
+  NExpr *partRead(Expr *e, Frame &f, Sink &pre);
+  void partWrite(Expr *target, NExpr *value, Frame &f, Sink &out, SMLoc at);
   NExpr *maskTo(NExpr *v, const PType *t, SMLoc at);
   Range rangeOf(Expr *e);
   std::optional<int64_t> constValue(Expr *e, Frame &f);

@@ -59,7 +59,7 @@ enum class ExprKind : uint8_t {
   EnumLit,   // Color#red (typeName, name)
   Name,      // a variable, enumerator, constant or direct address
   Field,     // base.name
-  BitAccess, // base.3
+  BitAccess, // base.3, base.%X3; base.%B1 (partWidth 8), .%W1, .%D1
   Index,     // base[i, j]
   Deref,     // base^: what a reference designates
   Unary,
@@ -109,7 +109,10 @@ struct Expr {
   llvm::SMLoc loc;
   std::string name;     // Name, Field, Call, EnumLit (enumerator)
   std::string typeName; // typed literals: INT#5, Color#red
-  int64_t intValue = 0; // IntLit, BoolLit, TimeLit (ns), BitAccess (bit)
+  int64_t intValue = 0; // IntLit, BoolLit, TimeLit (ns), BitAccess (part)
+  /// BitAccess: the width of the part, 1 for a bit; the part covers bits
+  /// [intValue * partWidth, (intValue + 1) * partWidth) of the base.
+  unsigned partWidth = 1;
   /// IntLit: the value is in [2^63, 2^64), only a ULINT or LWORD holds it,
   /// and intValue holds its bits.
   bool beyondInt64 = false;

@@ -285,7 +285,7 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
     return;
   case Initializer::Array:
     if (t->kind != PTypeKind::Array) {
-      error(init->loc, "an array initialiser for a " + t->str());
+      error(init->loc, "an array initialiser for a value of type " + t->str());
       return;
     }
     if (t->dims.size() > 1) {
@@ -306,7 +306,8 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
     return;
   case Initializer::Struct: {
     if (t->kind != PTypeKind::Struct && t->kind != PTypeKind::FunctionBlock) {
-      error(init->loc, "a structure initialiser for a " + t->str());
+      error(init->loc,
+            "a structure initialiser for a value of type " + t->str());
       return;
     }
     for (auto &[name, inner] : init->fields) {

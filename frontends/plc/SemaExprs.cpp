@@ -237,12 +237,23 @@ const PType *Checker::expr(Expr *e) {
       error(e->loc, "bit access on a value of type " + bt->str());
       return nullptr;
     }
-    if (e->intValue < 0 || e->intValue >= int64_t(b->width)) {
-      error(e->loc,
-            "bit " + Twine(e->intValue) + " does not exist in " + b->str());
+    if (e->intValue < 0 || e->intValue >= int64_t(b->width / e->partWidth)) {
+      static const char *const partNames[] = {"bit", "byte", "word",
+                                              "double word", "long word"};
+      unsigned k = e->partWidth == 1    ? 0
+                   : e->partWidth == 8  ? 1
+                   : e->partWidth == 16 ? 2
+                   : e->partWidth == 32 ? 3
+                                        : 4;
+      error(e->loc, Twine(partNames[k]) + " " + Twine(e->intValue) +
+                        " does not exist in " + b->str());
       return nullptr;
     }
-    t = boolType();
+    t = e->partWidth == 1    ? boolType()
+        : e->partWidth == 8  ? elementaryType("BYTE")
+        : e->partWidth == 16 ? elementaryType("WORD")
+        : e->partWidth == 32 ? elementaryType("DWORD")
+                             : elementaryType("LWORD");
     break;
   }
   case ExprKind::Index: {

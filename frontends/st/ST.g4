@@ -34,6 +34,8 @@ tokens {
   // Literals and names
   IDENT, INTEGER, REAL_LIT, DURATION, TOD_LIT, DATE_LIT, DT_LIT, STRING_LIT,
   WSTRING_LIT, DIRECT,
+  // matiec's `{{ C code }}`, one token
+  EMBEDDED_C,
   // Line ends, emitted only when lexing Instruction List bodies (IL.g4)
   EOL
 }
@@ -141,8 +143,12 @@ typeDefinition
   ;
 
 typeSpec
-  : elem=typeSpec0 (ASSIGN init=initializer)?
+  : elem=typeSpec0 (ASSIGN (bare=bareArrayInit | init=initializer))?
   ;
+
+// CODESYS V2 and TwinCAT 2 write an array's initial values without the
+// brackets: `a : ARRAY[1..3] OF INT := 1, 2, 3;`.
+bareArrayInit : arrayInitElem (COMMA arrayInitElem)+ ;
 
 typeSpec0
   : ARRAY LBRACKET subrange (COMMA subrange)* RBRACKET OF elem=typeSpec0   # arrayType
@@ -265,6 +271,7 @@ statement
   | CONTINUE SEMI                                               # continueStmt
   | RETURN SEMI                                                 # returnStmt
   | JMP IDENT SEMI                                              # jumpStmt
+  | EMBEDDED_C                                                  # embeddedCStmt
   ;
 
 elsifPart : ELSIF cond=expression THEN statementList ;
@@ -308,7 +315,8 @@ primary
   ;
 
 // A variable access: a name, a direct address, then fields, indices,
-// bit accesses (`x.3`) and dereferences (`p^`).
+// bit accesses (`x.3`), partial accesses (IEC 61131-3 3rd edition:
+// `x.%X3`, `x.%B1`, `x.%W0`, `x.%D1`) and dereferences (`p^`).
 variable
   : (ident | DIRECT) selector*
   ;
@@ -316,6 +324,7 @@ variable
 selector
   : DOT ident                                                   # fieldSel
   | DOT INTEGER                                                 # bitSel
+  | DOT DIRECT                                                  # partSel
   | LBRACKET expression (COMMA expression)* RBRACKET            # indexSel
   | CARET                                                       # derefSel
   ;

@@ -365,6 +365,9 @@ private:
   TypeSyntax *typeSpec(P::TypeSpecContext *c);
   TypeSyntax *typeSpec0(P::TypeSpec0Context *c);
   Initializer *initializer(P::InitializerContext *c);
+  Initializer *
+  arrayInitializer(antlr4::ParserRuleContext *at,
+                   const std::vector<P::ArrayInitElemContext *> &elems);
   Stmt *statement(P::StatementContext *c);
   Expr *primary(P::PrimaryContext *c);
   Expr *variable(P::VariableContext *c);
@@ -858,6 +861,8 @@ TypeSyntax *AstBuilder::typeSpec(P::TypeSpecContext *c) {
   TypeSyntax *t = typeSpec0(c->elem);
   if (t && c->init)
     t->init = initializer(c->init);
+  if (t && c->bare)
+    t->init = arrayInitializer(c->bare, c->bare->arrayInitElem());
   return t;
 }
 
@@ -941,22 +946,27 @@ Initializer *AstBuilder::initializer(P::InitializerContext *c) {
     i->value = expr(e->expression());
     return i;
   }
-  if (auto *a = alt<P::ArrayInitContext>(c)) {
-    auto *i = unit.make<Initializer>(Initializer::Array, loc(a));
-    for (auto *el : a->arrayInitElem()) {
-      int64_t count = 1;
-      if (el->count && !st::parseIntegerLiteral(el->count->getText(), count))
-        return refuse(loc(el->count), "malformed repeat count");
-      Initializer *inner =
-          el->initializer() ? initializer(el->initializer()) : nullptr;
-      i->elems.push_back({count, inner});
-    }
-    return i;
-  }
+  if (auto *a = alt<P::ArrayInitContext>(c))
+    return arrayInitializer(a, a->arrayInitElem());
   auto *s = static_cast<P::StructInitContext *>(c);
   auto *i = unit.make<Initializer>(Initializer::Struct, loc(s));
   for (auto *f : s->fieldInit())
     i->fields.push_back({f->ident()->getText(), initializer(f->initializer())});
+  return i;
+}
+
+Initializer *AstBuilder::arrayInitializer(
+    antlr4::ParserRuleContext *at,
+    const std::vector<P::ArrayInitElemContext *> &els) {
+  auto *i = unit.make<Initializer>(Initializer::Array, loc(at));
+  for (auto *el : els) {
+    int64_t count = 1;
+    if (el->count && !st::parseIntegerLiteral(el->count->getText(), count))
+      return refuse(loc(el->count), "malformed repeat count");
+    Initializer *inner =
+        el->initializer() ? initializer(el->initializer()) : nullptr;
+    i->elems.push_back({count, inner});
+  }
   return i;
 }
 
@@ -1003,6 +1013,9 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     s->value = expr(r->value);
     return s;
   }
+  if (auto *e = alt<P::EmbeddedCStmtContext>(c))
+    return refuse(loc(e->EMBEDDED_C()), "embedded C code '{{ ... }}' is not "
+                                        "supported (it cannot be modelled)");
   if (auto *r = alt<P::RefusedAssignStmtContext>(c))
     return refuse(loc(r->op), "'" + r->op->getText() + "' is not supported");
   if (auto *call = alt<P::CallStmtContext>(c)) {
@@ -1226,6 +1239,24 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
         return refuse(loc(b->INTEGER()), "malformed bit number");
       be->operands.push_back(e);
       e = be;
+    } else if (auto *p = alt<P::PartSelContext>(sel)) {
+      Expr *pe = unit.make<Expr>(ExprKind::BitAccess, loc(p->DIRECT()));
+      std::string text = p->DIRECT()->getText();
+      char size = text.size() > 1 ? toupper(text[1]) : 0;
+      pe->partWidth = size == 'X'   ? 1
+                      : size == 'B' ? 8
+                      : size == 'W' ? 16
+                      : size == 'D' ? 32
+                      : size == 'L' ? 64
+                                    : 0;
+      if (!pe->partWidth || text.size() < 3 ||
+          !st::parseIntegerLiteral(StringRef(text).drop_front(2), pe->intValue))
+        return refuse(loc(p->DIRECT()),
+                      "'" + text +
+                          "' is not a partial access (%Xn, %Bn, "
+                          "%Wn, %Dn or %Ln)");
+      pe->operands.push_back(e);
+      e = pe;
     } else if (auto *ix = alt<P::IndexSelContext>(sel)) {
       Expr *ie = unit.make<Expr>(ExprKind::Index, loc(ix));
       ie->operands.push_back(e);

@@ -370,9 +370,17 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
     return make(c == '\'' ? P::STRING_LIT : P::WSTRING_LIT, start);
   }
   case '{': {
-    if (peek(1) == '{')
-      return fail(start, "embedded C code '{{ ... }}' is not supported (it "
-                         "cannot be modelled)");
+    if (peek(1) == '{') {
+      // matiec's embedded C: one token, so that a POU holding it is refused
+      // only where a translation uses it (OpenPLC prefixes every program
+      // with a LOGGER block written in C).
+      size_t end = text.find("}}", pos + 2);
+      if (end == StringRef::npos)
+        return fail(start, "unterminated embedded C code '{{'");
+      newlinesIn(pos, end);
+      pos = end + 2;
+      return make(P::EMBEDDED_C, start);
+    }
     size_t end = text.find('}', pos);
     if (end == StringRef::npos)
       return fail(start, "unterminated pragma '{'");

@@ -42,14 +42,25 @@ for d, _, files in sorted(os.walk(xml_root)):
     names = re.findall(r'<variable name="(\w+)">', xml)
     inputs = [n for n in names if n not in written]
     outputs = [n for n in names if n in written]
+    # plc.st is what OpenPLC compiles: the same program after its LOGGER
+    # block, written in C, which the program does not call.
+    compiled_path = os.path.join(st_root, rel, "build", "plc.st")
+    compiled = open(compiled_path, encoding="utf-8").read() \
+        if os.path.exists(compiled_path) else None
+
+    def locate(text, n, address):
+        return re.sub(rf"\b{n}\s*:\s*BOOL", f"{n} AT {address} : BOOL", text)
+
     for k, n in enumerate(inputs):
         xml = xml.replace(f'<variable name="{n}">',
                           f'<variable name="{n}" address="%IX0.{k}">')
-        st = re.sub(rf"\b{n}\s*:\s*BOOL", f"{n} AT %IX0.{k} : BOOL", st)
+        st = locate(st, n, f"%IX0.{k}")
+        compiled = compiled and locate(compiled, n, f"%IX0.{k}")
     for k, n in enumerate(outputs):
         xml = xml.replace(f'<variable name="{n}">',
                           f'<variable name="{n}" address="%QX0.{k}">')
-        st = re.sub(rf"\b{n}\s*:\s*BOOL", f"{n} AT %QX0.{k} : BOOL", st)
+        st = locate(st, n, f"%QX0.{k}")
+        compiled = compiled and locate(compiled, n, f"%QX0.{k}")
     name = re.sub(r"\W+", "_", rel.split(os.sep)[1]).strip("_")
     x_path = os.path.join(tmp, name + ".xml")
     s_path = os.path.join(tmp, name + ".st")
@@ -61,6 +72,13 @@ for d, _, files in sorted(os.walk(xml_root)):
     print(f"{name}: {len(inputs)} inputs, {len(outputs)} outputs, "
           f"mealy {verdict}, states/edges {summary(x_path)} vs "
           f"{summary(s_path)}")
+    if compiled:
+        c_path = os.path.join(tmp, name + "-compiled.st")
+        open(c_path, "w", encoding="utf-8").write(compiled)
+        eq = run("mealy", x_path, "--minimize", "--equiv", c_path)
+        verdict = eq.stdout.strip().splitlines()[0] if eq.stdout.strip() \
+            else eq.stderr.strip()
+        print(f"{name} against the compiled plc.st: mealy {verdict}")
     # A control: one contact negated the other way must be told apart.
     flipped = re.sub(r'(<contact [^>]*negated=")(true|false)"',
                      lambda m: m.group(1) +
