@@ -154,35 +154,42 @@ void net::forEachAssign(const Module &m,
     walkBlock(m.transitions[t].action(), int(t), nullptr, f);
 }
 
-Block net::dropAssignments(Builder &b, Block blk,
-                           llvm::function_ref<bool(const AssignStmt *)> keep) {
+Block net::rewriteAssignments(
+    Builder &b, Block blk,
+    llvm::function_ref<void(AssignStmt *, std::vector<Stmt *> &)> rewrite) {
   std::vector<Stmt *> out;
   Design &d = b.getDesign();
+  auto inner = [&](Block body) { return rewriteAssignments(b, body, rewrite); };
   for (Stmt *s : blk) {
     if (auto *a = dyn_cast<AssignStmt>(s)) {
-      if (keep(a))
-        out.push_back(s);
+      rewrite(a, out);
     } else if (auto *i = dyn_cast<IfStmt>(s)) {
       std::vector<IfArm> arms;
       for (const IfArm &arm : i->arms)
-        arms.push_back({arm.cond, dropAssignments(b, arm.body, keep)});
-      out.push_back(b.ifStmt(arms, i->hasElse,
-                             dropAssignments(b, i->elseBody, keep), s->loc));
+        arms.push_back({arm.cond, inner(arm.body)});
+      out.push_back(b.ifStmt(arms, i->hasElse, inner(i->elseBody), s->loc));
     } else if (auto *c = dyn_cast<CaseStmt>(s)) {
       std::vector<CaseArm> arms;
       for (const CaseArm &arm : c->arms)
-        arms.push_back({arm.labels, dropAssignments(b, arm.body, keep)});
+        arms.push_back({arm.labels, inner(arm.body)});
       out.push_back(b.caseStmt(c->selector, arms, c->hasElse,
-                               dropAssignments(b, c->elseBody, keep), s->loc));
+                               inner(c->elseBody), s->loc));
     } else if (auto *f = dyn_cast<ForStmt>(s)) {
-      out.push_back(b.forStmt(f->var, f->lo, f->hi,
-                              dropAssignments(b, f->body, keep), s->loc));
+      out.push_back(b.forStmt(f->var, f->lo, f->hi, inner(f->body), s->loc));
     } else if (auto *w = dyn_cast<WhileStmt>(s)) {
-      out.push_back(b.whileStmt(w->cond, dropAssignments(b, w->body, keep),
-                                w->testAfter, s->loc));
+      out.push_back(b.whileStmt(w->cond, inner(w->body), w->testAfter, s->loc));
     }
   }
   return d.copy(llvm::ArrayRef<Stmt *>(out));
+}
+
+Block net::dropAssignments(Builder &b, Block blk,
+                           llvm::function_ref<bool(const AssignStmt *)> keep) {
+  return rewriteAssignments(b, blk,
+                            [&](AssignStmt *a, std::vector<Stmt *> &out) {
+                              if (keep(a))
+                                out.push_back(a);
+                            });
 }
 
 void net::forEachStmt(Block block, llvm::function_ref<void(const Stmt *)> f) {

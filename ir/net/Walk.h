@@ -15,6 +15,7 @@
 #include "llvm/ADT/STLFunctionalExtras.h"
 
 #include <optional>
+#include <vector>
 
 namespace netlift::net {
 
@@ -46,6 +47,11 @@ void forEachStmt(Block block, llvm::function_ref<void(const Stmt *)> f);
 /// Every assignment in `block`, nested ones included.
 void forEachAssign(Block block, llvm::function_ref<void(const AssignStmt *)> f);
 
+/// `block` with each assignment (nested ones included) replaced by the
+/// statements `rewrite` appends for it (none drops it).
+Block rewriteAssignments(
+    Builder &b, Block block,
+    llvm::function_ref<void(AssignStmt *, std::vector<Stmt *> &)> rewrite);
 /// `block` without the assignments `keep` rejects (nested ones included).
 Block dropAssignments(Builder &b, Block block,
                       llvm::function_ref<bool(const AssignStmt *)> keep);
