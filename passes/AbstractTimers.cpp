@@ -64,6 +64,9 @@ public:
   /// Per variable: the reason its clock stays exact, and where.
   std::vector<std::string> why;
   std::vector<llvm::SMLoc> whyLoc;
+  /// Per clock kept exact: a variable its value is stored in (a timer's
+  /// ET), whose reads are where the program uses it; -1 if none.
+  std::vector<int> storedInto;
 
 private:
   /// The clock variable `e` denotes, or -1.
@@ -151,6 +154,7 @@ void TimerAbstractor::analyse(const std::set<std::string> &keep) {
   size_t nv = m.vars.size();
   why.assign(nv, "");
   whyLoc.assign(nv, {});
+  storedInto.assign(nv, -1);
   findScratch();
   for (uint32_t v = 0; v < nv; ++v)
     if (m.vars[v].type->isClock() && keep.count(m.vars[v].name.str()))
@@ -170,9 +174,13 @@ void TimerAbstractor::analyse(const std::set<std::string> &keep) {
     std::set<const Expr *> deadStores;
     forEachAssign(action, [&](const AssignStmt *a) {
       Symbol root = targetRoot(a->target);
-      if (clockRef(a->value) >= 0 && llvm::isa<Ref>(a->target) &&
-          root.kind == SymKind::Var && scratch[root.index])
+      int c = clockRef(a->value);
+      if (c < 0 || !llvm::isa<Ref>(a->target) || root.kind != SymKind::Var)
+        return;
+      if (scratch[root.index])
         deadStores.insert(a->value);
+      else if (why[c].empty())
+        storedInto[c] = int(root.index); // say where that one is read
     });
     forEachRead(action,
                 [&](const Expr *e) { visitRead(e, nullptr, deadStores); });
@@ -181,6 +189,26 @@ void TimerAbstractor::analyse(const std::set<std::string> &keep) {
     if (t < 0)
       anyClock(root, "it is read outside the actions here");
   });
+  // A clock stored into a variable (a timer's ET) is used where that
+  // variable is read: the program's own text, not the timer's.
+  for (uint32_t c = 0; c < nv; ++c) {
+    if (storedInto[c] < 0 || why[c] != "its value is read here")
+      continue;
+    llvm::StringRef holder = m.vars[storedInto[c]].name;
+    std::optional<llvm::SMLoc> readAt;
+    forEachRead(m, [&](const Expr *root, int) {
+      walkExpr(root, [&](const Expr *x) {
+        auto *r = dyn_cast<Ref>(x);
+        if (!readAt && r && r->sym.kind == SymKind::Var &&
+            int(r->sym.index) == storedInto[c])
+          readAt = x->loc;
+      });
+    });
+    if (readAt) {
+      why[c] = "'" + holder.str() + "' holds its value and is read here";
+      whyLoc[c] = *readAt;
+    }
+  }
 }
 
 void TimerAbstractor::rewriteComparisons(Expr *e) {

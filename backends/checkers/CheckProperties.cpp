@@ -1,6 +1,7 @@
 //===- CheckProperties.cpp - CTL properties on an explored model ----------===//
 #include "backends/checkers/CheckProperties.h"
 
+#include "backends/statespace/TimerReplay.h"
 #include "backends/statespace/Writers.h"
 
 #include "llvm/Support/FileSystem.h"
@@ -49,10 +50,35 @@ static CtlGraph graphOf(const statespace::Explorer &explorer,
   return g;
 }
 
+static bool isStateFormula(const CtlFormula &f) {
+  switch (f.kind) {
+  case CtlFormula::True:
+  case CtlFormula::False:
+  case CtlFormula::Atom:
+  case CtlFormula::Deadlock:
+    return true;
+  case CtlFormula::Not:
+    return isStateFormula(*f.lhs);
+  case CtlFormula::And:
+  case CtlFormula::Or:
+  case CtlFormula::Implies:
+    return isStateFormula(*f.lhs) && isStateFormula(*f.rhs);
+  default:
+    return false;
+  }
+}
+
+bool checkers::isInvariant(const CtlFormula &f) {
+  return f.kind == CtlFormula::AG && isStateFormula(*f.lhs);
+}
+
 int checkers::checkProperties(
     statespace::ExplorationSetup &setup,
     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
-    const std::string &traceDir, llvm::raw_ostream &out, DiagEngine &diag) {
+    const std::string &traceDir, llvm::raw_ostream &out, DiagEngine &diag,
+    std::vector<std::string> *spuriousClocks) {
+  bool abstractTimers =
+      setup.exactSemantics() && !setup.timerAbstraction().abstracted.empty();
   sem::Semantics &semantics = setup.semantics();
   statespace::ExploreResult r;
   std::unique_ptr<statespace::Explorer> graph = setup.exploreGraph(r, diag);
@@ -82,13 +108,17 @@ int checkers::checkProperties(
         return g.succLabel[k];
     return statespace::Explorer::kNone;
   };
-  bool allHold = true;
+  bool allHold = true, undecided = false;
   unsigned index = 0;
   for (const auto &f : formulas) {
     ++index;
     bool holds = evaluateCtl(*f, g, atomValue)[0];
     allHold = allHold && holds;
-    out << ctlToString(*f) << ": " << (holds ? "holds" : "fails") << "\n";
+    out << ctlToString(*f) << ": "
+        << (holds            ? "holds"
+            : abstractTimers ? "fails with abstract timers"
+                             : "fails")
+        << "\n";
     std::optional<CtlTrace> trace = ctlTrace(*f, g, atomValue);
     if (!trace)
       continue;
@@ -105,6 +135,16 @@ int checkers::checkProperties(
             : statespace::Explorer::kNone;
     statespace::writePath(explorer, semantics, steps, out, trace->loopTo,
                           loopLabel);
+    if (abstractTimers && !holds) {
+      std::vector<std::string> involved;
+      if (statespace::replayAndReport(setup, explorer, steps, false, out,
+                                      involved) !=
+          statespace::ReplayOutcome::Confirmed)
+        undecided = true;
+      if (spuriousClocks)
+        spuriousClocks->insert(spuriousClocks->end(), involved.begin(),
+                               involved.end());
+    }
     if (!traceDir.empty()) {
       statespace::TraceFileHeader h{ctlToString(*f), holds, trace->witness,
                                     trace->claim};
@@ -118,5 +158,7 @@ int checkers::checkProperties(
     diag.error(llvm::SMLoc(), "runtime error in a property: " + err.message);
     return 1;
   }
+  if (undecided && (!spuriousClocks || spuriousClocks->empty()))
+    return 2; // a replay stopped at its budget
   return allHold ? 0 : 3;
 }

@@ -29,11 +29,19 @@ bool parseProperties(llvm::ArrayRef<std::string> texts, net::Design &design,
 /// Explores and checks; verdicts and traces go to `out`, and with a
 /// non-empty `traceDir` each property's trace to `traceDir/p<N>.json|.aut`.
 /// Exit code: 0 all hold, 3 some fail, 2 a limit stopped the exploration
-/// (undecided), 1 an error (reported).
+/// (undecided), 1 an error (reported). With abstract timers, each
+/// counterexample is replayed in exact time; the clocks involved in the
+/// spurious ones are added to `spuriousClocks` (exit code 3 then means
+/// "refine").
 int checkProperties(statespace::ExplorationSetup &setup,
                     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
                     const std::string &traceDir, llvm::raw_ostream &out,
-                    DiagEngine &diag);
+                    DiagEngine &diag,
+                    std::vector<std::string> *spuriousClocks = nullptr);
+
+/// `AG p` with p free of temporal operators: what --timers=abstract
+/// decides.
+bool isInvariant(const CtlFormula &f);
 
 } // namespace netlift::checkers
 

@@ -5,6 +5,7 @@
 
 #include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
+#include "passes/Flatten.h"
 #include "passes/Pass.h"
 
 #include "llvm/Support/raw_ostream.h"
@@ -106,7 +107,35 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
                             "subrange type, or --ranges FILE");
       return nullptr;
     }
-  return std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
+  if (!options.abstractTimers)
+    return std::unique_ptr<ExplorationSetup>(
+        new ExplorationSetup(*top, options));
+  // The exact model stays beside the abstract one, for the replay.
+  net::Module *exact = flattenModule(design, top, diag);
+  if (!exact || !net::verifyDesign(design, diag))
+    return nullptr;
+  design.renameModule(exact, top->name.str() + ".exact");
+  TimerAbstraction timers;
+  if (!abstractTimers(design, *top, options.exactClocks, diag,
+                      options.timerNotes, timers))
+    return nullptr;
+  auto setup =
+      std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
+  setup->timers = std::move(timers);
+  setup->exactTop = exact;
+  setup->exactLayout = std::make_unique<sem::StateLayout>(
+      *exact, options.semantics.unboundedBits);
+  setup->exactSem = std::make_unique<sem::Semantics>(
+      *exact, *setup->exactLayout, options.semantics);
+  return setup;
+}
+
+std::string ExplorationSetup::summaryJsonFields() const {
+  if (!opts.abstractTimers)
+    return "";
+  return ",\"timers\":{\"abstracted\":" +
+         std::to_string(timers.abstracted.size()) +
+         ",\"exact\":" + std::to_string(timers.kept.size()) + "}";
 }
 
 ExploreOptions ExplorationSetup::exploreOptions() const {

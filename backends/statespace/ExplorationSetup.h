@@ -19,7 +19,10 @@
 #include "ir/semantics/StateLayout.h"
 #include "ir/support/Diagnostics.h"
 
+#include "passes/AbstractTimers.h"
+
 #include <memory>
+#include <set>
 #include <string>
 
 namespace netlift::statespace {
@@ -37,6 +40,19 @@ struct ExplorationOptions {
   /// The command enumerates the free inputs' values (explicit-state
   /// exploration): an input that still needs a range is refused.
   bool enumeratesInputs = true;
+  /// --timers=abstract: the clock variables only compared stop counting
+  /// time (passes/AbstractTimers.h), except those named here (kept exact
+  /// by --refine).
+  bool abstractTimers = false;
+  std::set<std::string> exactClocks;
+  /// --refine: how many times a spurious counterexample's clocks are made
+  /// exact and the search run again.
+  unsigned refineRounds = 3;
+  /// Note the clocks kept exact because of how they are read.
+  bool timerNotes = true;
+  /// --replay-states: most exact states a replay of an abstract
+  /// counterexample (and the search of the exact model after it) visits.
+  uint64_t replayStates = 1000000;
 };
 
 /// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for
@@ -65,6 +81,15 @@ public:
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
 
+  /// --timers=abstract: what was abstracted, and the exact model (a copy
+  /// of the module before the abstraction) that counterexamples are
+  /// replayed in. Null semantics without the option.
+  const TimerAbstraction &timerAbstraction() const { return timers; }
+  sem::Semantics *exactSemantics() { return exactSem.get(); }
+  net::Module *exactModule() { return exactTop; }
+  /// `,"timers":{...}` for --summary json, empty without the option.
+  std::string summaryJsonFields() const;
+
   /// Runs `explorer` (made on this set-up's semantics) into `result`;
   /// false after reporting a runtime error of the model with its trace.
   bool explore(Explorer &explorer, ExploreResult &result, DiagEngine &diag);
@@ -79,6 +104,10 @@ private:
   ExplorationOptions opts;
   std::unique_ptr<sem::StateLayout> stateLayout;
   std::unique_ptr<sem::Semantics> sem;
+  TimerAbstraction timers;
+  std::unique_ptr<sem::StateLayout> exactLayout;
+  std::unique_ptr<sem::Semantics> exactSem;
+  net::Module *exactTop = nullptr;
 };
 
 /// Reports the runtime error an exploration stopped at, at its place in

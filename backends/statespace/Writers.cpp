@@ -272,7 +272,8 @@ void netlift::statespace::writeCsvEdges(const Explorer &x,
 
 void netlift::statespace::writeSummaryJson(const Explorer &x,
                                            const ExploreResult &r,
-                                           llvm::raw_ostream &os) {
+                                           llvm::raw_ostream &os,
+                                           llvm::StringRef extraFields) {
   // Written by hand to keep the numbers short and the key order fixed.
   double secs = std::max(r.seconds, 1e-9);
   size_t states = x.store().size();
@@ -310,7 +311,7 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
         r.inputClasses.begin()->first, median, r.inputClasses.rbegin()->first,
         double(runs) / double(expanded));
   }
-  os << "}\n";
+  os << extraFields << "}\n";
 }
 
 void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
@@ -322,19 +323,37 @@ void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
     int64_t loopTo, uint32_t loopLabel) {
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  for (auto &[label, s] : path) {
+    labels.push_back(label == Explorer::kNone ? "" : x.label(label));
+    states.push_back(x.store().state(s));
+  }
+  writeStatePath(sem, labels, states, os);
+  if (loopTo >= 0) {
+    size_t width = 9;
+    for (const std::string &l : labels)
+      width = std::max(width, l.size());
+    os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
+                      loopLabel == Explorer::kNone ? "" : x.label(loopLabel),
+                      width, loopTo);
+  }
+}
+
+void netlift::statespace::writeStatePath(
+    sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+    llvm::ArrayRef<const uint64_t *> states, llvm::raw_ostream &os) {
   std::vector<StateColumn> attrs = stateColumns(sem);
   std::vector<Cell> prev;
   size_t width = 9; // "(initial)"
-  for (auto &[label, s] : path)
-    if (label != Explorer::kNone)
-      width = std::max(width, x.label(label).size());
+  for (const std::string &l : labels)
+    width = std::max(width, l.size());
   os << fmt::format("{:>4}  {:<{}}  {}\n", "step", "label", width,
                     "values (initial) / changes");
-  for (size_t i = 0; i < path.size(); ++i) {
-    auto [label, s] = path[i];
+  for (size_t i = 0; i < states.size(); ++i) {
     std::vector<Cell> cur;
     for (const StateColumn &a : attrs)
-      cur.push_back(cellOf(sem, a, x.store().state(s)));
+      cur.push_back(cellOf(sem, a, states[i]));
     std::string changes;
     for (size_t k = 0; k < attrs.size(); ++k) {
       if (i == 0) {
@@ -348,14 +367,10 @@ void netlift::statespace::writePath(
       }
     }
     os << fmt::format("{:>4}  {:<{}}  {}\n", i,
-                      i == 0 ? std::string("(initial)") : x.label(label), width,
+                      i == 0 ? std::string("(initial)") : labels[i], width,
                       changes);
     prev = std::move(cur);
   }
-  if (loopTo >= 0)
-    os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
-                      loopLabel == Explorer::kNone ? "" : x.label(loopLabel),
-                      width, loopTo);
 }
 
 bool statespace::writeTraceFiles(

@@ -41,8 +41,9 @@ void writeCsvStates(const Explorer &x, sem::Semantics &sem,
                     const ExploreResult &r, llvm::raw_ostream &os);
 /// CSV: `from,label,to`, one row per edge.
 void writeCsvEdges(const Explorer &x, llvm::raw_ostream &os);
+/// `extraFields` (`,"key":value...`) goes before the closing brace.
 void writeSummaryJson(const Explorer &x, const ExploreResult &r,
-                      llvm::raw_ostream &os);
+                      llvm::raw_ostream &os, llvm::StringRef extraFields = "");
 /// `reach`'s text summary: states, transitions, deadlocks, dead states,
 /// complete.
 void writeSummaryText(const Explorer &x, const ExploreResult &r,
@@ -58,6 +59,12 @@ void writePath(const Explorer &x, sem::Semantics &sem,
                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                llvm::raw_ostream &os, int64_t loopTo = -1,
                uint32_t loopLabel = Explorer::kNone);
+
+/// The same table for states held anywhere: `labels[i]` is the step into
+/// `states[i]` (the first unused).
+void writeStatePath(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+                    llvm::ArrayRef<const uint64_t *> states,
+                    llvm::raw_ostream &os);
 
 /// `reach --find` and `--deadlock-trace` after a run: the shortest path to
 /// the state found (or to a closest deadlock) or that there is none.

@@ -1,5 +1,6 @@
 //===- Explore.cpp - reach and check: exploring a model -------------------===//
 #include "backends/checkers/CheckProperties.h"
+#include "backends/statespace/TimerReplay.h"
 #include "backends/statespace/Writers.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
@@ -52,13 +53,114 @@ static cl::opt<EdgeLabels> edgeLabels(
                           "it, [go=1, level=91..100] | [go=0]")),
     cl::sub(reachCommand()), cl::cat(category()));
 
+static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
+                     DiagEngine &diag);
+
+/// reachOnce's answer when a spurious counterexample made more clocks
+/// exact: search again.
+static constexpr int kRefine = -1;
+/// After a search with abstract timers found something (the path to
+/// `target`): keeps the clocks of a spurious one exact for the next round
+/// while --refine allows (kRefine), else says the result is undecided (2).
+/// `failCode` is the exit code of a confirmed violation.
+static int afterReplay(statespace::ReplayOutcome::Verdict v,
+                       const std::vector<std::string> &involved, int failCode,
+                       statespace::ExplorationOptions &xo, unsigned round,
+                       llvm::raw_ostream &out) {
+  if (v == statespace::ReplayOutcome::Confirmed)
+    return failCode;
+  if (v == statespace::ReplayOutcome::Undecided)
+    return 2;
+  std::vector<std::string> fresh;
+  for (const std::string &c : involved)
+    if (!xo.exactClocks.count(c))
+      fresh.push_back(c);
+  if (fresh.empty() || round >= xo.refineRounds) {
+    out << "not refined further (--refine " << xo.refineRounds
+        << "): the result is undecided; run with --timers=exact\n";
+    return 2;
+  }
+  xo.exactClocks.insert(fresh.begin(), fresh.end());
+  std::string names;
+  for (const std::string &n : fresh)
+    names += (names.empty() ? "" : ", ") + n;
+  out << "refining (round " << round + 1 << " of " << xo.refineRounds
+      << "): keeping " << names << " exact\n";
+  return kRefine;
+}
+
+/// When the abstract path could not be followed: the exact model searched
+/// directly, within --replay-states, for a state satisfying `findText`
+/// (empty: a deadlock). Confirms with its path, or settles that there is
+/// none when the whole exact model fits; kRefine when it does not.
+static int searchExactModel(statespace::ExplorationSetup &setup,
+                            net::Design &design, const std::string &findText,
+                            const statespace::ExplorationOptions &xo,
+                            DiagEngine &diag, llvm::raw_ostream &out) {
+  sem::Semantics &exact = *setup.exactSemantics();
+  net::Expr *find = nullptr;
+  if (!findText.empty()) {
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(findText, "<find>"),
+        llvm::SMLoc());
+    find = net::parseExpression(id, diag, design);
+    if (!find ||
+        !net::verifyPredicate(design, *setup.exactModule(), find, diag))
+      return 1;
+  }
+  statespace::ExploreOptions eo;
+  eo.maxStates = xo.replayStates;
+  sem::RuntimeError err;
+  auto stop = [&](const uint64_t *s) {
+    return exact.evalPredicate(find, s, err);
+  };
+  if (find)
+    eo.stopAt = stop; // a function_ref: `stop` outlives the search
+  statespace::Explorer x(exact, eo);
+  statespace::ExploreResult r;
+  if (!x.run(r) || r.error)
+    return kRefine; // the exact model fails on its own: refinement says so
+  std::optional<uint32_t> hit;
+  if (find && r.found)
+    hit = *r.found;
+  else if (!find && !r.deadlocks.empty())
+    hit = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+  if (hit) {
+    out << "confirmed by a search of the exact model (" << x.store().size()
+        << " states), " << x.pathTo(*hit).size() - 1 << " steps:\n";
+    statespace::writeTrace(x, exact, *hit, out);
+    return find ? 0 : 3;
+  }
+  if (!r.complete)
+    return kRefine;
+  out << "the exact model (" << x.store().size() << " states, all searched) "
+      << (find ? "has no state satisfying '" + findText + "'"
+               : std::string("has no deadlock"))
+      << "\n";
+  return find ? 3 : 0;
+}
+
 /// Exit codes (docs/reach.md): 0 complete, 1 error, 2 a limit stopped the
 /// search, 3 the property checked is violated.
 int driver::runReach(DiagEngine &diag) {
+  statespace::ExplorationOptions xo;
+  if (!explorationOptions(xo, diag))
+    return 1;
+  // --timers=abstract: a spurious counterexample's clocks are kept exact
+  // and the search runs again, up to --refine times.
+  for (unsigned round = 0;; ++round) {
+    int code = reachOnce(xo, round, diag);
+    if (code != kRefine)
+      return code;
+  }
+}
+
+static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
+                     DiagEngine &diag) {
   net::Design design;
   std::vector<std::string> inputs{reachInput};
-  statespace::ExplorationOptions xo;
-  if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+  xo.timerNotes = round == 0;
+  if (!loadModels(inputs, diag, design))
     return 1;
   if (edgeLabels == EdgeLabels::Inputs) {
     if (!xo.semantics.splitInputs) {
@@ -114,7 +216,7 @@ int driver::runReach(DiagEngine &diag) {
     return 1;
   llvm::raw_ostream &out = llvm::outs();
   if (summary == Summary::Json) {
-    statespace::writeSummaryJson(explorer, r, out);
+    statespace::writeSummaryJson(explorer, r, out, setup->summaryJsonFields());
   } else if (graphFormat == GraphFormat::None && !findExpr && !deadlockTrace) {
     statespace::writeSummaryText(explorer, r, out);
   }
@@ -122,9 +224,30 @@ int driver::runReach(DiagEngine &diag) {
   if (!r.limitReached.empty())
     llvm::errs() << "netlift: the " << r.limitReached
                  << " limit stopped the search; the result is incomplete\n";
-  return statespace::reportSearch(explorer, semantics, r,
-                                  findExpr ? llvm::StringRef(findText) : "",
-                                  deadlockTrace, code, out);
+  std::optional<uint32_t> violation;
+  if (findExpr && r.found)
+    violation = *r.found;
+  else if (deadlockTrace && !r.deadlocks.empty())
+    violation = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+  if (!xo.abstractTimers || !violation ||
+      setup->timerAbstraction().abstracted.empty())
+    return statespace::reportSearch(explorer, semantics, r,
+                                    findExpr ? llvm::StringRef(findText) : "",
+                                    deadlockTrace, code, out);
+  auto path = explorer.pathTo(*violation);
+  out << (findExpr ? "found a state satisfying '" + findText + "'"
+                   : std::string("deadlock"))
+      << " after " << path.size() - 1 << " steps with abstract timers ("
+      << setup->timerAbstraction().abstracted.size() << " abstracted):\n";
+  statespace::writeTrace(explorer, semantics, *violation, out);
+  std::vector<std::string> involved;
+  auto verdict = statespace::replayAndReport(*setup, explorer, path, !findExpr,
+                                             out, involved);
+  if (verdict != statespace::ReplayOutcome::Confirmed)
+    if (int code = searchExactModel(*setup, design, findText, xo, diag, out);
+        code != kRefine)
+      return code;
+  return afterReplay(verdict, involved, findExpr ? 0 : 3, xo, round, out);
 }
 
 static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
@@ -143,16 +266,42 @@ int driver::runCheck(DiagEngine &diag) {
     diag.error(llvm::SMLoc(), "check needs a property (--ctl FORMULA)");
     return 1;
   }
-  net::Design design;
-  std::vector<std::string> inputs{checkInput};
   statespace::ExplorationOptions xo;
-  if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
+  if (!explorationOptions(xo, diag))
     return 1;
-  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "check");
-  std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
-  if (!setup || !checkers::parseProperties(properties, design, setup->top(),
-                                           diag, formulas))
-    return 1;
-  return checkers::checkProperties(*setup, formulas, traceDir, llvm::outs(),
-                                   diag);
+  for (unsigned round = 0;; ++round) {
+    net::Design design;
+    std::vector<std::string> inputs{checkInput};
+    xo.timerNotes = round == 0;
+    if (!loadModels(inputs, diag, design))
+      return 1;
+    auto setup =
+        statespace::ExplorationSetup::create(design, xo, diag, "check");
+    std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
+    if (!setup || !checkers::parseProperties(properties, design, setup->top(),
+                                             diag, formulas))
+      return 1;
+    if (xo.abstractTimers)
+      for (const auto &f : formulas)
+        if (!checkers::isInvariant(*f)) {
+          diag.error(f->loc, "--timers=abstract decides invariants only (AG "
+                             "p, p without temporal operators): the "
+                             "abstract model has more runs than the exact "
+                             "one, so '" +
+                                 checkers::ctlToString(*f) +
+                                 "' could hold there and fail exactly, or "
+                                 "the other way round; use --timers=exact");
+          return 1;
+        }
+    std::vector<std::string> involved;
+    int code = checkers::checkProperties(*setup, formulas, traceDir,
+                                         llvm::outs(), diag, &involved);
+    if (code != 3 || involved.empty())
+      return code;
+    // A counterexample was spurious: refine as reach does.
+    code = afterReplay(statespace::ReplayOutcome::Spurious, involved, 3, xo,
+                       round, llvm::outs());
+    if (code != kRefine)
+      return code;
+  }
 }

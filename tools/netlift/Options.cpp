@@ -204,6 +204,30 @@ static cl::opt<uint64_t> maxInputClasses(
     cl::desc("Most classes of input valuations one step may split into "
              "(default 65536)"),
     cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
+enum class TimersMode { Exact, Abstract };
+static cl::opt<TimersMode> timersMode(
+    "timers",
+    cl::desc("Timers' elapsed time (docs/reach.md, \"Timers abstracted\")"),
+    cl::init(TimersMode::Exact),
+    cl::values(clEnumValN(TimersMode::Exact, "exact",
+                          "counted tick by tick (the default)"),
+               clEnumValN(TimersMode::Abstract, "abstract",
+                          "not counted: a running timer may expire at any "
+                          "later scan (proves invariants; counterexamples "
+                          "are replayed in exact time)")),
+    cl::sub(reachCommand()), cl::sub(checkCommand()), cl::cat(category()));
+static cl::opt<unsigned> refineRounds(
+    "refine",
+    cl::desc("--timers=abstract: rounds that keep the timers of a spurious "
+             "counterexample exact and search again (default 3)"),
+    cl::init(3), cl::sub(reachCommand()), cl::sub(checkCommand()),
+    cl::cat(category()));
+static cl::opt<uint64_t> replayStates(
+    "replay-states",
+    cl::desc("--timers=abstract: most exact states the replay of a "
+             "counterexample visits (default 1000000)"),
+    cl::init(1000000), cl::sub(reachCommand()), cl::sub(checkCommand()),
+    cl::cat(category()));
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -274,6 +298,9 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
                "--max-input-values and --max-input-classes must be at least 1");
     return false;
   }
+  eo.abstractTimers = timersMode == TimersMode::Abstract;
+  eo.refineRounds = refineRounds;
+  eo.replayStates = replayStates;
   eo.maxStates = maxStates;
   eo.timeLimit = timeLimit;
   if (!maxMemory.empty() &&
