@@ -152,6 +152,10 @@ bool ExplorationSetup::explore(Explorer &explorer, ExploreResult &r,
   if (!r.error)
     return true;
   reportRuntimeError(r, started, explorer, *sem, diag);
+  if (!r.error->limit && opts.abstractTimers && !timers.abstracted.empty())
+    diag.note(llvm::SMLoc(),
+              "found with abstract timers: the error may need a timer to "
+              "expire sooner or later than it can; --timers=exact decides");
   return false;
 }
 

@@ -219,6 +219,10 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
     statespace::writeSummaryJson(explorer, r, out, setup->summaryJsonFields());
   } else if (graphFormat == GraphFormat::None && !findExpr && !deadlockTrace) {
     statespace::writeSummaryText(explorer, r, out);
+    if (!r.deadlocks.empty() && !setup->timerAbstraction().abstracted.empty())
+      out << "(abstract timers: a deadlock may need a timer to expire sooner "
+             "or later than it can; --deadlock-trace replays the closest in "
+             "exact time)\n";
   }
   int code = r.limitReached.empty() ? 0 : 2;
   if (!r.limitReached.empty())
