@@ -4,6 +4,7 @@
 #include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
+#include "passes/Pass.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -196,6 +197,11 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
       if (!f.finish(ctx, diag, design))
         return false;
     }
+  for (const std::string &pipeline : ctx.pipelines) {
+    PassManager pm;
+    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag))
+      return false;
+  }
   if (!net::verifyDesign(design, diag))
     return false;
   if (allNet) {

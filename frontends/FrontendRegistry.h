@@ -77,6 +77,10 @@ public:
   unsigned firstPlcFile = 0;
   /// IEC 61499 files read so far (buffer ids), translated together.
   std::vector<unsigned> iec61499Files;
+  /// Pass pipelines a frontend asks for, run in order once every input is
+  /// read (`iec61499-resources{...}`): what a frontend leaves to passes so
+  /// that it builds modules only.
+  std::vector<std::string> pipelines;
 
 private:
   std::unique_ptr<plc::Unit> plc;

@@ -323,5 +323,5 @@ bool netlift::finishIec61499Inputs(FrontendContext &ctx, DiagEngine &diag,
   options.timescaleNs = fo.timescaleNs;
   if (!fo.fbSemantics.empty())
     options.semantics = fo.fbSemantics;
-  return iec61499::translate(ids, options, diag, design);
+  return iec61499::translate(ids, options, diag, design, ctx.pipelines);
 }

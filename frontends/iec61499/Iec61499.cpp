@@ -17,7 +17,8 @@ using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 // Driver
 //===----------------------------------------------------------------------===//
 
-bool Translator::run(const std::vector<unsigned> &ids) {
+bool Translator::run(const std::vector<unsigned> &ids,
+                     std::vector<std::string> &pipelines) {
   std::set<std::string> before;
   for (auto &m : design.modules)
     before.insert(m->name.str());
@@ -123,17 +124,8 @@ bool Translator::run(const std::vector<unsigned> &ids) {
         continue;
       else if (t->name == "E_DELAY" || t->name == "E_CYCLE")
         serviceModule(*t);
-      else if (t->name == "E_RESTART") {
-        std::string text = "module E_RESTART {\n  event output COLD, WARM, "
-                           "STOP;\n  place boot(1);\n  trans cold : boot -> () "
-                           "emit COLD urgent;\n}\n";
-        unsigned id = diag.sourceMgr().AddNewSourceBuffer(
-            llvm::MemoryBuffer::getMemBufferCopy(
-                text, "<netlift library>/E_RESTART.net"),
-            SMLoc());
-        if (!net::parseNetIR(id, diag, design))
-          return false;
-      }
+      else if (t->name == "E_RESTART")
+        restartModule(*t);
     if (neverNeeded) {
       // An event output nothing emits: what unconnected inputs listen to.
       b.createModule("Never");
@@ -184,41 +176,22 @@ bool Translator::run(const std::vector<unsigned> &ids) {
     if (semantics == "forte" || semantics == "cyclic") {
       // Each resource (a translated type or an application) becomes one
       // flat module with one FIFO of events (or one cycle of its blocks);
-      // the modules it was built from go.
-      std::vector<std::string> resources;
+      // the modules it was built from go (passes/Iec61499Resources.cpp).
+      std::string resources, built;
+      auto add = [](std::string &list, llvm::StringRef name) {
+        list += (list.empty() ? "" : ",") + name.str();
+      };
       for (FbType *t : topList)
-        resources.push_back(net::toIdentifier(t->name));
+        add(resources, net::toIdentifier(t->name));
       for (auto &[file, sys] : systems)
         for (pugi::xml_node app : sys.children("Application"))
-          resources.push_back(net::toIdentifier(app.attribute("Name").value()));
-      // flatten reads resolved names: verify first.
-      if (!net::verifyDesign(design, diag))
-        return false;
-      std::vector<net::Module *> flats;
-      for (const std::string &r : resources) {
-        net::Module *top = design.lookupModule(r);
-        if (!top)
-          continue;
-        net::Module *flat = flattenModule(design, top, diag);
-        if (!flat)
-          return false;
-        flats.push_back(flat);
-      }
-      std::vector<net::Module *> built;
+          add(resources, net::toIdentifier(app.attribute("Name").value()));
       for (auto &m : design.modules)
-        if (!before.count(m->name.str()) &&
-            std::find(flats.begin(), flats.end(), m.get()) == flats.end())
-          built.push_back(m.get());
-      for (net::Module *m : built)
-        design.eraseModule(m);
-      for (net::Module *flat : flats) {
-        StringRef name = StringRef(flat->name).drop_back(strlen(".flat"));
-        design.renameModule(flat, design.save(name));
-        if (semantics == "forte"
-                ? !iec61499::orderLikeForte(design, *flat, diag)
-                : !iec61499::orderCyclically(design, *flat, diag))
-          return false;
-      }
+        if (!before.count(m->name.str()))
+          add(built, m->name);
+      pipelines.push_back("iec61499-resources{model=" + semantics +
+                          ",modules=" + resources +
+                          (built.empty() ? "" : ",built=" + built) + "}");
     }
   } catch (Failure &) {
     return false;
@@ -228,7 +201,8 @@ bool Translator::run(const std::vector<unsigned> &ids) {
 
 bool iec61499::translate(const std::vector<unsigned> &ids,
                          const Options &options, DiagEngine &diag,
-                         net::Design &design) {
+                         net::Design &design,
+                         std::vector<std::string> &pipelines) {
   if (options.semantics != "forte" && options.semantics != "sequential" &&
       options.semantics != "cyclic") {
     diag.error(SMLoc(), "unknown IEC 61499 execution model '" +
@@ -237,5 +211,5 @@ bool iec61499::translate(const std::vector<unsigned> &ids,
     return false;
   }
   Translator t(diag, design, options);
-  return t.run(ids);
+  return t.run(ids, pipelines);
 }

@@ -37,9 +37,13 @@ struct Options {
 };
 
 /// Translates the IEC 61499 files `bufferIDs` (already in the SourceMgr)
-/// and every type they use into `design`. Returns false after reporting.
+/// and every type they use into `design`. Under the forte and cyclic
+/// models, the pass pipeline that makes each resource one flat module
+/// (`iec61499-resources`) is appended to `pipelines`, for the caller to run
+/// once every input is read. Returns false after reporting.
 bool translate(const std::vector<unsigned> &bufferIDs, const Options &options,
-               DiagEngine &diag, net::Design &design);
+               DiagEngine &diag, net::Design &design,
+               std::vector<std::string> &pipelines);
 
 } // namespace netlift::iec61499
 

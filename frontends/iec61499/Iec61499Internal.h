@@ -14,18 +14,14 @@
 #include "frontends/iec61499/Iec61499.h"
 
 #include "frontends/XmlSupport.h"
-#include "frontends/iec61499/CyclicOrder.h"
-#include "frontends/iec61499/ForteOrder.h"
 #include "frontends/plc/LowerToNet.h"
 #include "frontends/plc/Sema.h"
 #include "frontends/st/StFrontend.h"
 #include "frontends/st/StdLib.h"
 #include "ir/net/Builder.h"
 #include "ir/net/Names.h"
-#include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 #include "ir/support/XmlEscape.h"
-#include "passes/Flatten.h"
 
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -127,7 +123,8 @@ public:
       : diag(diag), design(design), b(design), libs(options.typeLibraries),
         timescaleNs(options.timescaleNs), semantics(options.semantics) {}
 
-  bool run(const std::vector<unsigned> &ids);
+  bool run(const std::vector<unsigned> &ids,
+           std::vector<std::string> &pipelines);
 
 private:
   [[noreturn]] void fail(SMLoc at, const Twine &msg) {
@@ -198,6 +195,7 @@ private:
                          const std::string &module, SMLoc at);
   std::string constantModule(StringRef type, Expr *e, StringRef text, SMLoc at);
   void serviceModule(FbType &t);
+  void restartModule(FbType &t);
 
   DiagEngine &diag;
   net::Design &design;

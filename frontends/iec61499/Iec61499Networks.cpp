@@ -359,33 +359,54 @@ void Translator::serviceModule(FbType &t) {
   bool cyclic = t.name == "E_CYCLE";
   // An idle delay keeps its clock parked at the cap (where ticks leave
   // it), so idle states do not differ by how long ago the delay ended.
-  std::string c = std::to_string(cap);
-  std::string text =
-      "module " + t.name +
-      " {\n"
-      "  event input START, STOP;\n"
-      "  event output EO;\n"
-      "  data input DT : int64;\n"
-      "  var _DT : 0.." +
-      c +
-      " = 0;\n"
-      "  clock _t : 0.." +
-      c + " = " + c +
-      ";\n"
-      "  place idle(1), running;\n"
-      "  trans start : idle -> running on START { _DT := DT; _t := 0; }\n"
-      "  trans stop : running -> idle on STOP { _t := " +
-      c + "; }\n" +
-      (cyclic ? "  trans expire : running -> running guard _t >= _DT emit EO "
-                "urgent { _t := 0; }\n"
-              : "  trans expire : running -> idle guard _t >= _DT emit EO "
-                "urgent { _t := " +
-                    c + "; }\n") +
-      "}\n";
-  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBufferCopy(text, "<netlift library>/" + t.name +
-                                                     ".net"),
-      SMLoc());
-  if (!net::parseNetIR(id, diag, design))
-    throw Failure();
+  SMLoc at = t.src->locOf(t.root);
+  if (!b.createModule(t.name, false, at))
+    fail(at, "a module named '" + t.name + "' exists already");
+  uint32_t start =
+      b.addPort("START", net::PortKind::Event, net::PortDir::In, nullptr, at);
+  uint32_t stop =
+      b.addPort("STOP", net::PortKind::Event, net::PortDir::In, nullptr, at);
+  uint32_t eo =
+      b.addPort("EO", net::PortKind::Event, net::PortDir::Out, nullptr, at);
+  b.addPort("DT", net::PortKind::Data, net::PortDir::In,
+            design.types.getInt(64, true, net::Overflow::Error), at);
+  b.addVar("_DT", design.types.getRange(0, cap), b.intLit(0, at), at);
+  b.addVar("_t", design.types.getClock(cap), b.intLit(cap, at), at);
+  uint32_t idle = b.addPlace("idle", 1, 1, at);
+  uint32_t running = b.addPlace("running", 0, 1, at);
+  auto assign = [&](StringRef var, net::Expr *value) {
+    return b.assign(b.ref(var, at), value, at);
+  };
+  uint32_t tStart = b.addTransition("start", {net::PreArc{idle, 1, {}}},
+                                    {net::PostArc{running, 1}}, at);
+  b.setEvents(tStart, {net::EventSource{start, true}});
+  b.setAction(tStart,
+              {assign("_DT", b.ref("DT", at)), assign("_t", b.intLit(0, at))});
+  uint32_t tStop = b.addTransition("stop", {net::PreArc{running, 1, {}}},
+                                   {net::PostArc{idle, 1}}, at);
+  b.setEvents(tStop, {net::EventSource{stop, true}});
+  b.setAction(tStop, {assign("_t", b.intLit(cap, at))});
+  uint32_t tExpire =
+      b.addTransition("expire", {net::PreArc{running, 1, {}}},
+                      {net::PostArc{cyclic ? running : idle, 1}}, at);
+  b.setGuard(tExpire, b.binary(net::BinaryOp::Ge, b.ref("_t", at),
+                               b.ref("_DT", at), at));
+  b.setEmits(tExpire, {eo});
+  b.setUrgent(tExpire);
+  b.setAction(tExpire, {assign("_t", b.intLit(cyclic ? 0 : cap, at))});
+}
+
+/// E_RESTART: COLD once, at start-up.
+void Translator::restartModule(FbType &t) {
+  SMLoc at = t.src->locOf(t.root);
+  if (!b.createModule("E_RESTART", false, at))
+    fail(at, "a module named 'E_RESTART' exists already");
+  uint32_t cold =
+      b.addPort("COLD", net::PortKind::Event, net::PortDir::Out, nullptr, at);
+  b.addPort("WARM", net::PortKind::Event, net::PortDir::Out, nullptr, at);
+  b.addPort("STOP", net::PortKind::Event, net::PortDir::Out, nullptr, at);
+  uint32_t boot = b.addPlace("boot", 1, 1, at);
+  uint32_t tCold = b.addTransition("cold", {net::PreArc{boot, 1, {}}}, {}, at);
+  b.setEmits(tCold, {cold});
+  b.setUrgent(tCold);
 }

@@ -7,8 +7,8 @@
 // (docs/iec61499.md).
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_FRONTENDS_IEC61499_CYCLICORDER_H
-#define NETLIFT_FRONTENDS_IEC61499_CYCLICORDER_H
+#ifndef NETLIFT_PASSES_CYCLICORDER_H
+#define NETLIFT_PASSES_CYCLICORDER_H
 
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"

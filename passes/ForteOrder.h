@@ -5,8 +5,8 @@
 // for the whole resource, as in 4diac FORTE (docs/iec61499.md).
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_FRONTENDS_IEC61499_FORTEORDER_H
-#define NETLIFT_FRONTENDS_IEC61499_FORTEORDER_H
+#ifndef NETLIFT_PASSES_FORTEORDER_H
+#define NETLIFT_PASSES_FORTEORDER_H
 
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"

@@ -17,9 +17,9 @@
 // chain only when no cycle is due.
 //
 //===----------------------------------------------------------------------===//
-#include "frontends/iec61499/CyclicOrder.h"
+#include "passes/CyclicOrder.h"
 
-#include "frontends/iec61499/ForteOrder.h"
+#include "passes/ForteOrder.h"
 #include "passes/ReduceSupport.h"
 
 #include "ir/net/Builder.h"

@@ -14,7 +14,7 @@
 // every interleaving of its blocks (docs/iec61499.md).
 //
 //===----------------------------------------------------------------------===//
-#include "frontends/iec61499/ForteOrder.h"
+#include "passes/ForteOrder.h"
 
 #include "ir/net/Builder.h"
 
