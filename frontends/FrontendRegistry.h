@@ -37,6 +37,9 @@ struct FrontendOptions {
   std::vector<std::string> typeLibraries;
   /// --fb-semantics: the IEC 61499 execution model (empty: the default).
   std::string fbSemantics;
+  /// --opaque: blocks the runtime implements (IEC 61499 service interface
+  /// FBs and the like) modelled as environment (the default) or refused.
+  bool opaqueRefused = false;
   /// --sfc-dialect: the order of an SFC scan, iec (default) or codesys.
   bool sfcCodesys = false;
   /// --time-unit: what TIME_TO_INT and the like count in, "s" or "ms";

@@ -323,5 +323,6 @@ bool netlift::finishIec61499Inputs(FrontendContext &ctx, DiagEngine &diag,
   options.timescaleNs = fo.timescaleNs;
   if (!fo.fbSemantics.empty())
     options.semantics = fo.fbSemantics;
+  options.opaqueAsEnvironment = !fo.opaqueRefused;
   return iec61499::translate(ids, options, diag, design, ctx.pipelines);
 }

@@ -2,6 +2,9 @@
 #include "backends/statespace/ExplorationSetup.h"
 
 #include "ir/net/ExecutedOnly.h"
+#include "ir/net/Walk.h"
+
+#include <functional>
 
 #include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
@@ -27,6 +30,30 @@ bool statespace::parseByteSize(llvm::StringRef text, uint64_t &out) {
     return false;
   out *= mult;
   return true;
+}
+
+/// Per port: is it an input that a transition reads (directly, or through
+/// the definitions of the outputs it reads)?
+static std::vector<bool> inputsRead(const net::Module &m) {
+  std::vector<bool> read(m.ports.size(), false), seen(m.ports.size(), false);
+  std::function<void(const net::Expr *)> visit = [&](const net::Expr *root) {
+    net::walkExpr(root, [&](const net::Expr *e) {
+      auto *r = llvm::dyn_cast<net::Ref>(e);
+      if (!r || r->sym.kind != net::SymKind::Port || seen[r->sym.index])
+        return;
+      seen[r->sym.index] = true;
+      const net::Port &p = m.ports[r->sym.index];
+      if (p.isInput())
+        read[r->sym.index] = true;
+      else if (p.definition)
+        visit(p.definition);
+    });
+  };
+  net::forEachRead(m, [&](const net::Expr *root, int t) {
+    if (t >= 0)
+      visit(root);
+  });
+  return read;
 }
 
 net::Module *statespace::explorableTop(net::Design &design,
@@ -79,10 +106,15 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
     return !split || (what && llvm::StringRef(what) == "a string") ? what
                                                                    : nullptr;
   };
+  // Split on demand, an input nothing reads is never decided: what only an
+  // unread output shows (an environment block's STATUS) needs no values.
+  std::vector<bool> read =
+      split ? inputsRead(*top) : std::vector<bool>(top->ports.size(), true);
   if (options.enumeratesInputs)
     for (const net::Port &p : top->ports)
-      if (const char *what =
-              p.isInput() && p.type ? unenumerable(p.type) : nullptr) {
+      if (const char *what = p.isInput() && p.type && read[&p - &top->ports[0]]
+                                 ? unenumerable(p.type)
+                                 : nullptr) {
         diag.error(p.loc, "free input '" + p.name + "' of type " +
                               p.type->str() + ": " + command +
                               " cannot enumerate its values (" + what +

@@ -79,13 +79,18 @@ bool Translator::run(const std::vector<unsigned> &ids,
       case TypeKind::NoBody:
         if (isShipped(t->name))
           break;
+        if (opaqueAsEnvironment) {
+          environmentModule(*t);
+          break;
+        }
         fail(*t, t->root,
              (t->kind == TypeKind::Service ? "service interface FB '"
                                            : "FB type '") +
                  t->name +
                  "' has no body netlift can translate (its behaviour is "
                  "implemented in the runtime) and netlift ships no model "
-                 "of it");
+                 "of it (--opaque=refuse; the default models it as "
+                 "environment)");
       default:
         break;
       }

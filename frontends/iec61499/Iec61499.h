@@ -34,6 +34,9 @@ struct Options {
   /// blocks in any order) or "cyclic" (fb2smv's: one flat module per
   /// resource whose blocks take turns in network order).
   std::string semantics = "forte";
+  /// Blocks the runtime implements that netlift ships no model of: modelled
+  /// as environment (true, the default) or refused (--opaque=refuse).
+  bool opaqueAsEnvironment = true;
 };
 
 /// Translates the IEC 61499 files `bufferIDs` (already in the SourceMgr)

@@ -219,7 +219,7 @@ static const char *genericFunctionBody(StringRef name) {
   return nullptr;
 }
 
-static bool isGenericType(StringRef type) {
+bool netlift::iec61499::detail::isGenericType(StringRef type) {
   return type.startswith_insensitive("ANY");
 }
 
@@ -233,7 +233,7 @@ static bool isGenericType(StringRef type) {
 void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
                                             const FbType *owner) {
   std::map<std::string, FbType *> types = blockTypes(src, net);
-  std::vector<pugi::xml_node> generic;
+  std::vector<pugi::xml_node> generic, environment;
   for (pugi::xml_node fb : blocksOf(net)) {
     if (!fb.attribute("Type"))
       continue;
@@ -245,6 +245,10 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
     if ((type->kind == TypeKind::Service || type->kind == TypeKind::NoBody) &&
         anyGeneric && genericFunctionBody(type->name))
       generic.push_back(fb);
+    else if ((type->kind == TypeKind::Service ||
+              type->kind == TypeKind::NoBody) &&
+             anyGeneric && opaqueAsEnvironment && !isShipped(type->name))
+      environment.push_back(fb);
   }
   // The declared type of `end` ("block.PORT" or an own port), if fixed.
   auto typeAt = [&](StringRef end) -> std::string {
@@ -336,6 +340,82 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
         (t.eventInputs.empty() ? std::string("REQ") : t.eventInputs[0].name) +
         "\"><ST Text=\"" + xmlEscape(genericFunctionBody(t.name)) +
         "\"/></Algorithm></SimpleFB>\n</FBType>\n";
+    generatedType(name, text);
+    fb.attribute("Type") = name.c_str();
+    types[inst.upper()] = this->types.at(StringRef(name).upper()).get();
+  }
+  // A block modelled as environment (Iec61499Environment.cpp) with generic
+  // ports: each port takes the type of the typed port it is connected to,
+  // one by one (PUBLISH_2's SD_1 and SD_2 may differ); a generic port
+  // connected to nothing typed is left out, as nothing reads or drives it.
+  for (pugi::xml_node fb : environment) {
+    StringRef inst = fb.attribute("Name").value();
+    FbType &t = *types.at(inst.upper());
+    std::map<std::string, std::string> fixed; // port (upper) -> type
+    for (pugi::xml_node c :
+         child(net, "DataConnections").children("Connection"))
+      for (auto [here, there] : {std::pair{"Destination", "Source"},
+                                 std::pair{"Source", "Destination"}}) {
+        auto [blk, port] = StringRef(c.attribute(here).value()).split('.');
+        if (!blk.equals_insensitive(inst))
+          continue;
+        std::string other = typeAt(c.attribute(there).value());
+        if (!other.empty())
+          fixed.emplace(port.upper(), other);
+      }
+    for (pugi::xml_node p : fb.children("Parameter"))
+      for (const Var &v : t.inputs)
+        if (StringRef(v.name).equals_insensitive(p.attribute("Name").value()) &&
+            isGenericType(v.type) && !fixed.count(StringRef(v.name).upper()))
+          fail(src.locOf(p),
+               "parameter '" + v.name + "' of '" + inst +
+                   "' has the generic type " + v.type +
+                   " and no data connection fixes it (connect it, or give "
+                   "the parameter to a typed port)");
+    auto concrete = [&](const Var &v) -> std::string {
+      if (!isGenericType(v.type))
+        return v.type;
+      auto it = fixed.find(StringRef(v.name).upper());
+      return it == fixed.end() ? "" : it->second;
+    };
+    std::string name = t.name + "_";
+    for (const auto *list : {&t.inputs, &t.outputs})
+      for (const Var &v : *list)
+        if (isGenericType(v.type))
+          name += "_" + (concrete(v).empty() ? std::string("X") : concrete(v));
+    std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
+    auto kept = [&](StringRef var) {
+      for (const auto *list : {&t.inputs, &t.outputs})
+        for (const Var &v : *list)
+          if (StringRef(v.name).equals_insensitive(var))
+            return !concrete(v).empty();
+      return true;
+    };
+    auto events = [&](const char *tag, const std::vector<Event> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Event &e : list) {
+        text += "<Event Name=\"" + e.name + "\">";
+        for (const std::string &w : e.with)
+          if (kept(w))
+            text += "<With Var=\"" + w + "\"/>";
+        text += "</Event>";
+      }
+      text += std::string("</") + tag + ">\n";
+    };
+    auto vars = [&](const char *tag, const std::vector<Var> &list) {
+      text += std::string("<") + tag + ">";
+      for (const Var &v : list)
+        if (!concrete(v).empty())
+          text += "<VarDeclaration Name=\"" + v.name + "\" Type=\"" +
+                  concrete(v) + "\"/>";
+      text += std::string("</") + tag + ">\n";
+    };
+    events("EventInputs", t.eventInputs);
+    events("EventOutputs", t.eventOutputs);
+    vars("InputVars", t.inputs);
+    vars("OutputVars", t.outputs);
+    text += std::string("</InterfaceList>\n") +
+            (t.kind == TypeKind::Service ? "<Service/>\n" : "") + "</FBType>\n";
     generatedType(name, text);
     fb.attribute("Type") = name.c_str();
     types[inst.upper()] = this->types.at(StringRef(name).upper()).get();

@@ -59,6 +59,12 @@ constexpr const char *kCycleTurn = "_run";
 
 struct Failure {};
 
+/// 4diac's generic data types: ANY, ANY_NUM, ANY_INT...
+bool isGenericType(llvm::StringRef type);
+
+/// The free input an environment block's data output reads.
+std::string environmentInput(llvm::StringRef output);
+
 struct Event {
   std::string name;
   std::vector<std::string> with;
@@ -121,7 +127,8 @@ public:
   Translator(DiagEngine &diag, net::Design &design,
              const iec61499::Options &options)
       : diag(diag), design(design), b(design), libs(options.typeLibraries),
-        timescaleNs(options.timescaleNs), semantics(options.semantics) {}
+        timescaleNs(options.timescaleNs), semantics(options.semantics),
+        opaqueAsEnvironment(options.opaqueAsEnvironment) {}
 
   bool run(const std::vector<unsigned> &ids,
            std::vector<std::string> &pipelines);
@@ -187,7 +194,8 @@ private:
                                              pugi::xml_node net);
   void networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
                  const FbType *iface, SMLoc at);
-  void declarePorts(const FbType &t);
+  /// `skipGeneric`: without the ports of a generic type (ANY...).
+  void declarePorts(const FbType &t, bool skipGeneric = false);
   const net::Type *dataType(StringRef type, SMLoc at);
   std::string parameterModule(XmlSource &src, StringRef type,
                               pugi::xml_node param);
@@ -196,6 +204,8 @@ private:
   std::string constantModule(StringRef type, Expr *e, StringRef text, SMLoc at);
   void serviceModule(FbType &t);
   void restartModule(FbType &t);
+  /// A runtime-implemented block as environment (Iec61499Environment.cpp).
+  void environmentModule(FbType &t);
 
   DiagEngine &diag;
   net::Design &design;
@@ -203,6 +213,7 @@ private:
   const std::vector<std::string> &libs;
   std::optional<int64_t> timescaleNs;
   std::string semantics;
+  bool opaqueAsEnvironment = true;
   std::vector<std::unique_ptr<File>> files;
   std::map<std::string, std::unique_ptr<FbType>> types; // upper-case name
   std::vector<FbType *> order;                          // translation order

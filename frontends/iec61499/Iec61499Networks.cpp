@@ -19,7 +19,7 @@ const net::Type *Translator::dataType(StringRef type, SMLoc at) {
   fail(at, "data type '" + type + "' is not supported by netlift");
 }
 
-void Translator::declarePorts(const FbType &t) {
+void Translator::declarePorts(const FbType &t, bool skipGeneric) {
   for (const Event &e : t.eventInputs)
     b.addPort(e.name, net::PortKind::Event, net::PortDir::In, nullptr,
               t.src->locOf(e.node));
@@ -28,6 +28,8 @@ void Translator::declarePorts(const FbType &t) {
               t.src->locOf(e.node));
   for (const auto *list : {&t.inputs, &t.outputs})
     for (const Var &v : *list) {
+      if (skipGeneric && isGenericType(v.type))
+        continue;
       SMLoc at = t.src->locOf(v.node);
       net::PortDir dir =
           list == &t.inputs ? net::PortDir::In : net::PortDir::Out;

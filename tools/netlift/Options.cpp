@@ -129,6 +129,18 @@ static cl::opt<std::string> fbSemantics(
              "model: blocks take turns in network order, each reacting to "
              "all its pending events at once)"),
     cl::value_desc("MODEL"), NETLIFT_READING);
+enum class OpaqueBlocks { Environment, Refuse };
+static cl::opt<OpaqueBlocks> opaqueBlocks(
+    "opaque",
+    cl::desc("Blocks the runtime implements and netlift has no model of "
+             "(IEC 61499 service interface FBs)"),
+    cl::init(OpaqueBlocks::Environment),
+    cl::values(clEnumValN(OpaqueBlocks::Environment, "environment",
+                          "modelled as environment, with a note (the "
+                          "default): their outputs do what their interface "
+                          "allows"),
+               clEnumValN(OpaqueBlocks::Refuse, "refuse", "refused")),
+    NETLIFT_READING);
 static cl::opt<plc::SfcDialect> sfcDialect(
     "sfc-dialect", cl::desc("SFC input: the order of a scan (docs/sfc.md)"),
     cl::init(plc::SfcDialect::Iec),
@@ -249,6 +261,7 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.rangesFile = ranges;
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
+  fo.opaqueRefused = opaqueBlocks == OpaqueBlocks::Refuse;
   fo.sfcCodesys = sfcDialect == plc::SfcDialect::Codesys;
   fo.timeUnit = timeUnit;
   if (!fo.timeUnit.empty() && fo.timeUnit != "s" && fo.timeUnit != "ms") {
