@@ -204,6 +204,7 @@ private:
   std::string constantModule(StringRef type, Expr *e, StringRef text, SMLoc at);
   void serviceModule(FbType &t);
   void restartModule(FbType &t);
+  void untypedSubApp(XmlSource &src, pugi::xml_node fb, const FbType *owner);
   /// A runtime-implemented block as environment (Iec61499Environment.cpp).
   void environmentModule(FbType &t);
 

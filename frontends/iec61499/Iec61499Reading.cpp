@@ -283,14 +283,39 @@ void Translator::collect(FbType &t) {
   order.push_back(&t);
 }
 
+/// An untyped subapplication (its interface and network inline, as 4diac
+/// saves a subapplication not made a type) becomes a subapplication type of
+/// its own, read where it stands (errors point into the system's file),
+/// named after the network it is in and its own name.
+void Translator::untypedSubApp(XmlSource &src, pugi::xml_node fb,
+                               const FbType *owner) {
+  std::string base = (owner ? owner->name : std::string("App")) + "_" +
+                     fb.attribute("Name").value();
+  std::string name = base;
+  for (int k = 2; types.count(StringRef(name).upper()); ++k)
+    name = base + "_" + std::to_string(k);
+  auto t = std::make_unique<FbType>();
+  t->name = name;
+  t->src = &src;
+  t->root = fb;
+  readInterface(*t, child(fb, "SubAppInterfaceList"));
+  t->kind = TypeKind::SubApp;
+  t->body = child(fb, "SubAppNetwork");
+  if (!t->body)
+    fail(src.locOf(fb), "subapplication '" +
+                            Twine(fb.attribute("Name").value()) +
+                            "' has neither a Type nor a <SubAppNetwork>");
+  types[StringRef(name).upper()] = std::move(t);
+  fb.append_attribute("Type") = name.c_str();
+}
+
 void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
                                 const FbType *owner) {
+  for (pugi::xml_node fb : blocksOf(net))
+    if (localName(fb) == "SubApp" && !fb.attribute("Type"))
+      untypedSubApp(src, fb, owner);
   specializeGenericFunctions(src, net, owner);
   for (pugi::xml_node fb : blocksOf(net)) {
-    if (localName(fb) == "SubApp" && !fb.attribute("Type"))
-      fail(src.locOf(fb),
-           "untyped subapplication '" + Twine(fb.attribute("Name").value()) +
-               "' is not supported (save it as a subapplication type)");
     FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
     if (type->kind == TypeKind::Adapter)
       fail(src.locOf(fb), "'" + type->name +
