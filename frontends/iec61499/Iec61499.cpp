@@ -43,6 +43,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
           net = child(app, "FBNetwork");
         collectNetwork(*file->src, net, nullptr);
       }
+    collectResourceStarts();
     // A resource's own FBs (not mapped from an application) would run
     // besides the applications; netlift translates applications only, so
     // they are refused rather than left out.
@@ -107,6 +108,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
         networkOf(app.attribute("Name").value(), *file->src, net, nullptr,
                   file->src->locOf(app));
         keepMapping(*file->src, sys, app);
+        resourceConnections(*file->src, sys, app);
       }
 
     if (!st::addStandardLibrary(diag, unit) || !checkUnit(unit, diag))

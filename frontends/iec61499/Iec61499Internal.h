@@ -204,6 +204,10 @@ private:
   std::string constantModule(StringRef type, Expr *e, StringRef text, SMLoc at);
   void serviceModule(FbType &t);
   void restartModule(FbType &t);
+  /// What a system's resources add to its applications (Iec61499Devices.cpp).
+  void collectResourceStarts();
+  void resourceConnections(XmlSource &src, pugi::xml_node sys,
+                           pugi::xml_node app);
   void untypedSubApp(XmlSource &src, pugi::xml_node fb, const FbType *owner);
   /// A runtime-implemented block as environment (Iec61499Environment.cpp).
   void environmentModule(FbType &t);
