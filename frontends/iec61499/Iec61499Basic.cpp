@@ -223,6 +223,46 @@ bool netlift::iec61499::detail::isGenericType(StringRef type) {
   return type.startswith_insensitive("ANY");
 }
 
+/// The start of an `<FBType>` named `name` with `t`'s interface, each
+/// variable of the type `typeOf` gives it (empty: left out, with its With
+/// references), up to the open `<InterfaceList>`'s end.
+static std::string
+interfaceXml(const std::string &name, const FbType &t,
+             llvm::function_ref<std::string(const Var &)> typeOf) {
+  auto kept = [&](StringRef var) {
+    for (const auto *list : {&t.inputs, &t.outputs})
+      for (const Var &v : *list)
+        if (StringRef(v.name).equals_insensitive(var))
+          return !typeOf(v).empty();
+    return true;
+  };
+  std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
+  auto events = [&](const char *tag, const std::vector<Event> &list) {
+    text += std::string("<") + tag + ">";
+    for (const Event &e : list) {
+      text += "<Event Name=\"" + e.name + "\">";
+      for (const std::string &w : e.with)
+        if (kept(w))
+          text += "<With Var=\"" + w + "\"/>";
+      text += "</Event>";
+    }
+    text += std::string("</") + tag + ">\n";
+  };
+  auto vars = [&](const char *tag, const std::vector<Var> &list) {
+    text += std::string("<") + tag + ">";
+    for (const Var &v : list)
+      if (std::string type = typeOf(v); !type.empty())
+        text +=
+            "<VarDeclaration Name=\"" + v.name + "\" Type=\"" + type + "\"/>";
+    text += std::string("</") + tag + ">\n";
+  };
+  events("EventInputs", t.eventInputs);
+  events("EventOutputs", t.eventOutputs);
+  vars("InputVars", t.inputs);
+  vars("OutputVars", t.outputs);
+  return text;
+}
+
 /// A block of a network whose type is one of 4diac's generic function FBs
 /// (see genericFunctionBody) gets a type of its own, `F_ADD__INT`: every
 /// variable of one generic type (ANY_NUM, ANY_INT...) takes the type of a
@@ -313,28 +353,9 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
     std::string name = t.name + "_";
     for (const std::string &g : order)
       name += "_" + concrete(g);
-    std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
-    auto events = [&](const char *tag, const std::vector<Event> &list) {
-      text += std::string("<") + tag + ">";
-      for (const Event &e : list) {
-        text += "<Event Name=\"" + e.name + "\">";
-        for (const std::string &w : e.with)
-          text += "<With Var=\"" + w + "\"/>";
-        text += "</Event>";
-      }
-      text += std::string("</") + tag + ">\n";
-    };
-    auto vars = [&](const char *tag, const std::vector<Var> &list) {
-      text += std::string("<") + tag + ">";
-      for (const Var &v : list)
-        text += "<VarDeclaration Name=\"" + v.name + "\" Type=\"" +
-                (isGenericType(v.type) ? concrete(v.type) : v.type) + "\"/>";
-      text += std::string("</") + tag + ">\n";
-    };
-    events("EventInputs", t.eventInputs);
-    events("EventOutputs", t.eventOutputs);
-    vars("InputVars", t.inputs);
-    vars("OutputVars", t.outputs);
+    std::string text = interfaceXml(name, t, [&](const Var &v) {
+      return isGenericType(v.type) ? concrete(v.type) : v.type;
+    });
     text +=
         "</InterfaceList>\n<SimpleFB><Algorithm Name=\"" +
         (t.eventInputs.empty() ? std::string("REQ") : t.eventInputs[0].name) +
@@ -383,37 +404,7 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
       for (const Var &v : *list)
         if (isGenericType(v.type))
           name += "_" + (concrete(v).empty() ? std::string("X") : concrete(v));
-    std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
-    auto kept = [&](StringRef var) {
-      for (const auto *list : {&t.inputs, &t.outputs})
-        for (const Var &v : *list)
-          if (StringRef(v.name).equals_insensitive(var))
-            return !concrete(v).empty();
-      return true;
-    };
-    auto events = [&](const char *tag, const std::vector<Event> &list) {
-      text += std::string("<") + tag + ">";
-      for (const Event &e : list) {
-        text += "<Event Name=\"" + e.name + "\">";
-        for (const std::string &w : e.with)
-          if (kept(w))
-            text += "<With Var=\"" + w + "\"/>";
-        text += "</Event>";
-      }
-      text += std::string("</") + tag + ">\n";
-    };
-    auto vars = [&](const char *tag, const std::vector<Var> &list) {
-      text += std::string("<") + tag + ">";
-      for (const Var &v : list)
-        if (!concrete(v).empty())
-          text += "<VarDeclaration Name=\"" + v.name + "\" Type=\"" +
-                  concrete(v) + "\"/>";
-      text += std::string("</") + tag + ">\n";
-    };
-    events("EventInputs", t.eventInputs);
-    events("EventOutputs", t.eventOutputs);
-    vars("InputVars", t.inputs);
-    vars("OutputVars", t.outputs);
+    std::string text = interfaceXml(name, t, concrete);
     text += std::string("</InterfaceList>\n") +
             (t.kind == TypeKind::Service ? "<Service/>\n" : "") + "</FBType>\n";
     generatedType(name, text);

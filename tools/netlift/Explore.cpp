@@ -89,6 +89,15 @@ static int afterReplay(statespace::ReplayOutcome::Verdict v,
   return kRefine;
 }
 
+/// `--find EXPR` as a predicate over `top`'s states; null after reporting.
+static net::Expr *parseFind(const std::string &text, net::Design &design,
+                            net::Module &top, DiagEngine &diag) {
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(text, "<find>"), llvm::SMLoc());
+  net::Expr *e = net::parseExpression(id, diag, design);
+  return e && net::verifyPredicate(design, top, e, diag) ? e : nullptr;
+}
+
 /// When the abstract path could not be followed: the exact model searched
 /// directly, within --replay-states, for a state satisfying `findText`
 /// (empty: a deadlock). Confirms with its path, or settles that there is
@@ -99,15 +108,9 @@ static int searchExactModel(statespace::ExplorationSetup &setup,
                             DiagEngine &diag, llvm::raw_ostream &out) {
   sem::Semantics &exact = *setup.exactSemantics();
   net::Expr *find = nullptr;
-  if (!findText.empty()) {
-    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
-        llvm::MemoryBuffer::getMemBufferCopy(findText, "<find>"),
-        llvm::SMLoc());
-    find = net::parseExpression(id, diag, design);
-    if (!find ||
-        !net::verifyPredicate(design, *setup.exactModule(), find, diag))
-      return 1;
-  }
+  if (!findText.empty() &&
+      !(find = parseFind(findText, design, *setup.exactModule(), diag)))
+    return 1;
   statespace::ExploreOptions eo;
   eo.maxStates = xo.replayStates;
   sem::RuntimeError err;
@@ -176,15 +179,9 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
     return 1;
   sem::Semantics &semantics = setup->semantics();
   net::Expr *findExpr = nullptr;
-  if (!findText.empty()) {
-    unsigned id = diag.sourceMgr().AddNewSourceBuffer(
-        llvm::MemoryBuffer::getMemBufferCopy(findText, "<find>"),
-        llvm::SMLoc());
-    findExpr = net::parseExpression(id, diag, design);
-    if (!findExpr ||
-        !net::verifyPredicate(design, setup->top(), findExpr, diag))
-      return 1;
-  }
+  if (!findText.empty() &&
+      !(findExpr = parseFind(findText, design, setup->top(), diag)))
+    return 1;
   statespace::ExploreOptions eo = setup->exploreOptions();
   eo.depthFirst = depthFirst;
   eo.recordEdges = graphFormat != GraphFormat::None || !edgesFile.empty();
