@@ -223,12 +223,9 @@ bool netlift::iec61499::detail::isGenericType(StringRef type) {
   return type.startswith_insensitive("ANY");
 }
 
-/// The start of an `<FBType>` named `name` with `t`'s interface, each
-/// variable of the type `typeOf` gives it (empty: left out, with its With
-/// references), up to the open `<InterfaceList>`'s end.
-static std::string
-interfaceXml(const std::string &name, const FbType &t,
-             llvm::function_ref<std::string(const Var &)> typeOf) {
+std::string netlift::iec61499::detail::interfaceXml(
+    const std::string &name, const FbType &t,
+    llvm::function_ref<std::string(const Var &)> typeOf) {
   auto kept = [&](StringRef var) {
     for (const auto *list : {&t.inputs, &t.outputs})
       for (const Var &v : *list)

@@ -6,10 +6,9 @@
 // (docs/iec61499.md, "Blocks the runtime implements"):
 //
 //  - an input event is always accepted; one with a response (INIT ->
-//    INITO, REQ -> CNF, X -> XO) leaves it pending, and the response is
-//    emitted once, immediately or any time later (a transition that is not
-//    urgent); a second request while one is pending is lost, as FORTE's
-//    blocks drop it;
+//    INITO, REQ -> CNF, X -> XO) is answered, immediately or any time
+//    later (a transition that is not urgent); a request arriving while
+//    one waits shares its response;
 //  - an output event that answers nothing (IND, an I/O block's change) may
 //    be emitted at any time, as the environment chooses;
 //  - every data output is a free input of the model, read through the
@@ -43,6 +42,15 @@ std::string netlift::iec61499::detail::environmentInput(StringRef output) {
   return output.str() + ".env";
 }
 
+/// The data a publisher sends (SD_1...) or a subscriber receives (RD_1...).
+static std::vector<const Var *> messageVars(const FbType &t, bool publisher) {
+  std::vector<const Var *> out;
+  for (const Var &v : publisher ? t.inputs : t.outputs)
+    if (StringRef(v.name).startswith_insensitive(publisher ? "SD_" : "RD_"))
+      out.push_back(&v);
+  return out;
+}
+
 void Translator::environmentModule(FbType &t) {
   SMLoc at = t.src->locOf(t.root);
   const char *what =
@@ -65,9 +73,34 @@ void Translator::environmentModule(FbType &t) {
     fail(at, "a module named '" + t.name + "' exists already");
   declarePorts(t, true);
   net::Module *m = b.getModule();
+  bool publisher = t.channelEnd == FbType::ChannelEnd::Publisher;
+  bool subscriber = t.channelEnd == FbType::ChannelEnd::Subscriber;
+  auto typeOf = [&](const Var &v) -> const net::Type * {
+    return StringRef(v.type).equals_insensitive("BOOL")
+               ? design.types.getBool()
+               : dataType(v.type, t.src->locOf(v.node));
+  };
+  auto kindOf = [&](const Var &v) {
+    return StringRef(v.type).equals_insensitive("BOOL") ? net::PortKind::Cond
+                                                        : net::PortKind::Data;
+  };
+  auto portType = [&](const Var &v) -> const net::Type * {
+    return kindOf(v) == net::PortKind::Cond ? nullptr : typeOf(v);
+  };
+  // A subscriber's message: what the channel brought, kept until IND.
+  std::vector<net::Stmt *> receive;
+  if (subscriber)
+    for (const Var *v : messageVars(t, false)) {
+      SMLoc vat = t.src->locOf(v->node);
+      std::string buf = "_buf_" + v->name, in = "_RCV_" + v->name;
+      b.addPort(in, kindOf(*v), net::PortDir::In, portType(*v), vat);
+      b.addVar(buf, typeOf(*v), nullptr, vat);
+      receive.push_back(b.assign(b.ref(buf, vat), b.ref(in, vat), vat));
+      m->ports[m->findPort(v->name)].definition = b.ref(buf, vat);
+    }
   // Data outputs read the environment's choice.
   for (const Var &v : t.outputs) {
-    if (isGenericType(v.type))
+    if (isGenericType(v.type) || m->ports[m->findPort(v.name)].definition)
       continue;
     SMLoc vat = t.src->locOf(v.node);
     bool isBool = StringRef(v.type).equals_insensitive("BOOL");
@@ -88,31 +121,182 @@ void Translator::environmentModule(FbType &t) {
       continue;
     }
     answers.insert(StringRef(r->name).upper());
+    // One request waits for its response at a time; one arriving while
+    // another waits shares its response (`merge_REQ`). FORTE's service
+    // blocks answer before the next request comes; letting the model's
+    // later answers pile up would make every such loop unbounded.
     uint32_t idle = b.addPlace("idle_" + e.name, 1, 1, eat);
-    uint32_t pending = b.addPlace("pending_" + e.name, 0, 1, eat);
+    uint32_t waiting = b.addPlace("waiting_" + e.name, 0, 1, eat);
     uint32_t accept =
         b.addTransition("accept_" + e.name, {net::PreArc{idle, 1, {}}},
-                        {net::PostArc{pending, 1}}, eat);
-    b.setEvents(accept, {net::EventSource{port, true}});
-    // A request while one is pending: taken and dropped.
-    uint32_t drop =
-        b.addTransition("drop_" + e.name, {net::PreArc{pending, 1, {}}},
-                        {net::PostArc{pending, 1}}, eat);
-    b.setEvents(drop, {net::EventSource{port, true}});
+                        {net::PostArc{waiting, 1}}, eat);
+    uint32_t merge =
+        b.addTransition("merge_" + e.name, {net::PreArc{waiting, 1, {}}},
+                        {net::PostArc{waiting, 1}}, eat);
+    for (uint32_t tr : {accept, merge})
+      b.setEvents(tr, {net::EventSource{port, true}});
+    if (publisher && StringRef(e.name).equals_insensitive("REQ")) {
+      // Every request sends the message: _SENT with its data, as the
+      // block's inputs stand when REQ arrives (the subscriber samples them
+      // in that step, as a block samples the data WITH an event).
+      uint32_t sent = b.addPort("_SENT", net::PortKind::Event,
+                                net::PortDir::Out, nullptr, eat);
+      for (uint32_t tr : {accept, merge})
+        b.setEmits(tr, {sent});
+      for (const Var *v : messageVars(t, true)) {
+        std::string out = "_SENT_" + v->name;
+        uint32_t p =
+            b.addPort(out, kindOf(*v), net::PortDir::Out, portType(*v), eat);
+        m->ports[p].definition = b.ref(v->name, eat);
+      }
+    }
     uint32_t answer =
-        b.addTransition("answer_" + e.name, {net::PreArc{pending, 1, {}}},
+        b.addTransition("answer_" + e.name, {net::PreArc{waiting, 1, {}}},
                         {net::PostArc{idle, 1}}, eat);
     b.setEmits(answer, {uint32_t(m->findPort(r->name))});
+  }
+  if (subscriber) {
+    // One message held at a time: a second before IND delivers the first
+    // is out of range of `_messages_waiting` (a runtime error with its
+    // trace), never silently lost.
+    b.addVar("_messages_waiting", design.types.getRange(0, 1), nullptr, at);
+    uint32_t rcv =
+        b.addPort("_RCV", net::PortKind::Event, net::PortDir::In, nullptr, at);
+    uint32_t get = b.addTransition("receive", {}, {}, at);
+    b.setEvents(get, {net::EventSource{rcv, true}});
+    receive.push_back(
+        b.assign(b.ref("_messages_waiting", at),
+                 b.binary(net::BinaryOp::Add, b.ref("_messages_waiting", at),
+                          b.intLit(1, at), at),
+                 at));
+    b.setAction(get, receive);
   }
   for (const Event &e : t.eventOutputs) {
     if (answers.count(StringRef(e.name).upper()))
       continue;
     SMLoc eat = t.src->locOf(e.node);
+    if (subscriber && StringRef(e.name).equals_insensitive("IND")) {
+      uint32_t deliver = b.addTransition("deliver_IND", {}, {}, eat);
+      b.setGuard(deliver,
+                 b.binary(net::BinaryOp::Gt, b.ref("_messages_waiting", eat),
+                          b.intLit(0, eat), eat));
+      b.setEmits(deliver, {uint32_t(m->findPort(e.name))});
+      b.setAction(deliver, {b.assign(b.ref("_messages_waiting", eat),
+                                     b.intLit(0, eat), eat)});
+      continue;
+    }
     uint32_t ind = b.addTransition("occur_" + e.name, {}, {}, eat);
     b.setEmits(ind, {uint32_t(m->findPort(e.name))});
   }
-  diag.note(at, Twine(what) + " '" + t.name +
-                    "' is modelled as environment: its output events occur "
-                    "as its interface allows and its data outputs take any "
-                    "value (docs/iec61499.md)");
+  if (publisher || subscriber)
+    diag.note(at, Twine(what) + " '" + t.name + "' is modelled as " +
+                      (publisher ? "the publishing" : "a subscribing") +
+                      " end of a channel: what is published with REQ is "
+                      "delivered by each subscriber's IND, now or later "
+                      "(docs/iec61499.md)");
+  else
+    diag.note(at, Twine(what) + " '" + t.name +
+                      "' is modelled as environment: its output events "
+                      "occur as its interface allows and its data outputs "
+                      "take any value (docs/iec61499.md)");
+}
+
+//===----------------------------------------------------------------------===//
+// Channels: a PUBLISH_n and the SUBSCRIBE_n blocks of the same network with
+// the same ID. The publisher's accepted REQ sends its SD_1..SD_n
+// (`_SENT`, `_SD_i`); each subscriber keeps the message (`_RCV`, `_RD_i`)
+// until its IND delivers it, now or later, with RD_i the values sent. A
+// second message before the first is delivered is a runtime error (the
+// channel holds one): lossless, never silently dropped.
+//===----------------------------------------------------------------------===//
+
+std::vector<Translator::Channel> Translator::channelsOf(XmlSource &src,
+                                                        pugi::xml_node net) {
+  std::vector<Channel> out;
+  if (!opaqueAsEnvironment)
+    return out;
+  for (pugi::xml_node fb : blocksOf(net)) {
+    StringRef type = fb.attribute("Type").value();
+    bool pub = type.startswith_insensitive("PUBLISH_");
+    bool sub = type.startswith_insensitive("SUBSCRIBE_");
+    if (!pub && !sub)
+      continue;
+    std::string id;
+    for (pugi::xml_node p : fb.children("Parameter"))
+      if (StringRef(p.attribute("Name").value()).equals_insensitive("ID"))
+        id = StringRef(src.placeAttribute(p, "Value")).trim().trim("\"'").str();
+    if (id.empty())
+      continue;
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const Channel &c) { return c.id == id; });
+    if (it == out.end()) {
+      out.push_back({id, {}, {}});
+      it = out.end() - 1;
+    }
+    (pub ? it->publishers : it->subscribers).push_back(fb);
+  }
+  llvm::erase_if(out, [](const Channel &c) {
+    return c.publishers.empty() || c.subscribers.empty();
+  });
+  return out;
+}
+
+void Translator::makeChannelEnds(XmlSource &src, pugi::xml_node net) {
+  for (const Channel &c : channelsOf(src, net)) {
+    if (c.publishers.size() > 1)
+      fail(src.locOf(c.publishers[1]),
+           "a second publisher with ID '" + c.id +
+               "' in this network: netlift connects one publisher to its "
+               "subscribers");
+    FbType *pub = findType(c.publishers[0].attribute("Type").value(),
+                           src.locOf(c.publishers[0]));
+    std::vector<const Var *> sent = messageVars(*pub, true);
+    for (pugi::xml_node fb : c.subscribers) {
+      FbType *sub = findType(fb.attribute("Type").value(), src.locOf(fb));
+      std::vector<const Var *> got = messageVars(*sub, false);
+      bool same = got.size() == sent.size();
+      for (size_t i = 0; same && i < got.size(); ++i)
+        same = StringRef(got[i]->type).equals_insensitive(sent[i]->type);
+      if (!same)
+        fail(src.locOf(fb),
+             "subscriber '" + Twine(fb.attribute("Name").value()) + "' (ID '" +
+                 c.id + "') does not receive what '" +
+                 c.publishers[0].attribute("Name").value() +
+                 "' sends: the data and their types must "
+                 "match one by one");
+    }
+    auto end = [&](pugi::xml_node fb, bool publisher) {
+      FbType *t = findType(fb.attribute("Type").value(), src.locOf(fb));
+      std::string name = t->name + "__CHANNEL";
+      FbType &ct =
+          generatedType(name, interfaceXml(name, *t, [](const Var &v) {
+                                return v.type;
+                              }) + "</InterfaceList>\n<Service/>\n</FBType>\n");
+      ct.channelEnd = publisher ? FbType::ChannelEnd::Publisher
+                                : FbType::ChannelEnd::Subscriber;
+      fb.attribute("Type") = name.c_str();
+    };
+    end(c.publishers[0], true);
+    for (pugi::xml_node fb : c.subscribers)
+      end(fb, false);
+  }
+}
+
+void Translator::connectChannels(XmlSource &src, pugi::xml_node net) {
+  for (const Channel &c : channelsOf(src, net)) {
+    pugi::xml_node p = c.publishers[0];
+    SMLoc at = src.locOf(p);
+    FbType *pub = findType(p.attribute("Type").value(), at);
+    StringRef pubName = design.save(p.attribute("Name").value());
+    std::vector<const Var *> sent = messageVars(*pub, true);
+    for (pugi::xml_node fb : c.subscribers) {
+      StringRef subName = design.save(fb.attribute("Name").value());
+      b.addConnection({pubName, "_SENT", at}, {subName, "_RCV", at}, at);
+      FbType *sub = findType(fb.attribute("Type").value(), at);
+      std::vector<const Var *> got = messageVars(*sub, false);
+      for (size_t i = 0; i < sent.size(); ++i)
+        b.addConnection({pubName, design.save("_SENT_" + sent[i]->name), at},
+                        {subName, design.save("_RCV_" + got[i]->name), at}, at);
+    }
+  }
 }

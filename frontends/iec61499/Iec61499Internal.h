@@ -103,6 +103,12 @@ struct FbType {
   std::vector<AdapterUse> adapters;
   bool builtin = false;
   bool translated = false;
+  /// An environment block one end of a channel (Iec61499Environment.cpp).
+  enum class ChannelEnd {
+    None,
+    Publisher,
+    Subscriber
+  } channelEnd = ChannelEnd::None;
 
   const AdapterUse *adapter(StringRef n) const {
     for (const AdapterUse &a : adapters)
@@ -116,6 +122,13 @@ struct FbType {
 inline std::string adapterPort(StringRef adapter, StringRef element) {
   return adapter.str() + "_" + element.str();
 }
+
+/// The start of an `<FBType>` named `name` with `t`'s interface, each
+/// variable of the type `typeOf` gives it (empty: left out, with its With
+/// references), up to the open `<InterfaceList>`'s end (the frontend's
+/// generated types: specialised generic blocks, channel ends).
+std::string interfaceXml(const std::string &name, const FbType &t,
+                         llvm::function_ref<std::string(const Var &)> typeOf);
 
 struct File {
   std::unique_ptr<pugi::xml_document> doc;
@@ -211,6 +224,16 @@ private:
   void untypedSubApp(XmlSource &src, pugi::xml_node fb, const FbType *owner);
   /// A runtime-implemented block as environment (Iec61499Environment.cpp).
   void environmentModule(FbType &t);
+  /// PUBLISH_n and SUBSCRIBE_n blocks of one network with the same ID:
+  /// their types become channel ends (collect phase), and they are
+  /// connected (build phase).
+  struct Channel {
+    std::string id;
+    std::vector<pugi::xml_node> publishers, subscribers;
+  };
+  std::vector<Channel> channelsOf(XmlSource &src, pugi::xml_node net);
+  void makeChannelEnds(XmlSource &src, pugi::xml_node net);
+  void connectChannels(XmlSource &src, pugi::xml_node net);
 
   DiagEngine &diag;
   net::Design &design;

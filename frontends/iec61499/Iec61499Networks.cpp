@@ -164,6 +164,7 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
     driven.insert({to.instance.upper(), to.port.upper()});
     b.addConnection(from, to, src.locOf(c));
   }
+  connectChannels(src, net);
   // The environment's events reach a top type's network through a queue,
   // one per step (like a runtime's external events), not all at once.
   bool queued = iface && tops.count(iface) && !iface->eventInputs.empty();

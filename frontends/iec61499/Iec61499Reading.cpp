@@ -315,6 +315,7 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       untypedSubApp(src, fb, owner);
   specializeGenericFunctions(src, net, owner);
+  makeChannelEnds(src, net);
   for (pugi::xml_node fb : blocksOf(net)) {
     FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
     if (type->kind == TypeKind::Adapter)
