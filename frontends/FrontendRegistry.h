@@ -40,6 +40,9 @@ struct FrontendOptions {
   /// --opaque: blocks the runtime implements (IEC 61499 service interface
   /// FBs and the like) modelled as environment (the default) or refused.
   bool opaqueRefused = false;
+  /// --channels=lossy: IEC 61499 publish/subscribe channels may lose
+  /// messages.
+  bool lossyChannels = false;
   /// --sfc-dialect: the order of an SFC scan, iec (default) or codesys.
   bool sfcCodesys = false;
   /// --time-unit: what TIME_TO_INT and the like count in, "s" or "ms";

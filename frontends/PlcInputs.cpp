@@ -324,5 +324,6 @@ bool netlift::finishIec61499Inputs(FrontendContext &ctx, DiagEngine &diag,
   if (!fo.fbSemantics.empty())
     options.semantics = fo.fbSemantics;
   options.opaqueAsEnvironment = !fo.opaqueRefused;
+  options.lossyChannels = fo.lossyChannels;
   return iec61499::translate(ids, options, diag, design, ctx.pipelines);
 }

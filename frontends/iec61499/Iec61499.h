@@ -37,6 +37,8 @@ struct Options {
   /// Blocks the runtime implements that netlift ships no model of: modelled
   /// as environment (true, the default) or refused (--opaque=refuse).
   bool opaqueAsEnvironment = true;
+  /// Publish/subscribe channels may lose messages (--channels=lossy).
+  bool lossyChannels = false;
 };
 
 /// Translates the IEC 61499 files `bufferIDs` (already in the SourceMgr)

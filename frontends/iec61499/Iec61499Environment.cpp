@@ -164,6 +164,17 @@ void Translator::environmentModule(FbType &t) {
         b.addPort("_RCV", net::PortKind::Event, net::PortDir::In, nullptr, at);
     uint32_t get = b.addTransition("receive", {}, {}, at);
     b.setEvents(get, {net::EventSource{rcv, true}});
+    if (lossyChannels) {
+      // Each message is received or lost (`lose`): the two take the same
+      // token, so exactly one of them reacts to it.
+      uint32_t line = b.addPlace("line", 1, 1, at);
+      uint32_t lose = b.addTransition("lose", {net::PreArc{line, 1, {}}},
+                                      {net::PostArc{line, 1}}, at);
+      b.setEvents(lose, {net::EventSource{rcv, true}});
+      m->transitions[get].setArcs(
+          design.copy(llvm::ArrayRef<net::PreArc>{net::PreArc{line, 1, {}}}),
+          design.copy(llvm::ArrayRef<net::PostArc>{net::PostArc{line, 1}}));
+    }
     receive.push_back(
         b.assign(b.ref("_messages_waiting", at),
                  b.binary(net::BinaryOp::Add, b.ref("_messages_waiting", at),

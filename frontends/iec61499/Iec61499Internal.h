@@ -141,7 +141,8 @@ public:
              const iec61499::Options &options)
       : diag(diag), design(design), b(design), libs(options.typeLibraries),
         timescaleNs(options.timescaleNs), semantics(options.semantics),
-        opaqueAsEnvironment(options.opaqueAsEnvironment) {}
+        opaqueAsEnvironment(options.opaqueAsEnvironment),
+        lossyChannels(options.lossyChannels) {}
 
   bool run(const std::vector<unsigned> &ids,
            std::vector<std::string> &pipelines);
@@ -242,6 +243,7 @@ private:
   std::optional<int64_t> timescaleNs;
   std::string semantics;
   bool opaqueAsEnvironment = true;
+  bool lossyChannels = false;
   std::vector<std::unique_ptr<File>> files;
   std::map<std::string, std::unique_ptr<FbType>> types; // upper-case name
   std::vector<FbType *> order;                          // translation order

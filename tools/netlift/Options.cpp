@@ -141,6 +141,17 @@ static cl::opt<OpaqueBlocks> opaqueBlocks(
                           "allows"),
                clEnumValN(OpaqueBlocks::Refuse, "refuse", "refused")),
     NETLIFT_READING);
+enum class Channels { Lossless, Lossy };
+static cl::opt<Channels> channels(
+    "channels",
+    cl::desc("IEC 61499 input: publish/subscribe channels between blocks of "
+             "one network with the same ID"),
+    cl::init(Channels::Lossless),
+    cl::values(clEnumValN(Channels::Lossless, "lossless",
+                          "every message is delivered (the default)"),
+               clEnumValN(Channels::Lossy, "lossy",
+                          "each message may be lost")),
+    NETLIFT_READING);
 static cl::opt<plc::SfcDialect> sfcDialect(
     "sfc-dialect", cl::desc("SFC input: the order of a scan (docs/sfc.md)"),
     cl::init(plc::SfcDialect::Iec),
@@ -262,6 +273,7 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
   fo.opaqueRefused = opaqueBlocks == OpaqueBlocks::Refuse;
+  fo.lossyChannels = channels == Channels::Lossy;
   fo.sfcCodesys = sfcDialect == plc::SfcDialect::Codesys;
   fo.timeUnit = timeUnit;
   if (!fo.timeUnit.empty() && fo.timeUnit != "s" && fo.timeUnit != "ms") {
