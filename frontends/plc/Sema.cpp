@@ -155,6 +155,21 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
     return nullptr;
   switch (ts->kind) {
   case TypeSyntaxKind::Named:
+    // IEC 61131-3: a variable of a derived type without an initial value of
+    // its own starts at the one the type's declaration gives (`TYPE Mode :
+    // (IDLE, RUN) := RUN; END_TYPE`), through aliases.
+    if (!ts->init) {
+      StringRef name = ts->name;
+      for (int depth = 0; depth < 64 && !ts->init; ++depth) {
+        TypeDecl *td = unit.findType(name);
+        if (!td || !td->type)
+          break;
+        ts->init = td->type->init;
+        if (td->type->kind != TypeSyntaxKind::Named)
+          break;
+        name = td->type->name;
+      }
+    }
     return resolveNamed(ts->name, ts->loc);
   case TypeSyntaxKind::String: {
     const PType *base = elementaryType(ts->name);
@@ -272,7 +287,7 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
   if (!init || !t)
     return;
   switch (init->kind) {
-  case Initializer::Value:
+  case Initializer::Value: {
     if (t->kind == PTypeKind::FunctionBlock || t->kind == PTypeKind::Array ||
         t->kind == PTypeKind::Struct) {
       // `arr : ARRAY[1..3] OF INT := 0`? Not IEC; refuse.
@@ -280,9 +295,15 @@ void Checker::checkInitializer(Initializer *init, const PType *t) {
             "a single value cannot initialise a value of type " + t->str());
       return;
     }
+    // An enumerator shared by several enumerated types means the one of
+    // the value initialised, as on the right of an assignment.
+    const PType *outer = expectedEnum;
+    expectedEnum = t->kind == PTypeKind::Enum ? t : nullptr;
     expr(init->value);
+    expectedEnum = outer;
     assignable(t, init->value, init->loc, "initial value");
     return;
+  }
   case Initializer::Array:
     if (t->kind != PTypeKind::Array) {
       error(init->loc, "an array initialiser for a value of type " + t->str());
