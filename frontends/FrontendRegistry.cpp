@@ -123,13 +123,16 @@ static const FrontendInfo *sniffXml(StringRef text, StringRef &root) {
     root = rest.take_while([](char c) {
       return !isspace((unsigned char)c) && c != '>' && c != '/';
     });
-    StringRef id =
-        root == "sspaceex"  ? "spaceex"
-        : root == "pnml"    ? "pnml"
-        : root == "project" ? "plcopen"
-        : root == "FBType" || root == "System" || root == "SubAppType"
-            ? "iec61499"
-            : "";
+    StringRef id = root == "sspaceex"  ? "spaceex"
+                   : root == "pnml"    ? "pnml"
+                   : root == "project" ? "plcopen"
+                   : root == "FBType" || root == "System" ||
+                           root == "SubAppType" || root == "AdapterType" ||
+                           root == "DataType" || root == "Function" ||
+                           root == "DeviceType" || root == "ResourceType" ||
+                           root == "SegmentType"
+                       ? "iec61499"
+                       : "";
     for (const FrontendInfo &f : registry)
       if (!id.empty() && f.id == id)
         return &f;
@@ -173,14 +176,17 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
       StringRef root;
       fe = sniffXml(text, root);
       if (!fe) {
-        diag.error(llvm::SMLoc::getFromPointer(root.empty() ? text.data()
-                                                            : root.data()),
-                   (root.empty() ? Twine("no XML root element")
-                                 : "XML root element <" + root + ">") +
-                       " not recognised (known: PLCopen <project>, SpaceEx "
-                       "<sspaceex>, PNML <pnml>, IEC 61499 "
-                       "<FBType>/<System>/<SubAppType>); name the format "
-                       "with --from");
+        diag.error(
+            llvm::SMLoc::getFromPointer(root.empty() ? text.data()
+                                                     : root.data()),
+            (root.empty() ? Twine("no XML root element")
+                          : "XML root element <" + root + ">") +
+                " not recognised (known: PLCopen <project>, SpaceEx "
+                "<sspaceex>, PNML <pnml>, IEC 61499 "
+                "<FBType>/<System>/<SubAppType>/<AdapterType>/<DataType>/"
+                "<DeviceType>/<ResourceType>/<SegmentType>); name the "
+                "format "
+                "with --from");
         return false;
       }
       allNet = false;

@@ -27,7 +27,8 @@ FORMATS = {
     "dot": ((".dot",), None, (), "mealy"),
     "spaceex": ((".xml",), None, (), "translate"),
     "plcopen_xml": ((".xml",), None, (), "translate"),
-    "iec61499": ((".fbt", ".sub", ".sys"), None, (), "translate"),
+    "iec61499": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct", ".dev",
+                  ".res", ".seg"), None, (), "translate"),
 }
 
 

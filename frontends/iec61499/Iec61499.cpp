@@ -28,7 +28,10 @@ bool Translator::run(const std::vector<unsigned> &ids,
       File &f = readFile(id);
       registerTypes(f, false);
       pugi::xml_node root = f.doc->document_element();
-      if (localName(root) != "System")
+      StringRef kind = localName(root);
+      if (kind == "DataType" || kind == "AdapterType" || isPlatformType(kind))
+        noteTypeOnlyFile(f);
+      else if (kind != "System")
         topList.push_back(
             types[StringRef(root.attribute("Name").value()).upper()].get());
     }
@@ -144,6 +147,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
                                    {net::PostArc{off, 1}});
       b.setEmits(t, {eo});
     }
+    aggregateConstantModules();
     for (auto &[name, c] : constants) {
       net::Module *m = b.createModule(name, false, c.loc);
       if (!m)
@@ -180,7 +184,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
                              dataType(c.type, c.loc), c.loc);
       m->ports[p].definition = b.intLit(v, c.loc);
     }
-    if (semantics == "forte" || semantics == "cyclic") {
+    if ((semantics == "forte" || semantics == "cyclic") &&
+        (!topList.empty() || !systems.empty())) {
       // Each resource (a translated type or an application) becomes one
       // flat module with one FIFO of events (or one cycle of its blocks);
       // the modules it was built from go (passes/Iec61499Resources.cpp).

@@ -8,8 +8,29 @@ using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 // Basic function blocks
 //===----------------------------------------------------------------------===//
 
-/// The internal copy of interface variable `name`.
-static std::string internal(StringRef name) { return "_" + name.str(); }
+/// Whether `name` is one the scaffolding of a basic FB's module uses (the
+/// ECC state, the event queue, a reaction's scratch variables): a
+/// variable of the FB's own by that name is renamed.
+static bool scaffoldingName(StringRef name) {
+  std::string u = name.upper();
+  return u == "ECC" || u == "_QUEUE" || u == "_QUEUED" || u == "_LIVE" ||
+         u == "_EVENT" || u == "_FIRED" || u == "_STEP" ||
+         u == "_ECC_DOES_NOT_SETTLE" || StringRef(u).startswith("_EV_");
+}
+
+/// The name under which the model keeps variable `name` of the FB: `_X`
+/// for the internal copy of interface variable X, the name itself for an
+/// internal variable; a trailing `_` where that is a scaffolding name
+/// (an input STEP is kept in `_STEP_`: IEC identifiers never end in `_`).
+static std::string modelName(StringRef name, bool copy) {
+  std::string n = (copy ? "_" : "") + name.str();
+  return scaffoldingName(n) ? n + "_" : n;
+}
+
+std::string Translator::internal(StringRef name) const {
+  auto it = copied.find(StringRef(name).upper());
+  return it != copied.end() ? it->second : modelName(name, true);
+}
 /// Under the cyclic model: whether event `name` is pending.
 static std::string eventFlag(StringRef name) { return "_ev_" + name.str(); }
 
@@ -24,8 +45,9 @@ void Translator::rename(Expr *e) {
       e->name = adapterPort(a->name, e->name);
       e->operands.clear();
     }
-  if (e->kind == ExprKind::Name && copied.count(StringRef(e->name).upper()))
-    e->name = internal(e->name);
+  if (e->kind == ExprKind::Name)
+    if (auto it = copied.find(StringRef(e->name).upper()); it != copied.end())
+      e->name = it->second;
   for (Expr *o : e->operands)
     rename(o);
   for (CallArg &a : e->args)
@@ -34,35 +56,6 @@ void Translator::rename(Expr *e) {
 
 void Translator::rename(StmtList &l) {
   plc::forEachStmt(l, nullptr, [&](Expr *e) { rename(e); });
-}
-
-TypeSyntax *Translator::typeOf(FbType &t, pugi::xml_node decl) {
-  SMLoc at = t.src->locOf(decl);
-  auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
-  ts->name = decl.attribute("Type").value();
-  if (ts->name.empty())
-    fail(at, "<VarDeclaration> '" + Twine(decl.attribute("Name").value()) +
-                 "' without a Type");
-  if (pugi::xml_attribute size = decl.attribute("ArraySize")) {
-    int64_t n;
-    if (StringRef(size.value()).trim().getAsInteger(10, n) || n <= 0)
-      fail(at, "ArraySize '" + Twine(size.value()) +
-                   "' is not supported (a positive element count)");
-    auto *arr = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
-    arr->dims.push_back({intLit(unit, 0, at), intLit(unit, n - 1, at)});
-    arr->elem = ts;
-    ts = arr;
-  }
-  bool found;
-  StringRef init = t.src->placeAttribute(decl, "InitialValue", &found);
-  if (found && !init.trim().empty()) {
-    auto *i = unit.make<Initializer>(Initializer::Value, at);
-    i->value = st::parseStExpression(init, diag, unit);
-    if (!i->value)
-      throw Failure();
-    ts->init = i;
-  }
-  return ts;
 }
 
 StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
@@ -502,25 +495,31 @@ void Translator::basicBlock(FbType &t) {
     SMLoc loc = t.src->locOf(v.node);
     // The port and its copy share one type (an array type written twice
     // would be two types to the checker).
-    TypeSyntax *type = typeOf(t, v.node);
+    TypeSyntax *type = typeOf(*t.src, v.node);
     declare(v.name, type, VarSection::Input, loc);
     // An input no event samples is read where it stands (a parameter).
     if (sampled.count(StringRef(v.name).upper())) {
-      declare(internal(v.name), type, VarSection::Var, loc);
-      copied.insert(StringRef(v.name).upper());
+      std::string copy = modelName(v.name, true);
+      declare(copy, type, VarSection::Var, loc);
+      copied[StringRef(v.name).upper()] = copy;
     }
   }
   for (const Var &v : t.outputs) {
     SMLoc loc = t.src->locOf(v.node);
-    TypeSyntax *type = typeOf(t, v.node);
+    TypeSyntax *type = typeOf(*t.src, v.node);
     declare(v.name, type, VarSection::Output, loc);
-    declare(internal(v.name), type, VarSection::Var, loc);
-    copied.insert(StringRef(v.name).upper());
+    std::string copy = modelName(v.name, true);
+    declare(copy, type, VarSection::Var, loc);
+    copied[StringRef(v.name).upper()] = copy;
   }
   for (pugi::xml_node v :
-       child(t.body, "InternalVars").children("VarDeclaration"))
-    declare(v.attribute("Name").value(), typeOf(t, v), VarSection::Var,
-            t.src->locOf(v));
+       child(t.body, "InternalVars").children("VarDeclaration")) {
+    StringRef name = v.attribute("Name").value();
+    std::string kept = modelName(name, false);
+    if (kept != name)
+      copied[name.upper()] = kept;
+    declare(kept, typeOf(*t.src, v), VarSection::Var, t.src->locOf(v));
+  }
   auto checkWith = [&](const Event &e, const std::vector<Var> &vars) {
     for (const std::string &w : e.with) {
       bool known = false;

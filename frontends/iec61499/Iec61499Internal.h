@@ -92,6 +92,8 @@ struct AdapterUse {
 /// One FB or subapplication type as read.
 struct FbType {
   std::string name;
+  /// The package it declares (4diac: `<CompilerInfo packageName=...>`).
+  std::string package;
   TypeKind kind = TypeKind::NoBody;
   XmlSource *src = nullptr;
   pugi::xml_node root, body; // body: BasicFB / FBNetwork / SubAppNetwork
@@ -167,6 +169,9 @@ private:
   FbType *findType(StringRef name, SMLoc use,
                    const char *what = "function block");
   FbType *searchLibraries(StringRef name, SMLoc use);
+  /// Reads a file of the -I directories found for type `name`, which it
+  /// must declare.
+  File &readLibraryFile(const std::string &path, StringRef name, SMLoc use);
   FbType *libraryType(StringRef name);
   void collect(FbType &t);
   void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
@@ -186,9 +191,24 @@ private:
   size_t relayWays(const std::vector<pugi::xml_node> &conns) const;
   std::string inputQueueType(const FbType &t);
 
+  // Data types and packages (Iec61499DataTypes.cpp).
+  /// Rewrites package-qualified type names (`iec61499::events::E_CYCLE`)
+  /// to the type's own name, keeping the qualified one for checkPackage.
+  void unqualifyTypeNames(pugi::xml_node root);
+  /// A block or declaration that named its type with a package must find
+  /// the type declaring that package.
+  void checkPackage(pugi::xml_node use, const FbType &t, SMLoc at);
+  /// Declares data type `name` (a `<DataType>` of the inputs or a `.dtp`
+  /// of the -I directories) to the ST checker, once; nothing when there is
+  /// none of that name (elementary types, FB types).
+  void useDataType(StringRef name, SMLoc at);
+  TypeSyntax *dataTypeSyntax(XmlSource &src, pugi::xml_node root);
+  /// Notes for type files without behaviour given on the command line.
+  void noteTypeOnlyFile(File &f);
+
   // Basic FBs.
   void basicBlock(FbType &t);
-  TypeSyntax *typeOf(FbType &t, pugi::xml_node decl);
+  TypeSyntax *typeOf(XmlSource &src, pugi::xml_node decl);
   StmtList algorithm(FbType &t, StringRef name, pugi::xml_node at);
   Expr *guard(FbType &t, pugi::xml_node transition, std::string &event);
   void rename(Expr *e);
@@ -251,15 +271,24 @@ private:
   /// Types given on the command line: their event inputs are the
   /// environment's, queued like a runtime's external events.
   std::set<const FbType *> tops;
-  std::map<std::string, std::string> libraryIndex; // upper stem -> path
+  std::map<std::string, std::string> libraryIndex;  // upper stem -> path
+  std::map<std::string, std::string> dataTypeIndex; // .dtp files, likewise
+  void indexLibraries();
+  /// `<DataType>` roots read (upper-case name), and those declared to the
+  /// ST checker.
+  std::map<std::string, std::pair<XmlSource *, pugi::xml_node>> dataTypes;
+  std::set<std::string> declaredDataTypes;
   bool indexed = false;
 
   // Basic FBs lowered together.
   Unit unit;
   std::vector<EventDrivenBlock> blocks;
-  /// Names (upper case) an algorithm of the FB being read refers to by its
-  /// interface name and that netlift keeps in an internal copy.
-  std::set<std::string> copied;
+  /// Names (upper case) an algorithm of the FB being read uses that the
+  /// model keeps under another: interface variables in their internal
+  /// copies (`_X`), variables named like the scaffolding.
+  std::map<std::string, std::string> copied;
+  /// The internal copy of interface variable `name`.
+  std::string internal(StringRef name) const;
   /// The basic FB being read (its plugs and sockets name ports).
   const FbType *current = nullptr;
 
@@ -275,6 +304,17 @@ private:
   /// name.
   std::map<std::string, size_t> stringConstants;
   bool neverNeeded = false; // some network uses the silent source
+  /// Modules driving unconnected structure and array inputs, by name: the
+  /// block type and its input (made by aggregateConstantModules).
+  struct AggregateConstant {
+    FbType *type;
+    std::string input;
+    SMLoc loc;
+    AggregateConstant(FbType *t, std::string in, SMLoc at)
+        : type(t), input(std::move(in)), loc(at) {}
+  };
+  std::map<std::string, AggregateConstant> aggregateConstants;
+  void aggregateConstantModules();
 };
 
 // The AST of the statements a basic FB's ECC and algorithms become.
@@ -295,6 +335,13 @@ inline Stmt *assign(Unit &u, Expr *target, Expr *value, SMLoc at) {
 }
 inline Stmt *when(Unit &u, Expr *cond, StmtList body, SMLoc at) {
   return AstMaker(u).when(cond, std::move(body), at);
+}
+
+/// Device, resource and segment types: they describe the runtime platform,
+/// which netlift models by FORTE's rules whatever the type says.
+inline bool isPlatformType(StringRef rootElement) {
+  return rootElement == "DeviceType" || rootElement == "ResourceType" ||
+         rootElement == "SegmentType";
 }
 
 /// Service FBs netlift has a model of (whatever file declares them).

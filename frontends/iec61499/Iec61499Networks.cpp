@@ -229,6 +229,15 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
           type->src->placeAttribute(v.node, "InitialValue", &found);
       Expr *value = nullptr;
       SMLoc vloc = type->src->locOf(v.node);
+      if (!elementaryType(v.type) || v.node.attribute("ArraySize")) {
+        // A structure or an array: its value is the one the block's own
+        // copy of the input starts with, known once the blocks are lowered.
+        std::string module =
+            "Init_" + net::toIdentifier(type->name) + "_" + v.name;
+        aggregateConstants.try_emplace(module, type, v.name, vloc);
+        driveWithConstant(inst, v.name, module, loc);
+        continue;
+      }
       if (found && !text.trim().empty()) {
         value = st::parseStExpression(text, diag, unit);
         if (!value)

@@ -19,6 +19,7 @@ File &Translator::readFile(unsigned id) {
   f->src = std::make_unique<XmlSource>(id, diag);
   if (!f->src->parse(*f->doc, diag))
     throw Failure();
+  unqualifyTypeNames(f->doc->document_element());
   files.push_back(std::move(f));
   return *files.back();
 }
@@ -75,6 +76,7 @@ void Translator::expandAdapters(FbType &t) {
     if (name.empty())
       fail(at, "<AdapterDeclaration> without a Name");
     FbType *a = findType(decl.attribute("Type").value(), at, "adapter");
+    checkPackage(decl, *a, at);
     if (a->kind != TypeKind::Adapter)
       fail(at, "'" + a->name + "' of " + (isPlug ? "plug" : "socket") + " '" +
                    name + "' is not an adapter type");
@@ -136,14 +138,38 @@ void Translator::registerTypes(File &f, bool builtin) {
     systems.push_back({&f, root});
     return;
   }
+  if (kind == "DataType") {
+    StringRef name = root.attribute("Name").value();
+    if (name.empty())
+      fail(f.src->locOf(root), "<DataType> without a Name");
+    auto [it, fresh] = dataTypes.try_emplace(name.upper(), f.src.get(), root);
+    if (!fresh) {
+      diag.error(f.src->locOf(root),
+                 "data type '" + name + "' is defined twice");
+      diag.note(it->second.first->locOf(it->second.second),
+                "the first definition");
+      throw Failure();
+    }
+    return;
+  }
+  if (isPlatformType(kind))
+    return;
+  if (kind == "Function")
+    fail(f.src->locOf(root),
+         "function type '" + Twine(root.attribute("Name").value()) +
+             "' (4diac's .fct) is not supported: netlift reads FB, "
+             "subapplication, adapter and data types");
   auto t = std::make_unique<FbType>();
   t->name = root.attribute("Name").value();
+  t->package = child(root, "CompilerInfo").attribute("packageName").value();
   t->src = f.src.get();
   t->root = root;
   t->builtin = builtin;
   if (kind != "FBType" && kind != "SubAppType" && kind != "AdapterType")
     fail(*t, root,
-         "not an IEC 61499 type or system: root element <" + kind + ">");
+         "not an IEC 61499 type or system: root element <" + kind +
+             "> (known: FBType, SubAppType, AdapterType, DataType, System, "
+             "DeviceType, ResourceType, SegmentType)");
   if (t->name.empty())
     fail(*t, root, "<" + kind + "> without a Name");
   if (kind == "AdapterType") {
@@ -180,51 +206,61 @@ void Translator::registerTypes(File &f, bool builtin) {
   it->second = std::move(t);
 }
 
-FbType *Translator::searchLibraries(StringRef name, SMLoc use) {
-  if (!indexed) {
-    indexed = true;
-    // First match in directory order given, then sorted paths.
-    for (const std::string &dir : libs) {
-      std::vector<std::string> found;
-      std::error_code ec;
-      for (llvm::sys::fs::recursive_directory_iterator it(dir, ec), end;
-           it != end && !ec; it.increment(ec)) {
-        StringRef ext = llvm::sys::path::extension(it->path());
-        if (ext.equals_insensitive(".fbt") || ext.equals_insensitive(".sub") ||
-            ext.equals_insensitive(".adp"))
-          found.push_back(it->path());
-      }
-      if (ec)
-        fail(SMLoc(), "-I " + dir + ": " + ec.message());
-      std::sort(found.begin(), found.end());
-      for (const std::string &p : found)
-        libraryIndex.try_emplace(llvm::sys::path::stem(p).upper(), p);
+void Translator::indexLibraries() {
+  if (indexed)
+    return;
+  indexed = true;
+  // First match in directory order given, then sorted paths.
+  for (const std::string &dir : libs) {
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (llvm::sys::fs::recursive_directory_iterator it(dir, ec), end;
+         it != end && !ec; it.increment(ec)) {
+      StringRef ext = llvm::sys::path::extension(it->path());
+      if (ext.equals_insensitive(".fbt") || ext.equals_insensitive(".sub") ||
+          ext.equals_insensitive(".adp") || ext.equals_insensitive(".dtp"))
+        found.push_back(it->path());
     }
+    if (ec)
+      fail(SMLoc(), "-I " + dir + ": " + ec.message());
+    std::sort(found.begin(), found.end());
+    for (const std::string &p : found)
+      (llvm::sys::path::extension(p).equals_insensitive(".dtp") ? dataTypeIndex
+                                                                : libraryIndex)
+          .try_emplace(llvm::sys::path::stem(p).upper(), p);
   }
+}
+
+FbType *Translator::searchLibraries(StringRef name, SMLoc use) {
+  indexLibraries();
   std::string key = name.upper();
   if (auto it = libraryIndex.find(key); it != libraryIndex.end()) {
-    auto buf = llvm::MemoryBuffer::getFile(it->second);
-    if (!buf)
-      fail(SMLoc(),
-           "cannot read '" + it->second + "': " + buf.getError().message());
-    unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
-    File &f = readFile(id);
-    // The file is found by its name; the type it declares must be the one
-    // asked for, or the block would silently run another type (or
-    // netlift's own model of the name).
-    pugi::xml_node root = f.doc->document_element();
-    StringRef declared = root.attribute("Name").value();
-    if (localName(root) != "System" && !declared.equals_insensitive(name)) {
-      diag.error(use, "type '" + name + "' is found in '" + it->second +
-                          "', which declares type '" + declared + "'");
-      diag.note(f.src->locOf(root), "the type declared there");
-      throw Failure();
-    }
-    registerTypes(f, false);
+    registerTypes(readLibraryFile(it->second, name, use), false);
     if (auto t = types.find(key); t != types.end())
       return t->second.get();
   }
   return libraryType(name);
+}
+
+File &Translator::readLibraryFile(const std::string &path, StringRef name,
+                                  SMLoc use) {
+  auto buf = llvm::MemoryBuffer::getFile(path);
+  if (!buf)
+    fail(SMLoc(), "cannot read '" + path + "': " + buf.getError().message());
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
+  File &f = readFile(id);
+  // The file is found by its name; the type it declares must be the one
+  // asked for, or the block would silently run another type (or
+  // netlift's own model of the name).
+  pugi::xml_node root = f.doc->document_element();
+  StringRef declared = root.attribute("Name").value();
+  if (localName(root) != "System" && !declared.equals_insensitive(name)) {
+    diag.error(use, "type '" + name + "' is found in '" + path +
+                        "', which declares type '" + declared + "'");
+    diag.note(f.src->locOf(root), "the type declared there");
+    throw Failure();
+  }
+  return f;
 }
 
 FbType *Translator::libraryType(StringRef name) {
@@ -318,6 +354,7 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
   makeChannelEnds(src, net);
   for (pugi::xml_node fb : blocksOf(net)) {
     FbType *type = findType(fb.attribute("Type").value(), src.locOf(fb));
+    checkPackage(fb, *type, src.locOf(fb));
     if (type->kind == TypeKind::Adapter)
       fail(src.locOf(fb), "'" + type->name +
                               "' is an adapter type, not a "

@@ -363,7 +363,10 @@ void Lowering::declareProgramVar(VarDecl *v) {
     } else {
       nt = netType(t, v->loc, "input " + v->name);
     }
-    if (!nt->isScalar() && !nt->isString())
+    // An IEC 61499 block's inputs are connected in its network (what is
+    // left free at the top is refused when explored); a PLC program's are
+    // the environment's, which chooses scalars.
+    if (!eventDriven && !nt->isScalar() && !nt->isString())
       refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
                          ": inputs must be scalars or strings");
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, v->loc);

@@ -47,6 +47,9 @@ compilationUnit : libraryElement* EOF ;
 // One expression alone (IL operands, --ranges values).
 expressionOnly : expression EOF ;
 
+// An initial value alone (IEC 61499 InitialValue attributes).
+initializerOnly : initializer EOF ;
+
 // A POU body alone (the ST bodies of PLCopen XML).
 statementsOnly : bodyStatementList EOF ;
 

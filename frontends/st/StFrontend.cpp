@@ -320,6 +320,7 @@ public:
   void statements(P::StatementListContext *c, StmtList &out);
   /// A POU body: statements and labels (Stmt Label), in order.
   void bodyStatements(P::BodyStatementListContext *c, StmtList &out);
+  Initializer *initializer(P::InitializerContext *c);
 
   bool failed = false;
 
@@ -364,7 +365,6 @@ private:
   void accessBlock(P::VarBlockContext *c);
   TypeSyntax *typeSpec(P::TypeSpecContext *c);
   TypeSyntax *typeSpec0(P::TypeSpec0Context *c);
-  Initializer *initializer(P::InitializerContext *c);
   Initializer *
   arrayInitializer(antlr4::ParserRuleContext *at,
                    const std::vector<P::ArrayInitElemContext *> &elems);
@@ -1477,6 +1477,21 @@ Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
     return nullptr;
   AstBuilder builder(text, diag, unit, tokens);
   return builder.expr(tree->expression());
+}
+
+Initializer *st::parseStInitializer(StringRef text, DiagEngine &diag,
+                                    Unit &unit) {
+  StLexer lexer(text, diag);
+  antlr4::CommonTokenStream tokens(&lexer);
+  P parser(&tokens);
+  P::InitializerOnlyContext *tree =
+      parseWith(text, diag, lexer, tokens, parser, &P::initializerOnly,
+                /*maxErrors=*/1, "end of the initial value");
+  if (!tree)
+    return nullptr;
+  AstBuilder builder(text, diag, unit, tokens);
+  Initializer *init = builder.initializer(tree->initializer());
+  return builder.failed ? nullptr : init;
 }
 
 bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,

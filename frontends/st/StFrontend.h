@@ -44,6 +44,11 @@ bool parseStatements(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
 plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
                              plc::Unit &unit);
 
+/// Parses one initial value: an expression, `[1, 2, 3(0)]` or
+/// `(x := 1, y := 2)` (IEC 61499 InitialValue attributes).
+plc::Initializer *parseStInitializer(llvm::StringRef text, DiagEngine &diag,
+                                     plc::Unit &unit);
+
 /// The value of a duration literal such as `T#1h2m3.5s` in nanoseconds;
 /// false (and `error` set) when it is malformed.
 bool parseDuration(llvm::StringRef literal, int64_t &ns, std::string &error);

@@ -1,0 +1,292 @@
+//===- Iec61499DataTypes.cpp - data types and packages --------------------===//
+//
+// What a 4diac project names types with: packages (`<CompilerInfo
+// packageName="mylib::core">`, blocks typed `mylib::core::Counter` or by
+// their own name under an `<Import>`), and the data types of `.dtp` files
+// (`<DataType>`: structures, arrays, enumerations, subranges, derived
+// types), which become ST type declarations for the checker that basic
+// FBs' algorithms go through.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/iec61499/Iec61499Internal.h"
+
+using namespace netlift;
+using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
+
+/// The attribute keeping a type name as written, package included.
+static constexpr const char *kQualifiedType = "_netliftQualifiedType";
+
+void Translator::unqualifyTypeNames(pugi::xml_node root) {
+  for (pugi::xml_node n = root; n;) {
+    for (const char *attr : {"Type", "BaseType"}) {
+      pugi::xml_attribute a = n.attribute(attr);
+      StringRef name = a.value();
+      size_t cut = name.rfind("::");
+      if (!a || cut == StringRef::npos)
+        continue;
+      if (!std::strcmp(attr, "Type"))
+        n.append_attribute(kQualifiedType) = a.value();
+      std::string own = name.drop_front(cut + 2).str();
+      a = own.c_str();
+    }
+    // Depth first, in document order.
+    if (n.first_child())
+      n = n.first_child();
+    else {
+      while (n && n != root && !n.next_sibling())
+        n = n.parent();
+      if (!n || n == root)
+        break;
+      n = n.next_sibling();
+    }
+  }
+}
+
+void Translator::checkPackage(pugi::xml_node use, const FbType &t, SMLoc at) {
+  StringRef written = use.attribute(kQualifiedType).value();
+  if (written.empty() || t.builtin || t.package.empty())
+    return;
+  StringRef package = written.take_front(written.rfind("::"));
+  if (package.equals_insensitive(t.package))
+    return;
+  diag.error(at, "type '" + written + "' is in package '" + package +
+                     "', but the type '" + t.name + "' found is in package '" +
+                     t.package + "'");
+  diag.note(t.src->locOf(t.root), "the type found");
+  throw Failure();
+}
+
+void Translator::noteTypeOnlyFile(File &f) {
+  pugi::xml_node root = f.doc->document_element();
+  StringRef kind = localName(root);
+  StringRef name = root.attribute("Name").value();
+  SMLoc at = f.src->locOf(root);
+  if (kind == "DataType") {
+    // Checked as the ST checker checks a TYPE declaration; a structure
+    // without members (4diac's template) only where a block uses it.
+    pugi::xml_node st = child(root, "StructuredType");
+    if (!st || st.first_child())
+      useDataType(name, at);
+    diag.note(at, "data type '" + name +
+                      "' has no behaviour of its own: it is checked, and "
+                      "blocks that use it translate with it");
+  } else if (kind == "AdapterType") {
+    FbType *a = findType(name, at, "adapter");
+    (void)a;
+    diag.note(at, "adapter type '" + name +
+                      "' has no behaviour of its own: blocks use it through "
+                      "their plugs and sockets");
+  } else {
+    diag.note(at, StringRef(kind).drop_back(4).lower() + " type '" + name +
+                      "' describes the runtime platform: netlift runs every "
+                      "resource by the execution model chosen with "
+                      "--fb-semantics (docs/iec61499.md)");
+  }
+}
+
+TypeSyntax *Translator::typeOf(XmlSource &src, pugi::xml_node decl) {
+  SMLoc at = src.locOf(decl);
+  auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+  ts->name = decl.attribute("Type").value();
+  if (ts->name.empty())
+    fail(at, "<VarDeclaration> '" + Twine(decl.attribute("Name").value()) +
+                 "' without a Type");
+  useDataType(ts->name, at);
+  // ArraySize: a count (`3`: 0..2), or bounds (`1..3`, `[0..1, 0..2]`).
+  if (pugi::xml_attribute size = decl.attribute("ArraySize")) {
+    StringRef text = StringRef(size.value()).trim();
+    if (text.startswith("[") && text.endswith("]"))
+      text = text.drop_front().drop_back();
+    auto *arr = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
+    llvm::SmallVector<StringRef, 2> dims;
+    text.split(dims, ',');
+    for (StringRef dim : dims) {
+      auto [lo, hi] = dim.trim().split("..");
+      int64_t l = 0, h;
+      bool bad = hi.empty() ? lo.trim().getAsInteger(10, h) || (--h, h < 0)
+                            : lo.trim().getAsInteger(10, l) ||
+                                  hi.trim().getAsInteger(10, h) || h < l;
+      if (bad)
+        fail(at, "ArraySize '" + Twine(size.value()) +
+                     "' is not supported (an element count, or bounds lo..hi; "
+                     "arrays of variable length, '*', cannot be modelled)");
+      arr->dims.push_back({intLit(unit, l, at), intLit(unit, h, at)});
+    }
+    arr->elem = ts;
+    ts = arr;
+  }
+  bool found;
+  StringRef init = src.placeAttribute(decl, "InitialValue", &found);
+  if (found && !init.trim().empty()) {
+    ts->init = st::parseStInitializer(init, diag, unit);
+    if (!ts->init)
+      throw Failure();
+  }
+  return ts;
+}
+
+void Translator::useDataType(StringRef name, SMLoc at) {
+  std::string key = name.upper();
+  if (declaredDataTypes.count(key))
+    return;
+  auto it = dataTypes.find(key);
+  if (it == dataTypes.end()) {
+    indexLibraries();
+    auto path = dataTypeIndex.find(key);
+    if (path == dataTypeIndex.end())
+      return; // elementary, a block type, or unknown to the checker
+    File &f = readLibraryFile(path->second, name, at);
+    if (localName(f.doc->document_element()) != "DataType")
+      return;
+    registerTypes(f, false);
+    it = dataTypes.find(key);
+    if (it == dataTypes.end())
+      return;
+  }
+  declaredDataTypes.insert(key);
+  auto [src, root] = it->second;
+  auto *td = unit.make<TypeDecl>();
+  td->name = root.attribute("Name").value();
+  td->loc = src->locOf(root);
+  td->type = dataTypeSyntax(*src, root);
+  unit.types.push_back(td);
+}
+
+/// IEC 61499-2's DataType: one of DirectlyDerivedType, EnumeratedType,
+/// SubrangeType, ArrayType, StructuredType.
+TypeSyntax *Translator::dataTypeSyntax(XmlSource &src, pugi::xml_node root) {
+  SMLoc at = src.locOf(root);
+  StringRef name = root.attribute("Name").value();
+  auto initOf = [&](pugi::xml_node n, const char *attr, TypeSyntax *ts) {
+    bool found;
+    StringRef init = src.placeAttribute(n, attr, &found);
+    if (found && !init.trim().empty()) {
+      ts->init = st::parseStInitializer(init, diag, unit);
+      if (!ts->init)
+        throw Failure();
+    }
+    return ts;
+  };
+  auto named = [&](pugi::xml_node n) {
+    StringRef base = n.attribute("BaseType").value();
+    if (base.empty())
+      fail(src.locOf(n), "<" + localName(n) + "> of data type '" + name +
+                             "' without a BaseType");
+    useDataType(base, src.locOf(n));
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, src.locOf(n));
+    ts->name = base.str();
+    return ts;
+  };
+  auto bound = [&](pugi::xml_node sub, const char *attr) {
+    int64_t v;
+    StringRef text = StringRef(sub.attribute(attr).value()).trim();
+    if (text.getAsInteger(10, v))
+      fail(src.locOf(sub), Twine(attr) + " '" + text + "' of data type '" +
+                               name + "' is not an integer");
+    return intLit(unit, v, src.locOf(sub));
+  };
+  for (pugi::xml_node n : root.children()) {
+    StringRef kind = localName(n);
+    SMLoc loc = src.locOf(n);
+    if (kind == "DirectlyDerivedType")
+      return initOf(n, "InitialValue", named(n));
+    if (kind == "SubrangeType") {
+      TypeSyntax *base = named(n);
+      auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, loc);
+      ts->name = base->name;
+      pugi::xml_node sub = child(n, "Subrange");
+      if (!sub)
+        fail(loc,
+             "<SubrangeType> of data type '" + name + "' without a <Subrange>");
+      ts->lo = bound(sub, "LowerLimit");
+      ts->hi = bound(sub, "UpperLimit");
+      return initOf(n, "InitialValue", ts);
+    }
+    if (kind == "EnumeratedType") {
+      auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc);
+      for (pugi::xml_node v : n.children("EnumeratedValue"))
+        ts->enumerators.push_back(
+            {v.attribute("Name").value(), nullptr, src.locOf(v)});
+      if (ts->enumerators.empty())
+        fail(loc, "enumerated data type '" + name + "' has no values");
+      return initOf(n, "InitialValue", ts);
+    }
+    if (kind == "ArrayType") {
+      auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc);
+      for (pugi::xml_node sub : n.children("Subrange"))
+        ts->dims.push_back(
+            {bound(sub, "LowerLimit"), bound(sub, "UpperLimit")});
+      if (ts->dims.empty())
+        fail(loc, "array data type '" + name + "' without a <Subrange>");
+      ts->elem = named(n);
+      return initOf(n, "InitialValues", ts);
+    }
+    if (kind == "StructuredType") {
+      auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Struct, loc);
+      for (pugi::xml_node m : n.children()) {
+        StringRef mk = localName(m);
+        if (mk != "VarDeclaration")
+          fail(src.locOf(m), "<" + mk + "> in structured data type '" + name +
+                                 "' is not supported (members are "
+                                 "<VarDeclaration>s)");
+        auto *v = unit.make<VarDecl>();
+        v->name = m.attribute("Name").value();
+        v->loc = src.locOf(m);
+        v->section = VarSection::Var;
+        if (v->name.empty())
+          fail(v->loc, "member of data type '" + name + "' without a Name");
+        v->typeSyntax = typeOf(src, m);
+        ts->fields.push_back(v);
+      }
+      if (ts->fields.empty())
+        fail(loc, "structured data type '" + name + "' has no members");
+      return ts;
+    }
+  }
+  fail(at, "data type '" + name +
+               "' is none of DirectlyDerivedType, EnumeratedType, "
+               "SubrangeType, ArrayType, StructuredType");
+}
+
+/// Each module `Init_<Block>_<input>`: a stored output OUT of the input's
+/// type holding what the block's copy of the input starts with (its
+/// InitialValue, else its type's), so an unconnected structure or array
+/// input reads as in FORTE, where it keeps its initial value.
+void Translator::aggregateConstantModules() {
+  for (auto &[name, c] : aggregateConstants) {
+    const net::Module *block = design.lookupModule(c.type->name);
+    const net::Port *port = nullptr;
+    if (block)
+      for (const net::Port &p : block->ports)
+        if (StringRef(p.name).equals_insensitive(c.input))
+          port = &p;
+    if (!port || !port->type)
+      fail(c.loc, "input '" + c.input + "' of '" + c.type->name +
+                      "' is unconnected and its type is not one netlift "
+                      "can give a constant value");
+    net::Expr *init = nullptr;
+    bool copied = false;
+    std::string copy = "_" + c.input;
+    for (const net::Var &v : block->vars)
+      if (StringRef(v.name).equals_insensitive(copy) ||
+          StringRef(v.name).equals_insensitive(copy + "_")) {
+        init = v.init;
+        copied = true;
+      }
+    if (!copied && init == nullptr)
+      for (const Var &v : c.type->inputs)
+        if (StringRef(v.name).equals_insensitive(c.input) &&
+            !StringRef(v.node.attribute("InitialValue").value()).trim().empty())
+          fail(c.loc, "unconnected input '" + c.input + "' of '" +
+                          c.type->name +
+                          "' has a structure or array InitialValue but no "
+                          "event samples it (With): not supported");
+    const net::Type *type = port->type;
+    net::Module *m = b.createModule(name, false, c.loc);
+    if (!m)
+      fail(c.loc, "a module named '" + name + "' exists already");
+    uint32_t p =
+        b.addPort("OUT", net::PortKind::Data, net::PortDir::Out, type, c.loc);
+    m->ports[p].init = init;
+  }
+}
