@@ -1466,45 +1466,51 @@ bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit,
   return builder.build(tree);
 }
 
-Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
-  StLexer lexer(text, diag);
+/// Parses `text` with the one-rule entry `rule` (an expression, an initial
+/// value or a body alone) and hands its tree to `build`; false when the
+/// parse or the build failed.
+template <typename Ctx, typename Build>
+static bool parseAlone(StringRef text, DiagEngine &diag, Unit &unit,
+                       Ctx *(P::*rule)(), unsigned maxErrors, const char *end,
+                       Build build) {
+  st::StLexer lexer(text, diag);
   antlr4::CommonTokenStream tokens(&lexer);
   P parser(&tokens);
-  P::ExpressionOnlyContext *tree =
-      parseWith(text, diag, lexer, tokens, parser, &P::expressionOnly,
-                /*maxErrors=*/1, "end of the expression");
+  Ctx *tree =
+      parseWith(text, diag, lexer, tokens, parser, rule, maxErrors, end);
   if (!tree)
-    return nullptr;
+    return false;
   AstBuilder builder(text, diag, unit, tokens);
-  return builder.expr(tree->expression());
+  build(builder, tree);
+  return !builder.failed;
+}
+
+Expr *st::parseStExpression(StringRef text, DiagEngine &diag, Unit &unit) {
+  Expr *e = nullptr;
+  parseAlone(text, diag, unit, &P::expressionOnly, /*maxErrors=*/1,
+             "end of the expression",
+             [&](AstBuilder &b, P::ExpressionOnlyContext *t) {
+               e = b.expr(t->expression());
+             });
+  return e;
 }
 
 Initializer *st::parseStInitializer(StringRef text, DiagEngine &diag,
                                     Unit &unit) {
-  StLexer lexer(text, diag);
-  antlr4::CommonTokenStream tokens(&lexer);
-  P parser(&tokens);
-  P::InitializerOnlyContext *tree =
-      parseWith(text, diag, lexer, tokens, parser, &P::initializerOnly,
-                /*maxErrors=*/1, "end of the initial value");
-  if (!tree)
-    return nullptr;
-  AstBuilder builder(text, diag, unit, tokens);
-  Initializer *init = builder.initializer(tree->initializer());
-  return builder.failed ? nullptr : init;
+  Initializer *init = nullptr;
+  bool ok = parseAlone(text, diag, unit, &P::initializerOnly, /*maxErrors=*/1,
+                       "end of the initial value",
+                       [&](AstBuilder &b, P::InitializerOnlyContext *t) {
+                         init = b.initializer(t->initializer());
+                       });
+  return ok ? init : nullptr;
 }
 
 bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,
                          StmtList &out) {
-  StLexer lexer(text, diag);
-  antlr4::CommonTokenStream tokens(&lexer);
-  P parser(&tokens);
-  P::StatementsOnlyContext *tree =
-      parseWith(text, diag, lexer, tokens, parser, &P::statementsOnly,
-                kMaxSyntaxErrors, "end of the body");
-  if (!tree)
-    return false;
-  AstBuilder builder(text, diag, unit, tokens);
-  builder.bodyStatements(tree->bodyStatementList(), out);
-  return !builder.failed;
+  return parseAlone(text, diag, unit, &P::statementsOnly, kMaxSyntaxErrors,
+                    "end of the body",
+                    [&](AstBuilder &b, P::StatementsOnlyContext *t) {
+                      b.bodyStatements(t->bodyStatementList(), out);
+                    });
 }
