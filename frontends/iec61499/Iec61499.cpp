@@ -147,6 +147,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
                                    {net::PostArc{off, 1}});
       b.setEmits(t, {eo});
     }
+    resolvePortTypes();
     aggregateConstantModules();
     for (auto &[name, c] : constants) {
       net::Module *m = b.createModule(name, false, c.loc);

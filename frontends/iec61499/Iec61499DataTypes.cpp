@@ -84,6 +84,64 @@ void Translator::noteTypeOnlyFile(File &f) {
   }
 }
 
+std::vector<std::pair<int64_t, int64_t>>
+Translator::arraySize(StringRef written, SMLoc at) {
+  // A count (`3`: 0..2), or bounds (`1..3`, `[0..1, 0..2]`).
+  StringRef text = written.trim();
+  if (text.startswith("[") && text.endswith("]"))
+    text = text.drop_front().drop_back();
+  llvm::SmallVector<StringRef, 2> dims;
+  text.split(dims, ',');
+  std::vector<std::pair<int64_t, int64_t>> out;
+  for (StringRef dim : dims) {
+    auto [lo, hi] = dim.trim().split("..");
+    int64_t l = 0, h;
+    bool bad = hi.empty() ? lo.trim().getAsInteger(10, h) || (--h, h < 0)
+                          : lo.trim().getAsInteger(10, l) ||
+                                hi.trim().getAsInteger(10, h) || h < l;
+    if (bad)
+      fail(at, "ArraySize '" + written +
+                   "' is not supported (an element count, or bounds lo..hi; "
+                   "arrays of variable length, '*', cannot be modelled)");
+    out.push_back({l, h});
+  }
+  return out;
+}
+
+const net::Type *Translator::portType(const Var &v, SMLoc at) {
+  pugi::xml_attribute size = v.node.attribute("ArraySize");
+  if (elementaryType(v.type) && !size)
+    return dataType(v.type, at);
+  if (!portTypesKnown && !elementaryType(v.type))
+    return nullptr;
+  const net::Type *t = nullptr;
+  if (elementaryType(v.type))
+    t = dataType(v.type, at);
+  else
+    for (const auto &n : design.types.namedTypes())
+      if (n.name.equals_insensitive(v.type))
+        t = n.type;
+  if (!t)
+    fail(at, "port '" + v.name + "' of type " + v.type +
+                 ": no block of the translation declares a variable of that "
+                 "type, so netlift has no layout for it");
+  if (size) {
+    auto dims = arraySize(size.value(), at);
+    for (size_t i = dims.size(); i-- > 0;)
+      t = design.types.getArray(t, dims[i].first, dims[i].second);
+  }
+  return t;
+}
+
+void Translator::resolvePortTypes() {
+  portTypesKnown = true;
+  for (const PendingPort &p : pendingPorts) {
+    net::Module *m = design.lookupModule(p.module);
+    net::Port &port = m->ports[m->findPort(p.port)];
+    port.type = portType(*p.var, port.loc);
+  }
+}
+
 TypeSyntax *Translator::typeOf(XmlSource &src, pugi::xml_node decl) {
   SMLoc at = src.locOf(decl);
   auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
@@ -92,26 +150,10 @@ TypeSyntax *Translator::typeOf(XmlSource &src, pugi::xml_node decl) {
     fail(at, "<VarDeclaration> '" + Twine(decl.attribute("Name").value()) +
                  "' without a Type");
   useDataType(ts->name, at);
-  // ArraySize: a count (`3`: 0..2), or bounds (`1..3`, `[0..1, 0..2]`).
   if (pugi::xml_attribute size = decl.attribute("ArraySize")) {
-    StringRef text = StringRef(size.value()).trim();
-    if (text.startswith("[") && text.endswith("]"))
-      text = text.drop_front().drop_back();
     auto *arr = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
-    llvm::SmallVector<StringRef, 2> dims;
-    text.split(dims, ',');
-    for (StringRef dim : dims) {
-      auto [lo, hi] = dim.trim().split("..");
-      int64_t l = 0, h;
-      bool bad = hi.empty() ? lo.trim().getAsInteger(10, h) || (--h, h < 0)
-                            : lo.trim().getAsInteger(10, l) ||
-                                  hi.trim().getAsInteger(10, h) || h < l;
-      if (bad)
-        fail(at, "ArraySize '" + Twine(size.value()) +
-                     "' is not supported (an element count, or bounds lo..hi; "
-                     "arrays of variable length, '*', cannot be modelled)");
-      arr->dims.push_back({intLit(unit, l, at), intLit(unit, h, at)});
-    }
+    for (auto [lo, hi] : arraySize(size.value(), at))
+      arr->dims.push_back({intLit(unit, lo, at), intLit(unit, hi, at)});
     arr->elem = ts;
     ts = arr;
   }

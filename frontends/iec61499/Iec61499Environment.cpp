@@ -69,20 +69,29 @@ void Translator::environmentModule(FbType &t) {
                       generic +
                       ") are left out; in a network each block has them, "
                       "typed by its connections");
+  for (const auto *list : {&t.inputs, &t.outputs})
+    for (const Var &v : *list)
+      if (!elementaryType(v.type) && !isGenericType(v.type))
+        fail(t.src->locOf(v.node),
+             "port '" + v.name + "' of " + what + " '" + t.name +
+                 "' modelled as environment has the structured type " + v.type +
+                 ": not supported");
   if (!b.createModule(t.name, false, at))
     fail(at, "a module named '" + t.name + "' exists already");
   declarePorts(t, true);
   net::Module *m = b.getModule();
   bool publisher = t.channelEnd == FbType::ChannelEnd::Publisher;
   bool subscriber = t.channelEnd == FbType::ChannelEnd::Subscriber;
+  auto isCond = [&](const Var &v) {
+    return StringRef(v.type).equals_insensitive("BOOL") &&
+           !v.node.attribute("ArraySize");
+  };
   auto typeOf = [&](const Var &v) -> const net::Type * {
-    return StringRef(v.type).equals_insensitive("BOOL")
-               ? design.types.getBool()
-               : dataType(v.type, t.src->locOf(v.node));
+    return isCond(v) ? design.types.getBool()
+                     : portType(v, t.src->locOf(v.node));
   };
   auto kindOf = [&](const Var &v) {
-    return StringRef(v.type).equals_insensitive("BOOL") ? net::PortKind::Cond
-                                                        : net::PortKind::Data;
+    return isCond(v) ? net::PortKind::Cond : net::PortKind::Data;
   };
   auto portType = [&](const Var &v) -> const net::Type * {
     return kindOf(v) == net::PortKind::Cond ? nullptr : typeOf(v);
@@ -103,10 +112,8 @@ void Translator::environmentModule(FbType &t) {
     if (isGenericType(v.type) || m->ports[m->findPort(v.name)].definition)
       continue;
     SMLoc vat = t.src->locOf(v.node);
-    bool isBool = StringRef(v.type).equals_insensitive("BOOL");
-    b.addPort(environmentInput(v.name),
-              isBool ? net::PortKind::Cond : net::PortKind::Data,
-              net::PortDir::In, isBool ? nullptr : dataType(v.type, vat), vat);
+    b.addPort(environmentInput(v.name), kindOf(v), net::PortDir::In,
+              portType(v), vat);
     m->ports[m->findPort(v.name)].definition =
         b.ref(environmentInput(v.name), vat);
   }

@@ -203,6 +203,20 @@ private:
   /// none of that name (elementary types, FB types).
   void useDataType(StringRef name, SMLoc at);
   TypeSyntax *dataTypeSyntax(XmlSource &src, pugi::xml_node root);
+  /// The dimensions an ArraySize attribute gives.
+  std::vector<std::pair<int64_t, int64_t>> arraySize(StringRef written,
+                                                     SMLoc at);
+  /// The NetIR type of a network's or environment block's port for `v`;
+  /// null for a structure or array before the blocks are lowered (their
+  /// types come from the lowering of the data types: resolvePortTypes).
+  const net::Type *portType(const Var &v, SMLoc at);
+  void resolvePortTypes();
+  struct PendingPort {
+    std::string module, port;
+    const Var *var;
+  };
+  std::vector<PendingPort> pendingPorts;
+  bool portTypesKnown = false;
   /// Notes for type files without behaviour given on the command line.
   void noteTypeOnlyFile(File &f);
 

@@ -33,10 +33,15 @@ void Translator::declarePorts(const FbType &t, bool skipGeneric) {
       SMLoc at = t.src->locOf(v.node);
       net::PortDir dir =
           list == &t.inputs ? net::PortDir::In : net::PortDir::Out;
-      if (StringRef(v.type).equals_insensitive("BOOL"))
+      if (StringRef(v.type).equals_insensitive("BOOL") &&
+          !v.node.attribute("ArraySize")) {
         b.addPort(v.name, net::PortKind::Cond, dir, nullptr, at);
-      else
-        b.addPort(v.name, net::PortKind::Data, dir, dataType(v.type, at), at);
+        continue;
+      }
+      const net::Type *type = portType(v, at);
+      b.addPort(v.name, net::PortKind::Data, dir, type, at);
+      if (!type)
+        pendingPorts.push_back({b.getModule()->name.str(), v.name, &v});
     }
 }
 
