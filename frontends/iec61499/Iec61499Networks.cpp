@@ -251,6 +251,13 @@ void Translator::networkOf(StringRef name, XmlSource &src, pugi::xml_node net,
         value = unit.make<Expr>(ExprKind::TimeLit, vloc);
       } else if (StringRef(v.type).equals_insensitive("BOOL")) {
         value = boolLit(unit, false, vloc);
+      } else if (elementaryType(v.type)->kind == PTypeKind::Real) {
+        value = unit.make<Expr>(ExprKind::RealLit, vloc);
+        text = "0.0";
+      } else if (elementaryType(v.type)->kind == PTypeKind::String) {
+        value = unit.make<Expr>(ExprKind::StringLit, vloc);
+        value->name = "''";
+        text = value->name;
       } else {
         value = intLit(unit, 0, vloc);
         text = "0";
