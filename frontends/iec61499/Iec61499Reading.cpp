@@ -117,9 +117,6 @@ void Translator::expandAdapters(FbType &t) {
     };
     auto vars = [&](const std::vector<Var> &from, std::vector<Var> &to) {
       for (const Var &v : from) {
-        if (!StringRef(v.node.attribute("InitialValue").value()).trim().empty())
-          fail(at, "initial value of '" + v.name + "' in adapter type '" +
-                       a->name + "' is not supported");
         pugi::xml_node c = copy(v.node);
         to.push_back({c.attribute("Name").value(), v.type, c});
       }
@@ -419,13 +416,25 @@ void Translator::expandAdapterConnections(XmlSource &src, pugi::xml_node net,
   std::map<std::string, FbType *> types = blockTypes(src, net);
   for (pugi::xml_node c : list.children("Connection")) {
     SMLoc at = src.locOf(c);
-    auto end = [&](const char *attr) {
+    // An end is a block's plug or socket (`b.P`), or one of the network's
+    // own type (`S`): inside the network, the type's own socket is where
+    // the adapter's plug-to-socket elements come in (it stands for the
+    // plug outside), its own plug where they leave.
+    struct End {
+      std::string prefix; // "b." or "" for the network's own
+      const AdapterUse *use;
+      bool own;
+    };
+    auto end = [&](const char *attr) -> End {
       StringRef text = c.attribute(attr).value();
       auto [inst, name] = text.split('.');
-      if (name.empty())
-        fail(at, "adapter connection to '" + text + "', a plug or socket of " +
-                     (owner ? "'" + owner->name + "'" : "the application") +
-                     " itself, is not supported");
+      if (name.empty()) {
+        const AdapterUse *a = owner ? owner->adapter(inst) : nullptr;
+        if (!a)
+          fail(at, Twine(attr) + " '" + text + "' names no plug or socket of " +
+                       (owner ? "'" + owner->name + "'" : "the application"));
+        return {"", a, true};
+      }
       auto it = types.find(inst.upper());
       if (it == types.end())
         fail(at, Twine(attr) + " '" + text + "' names no function block");
@@ -433,25 +442,32 @@ void Translator::expandAdapterConnections(XmlSource &src, pugi::xml_node net,
       if (!a)
         fail(at, "'" + inst + "' (" + it->second->name +
                      ") has no plug or socket '" + name + "'");
-      return std::make_pair(inst.str(), a);
+      return {inst.str() + ".", a, false};
     };
-    auto [plugBlock, plug] = end("Source");
-    auto [socketBlock, socket] = end("Destination");
-    if (!plug->isPlug || socket->isPlug)
-      fail(at, "an adapter connection goes from a plug to a socket ('" +
-                   plug->name + "' is a " + (plug->isPlug ? "plug" : "socket") +
-                   ", '" + socket->name + "' a " +
-                   (socket->isPlug ? "plug" : "socket") + ")");
-    if (plug->type != socket->type)
-      fail(at, "plug '" + plug->name + "' is a '" + plug->type->name +
-                   "' and socket '" + socket->name + "' a '" +
-                   socket->type->name + "'");
+    End from = end("Source"), to = end("Destination");
+    // Plug-to-socket elements leave the source end and enter the
+    // destination end: a block's plug or the network's own socket, then a
+    // block's socket or the network's own plug.
+    auto role = [](const End &e) {
+      return e.own ? (e.use->isPlug ? "its own plug" : "its own socket")
+                   : (e.use->isPlug ? "a plug" : "a socket");
+    };
+    if (from.use->isPlug == from.own || to.use->isPlug != to.own)
+      fail(at, "an adapter connection goes from a plug (or the network's own "
+               "socket) to a socket (or the network's own plug); '" +
+                   from.use->name + "' is " + role(from) + ", '" +
+                   to.use->name + "' " + role(to));
+    if (from.use->type != to.use->type)
+      fail(at, "'" + from.use->name + "' is a '" + from.use->type->name +
+                   "' and '" + to.use->name + "' a '" + to.use->type->name +
+                   "'");
+    const AdapterUse *plug = from.use, *socket = to.use;
     auto add = [&](const char *kind, StringRef element, bool toSocket) {
       pugi::xml_node conns = child(net, kind);
       if (!conns)
         conns = net.append_child(kind);
-      std::string p = plugBlock + "." + adapterPort(plug->name, element),
-                  s = socketBlock + "." + adapterPort(socket->name, element);
+      std::string p = from.prefix + adapterPort(plug->name, element),
+                  s = to.prefix + adapterPort(socket->name, element);
       pugi::xml_node conn = conns.append_child("Connection");
       conn.append_attribute("Source") = (toSocket ? p : s).c_str();
       conn.append_attribute("Destination") = (toSocket ? s : p).c_str();
