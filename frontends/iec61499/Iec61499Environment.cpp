@@ -80,8 +80,8 @@ void Translator::environmentModule(FbType &t) {
     fail(at, "a module named '" + t.name + "' exists already");
   declarePorts(t, true);
   net::Module *m = b.getModule();
-  bool publisher = t.channelEnd == FbType::ChannelEnd::Publisher;
-  bool subscriber = t.channelEnd == FbType::ChannelEnd::Subscriber;
+  bool sender = !t.sendEvent.empty();
+  bool receiver = !t.deliverEvent.empty();
   auto isCond = [&](const Var &v) {
     return StringRef(v.type).equals_insensitive("BOOL") &&
            !v.node.attribute("ArraySize");
@@ -96,9 +96,10 @@ void Translator::environmentModule(FbType &t) {
   auto portType = [&](const Var &v) -> const net::Type * {
     return kindOf(v) == net::PortKind::Cond ? nullptr : typeOf(v);
   };
-  // A subscriber's message: what the channel brought, kept until IND.
+  // A receiver's message: what the channel brought, kept until it is
+  // delivered.
   std::vector<net::Stmt *> receive;
-  if (subscriber)
+  if (receiver)
     for (const Var *v : messageVars(t, false)) {
       SMLoc vat = t.src->locOf(v->node);
       std::string buf = "_buf_" + v->name, in = "_RCV_" + v->name;
@@ -117,14 +118,35 @@ void Translator::environmentModule(FbType &t) {
     m->ports[m->findPort(v.name)].definition =
         b.ref(environmentInput(v.name), vat);
   }
+  // A sender's event sends the message: _SENT with its data, as the
+  // block's inputs stand when the event arrives (the receiver samples them
+  // in that step, as a block samples the data WITH an event).
+  auto sends = [&](StringRef event, llvm::ArrayRef<uint32_t> on, SMLoc eat) {
+    if (!StringRef(t.sendEvent).equals_insensitive(event))
+      return;
+    uint32_t sent = b.addPort("_SENT", net::PortKind::Event, net::PortDir::Out,
+                              nullptr, eat);
+    for (uint32_t tr : on)
+      b.setEmits(tr, {sent});
+    for (const Var *v : messageVars(t, true)) {
+      std::string out = "_SENT_" + v->name;
+      uint32_t p =
+          b.addPort(out, kindOf(*v), net::PortDir::Out, portType(*v), eat);
+      m->ports[p].definition = b.ref(v->name, eat);
+    }
+  };
   std::set<std::string> answers;
   for (const Event &e : t.eventInputs) {
     SMLoc eat = t.src->locOf(e.node);
     uint32_t port = m->findPort(e.name);
     const Event *r = responseTo(t, e.name);
+    // A client's CNF is the server's answer the channel delivers.
+    if (r && StringRef(r->name).equals_insensitive(t.deliverEvent))
+      r = nullptr;
     if (!r) {
       uint32_t accept = b.addTransition("accept_" + e.name, {}, {}, eat);
       b.setEvents(accept, {net::EventSource{port, true}});
+      sends(e.name, {accept}, eat);
       continue;
     }
     answers.insert(StringRef(r->name).upper());
@@ -142,28 +164,14 @@ void Translator::environmentModule(FbType &t) {
                         {net::PostArc{waiting, 1}}, eat);
     for (uint32_t tr : {accept, merge})
       b.setEvents(tr, {net::EventSource{port, true}});
-    if (publisher && StringRef(e.name).equals_insensitive("REQ")) {
-      // Every request sends the message: _SENT with its data, as the
-      // block's inputs stand when REQ arrives (the subscriber samples them
-      // in that step, as a block samples the data WITH an event).
-      uint32_t sent = b.addPort("_SENT", net::PortKind::Event,
-                                net::PortDir::Out, nullptr, eat);
-      for (uint32_t tr : {accept, merge})
-        b.setEmits(tr, {sent});
-      for (const Var *v : messageVars(t, true)) {
-        std::string out = "_SENT_" + v->name;
-        uint32_t p =
-            b.addPort(out, kindOf(*v), net::PortDir::Out, portType(*v), eat);
-        m->ports[p].definition = b.ref(v->name, eat);
-      }
-    }
+    sends(e.name, {accept, merge}, eat);
     uint32_t answer =
         b.addTransition("answer_" + e.name, {net::PreArc{waiting, 1, {}}},
                         {net::PostArc{idle, 1}}, eat);
     b.setEmits(answer, {uint32_t(m->findPort(r->name))});
   }
-  if (subscriber) {
-    // One message held at a time: a second before IND delivers the first
+  if (receiver) {
+    // One message held at a time: a second before it is delivered
     // is out of range of `_messages_waiting` (a runtime error with its
     // trace), never silently lost.
     b.addVar("_messages_waiting", design.types.getRange(0, 1), nullptr, at);
@@ -193,8 +201,8 @@ void Translator::environmentModule(FbType &t) {
     if (answers.count(StringRef(e.name).upper()))
       continue;
     SMLoc eat = t.src->locOf(e.node);
-    if (subscriber && StringRef(e.name).equals_insensitive("IND")) {
-      uint32_t deliver = b.addTransition("deliver_IND", {}, {}, eat);
+    if (receiver && StringRef(e.name).equals_insensitive(t.deliverEvent)) {
+      uint32_t deliver = b.addTransition("deliver_" + e.name, {}, {}, eat);
       b.setGuard(deliver,
                  b.binary(net::BinaryOp::Gt, b.ref("_messages_waiting", eat),
                           b.intLit(0, eat), eat));
@@ -206,13 +214,17 @@ void Translator::environmentModule(FbType &t) {
     uint32_t ind = b.addTransition("occur_" + e.name, {}, {}, eat);
     b.setEmits(ind, {uint32_t(m->findPort(e.name))});
   }
-  if (publisher || subscriber)
-    diag.note(at, Twine(what) + " '" + t.name + "' is modelled as " +
-                      (publisher ? "the publishing" : "a subscribing") +
-                      " end of a channel: what is published with REQ is "
-                      "delivered by each subscriber's IND, now or later "
-                      "(docs/iec61499.md)");
-  else
+  if (sender || receiver) {
+    std::string how;
+    if (sender)
+      how = "it sends its SD_i with " + t.sendEvent;
+    if (receiver)
+      how += (sender ? "; " : "") + std::string("what it receives is ") +
+             "delivered by its " + t.deliverEvent + ", now or later";
+    diag.note(at, Twine(what) + " '" + t.name +
+                      "' is modelled as an end of a channel: " + how +
+                      " (docs/iec61499.md)");
+  } else
     diag.note(at, Twine(what) + " '" + t.name +
                       "' is modelled as environment: its output events "
                       "occur as its interface allows and its data outputs "
@@ -235,8 +247,10 @@ std::vector<Translator::Channel> Translator::channelsOf(XmlSource &src,
     return out;
   for (pugi::xml_node fb : blocksOf(net)) {
     StringRef type = fb.attribute("Type").value();
-    bool pub = type.startswith_insensitive("PUBLISH_");
-    bool sub = type.startswith_insensitive("SUBSCRIBE_");
+    bool client = type.startswith_insensitive("CLIENT_");
+    bool pub = type.startswith_insensitive("PUBLISH_") || client;
+    bool sub = type.startswith_insensitive("SUBSCRIBE_") ||
+               type.startswith_insensitive("SERVER_");
     if (!pub && !sub)
       continue;
     std::string id;
@@ -245,10 +259,12 @@ std::vector<Translator::Channel> Translator::channelsOf(XmlSource &src,
         id = StringRef(src.placeAttribute(p, "Value")).trim().trim("\"'").str();
     if (id.empty())
       continue;
-    auto it = std::find_if(out.begin(), out.end(),
-                           [&](const Channel &c) { return c.id == id; });
+    bool pair = client || type.startswith_insensitive("SERVER_");
+    auto it = std::find_if(out.begin(), out.end(), [&](const Channel &c) {
+      return c.id == id && c.clientServer == pair;
+    });
     if (it == out.end()) {
-      out.push_back({id, {}, {}});
+      out.push_back({id, pair, {}, {}});
       it = out.end() - 1;
     }
     (pub ? it->publishers : it->subscribers).push_back(fb);
@@ -261,60 +277,81 @@ std::vector<Translator::Channel> Translator::channelsOf(XmlSource &src,
 
 void Translator::makeChannelEnds(XmlSource &src, pugi::xml_node net) {
   for (const Channel &c : channelsOf(src, net)) {
+    const char *senders = c.clientServer ? "client" : "publisher";
     if (c.publishers.size() > 1)
       fail(src.locOf(c.publishers[1]),
-           "a second publisher with ID '" + c.id +
-               "' in this network: netlift connects one publisher to its "
-               "subscribers");
-    FbType *pub = findType(c.publishers[0].attribute("Type").value(),
-                           src.locOf(c.publishers[0]));
-    std::vector<const Var *> sent = messageVars(*pub, true);
-    for (pugi::xml_node fb : c.subscribers) {
-      FbType *sub = findType(fb.attribute("Type").value(), src.locOf(fb));
-      std::vector<const Var *> got = messageVars(*sub, false);
+           "a second " + Twine(senders) + " with ID '" + c.id +
+               "' in this network: netlift connects one " + senders +
+               " to its " + (c.clientServer ? "server" : "subscribers"));
+    if (c.clientServer && c.subscribers.size() > 1)
+      fail(src.locOf(c.subscribers[1]),
+           "a second server with ID '" + c.id +
+               "' in this network: netlift connects one client to one "
+               "server");
+    pugi::xml_node first = c.publishers[0];
+    FbType *pub = findType(first.attribute("Type").value(), src.locOf(first));
+    // What one end sends the other receives, datum by datum.
+    auto matches = [&](const FbType &from, const FbType &to) {
+      std::vector<const Var *> sent = messageVars(from, true),
+                               got = messageVars(to, false);
       bool same = got.size() == sent.size();
       for (size_t i = 0; same && i < got.size(); ++i)
         same = StringRef(got[i]->type).equals_insensitive(sent[i]->type);
-      if (!same)
+      return same;
+    };
+    for (pugi::xml_node fb : c.subscribers) {
+      FbType *sub = findType(fb.attribute("Type").value(), src.locOf(fb));
+      if (!matches(*pub, *sub) || (c.clientServer && !matches(*sub, *pub)))
         fail(src.locOf(fb),
-             "subscriber '" + Twine(fb.attribute("Name").value()) + "' (ID '" +
-                 c.id + "') does not receive what '" +
-                 c.publishers[0].attribute("Name").value() +
-                 "' sends: the data and their types must "
-                 "match one by one");
+             (c.clientServer ? "server '" : "subscriber '") +
+                 Twine(fb.attribute("Name").value()) + "' (ID '" + c.id +
+                 "') does not receive what '" +
+                 first.attribute("Name").value() + "' sends" +
+                 (c.clientServer ? " or answer what it receives" : "") +
+                 ": the data and their types must match one by one");
     }
-    auto end = [&](pugi::xml_node fb, bool publisher) {
+    auto end = [&](pugi::xml_node fb, StringRef send, StringRef deliver) {
       FbType *t = findType(fb.attribute("Type").value(), src.locOf(fb));
       std::string name = t->name + "__CHANNEL";
       FbType &ct =
           generatedType(name, interfaceXml(name, *t, [](const Var &v) {
                                 return v.type;
                               }) + "</InterfaceList>\n<Service/>\n</FBType>\n");
-      ct.channelEnd = publisher ? FbType::ChannelEnd::Publisher
-                                : FbType::ChannelEnd::Subscriber;
+      ct.sendEvent = send.str();
+      ct.deliverEvent = deliver.str();
       fb.attribute("Type") = name.c_str();
     };
-    end(c.publishers[0], true);
+    if (c.clientServer) {
+      end(first, "REQ", "CNF");
+      end(c.subscribers[0], "RSP", "IND");
+      continue;
+    }
+    end(first, "REQ", "");
     for (pugi::xml_node fb : c.subscribers)
-      end(fb, false);
+      end(fb, "", "IND");
   }
 }
 
 void Translator::connectChannels(XmlSource &src, pugi::xml_node net) {
+  auto connect = [&](pugi::xml_node from, pugi::xml_node to, SMLoc at) {
+    StringRef fromName = design.save(from.attribute("Name").value()),
+              toName = design.save(to.attribute("Name").value());
+    b.addConnection({fromName, "_SENT", at}, {toName, "_RCV", at}, at);
+    std::vector<const Var *> sent =
+        messageVars(*findType(from.attribute("Type").value(), at), true);
+    std::vector<const Var *> got =
+        messageVars(*findType(to.attribute("Type").value(), at), false);
+    for (size_t i = 0; i < sent.size(); ++i)
+      b.addConnection({fromName, design.save("_SENT_" + sent[i]->name), at},
+                      {toName, design.save("_RCV_" + got[i]->name), at}, at);
+  };
   for (const Channel &c : channelsOf(src, net)) {
     pugi::xml_node p = c.publishers[0];
     SMLoc at = src.locOf(p);
-    FbType *pub = findType(p.attribute("Type").value(), at);
-    StringRef pubName = design.save(p.attribute("Name").value());
-    std::vector<const Var *> sent = messageVars(*pub, true);
     for (pugi::xml_node fb : c.subscribers) {
-      StringRef subName = design.save(fb.attribute("Name").value());
-      b.addConnection({pubName, "_SENT", at}, {subName, "_RCV", at}, at);
-      FbType *sub = findType(fb.attribute("Type").value(), at);
-      std::vector<const Var *> got = messageVars(*sub, false);
-      for (size_t i = 0; i < sent.size(); ++i)
-        b.addConnection({pubName, design.save("_SENT_" + sent[i]->name), at},
-                        {subName, design.save("_RCV_" + got[i]->name), at}, at);
+      connect(p, fb, at);
+      if (c.clientServer)
+        connect(fb, p, at);
     }
   }
 }

@@ -105,12 +105,15 @@ struct FbType {
   std::vector<AdapterUse> adapters;
   bool builtin = false;
   bool translated = false;
-  /// An environment block one end of a channel (Iec61499Environment.cpp).
-  enum class ChannelEnd {
-    None,
-    Publisher,
-    Subscriber
-  } channelEnd = ChannelEnd::None;
+  /// An environment block one end of a channel (Iec61499Environment.cpp):
+  /// the input event on which it sends its SD_i (a publisher's or client's
+  /// REQ, a server's RSP) and the output event by which it delivers the
+  /// RD_i it received (a subscriber's or server's IND, a client's CNF);
+  /// empty where it does not.
+  std::string sendEvent, deliverEvent;
+  bool channelEnd() const {
+    return !sendEvent.empty() || !deliverEvent.empty();
+  }
 
   const AdapterUse *adapter(StringRef n) const {
     for (const AdapterUse &a : adapters)
@@ -262,9 +265,13 @@ private:
   /// PUBLISH_n and SUBSCRIBE_n blocks of one network with the same ID:
   /// their types become channel ends (collect phase), and they are
   /// connected (build phase).
+  /// A channel: the blocks of one network with the same ID, PUBLISH_n to
+  /// SUBSCRIBE_n (senders to receivers), or a CLIENT_m_n and a
+  /// SERVER_m_n (each both).
   struct Channel {
     std::string id;
-    std::vector<pugi::xml_node> publishers, subscribers;
+    bool clientServer = false;
+    std::vector<pugi::xml_node> publishers, subscribers; // client, server
   };
   std::vector<Channel> channelsOf(XmlSource &src, pugi::xml_node net);
   void makeChannelEnds(XmlSource &src, pugi::xml_node net);
