@@ -116,10 +116,18 @@ Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
   StringRef rest = trimmed.drop_front(id).trim();
   for (const Event &e : t.eventInputs)
     if (StringRef(e.name).equals_insensitive(head) &&
-        (rest.empty() || rest.startswith("["))) {
+        (rest.empty() || rest.startswith("[") || rest.startswith("&"))) {
       event = e.name;
       if (rest.empty())
         return boolLit(unit, true, at);
+      // IEC 61499-1 Ed. 1 wrote `EI & guard`.
+      if (rest.startswith("&")) {
+        Expr *g = st::parseStExpression(rest.drop_front().trim(), diag, unit);
+        if (!g)
+          throw Failure();
+        rename(g);
+        return g;
+      }
       if (!rest.endswith("]"))
         fail(SMLoc::getFromPointer(rest.data()),
              "expected ']' closing the guard of an ECC transition");
@@ -405,16 +413,32 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
 
 /// A simple FB (IEC 61499-1 Ed. 2) has no ECC: each input event runs the
 /// algorithm of the same name and then sends the output event of the same
-/// index, as 4diac FORTE's CSimpleFB does (REQ runs REQ, then CNF). It is
-/// translated as the basic FB with that ECC, written into the type's own
-/// element (so the algorithms keep their places in the file): START, and
-/// per input event a state running its algorithm and sending its output,
-/// left at once.
+/// index, as 4diac FORTE's CSimpleFB does (REQ runs REQ, then CNF), unless
+/// the type lists what the event does (4diac IDE 3 writes an `<ECState>`
+/// named after the event, with its `<ECAction>`s). It is translated as the
+/// basic FB with that ECC, written into the type's own element (so the
+/// algorithms keep their places in the file): START, and per input event a
+/// state running its actions, left at once.
 void Translator::simpleAsBasic(FbType &t) {
   if (child(t.body, "ECC"))
     fail(t, t.body, "simple FB '" + t.name + "' has an ECC");
+  std::map<std::string, pugi::xml_node> listed; // event (upper) -> ECState
+  for (pugi::xml_node st : t.body.children("ECState")) {
+    StringRef name = st.attribute("Name").value();
+    bool known = false;
+    for (const Event &e : t.eventInputs)
+      known |= StringRef(e.name).equals_insensitive(name);
+    if (!known)
+      fail(t, st,
+           "state '" + name + "' of simple FB '" + t.name +
+               "' is named after no input event (a simple FB's states "
+               "say what each input event does)");
+    listed[name.upper()] = st;
+  }
   for (size_t i = 0; i < t.eventInputs.size(); ++i) {
     const Event &e = t.eventInputs[i];
+    if (listed.count(StringRef(e.name).upper()))
+      continue;
     bool found = false;
     for (pugi::xml_node a : t.body.children("Algorithm"))
       found |=
@@ -436,9 +460,15 @@ void Translator::simpleAsBasic(FbType &t) {
     std::string state = "RUN_" + t.eventInputs[i].name;
     pugi::xml_node st = ecc.insert_child_after("ECState", start);
     st.append_attribute("Name") = state.c_str();
-    pugi::xml_node act = st.append_child("ECAction");
-    act.append_attribute("Algorithm") = t.eventInputs[i].name.c_str();
-    act.append_attribute("Output") = t.eventOutputs[i].name.c_str();
+    if (auto it = listed.find(StringRef(t.eventInputs[i].name).upper());
+        it != listed.end()) {
+      for (pugi::xml_node a : it->second.children("ECAction"))
+        st.append_copy(a);
+    } else {
+      pugi::xml_node act = st.append_child("ECAction");
+      act.append_attribute("Algorithm") = t.eventInputs[i].name.c_str();
+      act.append_attribute("Output") = t.eventOutputs[i].name.c_str();
+    }
     start = st;
   }
   for (size_t i = 0; i < t.eventInputs.size(); ++i) {
@@ -512,14 +542,28 @@ void Translator::basicBlock(FbType &t) {
     declare(copy, type, VarSection::Var, loc);
     copied[StringRef(v.name).upper()] = copy;
   }
-  for (pugi::xml_node v :
-       child(t.body, "InternalVars").children("VarDeclaration")) {
-    StringRef name = v.attribute("Name").value();
-    std::string kept = modelName(name, false);
-    if (kept != name)
-      copied[name.upper()] = kept;
-    declare(kept, typeOf(*t.src, v), VarSection::Var, t.src->locOf(v));
-  }
+  for (const char *list : {"InternalVars", "InternalConstVars"})
+    for (pugi::xml_node v : child(t.body, list).children()) {
+      if (localName(v) == "FB")
+        fail(t, v,
+             "internal FB '" + Twine(v.attribute("Name").value()) + "' of '" +
+                 t.name +
+                 "' is not supported (4diac's FB instances inside a "
+                 "basic or simple FB)");
+      if (localName(v) != "VarDeclaration")
+        continue;
+      StringRef name = v.attribute("Name").value();
+      std::string kept = modelName(name, false);
+      if (kept != name)
+        copied[name.upper()] = kept;
+      VarDecl *d =
+          declare(kept, typeOf(*t.src, v), VarSection::Var, t.src->locOf(v));
+      d->constant = StringRef(list) == "InternalConstVars";
+    }
+  for (pugi::xml_node m : t.body.children("Method"))
+    fail(t, m,
+         "method '" + Twine(m.attribute("Name").value()) + "' of '" + t.name +
+             "' is not supported (4diac's methods of basic and simple FBs)");
   auto checkWith = [&](const Event &e, const std::vector<Var> &vars) {
     for (const std::string &w : e.with) {
       bool known = false;
