@@ -161,6 +161,10 @@ private:
       if (!arc || arc->weight != 1)
         continue;
       Interval first = a.pre()[0].time, second = arc->time;
+      // A deadline bounds the wait in its own place; fused, it would bound
+      // the sum of both waits.
+      if (first.deadline || second.deadline)
+        continue;
       // Weak timing lets a token miss a finite window and stay for good
       // (a deadlock once nothing else moves). Waiting in p0 for a lazy t1
       // and in p1 for t2 must both be able to end that way, or neither.

@@ -704,6 +704,16 @@ bool StepWriter::write() {
   for (uint32_t f : forced)
     d << "#define EV" << f << " " << eventEnabling(f) << "\n";
   d << "#define URGENT (" << (urgentAny.empty() ? "0" : urgentAny) << ")\n";
+  // Deadlines: no tick takes an enabled transition past one.
+  std::string deadlineAny;
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    for (const PreArc &a : m.transitions[t].pre())
+      if (a.time.deadline)
+        deadlineAny += (deadlineAny.empty() ? "" : " || ") +
+                       ("(EN" + num(t) + " && " + clockNames[a.place] +
+                        " >= " + num(a.time.hi) + ")");
+  if (!deadlineAny.empty())
+    d << "#define DEADLINE (" << deadlineAny << ")\n";
   if (!forced.empty())
     d << "#define JOINT " << jointEnabling() << "\n";
   if (timed) {
@@ -850,7 +860,8 @@ bool StepWriter::write() {
     os << in << ":: (" << anyEvent << ") -> skip /* input events alone */\n";
   }
   if (timed)
-    os << in << ":: !URGENT && TICKS -> TK = 1 /* tick */\n";
+    os << in << ":: !URGENT" << (deadlineAny.empty() ? "" : " && !DEADLINE")
+       << " && TICKS -> TK = 1 /* tick */\n";
   if (hasInputs)
     os << in << ":: else -> skip /* nothing under these inputs */\n";
   if (spontaneous.empty() && eventNames.empty() && !timed && !hasInputs)

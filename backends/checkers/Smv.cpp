@@ -634,6 +634,18 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
       urgent.push_back("EN" + num(t));
   }
   d << "  URGENT := " << joinWith(urgent, "|", "FALSE") << ";\n";
+  // Deadlines: no tick takes an enabled transition past one.
+  std::vector<std::string> deadline;
+  std::vector<std::pair<uint32_t, std::string>> deadlineArcs; // t, clock >= hi
+  for (uint32_t t = 0; t < m.transitions.size(); ++t)
+    for (const PreArc &a : m.transitions[t].pre())
+      if (a.time.deadline) {
+        std::string late = clockNames[a.place] + " >= " + num(a.time.hi);
+        deadlineArcs.push_back({t, late});
+        deadline.push_back("(EN" + num(t) + " & " + late + ")");
+      }
+  if (!deadline.empty())
+    d << "  DEADLINE := " << joinWith(deadline, "|", "FALSE") << ";\n";
   std::vector<std::string> ticks;
   for (uint32_t p = 0; p < m.places.size(); ++p)
     if (L.clockSlot(p) >= 0)
@@ -759,7 +771,8 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
   d << "  STEPERR := " << joinWith(stepErrors, "|", "FALSE") << ";\n";
   d << "  FIRE := trig != none & trig != tick & STEP & !STEPERR & "
        "!STATEERR;\n";
-  d << "  TICK := trig = tick & !URGENT & TICKS & !STATEERR;\n";
+  d << "  TICK := trig = tick & !URGENT & "
+    << (deadline.empty() ? "" : "!DEADLINE & ") << "TICKS & !STATEERR;\n";
 
   // A deadlock: no step under any valuation of the free inputs, and no
   // tick. A spontaneous seed always makes a step (urgent forced
@@ -787,6 +800,12 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
       u.push_back(en(t));
     return "!" + joinWith(u, "|", "FALSE");
   };
+  auto noDeadline = [&]() {
+    std::vector<std::string> u;
+    for (auto &[t, late] : deadlineArcs)
+      u.push_back("(" + en(t) + " & " + late + ")");
+    return "!" + joinWith(u, "|", "FALSE");
+  };
   std::vector<std::string> live;
   // `body` for every valuation of `reads` and the urgent ones' inputs.
   auto forSomeInputs = [&](int64_t t,
@@ -794,6 +813,9 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
     std::set<uint32_t> reads = urgentReads;
     if (t >= 0)
       reads.insert(enablingInputs[t].begin(), enablingInputs[t].end());
+    else // a tick: the deadlines' enabling too
+      for (auto &[d, late] : deadlineArcs)
+        reads.insert(enablingInputs[d].begin(), enablingInputs[d].end());
     std::vector<uint32_t> slots(reads.begin(), reads.end());
     uint64_t valuations = 1;
     for (uint32_t slot : slots) {
@@ -835,7 +857,10 @@ bool SmvWriter::write(llvm::ArrayRef<const CtlFormula *> properties) {
         }))
       return false;
   }
-  if (!forSomeInputs(-1, [&] { return "(TICKS & " + notUrgent() + ")"; }))
+  if (!forSomeInputs(-1, [&] {
+        return "(TICKS & " + notUrgent() +
+               (deadlineArcs.empty() ? "" : " & " + noDeadline()) + ")";
+      }))
     return false;
   d << "  deadlock := !" << joinWith(live, "|", "FALSE") << ";\n";
 

@@ -128,6 +128,14 @@ bool nces::writeNcesXml(const Module &m, DiagEngine &diag,
                       "condition '" + exprToString(c) + "' of transition '" +
                           t.name.str() + "'",
                       kSignal);
+    for (const PreArc &a : t.pre())
+      if (a.time.deadline)
+        return refuse(diag, t.loc,
+                      "the deadline on the arc from '" +
+                          m.places[a.place].name.str() + "' to '" +
+                          t.name.str() + "'",
+                      "NCES time intervals are weak (a token may stay past "
+                      "the upper bound); explore it with `netlift reach`");
   }
 
   writeHeader(m, os);

@@ -71,12 +71,18 @@ struct Place {
 };
 
 /// Time interval on a pre-arc: the arc is time-enabled when the clock of
-/// its place lies in [lo, hi]. hi == kInf is unbounded.
+/// its place lies in [lo, hi]. hi == kInf is unbounded. A deadline (`[lo,hi
+/// deadline]`, hi finite) is a strong upper bound of this arc alone: no
+/// tick takes its transition, enabled, past hi, whatever --timing says
+/// (location invariants of discretised hybrid models).
 struct Interval {
   uint32_t lo = 0;
   uint32_t hi = kInf;
+  bool deadline = false;
   bool isTrivial() const { return lo == 0 && hi == kInf; }
-  bool operator==(const Interval &o) const { return lo == o.lo && hi == o.hi; }
+  bool operator==(const Interval &o) const {
+    return lo == o.lo && hi == o.hi && deadline == o.deadline;
+  }
 };
 
 struct PreArc {

@@ -517,6 +517,12 @@ bool Parser::parseArcList(bool pre, llvm::SmallVectorImpl<PreArc> &preArcs,
       if (iv.lo > iv.hi)
         return error(loc, "empty time interval [" + llvm::Twine(iv.lo) + "," +
                               llvm::Twine(iv.hi) + "]");
+      if (tok.isIdent("deadline")) {
+        if (iv.hi == kInf)
+          return errorHere("a deadline needs a finite upper bound");
+        consume();
+        iv.deadline = true;
+      }
       if (!expect(Tok::RBrack, "']'"))
         return false;
     }

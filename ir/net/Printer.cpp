@@ -251,6 +251,8 @@ void ModulePrinter::printTransition(const Transition &t) {
             os << "inf";
           else
             os << a.time.hi;
+          if (a.time.deadline)
+            os << " deadline";
           os << ']';
         }
       },

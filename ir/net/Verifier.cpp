@@ -310,6 +310,9 @@ void ModuleVerifier::checkTransition(uint32_t ti) {
     if (a.time.lo > a.time.hi)
       error(t.loc, "empty time interval on the arc from '" +
                        m.places[a.place].name + "' to '" + t.name + "'");
+    if (a.time.deadline && a.time.hi == kInf)
+      error(t.loc, "the deadline on the arc from '" + m.places[a.place].name +
+                       "' to '" + t.name + "' has no finite upper bound");
     if (!seen.insert(a.place).second)
       error(t.loc, "place '" + m.places[a.place].name +
                        "' appears twice in the pre-set of '" + t.name +

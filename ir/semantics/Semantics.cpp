@@ -228,11 +228,12 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
           continue;
         const Transition &tr = m.transitions[t];
         anyUrgent |= tr.urgent;
-        if (opts.timing == Timing::Strong)
-          for (const PreArc &a : tr.pre())
-            if (!a.time.isTrivial() && a.time.hi != kInf &&
-                I.vals[L.clockSlot(a.place)] >= int64_t(a.time.hi))
-              strongBlocks = true;
+        // Strong timing makes every finite upper bound a deadline.
+        for (const PreArc &a : tr.pre())
+          if ((a.time.deadline || opts.timing == Timing::Strong) &&
+              !a.time.isTrivial() && a.time.hi != kInf &&
+              I.vals[L.clockSlot(a.place)] >= int64_t(a.time.hi))
+            strongBlocks = true;
       }
       if (!anyUrgent && !strongBlocks)
         tickAllowed = true;
