@@ -92,6 +92,16 @@ bool Discretiser::collectReals() {
       r.flows.push_back(std::move(fl));
     }
   }
+  // Location invariants bound the dwell time in a place; the coded net has
+  // no such bound yet (deadlines are NetIR's, the construction is not):
+  // refused rather than dropped, which would let time pass beyond them.
+  for (const Invariant &inv : m.invariants)
+    return error(inv.loc, "location invariant '" +
+                              exprToString(inv.conditions.front()) +
+                              "' of place '" + inv.placeName +
+                              "': discretise does not bound dwell times by "
+                              "invariants yet (the model translates; its "
+                              "invariants are kept in NetIR)");
   // One moving variable per place: the chain of a place measures one
   // variable's progress.
   for (const Flow &f : m.flows) {

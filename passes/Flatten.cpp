@@ -174,6 +174,12 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
     }
     b.addFlow(placeBase + f.place, eqs, f.loc);
   }
+  for (const Invariant &inv : y.invariants) {
+    std::vector<Expr *> conds;
+    for (const Expr *c : inv.conditions)
+      conds.push_back(cloneExpr(b, y, c, rename));
+    b.addInvariant(placeBase + inv.place, conds, inv.loc);
+  }
 
   // Attributes follow their entity; the module's own become the
   // instance's (a scope of the flat names).

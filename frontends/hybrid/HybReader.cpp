@@ -43,6 +43,8 @@ struct HybState {
   SMLoc entryLoc;
   std::vector<Flow::Equation> flows;
   SMLoc flowLoc;
+  std::vector<Expr *> invariant; // `invariant x <= D;`, conjoined
+  SMLoc invariantLoc;
 };
 
 struct HybTransition {
@@ -395,6 +397,17 @@ bool ChartReader::parseState(unsigned region) {
         }
         continue;
       }
+      if (isKw("invariant")) {
+        // `invariant x <= D;`: the state must be left before it fails.
+        if (s.invariant.empty())
+          s.invariantLoc = tok().loc();
+        p.consume();
+        Expr *c = p.expr();
+        if (!c || !p.expect(Tok::Semi, "';'"))
+          return false;
+        s.invariant.push_back(substitute(c));
+        continue;
+      }
       if (tok().is(Tok::Ident)) {
         // A flow equation `x' = rate;`.
         Flow::Equation eq;
@@ -414,8 +427,8 @@ bool ChartReader::parseState(unsigned region) {
           return false;
         continue;
       }
-      return p.errorHere("expected 'entry', 'during', 'exit' or a flow "
-                         "x' = rate in a state, found '" +
+      return p.errorHere("expected 'entry', 'during', 'exit', 'invariant' or "
+                         "a flow x' = rate in a state, found '" +
                          tok().text + "'");
     }
     p.consume();
@@ -658,6 +671,8 @@ bool ChartReader::build() {
     HybState &st = states[s];
     if (!st.flows.empty())
       b.addFlow(s, st.flows, st.flowLoc);
+    if (!st.invariant.empty())
+      b.addInvariant(s, st.invariant, st.invariantLoc);
     if (!st.during.empty()) {
       uint32_t tr =
           b.addTransition(d.save((st.name + "_during").str()),

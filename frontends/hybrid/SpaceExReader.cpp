@@ -10,14 +10,13 @@
 //   - real params become `real` variables (unbounded range, starting at 0:
 //     SpaceEx keeps ranges and initial states in its .cfg file, which is
 //     not read), constant params are replaced by the values bound to them;
-//   - flows `x' == e` become `flow` blocks, guards NetIR guards, resets
-//     `x' == e` / `x := e` actions;
+//   - flows `x' == e` become `flow` blocks, invariants `invariant` blocks,
+//     guards NetIR guards, resets `x' == e` / `x := e` actions;
 //   - transitions sharing a label synchronise: one NetIR transition per
 //     combination of one transition per instance that has the label.
-// What NetIR cannot say is refused with the element's position: location
-// invariants other than `true` (NetIR has none), variables left free in a
-// location's flow, functions (sin, exp, ...), non-integer powers, and
-// params without a value.
+// What NetIR cannot say is refused with the element's position: variables
+// left free in a location's flow, functions (sin, exp, ...), non-integer
+// powers, and params without a value.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
@@ -31,6 +30,7 @@
 #include "llvm/ADT/StringSet.h"
 
 #include <cmath>
+#include <deque>
 #include <map>
 #include <optional>
 #include <pugixml.hpp>
@@ -98,6 +98,8 @@ private:
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
+  /// Texts made from the file's (a chained comparison's parts).
+  std::deque<std::string> ownedText;
   std::vector<std::string> realOrder;
   std::vector<ProtoTransition> protos;
   std::vector<std::set<std::string>> labelsOf; // per instance
@@ -308,6 +310,37 @@ static std::vector<StringRef> conjuncts(StringRef text) {
   return out;
 }
 
+/// A chained comparison `a <= x <= b` (SpaceEx writes bounds so) as the
+/// comparisons it chains, `a <= x` and `x <= b`; anything else as it is.
+static std::vector<std::string> unchain(StringRef c) {
+  std::vector<std::pair<size_t, size_t>> ops; // position, length
+  int depth = 0;
+  for (size_t i = 0; i < c.size(); ++i) {
+    char ch = c[i];
+    if (ch == '(')
+      ++depth;
+    else if (ch == ')')
+      --depth;
+    else if (depth == 0 &&
+             (ch == '<' || ch == '>' ||
+              (ch == '=' && i + 1 < c.size() && c[i + 1] == '='))) {
+      size_t len = i + 1 < c.size() && c[i + 1] == '=' ? 2 : 1;
+      ops.push_back({i, len});
+      i += len - 1;
+    }
+  }
+  if (ops.size() < 2)
+    return {c.str()};
+  std::vector<std::string> out;
+  size_t from = 0;
+  for (size_t k = 0; k < ops.size(); ++k) {
+    size_t end = k + 1 < ops.size() ? ops[k + 1].first : c.size();
+    out.push_back(c.slice(from, end).trim().str());
+    from = ops[k].first + ops[k].second;
+  }
+  return out;
+}
+
 bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
                                 const Bindings &bind, unsigned depth) {
   if (depth > 32)
@@ -412,12 +445,26 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     uint32_t pl = b.addPlace(d.save(flat), first ? 1 : 0, 1, xml.locOf(loc));
     first = false;
     placeOfId[id] = pl;
-    StringRef inv = StringRef(loc.child_value("invariant")).trim();
-    if (!inv.empty() && inv != "true")
-      return error(loc.child("invariant"),
-                   "location invariant '" + inv + "' of location '" + name +
-                       "': NetIR has no location invariants (express the "
-                       "bound as a guard of an outgoing transition)");
+    // The invariant: a condition of the location (discretise bounds the
+    // dwell time by it).
+    std::vector<Expr *> invariant;
+    for (StringRef chained : conjuncts(loc.child_value("invariant")))
+      for (const std::string &one : unchain(chained)) {
+        StringRef c = ownedText.emplace_back(one);
+        if (c == "true")
+          continue;
+        ExprParser ep{*this, c,      0,    loc.child("invariant"),
+                      bind,  prefix, true, {}};
+        Expr *e = ep.orExpr();
+        ep.skip();
+        if (ep.ok && ep.pos != c.size())
+          ep.fail("unexpected '" + c.substr(ep.pos) + "'");
+        if (!ep.ok)
+          return false;
+        invariant.push_back(e);
+      }
+    if (!invariant.empty())
+      b.addInvariant(pl, invariant, xml.locOf(loc.child("invariant")));
     PendingFlow pf;
     pf.place = pl;
     pf.node = loc;
@@ -478,16 +525,18 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
           it != bind.end() ? it->second.name : prefix + "." + label.str();
       labelsOf[inst].insert(pt.label);
     }
-    for (StringRef c : conjuncts(t.child_value("guard"))) {
-      ExprParser ep{*this, c, 0, t.child("guard"), bind, prefix, true, {}};
-      Expr *e = ep.orExpr();
-      ep.skip();
-      if (ep.ok && ep.pos != c.size())
-        ep.fail("unexpected '" + c.substr(ep.pos) + "'");
-      if (!ep.ok)
-        return false;
-      pt.guards.push_back(e);
-    }
+    for (StringRef chained : conjuncts(t.child_value("guard")))
+      for (const std::string &one : unchain(chained)) {
+        StringRef c = ownedText.emplace_back(one);
+        ExprParser ep{*this, c, 0, t.child("guard"), bind, prefix, true, {}};
+        Expr *e = ep.orExpr();
+        ep.skip();
+        if (ep.ok && ep.pos != c.size())
+          ep.fail("unexpected '" + c.substr(ep.pos) + "'");
+        if (!ep.ok)
+          return false;
+        pt.guards.push_back(e);
+      }
     for (StringRef c : conjuncts(t.child_value("assignment"))) {
       // `x' == e`, `x' = e` or `x := e`.
       auto [lhsText, rhsText] = c.split(":=");

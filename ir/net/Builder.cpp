@@ -95,6 +95,16 @@ void Builder::addFlow(uint32_t place, ArrayRef<Flow::Equation> eqs, SMLoc loc) {
   mod->flows.push_back(f);
 }
 
+void Builder::addInvariant(uint32_t place, ArrayRef<Expr *> conditions,
+                           SMLoc loc) {
+  Invariant inv;
+  inv.loc = loc;
+  inv.place = place;
+  inv.placeName = mod->places[place].name;
+  inv.conditions = design.copy(conditions);
+  mod->invariants.push_back(inv);
+}
+
 TransitionExtras &Builder::extras(uint32_t t) {
   Transition &tr = mod->transitions[t];
   if (!tr.extras)

@@ -40,6 +40,8 @@ public:
   /// Attaches `key = value` to `target` (see Attribute; empty: the module).
   void addAttribute(llvm::StringRef target, llvm::StringRef key,
                     llvm::StringRef value, llvm::SMLoc loc = {});
+  void addInvariant(uint32_t place, llvm::ArrayRef<Expr *> conditions,
+                    llvm::SMLoc loc = {});
   void addFlow(uint32_t place, llvm::ArrayRef<Flow::Equation> eqs,
                llvm::SMLoc loc = {});
 

@@ -188,6 +188,17 @@ struct Flow {
   llvm::ArrayRef<Equation> equations;
 };
 
+/// `invariant place { x <= 5; }`: while `place` is marked, each condition
+/// (over real and data variables) must hold: the location must be left
+/// before one would fail (a hybrid location invariant; discretise makes it
+/// deadlines).
+struct Invariant {
+  llvm::SMLoc loc;
+  uint32_t place;
+  llvm::StringRef placeName;
+  llvm::ArrayRef<Expr *> conditions;
+};
+
 class Module;
 
 /// Name -> Symbol for one module. Open addressing with linear probing over
@@ -281,6 +292,7 @@ public:
   Table<Transition> transitions;
   Table<Var> vars;
   std::vector<Flow> flows;
+  std::vector<Invariant> invariants;
   std::vector<Instance> instances;
   std::vector<Connection> connections;
   /// In the order they were declared (printed in that order).

@@ -380,6 +380,8 @@ bool Parser::parseModuleItem() {
     return parseRealDecl();
   if (kw == "flow")
     return parseFlowDecl();
+  if (kw == "invariant")
+    return parseInvariantDecl();
   if (kw == "inst")
     return parseInstDecl();
   if (kw == "connect")
@@ -744,6 +746,31 @@ bool Parser::parseRealDecl() {
   return true;
 }
 
+bool Parser::parseInvariantDecl() {
+  StringRef place;
+  SMLoc loc;
+  if (!parseName(place, loc, "a place name") || !expect(Tok::LBrace, "'{'"))
+    return false;
+  std::vector<Expr *> conds;
+  while (!tok.is(Tok::RBrace)) {
+    Expr *c = parseExpr();
+    if (!c || !expect(Tok::Semi, "';'"))
+      return false;
+    conds.push_back(c);
+  }
+  consume();
+  Module *m = b.getModule();
+  Invariant inv;
+  inv.loc = loc;
+  inv.place = 0;
+  inv.placeName = design.save(place);
+  inv.conditions = design.copy(llvm::ArrayRef<Expr *>(conds));
+  fixups.push_back(
+      {FixKind::InvariantPlace, uint32_t(m->invariants.size()), 0, place, loc});
+  m->invariants.push_back(inv);
+  return true;
+}
+
 bool Parser::parseFlowDecl() {
   StringRef place;
   SMLoc loc;
@@ -895,17 +922,22 @@ bool Parser::applyFixup(const Fixup &f, Symbol s) {
   switch (f.kind) {
   case FixKind::PrePlace:
   case FixKind::PostPlace:
-  case FixKind::FlowPlace: {
+  case FixKind::FlowPlace:
+  case FixKind::InvariantPlace: {
     if (s.kind == SymKind::None)
       return error(f.loc, "unknown place '" + f.name + "'" +
                               didYouMean(f.name, m->declaredNames()));
     if (s.kind != SymKind::Place) {
-      StringRef role = f.kind == FixKind::FlowPlace ? "a flow" : "a flow arc";
+      StringRef role = f.kind == FixKind::FlowPlace        ? "a flow"
+                       : f.kind == FixKind::InvariantPlace ? "an invariant"
+                                                           : "a flow arc";
       return error(f.loc, role + " needs a place, but '" + f.name + "' is " +
                               kindName());
     }
     if (f.kind == FixKind::FlowPlace) {
       m->flows[f.trans].place = s.index;
+    } else if (f.kind == FixKind::InvariantPlace) {
+      m->invariants[f.trans].place = s.index;
     } else {
       Transition &t = m->transitions[f.trans];
       if (f.kind == FixKind::PrePlace)

@@ -152,6 +152,7 @@ private:
   bool parseRealDecl();
   bool parseInitAndSemi(Expr *&init);
   bool parseFlowDecl();
+  bool parseInvariantDecl();
   bool parseInstDecl();
   bool parseConnectDecl();
   bool parseAttrDecl();
@@ -200,7 +201,14 @@ private:
   void reserveForLargeModule();
 
   // Names used before their declaration, resolved at the end of a module.
-  enum class FixKind : uint8_t { PrePlace, PostPlace, Event, Emit, FlowPlace };
+  enum class FixKind : uint8_t {
+    PrePlace,
+    PostPlace,
+    Event,
+    Emit,
+    FlowPlace,
+    InvariantPlace
+  };
   struct Fixup {
     FixKind kind;
     uint32_t trans; // or flow index

@@ -358,6 +358,15 @@ void ModulePrinter::run() {
     }
     os << " }\n";
   }
+  for (const Invariant &inv : m.invariants) {
+    os << "  invariant " << m.places[inv.place].name << " {";
+    for (const Expr *c : inv.conditions) {
+      os << ' ';
+      printExpr(c, os);
+      os << ';';
+    }
+    os << " }\n";
+  }
   for (const Instance &i : m.instances)
     os << "  inst " << i.name << " : " << i.moduleName << ";\n";
   auto printEnd = [&](const Endpoint &e) {

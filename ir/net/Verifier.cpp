@@ -19,7 +19,7 @@ using llvm::StringRef;
 using llvm::Twine;
 
 bool netlift::net::hasHybridParts(const Module &m) {
-  if (!m.flows.empty())
+  if (!m.flows.empty() || !m.invariants.empty())
     return true;
   for (const Var &v : m.vars)
     if (v.type->isReal())
@@ -63,6 +63,7 @@ private:
   void checkPlaces();
   void checkTransition(uint32_t ti);
   void checkFlows();
+  void checkInvariants();
   void checkInstancesAndConnections();
   void checkEventCycles();
   void checkDefinitionCycles();
@@ -387,6 +388,17 @@ void ModuleVerifier::checkFlows() {
                                 "' must be a number, not '" + typeName(t) +
                                 "'");
     }
+  }
+}
+
+void ModuleVerifier::checkInvariants() {
+  for (Invariant &inv : m.invariants) {
+    if (inv.place >= m.places.size()) {
+      error(inv.loc, "invariant of no place");
+      continue;
+    }
+    for (Expr *c : inv.conditions)
+      expectBool(c, Ctx::Guard, "an invariant");
   }
 }
 
@@ -1369,6 +1381,7 @@ void ModuleVerifier::run() {
   for (uint32_t i = 0; i < m.transitions.size(); ++i)
     checkTransition(i);
   checkFlows();
+  checkInvariants();
   checkInstancesAndConnections();
   checkAttributes();
   if (!diag.hadError()) {
