@@ -109,7 +109,7 @@ void TimerAbstractor::findScratch() {
   for (uint32_t v = 0; v < m.vars.size(); ++v) {
     const Type *t = m.vars[v].type;
     if (uses.varRead[v] || uses.writers[v].empty() || t->isClock() ||
-        !t->isInteger() && !t->isBool())
+        (!t->isInteger() && !t->isBool()))
       continue;
     std::optional<int64_t> init = initialValue(m.vars[v]);
     bool ok = init.has_value();

@@ -73,6 +73,10 @@ private:
     diag.error(xml.locOf(n), msg);
     return false;
   }
+  /// The conjuncts of a guard or invariant element, chained comparisons
+  /// split, `true` left out.
+  bool conditions(pugi::xml_node node, const Bindings &bind,
+                  const std::string &prefix, std::vector<Expr *> &out);
   bool instantiate(pugi::xml_node comp, const std::string &prefix,
                    const Bindings &bind, unsigned depth);
   bool instantiateBase(pugi::xml_node comp, const std::string &prefix,
@@ -341,6 +345,26 @@ static std::vector<std::string> unchain(StringRef c) {
   return out;
 }
 
+bool SpaceExReader::conditions(pugi::xml_node node, const Bindings &bind,
+                               const std::string &prefix,
+                               std::vector<Expr *> &out) {
+  for (StringRef chained : conjuncts(node.child_value()))
+    for (const std::string &one : unchain(chained)) {
+      StringRef c = ownedText.emplace_back(one);
+      if (c == "true")
+        continue;
+      ExprParser ep{*this, c, 0, node, bind, prefix, true, {}};
+      Expr *e = ep.orExpr();
+      ep.skip();
+      if (ep.ok && ep.pos != c.size())
+        ep.fail("unexpected '" + c.substr(ep.pos) + "'");
+      if (!ep.ok)
+        return false;
+      out.push_back(e);
+    }
+  return true;
+}
+
 bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
                                 const Bindings &bind, unsigned depth) {
   if (depth > 32)
@@ -448,21 +472,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     // The invariant: a condition of the location (discretise bounds the
     // dwell time by it).
     std::vector<Expr *> invariant;
-    for (StringRef chained : conjuncts(loc.child_value("invariant")))
-      for (const std::string &one : unchain(chained)) {
-        StringRef c = ownedText.emplace_back(one);
-        if (c == "true")
-          continue;
-        ExprParser ep{*this, c,      0,    loc.child("invariant"),
-                      bind,  prefix, true, {}};
-        Expr *e = ep.orExpr();
-        ep.skip();
-        if (ep.ok && ep.pos != c.size())
-          ep.fail("unexpected '" + c.substr(ep.pos) + "'");
-        if (!ep.ok)
-          return false;
-        invariant.push_back(e);
-      }
+    if (!conditions(loc.child("invariant"), bind, prefix, invariant))
+      return false;
     if (!invariant.empty())
       b.addInvariant(pl, invariant, xml.locOf(loc.child("invariant")));
     PendingFlow pf;
@@ -525,18 +536,8 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
           it != bind.end() ? it->second.name : prefix + "." + label.str();
       labelsOf[inst].insert(pt.label);
     }
-    for (StringRef chained : conjuncts(t.child_value("guard")))
-      for (const std::string &one : unchain(chained)) {
-        StringRef c = ownedText.emplace_back(one);
-        ExprParser ep{*this, c, 0, t.child("guard"), bind, prefix, true, {}};
-        Expr *e = ep.orExpr();
-        ep.skip();
-        if (ep.ok && ep.pos != c.size())
-          ep.fail("unexpected '" + c.substr(ep.pos) + "'");
-        if (!ep.ok)
-          return false;
-        pt.guards.push_back(e);
-      }
+    if (!conditions(t.child("guard"), bind, prefix, pt.guards))
+      return false;
     for (StringRef c : conjuncts(t.child_value("assignment"))) {
       // `x' == e`, `x' = e` or `x := e`.
       auto [lhsText, rhsText] = c.split(":=");
