@@ -92,16 +92,6 @@ bool Discretiser::collectReals() {
       r.flows.push_back(std::move(fl));
     }
   }
-  // Location invariants bound the dwell time in a place; the coded net has
-  // no such bound yet (deadlines are NetIR's, the construction is not):
-  // refused rather than dropped, which would let time pass beyond them.
-  for (const Invariant &inv : m.invariants)
-    return error(inv.loc, "location invariant '" +
-                              exprToString(inv.conditions.front()) +
-                              "' of place '" + inv.placeName +
-                              "': discretise does not bound dwell times by "
-                              "invariants yet (the model translates; its "
-                              "invariants are kept in NetIR)");
   // One moving variable per place: the chain of a place measures one
   // variable's progress.
   for (const Flow &f : m.flows) {
@@ -336,13 +326,68 @@ bool Discretiser::collectUses() {
 // Driver and report
 //===----------------------------------------------------------------------===//
 
+/// Each condition of a location invariant must compare a real with a
+/// constant. A bound on a real the place moves becomes a grid point and,
+/// when the coded net is built, a stop at it (emitInvariantStops); one on a
+/// real the place does not move holds or fails on entry and is not
+/// checked (an over-approximation, docs/hybrid.md).
+bool Discretiser::collectInvariants() {
+  for (const Invariant &inv : m.invariants) {
+    for (Expr *c : inv.conditions) {
+      auto *bin = llvm::dyn_cast<BinaryExpr>(c);
+      auto realOf = [&](Expr *x) -> std::optional<size_t> {
+        auto *r = llvm::dyn_cast<Ref>(x);
+        if (r && r->sym.kind == SymKind::Var && realOfVar.count(r->sym.index))
+          return realOfVar[r->sym.index];
+        return std::nullopt;
+      };
+      std::optional<size_t> l = bin ? realOf(bin->lhs) : std::nullopt;
+      std::optional<size_t> rr = bin ? realOf(bin->rhs) : std::nullopt;
+      std::optional<double> k;
+      if (l || rr)
+        k = evalConstReal(l ? bin->rhs : bin->lhs);
+      bool ordering =
+          bin && (bin->op == BinaryOp::Le || bin->op == BinaryOp::Lt ||
+                  bin->op == BinaryOp::Ge || bin->op == BinaryOp::Gt);
+      if (!ordering || (!l && !rr) || !k)
+        return error(c->loc, "location invariant '" + exprToString(c) +
+                                 "' of place '" + inv.placeName +
+                                 "': discretise takes invariants that bound "
+                                 "one real by a constant (x <= c, x >= c)");
+      Real &x = reals[l ? *l : *rr];
+      x.thresholds.insert(*k);
+      bool less = bin->op == BinaryOp::Le || bin->op == BinaryOp::Lt;
+      bool upper = l ? less : !less;
+      if (!x.flowOfPlace.count(inv.place))
+        continue;
+      auto rate = evalConstReal(x.flows[x.flowOfPlace[inv.place]].eq->rate);
+      if (rate && *rate == 0)
+        continue;
+      // A place the invariant bounds must have a way out.
+      bool leaves = false;
+      for (const Transition &t : m.transitions)
+        for (const PreArc &a : t.pre())
+          leaves |= a.place == inv.place;
+      if (!leaves)
+        return error(inv.loc, "place '" + inv.placeName +
+                                  "' is a timelock: its invariant '" +
+                                  exprToString(c) +
+                                  "' ends its dwell, and no transition "
+                                  "leaves it");
+      invariantBounds.push_back(
+          {inv.place, size_t(&x - reals.data()), upper, *k, c->loc});
+    }
+  }
+  return true;
+}
+
 bool Discretiser::run() {
   if (d.timescale) {
     ticksPerUnit = 1e9 / double(d.timescale->nanoseconds()); // rates per s
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!collectReals() || !collectUses())
+  if (!collectReals() || !collectUses() || !collectInvariants())
     return false;
   for (Real &r : reals)
     if (!computeTimes(r))

@@ -242,6 +242,50 @@ void Discretiser::emitTransitions(Real &r) {
       emit(later, Interval{1, kInf}, "");
     }
   }
+  emitInvariantStops(r, forms);
+}
+
+/// Where x stands at an invariant's bound in the place that moves it (an
+/// Up form entered at an upper bound, a Down form at a lower one), time
+/// may not pass: a forced transition that never fires, with a `[0,0
+/// deadline]` arc from the form, blocks every tick until the place is
+/// left (and if it cannot be, the state is a timelock: `reach` reports it
+/// as a deadlock). Entered anywhere else the token is still short of the
+/// bound, and its motion brings it there in time.
+void Discretiser::emitInvariantStops(Real &r, const std::vector<Form> &forms) {
+  size_t ri = size_t(&r - reals.data());
+  for (const InvariantBound &ib : invariantBounds) {
+    if (ib.real != ri || !r.flowOfPlace.count(ib.place))
+      continue;
+    int fl = r.flowOfPlace[ib.place];
+    for (Form f : forms) {
+      if (f.flow != fl)
+        continue;
+      bool atBound = ib.upper
+                         ? f.kind == FormKind::Up && f.k >= 1 &&
+                               r.grid[f.k - 1] == ib.bound
+                         : f.kind == FormKind::Down && f.k < r.grid.size() &&
+                               r.grid[f.k] == ib.bound;
+      if (!atBound)
+        continue;
+      if (!neverFires) {
+        uint32_t p = b.addPlace(d.save(fresh("_never_marked")), 0, 1);
+        neverFires = b.addTransition(d.save(fresh("_never")), {PreArc{p, 1}},
+                                     {PostArc{p, 1}});
+        ++numPlaces;
+        ++numTransitions;
+      }
+      uint32_t at = placeOf(r, f);
+      Interval now{0, 0};
+      now.deadline = true;
+      uint32_t t =
+          b.addTransition(d.save(fresh(m.places[ib.place].name.str() + "_" +
+                                       r.shortName + "_invariant")),
+                          {PreArc{at, 1, now}}, {PostArc{at, 1}}, ib.loc);
+      b.setEvents(t, {EventSource{*neverFires, false}});
+      ++numTransitions;
+    }
+  }
 }
 
 //===----------------------------------------------------------------------===//
@@ -379,6 +423,7 @@ void Discretiser::finish() {
       b.setAction(ti, kept);
   }
   m.flows.clear();
+  m.invariants.clear(); // now stops at their bounds (emitInvariantStops)
   Module::Table<Var> vars;
   for (Var &v : m.vars)
     if (!v.type->isReal())

@@ -209,6 +209,10 @@ private:
   bool collectUses();
   bool scanExpr(Expr *e);
   bool collectAssignments();
+  /// Location invariants as bounds of a moving real in a place.
+  bool collectInvariants();
+  /// Blocks time where x stands at an invariant's bound in its place.
+  void emitInvariantStops(Real &r, const std::vector<Form> &forms);
   bool buildGrid(Real &r);
   bool checkExclusive(Real &r);
   bool computeTimes(Real &r);
@@ -264,6 +268,17 @@ private:
   double ticksPerUnit = 1; // model time units per second or tick
   std::string timeUnit = "tick";
   double worstRounding = 0;
+  /// `x <= c` (upper) or `x >= c` in place `place` while x moves there.
+  struct InvariantBound {
+    uint32_t place;
+    size_t real;
+    bool upper;
+    double bound;
+    llvm::SMLoc loc;
+  };
+  std::vector<InvariantBound> invariantBounds;
+  /// The transition that never fires, whose event the stops wait for.
+  std::optional<uint32_t> neverFires;
 };
 
 /// Does `e` read a real variable (`where`: the first such read)?

@@ -12,6 +12,9 @@
 // go too; a named one stays (it is always empty, and properties may name
 // it).
 //
+// A transition with a deadline arc that may be enabled is kept even if it
+// never fires, with its event sources: enabled, it blocks time.
+//
 // Preserved: the state space exactly — every reachable state and step,
 // up to the removed places, which are empty in every reachable state, and
 // the removed transitions, which never fire. Tokens, time, data and
@@ -95,22 +98,53 @@ public:
           markable[a.place] = true;
       }
     }
+    // A transition with a deadline blocks time while it is enabled, fired
+    // or not (a discretised invariant's stop waits for an event that never
+    // comes): kept when it can be enabled, with what it listens to.
+    std::vector<bool> keep = fireable;
+    std::vector<uint32_t> work;
+    for (size_t t = 0; t < nt; ++t) {
+      const Transition &tr = m->transitions[t];
+      bool deadline = llvm::any_of(
+          tr.pre(), [](const PreArc &a) { return a.time.deadline; });
+      if (!keep[t] && deadline && !never[t] &&
+          llvm::all_of(needs[t], [&](uint32_t p) { return markable[p]; })) {
+        keep[t] = true;
+        work.push_back(uint32_t(t));
+      }
+    }
+    while (!work.empty()) {
+      uint32_t t = work.back();
+      work.pop_back();
+      for (const EventSource &s : m->transitions[t].events())
+        if (!s.fromPort && !keep[s.index]) {
+          keep[s.index] = true;
+          work.push_back(s.index);
+        }
+    }
     reduce::Uses uses(*m);
     std::vector<bool> keepPlace(np), keepVar(m->vars.size(), true);
+    for (size_t t = 0; t < nt; ++t)
+      if (keep[t] && !fireable[t]) {
+        for (const PreArc &a : m->transitions[t].pre())
+          keepPlace[a.place] = true;
+        for (const PostArc &a : m->transitions[t].post())
+          keepPlace[a.place] = true;
+      }
     unsigned places = 0, transitions = 0;
     for (size_t p = 0; p < np; ++p) {
-      keepPlace[p] = markable[p] || uses.placeRead[p];
+      keepPlace[p] = keepPlace[p] || markable[p] || uses.placeRead[p];
       places += !keepPlace[p];
     }
     for (size_t t = 0; t < nt; ++t)
-      transitions += !fireable[t];
+      transitions += !keep[t];
     stats.add("reduce-dead", "transitions", transitions,
               "transitions that can never fire removed");
     stats.add("reduce-dead", "places", places,
               "places that can never be marked removed");
     if (!places && !transitions)
       return true;
-    reduce::compactModule(*m, keepPlace, fireable, keepVar);
+    reduce::compactModule(*m, keepPlace, keep, keepVar);
     return reduce::reverify(d, diag, "reduce-dead");
   }
 
