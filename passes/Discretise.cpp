@@ -49,6 +49,110 @@ using namespace netlift::discretise;
 // Collecting what is hybrid
 //===----------------------------------------------------------------------===//
 
+/// The range a real's model gives it where its type does not (SpaceEx
+/// declares none): every value it can take lies between its initial value,
+/// the constants it is reset to, and, in each place whose flow moves it,
+/// the invariant's bound in the direction it moves (a constant rate) or in
+/// both (any other rate). `why` says what leaves it unbounded.
+bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
+                             std::string &why) {
+  const Var &v = m.vars[var];
+  double init = 0;
+  if (v.init) {
+    auto c = evalConstReal(v.init);
+    if (!c) {
+      why = "its initial value is not a constant";
+      return false;
+    }
+    init = *c;
+  }
+  double newLo = std::isfinite(lo) ? lo : init;
+  double newHi = std::isfinite(hi) ? hi : init;
+  bool needLo = !std::isfinite(lo), needHi = !std::isfinite(hi);
+  auto widen = [&](double c) {
+    if (needLo)
+      newLo = std::min(newLo, c);
+    if (needHi)
+      newHi = std::max(newHi, c);
+  };
+  for (const Transition &tr : m.transitions) {
+    if (!tr.hasAction())
+      continue;
+    std::function<void(Block)> walk = [&](Block blk) {
+      for (Stmt *s : blk) {
+        if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
+          auto *target = llvm::dyn_cast<Ref>(a->target);
+          if (target && target->sym.kind == SymKind::Var &&
+              target->sym.index == var)
+            if (auto c = evalConstReal(a->value))
+              widen(*c);
+        } else if (auto *i = llvm::dyn_cast<IfStmt>(s)) {
+          for (const IfArm &arm : i->arms)
+            walk(arm.body);
+          walk(i->elseBody);
+        }
+      }
+    };
+    walk(tr.action());
+  }
+  for (const Flow &f : m.flows)
+    for (const Flow::Equation &eq : f.equations) {
+      if (eq.varIndex != var)
+        continue;
+      auto rate = evalConstReal(eq.rate);
+      if (rate && *rate == 0)
+        continue;
+      bool up = !rate || *rate > 0, down = !rate || *rate < 0;
+      std::optional<double> upper, lower;
+      for (const Invariant &inv : m.invariants) {
+        if (inv.place != f.place)
+          continue;
+        for (const Expr *c : inv.conditions) {
+          auto *bin = llvm::dyn_cast<BinaryExpr>(c);
+          if (!bin || bin->op < BinaryOp::Lt || bin->op > BinaryOp::Ge)
+            continue;
+          auto isX = [&](const Expr *e) {
+            auto *r = llvm::dyn_cast<Ref>(e);
+            return r && r->sym.kind == SymKind::Var && r->sym.index == var;
+          };
+          bool left = isX(bin->lhs);
+          if (!left && !isX(bin->rhs))
+            continue;
+          auto k = evalConstReal(left ? bin->rhs : bin->lhs);
+          if (!k)
+            continue;
+          bool less = bin->op == BinaryOp::Lt || bin->op == BinaryOp::Le;
+          if (left == less)
+            upper = upper ? std::min(*upper, *k) : *k;
+          else
+            lower = lower ? std::max(*lower, *k) : *k;
+        }
+      }
+      if ((up && needHi && !upper) || (down && needLo && !lower)) {
+        why = "place '" + f.placeName.str() + "' moves it " +
+              (up && needHi && !upper ? "up" : "down") +
+              " and its invariant gives no " +
+              (up && needHi && !upper ? "upper" : "lower") + " bound";
+        return false;
+      }
+      if (up && needHi)
+        newHi = std::max(newHi, *upper);
+      if (down && needLo)
+        newLo = std::min(newLo, *lower);
+    }
+  // A real nothing moves or resets keeps its initial value: any range
+  // around it serves (the grid's other point is never reached).
+  if (!(newLo < newHi)) {
+    if (needHi)
+      newHi = newLo + 1;
+    else
+      newLo = newHi - 1;
+  }
+  lo = newLo;
+  hi = newHi;
+  return true;
+}
+
 bool Discretiser::collectReals() {
   for (uint32_t i = 0; i < m.vars.size(); ++i) {
     const Var &v = m.vars[i];
@@ -62,10 +166,16 @@ bool Discretiser::collectReals() {
                       : v.name.rsplit('.').second.str();
     r.lo = v.type->realLo;
     r.hi = v.type->realHi;
-    if (!std::isfinite(r.lo) || !std::isfinite(r.hi))
-      return error(v.loc, "real '" + v.name +
-                              "' has an unbounded range; discretise needs "
-                              "finite bounds to place its grid");
+    if (!std::isfinite(r.lo) || !std::isfinite(r.hi)) {
+      std::string why;
+      if (!inferRange(i, r.lo, r.hi, why))
+        return error(v.loc, "real '" + v.name +
+                                "' has an unbounded range, and the model "
+                                "does not bound it: " +
+                                why +
+                                "; discretise needs finite bounds to place "
+                                "its grid (give a range)");
+    }
     if (!(r.lo < r.hi))
       return error(v.loc, "real '" + v.name + "' has an empty range");
     r.init = r.lo;

@@ -206,6 +206,7 @@ private:
     return false;
   }
   bool collectReals();
+  bool inferRange(uint32_t var, double &lo, double &hi, std::string &why);
   bool collectUses();
   bool scanExpr(Expr *e);
   bool collectAssignments();
