@@ -186,6 +186,7 @@ void Discretiser::emitTransitions(Real &r) {
 
   // Motions, fused with the transition their arrival enables where there is
   // one.
+  std::vector<uint32_t> arrivals;
   for (Form f : forms) {
     for (Motion &mo : motionsOf(r, f)) {
       ++numSegments;
@@ -194,6 +195,7 @@ void Discretiser::emitTransitions(Real &r) {
       if (!fuseWith) {
         uint32_t t = b.addTransition(d.save(fresh(mo.name)), {pre},
                                      {PostArc{placeOf(r, mo.to), 1}});
+        arrivals.push_back(t);
         b.setUrgent(t, mo.urgent);
         ++numTransitions;
         continue;
@@ -210,6 +212,7 @@ void Discretiser::emitTransitions(Real &r) {
           b.addTransition(d.save(fresh(src.name.str() + "_" + formName(r, f))),
                           pres, posts, src.loc);
       b.setUrgent(t, mo.urgent);
+      arrivals.push_back(t);
       if (!src.emits().empty())
         b.setEmits(t, src.emits());
       if (src.hasAction())
@@ -241,6 +244,38 @@ void Discretiser::emitTransitions(Real &r) {
       emit(now, Interval{0, 0}, "_now");
       emit(later, Interval{1, kInf}, "");
     }
+  }
+  // A transition forced by an event (an input event above all) could join
+  // the step of an arrival, whose motion takes the position token its
+  // followers need: the location would change and the position stay
+  // behind. One shared place, taken and given back by both, keeps them
+  // in separate steps (both orders remain).
+  std::vector<uint32_t> forcedMovers;
+  for (auto &[ti, f] : fires) {
+    // Only while x moves can an arrival be due: leaving a place whose flow
+    // moves it, or resetting it.
+    const Effect &e = effects[ti];
+    bool whileMoving = f.moving() || (e.assign && e.locFrom < 0);
+    if (m.transitions[ti].isForced() && whileMoving &&
+        !llvm::is_contained(forcedMovers, ti))
+      forcedMovers.push_back(ti);
+  }
+  if (!forcedMovers.empty() && !arrivals.empty()) {
+    uint32_t lock = b.addPlace(d.save(fresh(r.shortName + "_step")), 1, 1);
+    ++numPlaces;
+    auto take = [&](uint32_t ti) {
+      Transition &tr = m.transitions[ti];
+      std::vector<PreArc> pres(tr.pre().begin(), tr.pre().end());
+      std::vector<PostArc> posts(tr.post().begin(), tr.post().end());
+      pres.push_back({lock, 1, {}});
+      posts.push_back({lock, 1});
+      tr.setArcs(d.copy(llvm::ArrayRef<PreArc>(pres)),
+                 d.copy(llvm::ArrayRef<PostArc>(posts)));
+    };
+    for (uint32_t ti : forcedMovers)
+      take(ti);
+    for (uint32_t ti : arrivals)
+      take(ti);
   }
   emitInvariantStops(r, forms);
 }
