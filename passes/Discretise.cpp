@@ -49,6 +49,36 @@ using namespace netlift::discretise;
 // Collecting what is hybrid
 //===----------------------------------------------------------------------===//
 
+/// An invariant condition `x op c` / `c op x` (op one of < <= > >=, x a
+/// variable, c a constant): the variable, whether c bounds it from above,
+/// and c.
+struct VarBound {
+  uint32_t var;
+  bool upper;
+  double value;
+};
+static std::optional<VarBound> varBound(const Expr *c) {
+  auto *bin = llvm::dyn_cast<BinaryExpr>(c);
+  if (!bin || !(bin->op == BinaryOp::Lt || bin->op == BinaryOp::Le ||
+                bin->op == BinaryOp::Gt || bin->op == BinaryOp::Ge))
+    return std::nullopt;
+  auto varOf = [](const Expr *e) -> std::optional<uint32_t> {
+    auto *r = llvm::dyn_cast<Ref>(e);
+    if (r && r->sym.kind == SymKind::Var)
+      return r->sym.index;
+    return std::nullopt;
+  };
+  std::optional<uint32_t> l = varOf(bin->lhs);
+  std::optional<uint32_t> v = l ? l : varOf(bin->rhs);
+  if (!v)
+    return std::nullopt;
+  auto k = evalConstReal(l ? bin->rhs : bin->lhs);
+  if (!k)
+    return std::nullopt;
+  bool less = bin->op == BinaryOp::Lt || bin->op == BinaryOp::Le;
+  return VarBound{*v, l ? less : !less, *k};
+}
+
 /// The range a real's model gives it where its type does not (SpaceEx
 /// declares none): every value it can take lies between its initial value,
 /// the constants it is reset to, and, in each place whose flow moves it,
@@ -108,24 +138,13 @@ bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
         if (inv.place != f.place)
           continue;
         for (const Expr *c : inv.conditions) {
-          auto *bin = llvm::dyn_cast<BinaryExpr>(c);
-          if (!bin || bin->op < BinaryOp::Lt || bin->op > BinaryOp::Ge)
+          std::optional<VarBound> vb = varBound(c);
+          if (!vb || vb->var != var)
             continue;
-          auto isX = [&](const Expr *e) {
-            auto *r = llvm::dyn_cast<Ref>(e);
-            return r && r->sym.kind == SymKind::Var && r->sym.index == var;
-          };
-          bool left = isX(bin->lhs);
-          if (!left && !isX(bin->rhs))
-            continue;
-          auto k = evalConstReal(left ? bin->rhs : bin->lhs);
-          if (!k)
-            continue;
-          bool less = bin->op == BinaryOp::Lt || bin->op == BinaryOp::Le;
-          if (left == less)
-            upper = upper ? std::min(*upper, *k) : *k;
+          if (vb->upper)
+            upper = upper ? std::min(*upper, vb->value) : vb->value;
           else
-            lower = lower ? std::max(*lower, *k) : *k;
+            lower = lower ? std::max(*lower, vb->value) : vb->value;
         }
       }
       if ((up && needHi && !upper) || (down && needLo && !lower)) {
@@ -444,30 +463,14 @@ bool Discretiser::collectUses() {
 bool Discretiser::collectInvariants() {
   for (const Invariant &inv : m.invariants) {
     for (Expr *c : inv.conditions) {
-      auto *bin = llvm::dyn_cast<BinaryExpr>(c);
-      auto realOf = [&](Expr *x) -> std::optional<size_t> {
-        auto *r = llvm::dyn_cast<Ref>(x);
-        if (r && r->sym.kind == SymKind::Var && realOfVar.count(r->sym.index))
-          return realOfVar[r->sym.index];
-        return std::nullopt;
-      };
-      std::optional<size_t> l = bin ? realOf(bin->lhs) : std::nullopt;
-      std::optional<size_t> rr = bin ? realOf(bin->rhs) : std::nullopt;
-      std::optional<double> k;
-      if (l || rr)
-        k = evalConstReal(l ? bin->rhs : bin->lhs);
-      bool ordering =
-          bin && (bin->op == BinaryOp::Le || bin->op == BinaryOp::Lt ||
-                  bin->op == BinaryOp::Ge || bin->op == BinaryOp::Gt);
-      if (!ordering || (!l && !rr) || !k)
+      std::optional<VarBound> vb = varBound(c);
+      if (!vb || !realOfVar.count(vb->var))
         return error(c->loc, "location invariant '" + exprToString(c) +
                                  "' of place '" + inv.placeName +
                                  "': discretise takes invariants that bound "
                                  "one real by a constant (x <= c, x >= c)");
-      Real &x = reals[l ? *l : *rr];
-      x.thresholds.insert(*k);
-      bool less = bin->op == BinaryOp::Le || bin->op == BinaryOp::Lt;
-      bool upper = l ? less : !less;
+      Real &x = reals[realOfVar[vb->var]];
+      x.thresholds.insert(vb->value);
       if (!x.flowOfPlace.count(inv.place))
         continue;
       auto rate = evalConstReal(x.flows[x.flowOfPlace[inv.place]].eq->rate);
@@ -485,7 +488,7 @@ bool Discretiser::collectInvariants() {
                                   "' ends its dwell, and no transition "
                                   "leaves it");
       invariantBounds.push_back(
-          {inv.place, size_t(&x - reals.data()), upper, *k, c->loc});
+          {inv.place, size_t(&x - reals.data()), vb->upper, vb->value, c->loc});
     }
   }
   return true;

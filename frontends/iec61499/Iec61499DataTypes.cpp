@@ -71,8 +71,7 @@ void Translator::noteTypeOnlyFile(File &f) {
                       "' has no behaviour of its own: it is checked, and "
                       "blocks that use it translate with it");
   } else if (kind == "AdapterType") {
-    FbType *a = findType(name, at, "adapter");
-    (void)a;
+    findType(name, at, "adapter"); // registered; its interface is read
     diag.note(at, "adapter type '" + name +
                       "' has no behaviour of its own: blocks use it through "
                       "their plugs and sockets");
