@@ -320,6 +320,8 @@ public:
   void statements(P::StatementListContext *c, StmtList &out);
   /// A POU body: statements and labels (Stmt Label), in order.
   void bodyStatements(P::BodyStatementListContext *c, StmtList &out);
+  /// Refuses the pragmas in a body that change what the program does.
+  void bodyPragmas(P::BodyStatementListContext *c);
   Initializer *initializer(P::InitializerContext *c);
 
   bool failed = false;
@@ -970,7 +972,65 @@ Initializer *AstBuilder::arrayInitializer(
   return i;
 }
 
+/// A pragma inside a body is harmless where it is one of the message and
+/// structuring pragmas CODESYS and TwinCAT define. Anything else there is
+/// refused: matiec copies such a pragma verbatim into the C it generates
+/// (its library's timers and RTC read the PLC clock that way, `{__SET_VAR(
+/// ...CURRENT_TIME...)}`), and conditional compilation (`{IF defined(...)}`)
+/// would choose statements; read as a comment either would be a silently
+/// different program.
+static std::optional<std::string> refusedBodyPragma(StringRef pragma) {
+  StringRef body = pragma.drop_front().drop_back().trim();
+  StringRef word = body.take_while([](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+  });
+  for (const char *harmless :
+       {"attribute", "warning", "info", "text", "region", "endregion",
+        "messageguid", "library", "flag", "bitaccess", "parameterinfo"})
+    if (word.equals_insensitive(harmless))
+      return std::nullopt;
+  for (const char *conditional :
+       {"IF", "ELSIF", "ELSE", "END_IF", "define", "undefine"})
+    if (word.equals_insensitive(conditional))
+      return "conditional compilation '" + pragma.str() +
+             "' is not supported (it would choose the statements translated)";
+  if (word.equals_insensitive("error"))
+    return "pragma '" + pragma.str() +
+           "' makes the program's own compiler stop with an error";
+  return "pragma '" + pragma.str() +
+         "' inside a body is not supported: matiec copies it into the C code "
+         "it generates, which cannot be modelled";
+}
+
+void AstBuilder::bodyPragmas(P::BodyStatementListContext *c) {
+  auto check = [&](antlr4::Token *t) {
+    if (t->getChannel() != st::kPragmaChannel)
+      return true;
+    if (auto why = refusedBodyPragma(t->getText())) {
+      refuse(loc(t), *why);
+      return false;
+    }
+    return true;
+  };
+  size_t first = c->getStart()->getTokenIndex();
+  for (antlr4::Token *t :
+       tokens.getHiddenTokensToLeft(first, st::kPragmaChannel))
+    if (!check(t))
+      return;
+  if (!c->getStop() || c->getStop()->getTokenIndex() < first)
+    return; // an empty body: only what stands before its END_
+  size_t last = c->getStop()->getTokenIndex();
+  for (antlr4::Token *t : tokens.get(first, last))
+    if (!check(t))
+      return;
+  for (antlr4::Token *t :
+       tokens.getHiddenTokensToRight(last, st::kPragmaChannel))
+    if (!check(t))
+      return;
+}
+
 void AstBuilder::bodyStatements(P::BodyStatementListContext *c, StmtList &out) {
+  bodyPragmas(c);
   for (auto *child : c->children) {
     if (failed)
       return;

@@ -195,6 +195,28 @@ std::unique_ptr<antlr4::Token> StLexer::fail(size_t at,
   return make(antlr4::Token::EOF, pos);
 }
 
+// Text exports that mark their sections with `(*@KEY@:NAME*)` comments
+// (MULTIPROG/PC WORX-style, a form OSCAT is also passed around in) carry a
+// POU's description as free text between `(*@KEY@:DESCRIPTION*)` and
+// `(*@KEY@:END_DESCRIPTION*)`: it is not ST, so the whole section is a
+// comment. Other sections are left to be read as ST.
+bool StLexer::skipKeySection(size_t commentStart) {
+  StringRef comment = text.slice(commentStart + 2, pos - 2).trim();
+  if (comment != "@KEY@:DESCRIPTION")
+    return true;
+  comment = comment.drop_front(6);
+  std::string closing = ("(*@KEY@:END_" + comment + "*)").str();
+  size_t end = text.find(closing, pos);
+  if (end == StringRef::npos) {
+    fail(commentStart,
+         "section '(*@KEY@:" + comment + "*)' has no '" + closing + "'");
+    return false;
+  }
+  newlinesIn(pos, end);
+  pos = end + closing.size();
+  return true;
+}
+
 bool StLexer::skipTrivia() {
   while (pos < text.size()) {
     char c = text[pos];
@@ -247,6 +269,8 @@ bool StLexer::skipTrivia() {
                     "run to the end of the text; it is read without nesting, "
                     "ending at its first '*)'");
       }
+      if (!skipKeySection(start))
+        return false;
     } else if (c == '/' && pos + 1 < text.size() && text[pos + 1] == '*') {
       size_t start = pos;
       size_t end = text.find("*/", pos + 2);

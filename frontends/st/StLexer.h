@@ -57,6 +57,8 @@ private:
                                       size_t channel = 0);
   std::unique_ptr<antlr4::Token> fail(size_t at, const llvm::Twine &msg);
   bool skipTrivia(); // false on an unterminated comment
+  /// After `(*@KEY@:DESCRIPTION*)`, skips to `(*@KEY@:END_DESCRIPTION*)`.
+  bool skipKeySection(size_t commentStart);
   void lexBasedOrDecimal();
   void newlinesIn(size_t from, size_t to);
 
