@@ -705,6 +705,17 @@ bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
   }
   if (reported)
     return false;
+  // A pragma among the instructions that changes what the POU does (C code
+  // for matiec, conditional compilation) is the POU's refusal, reported if
+  // it is translated, as in ST.
+  for (antlr4::Token *t : tokens.getTokens()) {
+    if (!pou || !pou->refusal.empty() || t->getChannel() != st::kPragmaChannel)
+      continue;
+    if (auto why = st::refusedBodyPragma(t->getText())) {
+      pou->refusal = *why;
+      pou->refusalLoc = lexer.locAt(t->getStartIndex());
+    }
+  }
   try {
     IlLowering lowering(body, diag, unit, pou);
     lowering.lower(tree);

@@ -972,41 +972,11 @@ Initializer *AstBuilder::arrayInitializer(
   return i;
 }
 
-/// A pragma inside a body is harmless where it is one of the message and
-/// structuring pragmas CODESYS and TwinCAT define. Anything else there is
-/// refused: matiec copies such a pragma verbatim into the C it generates
-/// (its library's timers and RTC read the PLC clock that way, `{__SET_VAR(
-/// ...CURRENT_TIME...)}`), and conditional compilation (`{IF defined(...)}`)
-/// would choose statements; read as a comment either would be a silently
-/// different program.
-static std::optional<std::string> refusedBodyPragma(StringRef pragma) {
-  StringRef body = pragma.drop_front().drop_back().trim();
-  StringRef word = body.take_while([](char ch) {
-    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-  });
-  for (const char *harmless :
-       {"attribute", "warning", "info", "text", "region", "endregion",
-        "messageguid", "library", "flag", "bitaccess", "parameterinfo"})
-    if (word.equals_insensitive(harmless))
-      return std::nullopt;
-  for (const char *conditional :
-       {"IF", "ELSIF", "ELSE", "END_IF", "define", "undefine"})
-    if (word.equals_insensitive(conditional))
-      return "conditional compilation '" + pragma.str() +
-             "' is not supported (it would choose the statements translated)";
-  if (word.equals_insensitive("error"))
-    return "pragma '" + pragma.str() +
-           "' makes the program's own compiler stop with an error";
-  return "pragma '" + pragma.str() +
-         "' inside a body is not supported: matiec copies it into the C code "
-         "it generates, which cannot be modelled";
-}
-
 void AstBuilder::bodyPragmas(P::BodyStatementListContext *c) {
   auto check = [&](antlr4::Token *t) {
     if (t->getChannel() != st::kPragmaChannel)
       return true;
-    if (auto why = refusedBodyPragma(t->getText())) {
+    if (auto why = st::refusedBodyPragma(t->getText())) {
       refuse(loc(t), *why);
       return false;
     }

@@ -533,3 +533,26 @@ bool st::hideTokens(antlr4::BufferedTokenStream &tokens, size_t begin,
   }
   return hidden;
 }
+
+std::optional<std::string> st::refusedBodyPragma(StringRef pragma) {
+  StringRef body = pragma.drop_front().drop_back().trim();
+  StringRef word = body.take_while([](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+  });
+  for (const char *harmless :
+       {"attribute", "warning", "info", "text", "region", "endregion",
+        "messageguid", "library", "flag", "bitaccess", "parameterinfo"})
+    if (word.equals_insensitive(harmless))
+      return std::nullopt;
+  for (const char *conditional :
+       {"IF", "ELSIF", "ELSE", "END_IF", "define", "undefine"})
+    if (word.equals_insensitive(conditional))
+      return "conditional compilation '" + pragma.str() +
+             "' is not supported (it would choose the statements translated)";
+  if (word.equals_insensitive("error"))
+    return "pragma '" + pragma.str() +
+           "' makes the program's own compiler stop with an error";
+  return "pragma '" + pragma.str() +
+         "' inside a body is not supported: matiec copies it into the C code "
+         "it generates, which cannot be modelled";
+}

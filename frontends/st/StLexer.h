@@ -21,6 +21,9 @@
 
 #include "llvm/ADT/StringRef.h"
 
+#include <optional>
+#include <string>
+
 namespace netlift::st {
 
 inline constexpr size_t kPragmaChannel = 2;
@@ -79,6 +82,16 @@ private:
 /// frontends take a broken statement out to reach the next mistake. False
 /// when there was nothing to move.
 bool hideTokens(antlr4::BufferedTokenStream &tokens, size_t begin, size_t end);
+
+/// A pragma inside a body is harmless where it is one of the message and
+/// structuring pragmas CODESYS and TwinCAT define. Anything else there is
+/// refused: matiec copies such a pragma verbatim into the C it generates
+/// (its library's timers and RTC read the PLC clock that way, `{__SET_VAR(
+/// ...CURRENT_TIME...)}`), and conditional compilation (`{IF defined(...)}`)
+/// would choose statements; read as a comment either would be a silently
+/// different program.
+/// Returns why the pragma (its text with braces) is refused, or nothing.
+std::optional<std::string> refusedBodyPragma(llvm::StringRef pragma);
 
 } // namespace netlift::st
 
