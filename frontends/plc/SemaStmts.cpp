@@ -162,11 +162,27 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
                      (fb->isSigned == tb->isSigned || fb->isBits || tb->isBits);
     if (widening || sameWidth)
       return true;
-    error(at, "type mismatch in " + what + ": " + ft->str() +
-                  " does not "
-                  "convert implicitly to " +
-                  to->str() + " (use " + fb->str() + "_TO_" + tb->str() + ")");
-    return false;
+    // IEC 61131-3 and matiec refuse a conversion that may change the
+    // value; CODESYS and TwinCAT compile it with a warning (C0195/C0196)
+    // and real code from them relies on it. The value wraps into the
+    // target, as the explicit conversion would. To or from a 64-bit
+    // unsigned value NetIR converts only values in range: still refused.
+    auto unsigned64 = [](const PType *t) {
+      return t->width >= 64 && !t->isSigned;
+    };
+    if (unsigned64(fb) || unsigned64(tb)) {
+      error(at, "type mismatch in " + what + ": " + ft->str() +
+                    " does not convert implicitly to " + to->str() + " (use " +
+                    fb->str() + "_TO_" + tb->str() + ")");
+      return false;
+    }
+    diag.warning(at, "implicit conversion of " + ft->str() + " to " +
+                         to->str() + " in " + what +
+                         " may change the value; taken as " + fb->str() +
+                         "_TO_" + tb->str() +
+                         " (CODESYS accepts it with a warning, IEC "
+                         "61131-3 and matiec do not)");
+    return true;
   }
   case PTypeKind::Real:
     if (fb->kind == PTypeKind::Real || fb->isInteger())
@@ -239,6 +255,22 @@ const PType *Checker::commonNumeric(const PType *a, const PType *b, Expr *e) {
     if (wide->width == narrow->width &&
         (wide->isSigned == narrow->isSigned || wide->isBits || narrow->isBits))
       return wide;
+    // A signed and an unsigned operand that neither holds: CODESYS
+    // computes in the register's width; NetIR's arithmetic is exact, so
+    // the result is typed as the smallest signed type that holds both (INT
+    // and UINT: DINT) and wraps where it is stored. A 64-bit unsigned
+    // operand has none.
+    if (wide->width < 64) {
+      const PType *common = elementaryType(wide->width >= 32   ? "LINT"
+                                           : wide->width >= 16 ? "DINT"
+                                                               : "INT");
+      diag.warning(e->loc, "operands of '" + op + "' mix " + a->str() +
+                               " and " + b->str() + "; computed in " +
+                               common->str() +
+                               " (CODESYS accepts it with a warning, IEC "
+                               "61131-3 and matiec do not)");
+      return common;
+    }
     error(e->loc, "operands of '" + op +
                       "' have incompatible "
                       "types " +
