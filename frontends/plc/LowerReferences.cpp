@@ -125,6 +125,14 @@ static std::vector<RefStep> familySteps(llvm::ArrayRef<Expr *> selectors) {
 /// "BYTES") the bytes the string is held in.
 static RefView viewOf(Expr *call) {
   RefView view;
+  if (call->typeName == "ELEMENTS") {
+    const PType *seen = call->args[0].value->type;
+    view.kind = RefView::Elements;
+    view.lo = call->type->elem->dims[0].first;
+    view.placeLo = seen->dims[0].first;
+    view.bytes = seen->dims[0].second - seen->dims[0].first + 1;
+    return view;
+  }
   if (call->typeName != "BYTES")
     return view;
   const PType *target = call->type->elem;
@@ -697,15 +705,40 @@ NExpr *Lowering::familyRoot(const RefFamily &fam, const DerefTargets &t,
 
 NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
-  if (fam.view.kind != RefView::Plain)
+  if (fam.view.kind == RefView::Bytes || fam.view.kind == RefView::ByteArray)
     refuse(e->loc, "the bytes of a STRING seen through a pointer are read "
                    "and assigned here, not bound, passed or called");
   std::string name;
   NExpr *x = familyRoot(fam, t, name);
   SMLoc at = t.deref->loc;
   auto place = [&]() { return x ? x : (x = b.ref(name, at)); };
+  std::vector<Expr *> selectors = placeSelectors(e, t.deref);
+  if (fam.view.kind == RefView::Elements) {
+    // An array seen with other bounds: the viewing index i is element
+    // i - lo of the array seen, which must have it.
+    if (selectors.empty() || selectors[0]->kind != ExprKind::Index ||
+        selectors[0]->operands.size() != 2)
+      refuse(e->loc, "an array seen through a pointer to an array with other "
+                     "bounds is read and written one element at a time "
+                     "(pt^[i])");
+    Expr *s = selectors[0];
+    int64_t lo = fam.view.lo;
+    NExpr *index = expr(s->operands[1], f, pre);
+    // Checked only where the reference designates this family.
+    if (!llvm::isa<net::IntLit>(index) && !t.constant)
+      index = b.cond(familyTest(fam, t), index, b.intLit(lo, at), at);
+    NExpr *i = checkedRange(index, lo, lo + fam.view.bytes - 1,
+                            t.number + "_element", pre, s->operands[1]->loc);
+    if (auto *lit = llvm::dyn_cast<net::IntLit>(i))
+      i = b.intLit(lit->value - lo + fam.view.placeLo, at);
+    else if (lo != fam.view.placeLo)
+      i = b.binary(net::BinaryOp::Add, i, b.intLit(fam.view.placeLo - lo, at),
+                   at);
+    x = b.index(place(), i, s->loc);
+    selectors.erase(selectors.begin());
+  }
   // Then what the program selects in the place designated.
-  for (Expr *s : placeSelectors(e, t.deref)) {
+  for (Expr *s : selectors) {
     const PType *bt = s->base()->type;
     if (s->kind == ExprKind::Field) {
       if (bt && bt->kind == PTypeKind::FunctionBlock) {
@@ -762,7 +795,7 @@ NExpr *Lowering::bytePosition(const RefFamily &fam, const DerefTargets &t,
 
 NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
-  if (fam.view.kind == RefView::Plain)
+  if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements)
     return familyPlace(fam, t, e, f, pre);
   std::string name;
   NExpr *x = familyRoot(fam, t, name);
@@ -774,7 +807,7 @@ NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
 void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
                            Expr *target, NExpr *value, Expr *valueExpr,
                            Frame &f, Sink &pre, Sink &out, SMLoc at) {
-  if (fam.view.kind == RefView::Plain) {
+  if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements) {
     assign(familyPlace(fam, t, target, f, pre), value, target->type, valueExpr,
            out, at);
     return;

@@ -102,10 +102,16 @@ struct RefStep {
 /// STRING taken as a POINTER TO BYTE or TO ARRAY[lo..] OF BYTE) as the
 /// `bytes` bytes the string is held in, terminator included.
 struct RefView {
-  enum Kind : uint8_t { Plain, Bytes, ByteArray } kind = Plain;
-  int64_t bytes = 0;
-  int64_t lo = 0; // ByteArray: the array's first index
-  std::string suffix() const { return kind == Plain ? "" : "#bytes"; }
+  /// Plain: the place itself. Bytes, ByteArray: a STRING's bytes seen as
+  /// BYTEs or as an ARRAY OF BYTE. Elements: an array seen as an array of
+  /// the same element type with other bounds.
+  enum Kind : uint8_t { Plain, Bytes, ByteArray, Elements } kind = Plain;
+  int64_t bytes = 0;   // Bytes, ByteArray: the string's; Elements: elements
+  int64_t lo = 0;      // ByteArray, Elements: the viewing array's first index
+  int64_t placeLo = 0; // Elements: the first index of the array seen
+  std::string suffix() const {
+    return kind == Plain ? "" : kind == Elements ? "#elements" : "#bytes";
+  }
 };
 
 /// Places of one type a reference may designate, numbered offset ..

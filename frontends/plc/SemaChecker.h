@@ -94,6 +94,11 @@ private:
   /// of one is wanted: the bytes s is held in (CODESYS's address of a
   /// string is its first byte's). Marks the call "BYTES".
   bool viewAsBytes(Expr *e, const PType *elem);
+  /// ADR(a) of a one-dimensional array where a POINTER TO an array of the
+  /// same element type with other bounds is wanted (OSCAT's `POINTER TO
+  /// ARRAY[0..32000] OF REAL` over any array of REAL): the pointer's
+  /// element i is a's element number i - lo. Marks the call "ELEMENTS".
+  bool viewAsElements(Expr *e, const PType *array);
   /// `r REF= x` and `r ?= q`.
   void referenceAssign(Stmt *s);
 

@@ -213,6 +213,23 @@ bool Checker::viewAsBytes(Expr *e, const PType *elem) {
   return true;
 }
 
+bool Checker::viewAsElements(Expr *e, const PType *array) {
+  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
+      !e->type->elem || !e->typeName.empty())
+    return false;
+  const PType *place = e->type->elem;
+  if (place->kind != PTypeKind::Array || array->kind != PTypeKind::Array ||
+      place->dims.size() != 1 || array->dims.size() != 1 ||
+      referenceKey(place->elem) != referenceKey(array->elem))
+    return false;
+  e->typeName = "ELEMENTS"; // read by the lowering (LowerReferences.cpp)
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = RefKind::Pointer;
+  r->elem = array;
+  e->type = r;
+  return true;
+}
+
 const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
                                         const PType *b) {
   Expr *ptr = e->operands[0], *offset = e->operands[1];
@@ -261,6 +278,10 @@ bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
                                   const Twine &what) {
   if (to->elem &&
       (decayToElement(from, to->elem) || viewAsBytes(from, to->elem)))
+    return true;
+  if (to->elem && to->refKind == RefKind::Pointer && from->type->elem &&
+      referenceKey(from->type->elem) != referenceKey(to->elem) &&
+      viewAsElements(from, to->elem))
     return true;
   const PType *ft = from->type;
   if (ft->isReference() &&
