@@ -133,6 +133,11 @@ static RefView viewOf(Expr *call) {
     view.bytes = seen->dims[0].second - seen->dims[0].first + 1;
     return view;
   }
+  if (call->typeName == "SCALAR") {
+    view.kind = RefView::Scalar;
+    view.seen = baseOf(call->args[0].value->type);
+    return view;
+  }
   if (call->typeName != "BYTES")
     return view;
   const PType *target = call->type->elem;
@@ -708,6 +713,10 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
   if (fam.view.kind == RefView::Bytes || fam.view.kind == RefView::ByteArray)
     refuse(e->loc, "the bytes of a STRING seen through a pointer are read "
                    "and assigned here, not bound, passed or called");
+  if (fam.view.kind == RefView::Scalar)
+    refuse(e->loc, "a " + fam.view.seen->str() +
+                       " seen through a pointer to another type is read and "
+                       "assigned here, not bound, passed or called");
   std::string name;
   NExpr *x = familyRoot(fam, t, name);
   SMLoc at = t.deref->loc;
@@ -797,6 +806,17 @@ NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
   if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements)
     return familyPlace(fam, t, e, f, pre);
+  if (fam.view.kind == RefView::Scalar) {
+    // The place's bits, read as the pointer's type.
+    if (e != t.deref)
+      refuse(e->loc, "internal: a selection in a scalar");
+    std::string name;
+    NExpr *x = familyRoot(fam, t, name);
+    NExpr *place = x ? x : b.ref(name, e->loc);
+    const PType *as = baseOf(e->type);
+    return fromBits(as, unionBits(fam.view.seen, place, e->loc), as->width,
+                    e->loc);
+  }
   std::string name;
   NExpr *x = familyRoot(fam, t, name);
   NExpr *text = x ? x : b.ref(name, e->loc);
@@ -810,6 +830,20 @@ void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
   if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements) {
     assign(familyPlace(fam, t, target, f, pre), value, target->type, valueExpr,
            out, at);
+    return;
+  }
+  if (fam.view.kind == RefView::Scalar) {
+    // The value's bits, stored as the place's type.
+    if (target != t.deref)
+      refuse(target->loc, "internal: a selection in a scalar");
+    const PType *as = baseOf(target->type);
+    std::string name;
+    NExpr *x = familyRoot(fam, t, name);
+    NExpr *place = x ? x : b.ref(name, at);
+    NExpr *bits = unionBits(
+        as, coerce(value, valueExpr ? valueExpr->type : as, as, at), at);
+    out.push_back(b.assign(
+        place, fromBits(fam.view.seen, bits, fam.view.seen->width, at), at));
     return;
   }
   NExpr *pos = bytePosition(fam, t, target, f, pre);

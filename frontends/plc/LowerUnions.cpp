@@ -153,6 +153,10 @@ NExpr *Lowering::unionRead(const UnionPart &p, Frame &f, Sink &pre, SMLoc at) {
   int64_t bits = unionLayout(t, at).size * 8;
   NExpr *whole = lvalue(p.unionExpr, f, pre);
   NExpr *raw = b.binary(net::BinaryOp::Shr, whole, p.bitOffset, at);
+  return fromBits(t, raw, bits, at);
+}
+
+NExpr *Lowering::fromBits(const PType *t, NExpr *raw, int64_t bits, SMLoc at) {
   if (bits < 64)
     raw = b.binary(net::BinaryOp::BitAnd, raw, b.intLit(maskOf(bits), at), at);
   switch (t->kind) {

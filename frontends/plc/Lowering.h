@@ -105,12 +105,24 @@ struct RefView {
   /// Plain: the place itself. Bytes, ByteArray: a STRING's bytes seen as
   /// BYTEs or as an ARRAY OF BYTE. Elements: an array seen as an array of
   /// the same element type with other bounds.
-  enum Kind : uint8_t { Plain, Bytes, ByteArray, Elements } kind = Plain;
+  /// Scalar: a scalar seen as another scalar of the same size (a REAL's
+  /// bits as a DWORD).
+  enum Kind : uint8_t {
+    Plain,
+    Bytes,
+    ByteArray,
+    Elements,
+    Scalar
+  } kind = Plain;
   int64_t bytes = 0;   // Bytes, ByteArray: the string's; Elements: elements
   int64_t lo = 0;      // ByteArray, Elements: the viewing array's first index
   int64_t placeLo = 0; // Elements: the first index of the array seen
+  const PType *seen = nullptr; // Scalar: the type of the place seen
   std::string suffix() const {
-    return kind == Plain ? "" : kind == Elements ? "#elements" : "#bytes";
+    return kind == Plain      ? ""
+           : kind == Elements ? "#elements"
+           : kind == Scalar   ? "#scalar"
+                              : "#bytes";
   }
 };
 
@@ -477,6 +489,8 @@ private:
   NExpr *unionRead(const UnionPart &p, Frame &f, Sink &pre, SMLoc at);
   /// A member's value as the bits it leaves in the UNION.
   NExpr *unionBits(const PType *t, NExpr *value, SMLoc at);
+  /// The value of scalar type `t` whose `bits` low bits `raw` holds.
+  NExpr *fromBits(const PType *t, NExpr *raw, int64_t bits, SMLoc at);
   NStmt *unionWrite(const UnionPart &p, NExpr *value, const PType *valueType,
                     Frame &f, Sink &pre, SMLoc at);
   NExpr *unionInitialValue(VarDecl *v, Initializer *init, const PType *t,

@@ -99,6 +99,10 @@ private:
   /// ARRAY[0..32000] OF REAL` over any array of REAL): the pointer's
   /// element i is a's element number i - lo. Marks the call "ELEMENTS".
   bool viewAsElements(Expr *e, const PType *array);
+  /// ADR(x) of an integer, bit string or REAL where a POINTER TO another
+  /// of these of the same size is wanted (`pt : POINTER TO DWORD; pt :=
+  /// ADR(aReal)`): x's bits read as that type. Marks the call "SCALAR".
+  bool viewAsScalar(Expr *e, const PType *elem);
   /// `r REF= x` and `r ?= q`.
   void referenceAssign(Stmt *s);
 

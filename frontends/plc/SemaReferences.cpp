@@ -230,6 +230,25 @@ bool Checker::viewAsElements(Expr *e, const PType *array) {
   return true;
 }
 
+bool Checker::viewAsScalar(Expr *e, const PType *elem) {
+  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
+      !e->type->elem || !e->typeName.empty())
+    return false;
+  const PType *seen = baseOf(e->type->elem), *as = baseOf(elem);
+  auto numeric = [](const PType *t) {
+    return (t->kind == PTypeKind::Int && !t->isSubrange) ||
+           t->kind == PTypeKind::Real;
+  };
+  if (!numeric(seen) || !numeric(as) || seen->width != as->width)
+    return false;
+  e->typeName = "SCALAR"; // read by the lowering (LowerReferences.cpp)
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = RefKind::Pointer;
+  r->elem = elem;
+  e->type = r;
+  return true;
+}
+
 const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
                                         const PType *b) {
   Expr *ptr = e->operands[0], *offset = e->operands[1];
@@ -281,7 +300,7 @@ bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
     return true;
   if (to->elem && to->refKind == RefKind::Pointer && from->type->elem &&
       referenceKey(from->type->elem) != referenceKey(to->elem) &&
-      viewAsElements(from, to->elem))
+      (viewAsElements(from, to->elem) || viewAsScalar(from, to->elem)))
     return true;
   const PType *ft = from->type;
   if (ft->isReference() &&
