@@ -731,18 +731,8 @@ NExpr *Lowering::familyPlace(const RefFamily &fam, const DerefTargets &t,
                      "bounds is read and written one element at a time "
                      "(pt^[i])");
     Expr *s = selectors[0];
-    int64_t lo = fam.view.lo;
-    NExpr *index = expr(s->operands[1], f, pre);
-    // Checked only where the reference designates this family.
-    if (!llvm::isa<net::IntLit>(index) && !t.constant)
-      index = b.cond(familyTest(fam, t), index, b.intLit(lo, at), at);
-    NExpr *i = checkedRange(index, lo, lo + fam.view.bytes - 1,
-                            t.number + "_element", pre, s->operands[1]->loc);
-    if (auto *lit = llvm::dyn_cast<net::IntLit>(i))
-      i = b.intLit(lit->value - lo + fam.view.placeLo, at);
-    else if (lo != fam.view.placeLo)
-      i = b.binary(net::BinaryOp::Add, i, b.intLit(fam.view.placeLo - lo, at),
-                   at);
+    NExpr *i = viewedPosition(fam, t, s->operands[1], fam.view.placeLo,
+                              "_element", f, pre);
     x = b.index(place(), i, s->loc);
     selectors.erase(selectors.begin());
   }
@@ -789,17 +779,26 @@ NExpr *Lowering::bytePosition(const RefFamily &fam, const DerefTargets &t,
       e->operands.size() != 2)
     refuse(e->loc, "the bytes of a STRING seen as an array are read and "
                    "written one element at a time (pt^[i])");
+  return viewedPosition(fam, t, e->operands[1], 1, "_byte", f, pre);
+}
+
+NExpr *Lowering::viewedPosition(const RefFamily &fam, const DerefTargets &t,
+                                Expr *indexExpr, int64_t first, StringRef what,
+                                Frame &f, Sink &pre) {
+  SMLoc at = indexExpr->loc;
   int64_t lo = fam.view.lo;
-  NExpr *index = expr(e->operands[1], f, pre);
+  NExpr *index = expr(indexExpr, f, pre);
   // Checked only where the reference designates this family (a read
   // selects among families after every check has run).
   if (!llvm::isa<net::IntLit>(index) && !t.constant)
     index = b.cond(familyTest(fam, t), index, b.intLit(lo, at), at);
   NExpr *i = checkedRange(index, lo, lo + fam.view.bytes - 1,
-                          t.number + "_byte", pre, e->operands[1]->loc);
+                          t.number + what.str(), pre, at);
   if (auto *lit = llvm::dyn_cast<net::IntLit>(i))
-    return b.intLit(lit->value - lo + 1, at);
-  return b.binary(net::BinaryOp::Sub, i, b.intLit(lo - 1, at), at);
+    return b.intLit(lit->value - lo + first, at);
+  if (lo == first)
+    return i;
+  return b.binary(net::BinaryOp::Add, i, b.intLit(first - lo, at), at);
 }
 
 NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,

@@ -263,6 +263,12 @@ private:
   /// made an expression of it; then the expression).
   NExpr *familyRoot(const RefFamily &fam, const DerefTargets &t,
                     std::string &name);
+  /// The position `first + i - lo` that the index `i` of an array view
+  /// (a STRING's bytes, an array with other bounds) designates, checked at
+  /// run time to lie in what is viewed (the error names `what`).
+  NExpr *viewedPosition(const RefFamily &fam, const DerefTargets &t,
+                        Expr *indexExpr, int64_t first, llvm::StringRef what,
+                        Frame &f, Sink &pre);
   NExpr *bytePosition(const RefFamily &fam, const DerefTargets &t, Expr *e,
                       Frame &f, Sink &pre);
   /// What `e` reads in a family's place (a byte of a string: code()).

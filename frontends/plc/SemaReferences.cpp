@@ -192,9 +192,25 @@ bool Checker::decayToElement(Expr *e, const PType *elem) {
   return true;
 }
 
+/// ADR(x) not yet seen as anything else.
+static bool plainAddress(Expr *e) {
+  return e->kind == ExprKind::Call && e->name == "ADR" && e->type &&
+         e->type->elem && e->typeName.empty();
+}
+
+/// Marks ADR(x) as a view of x (`kind`, read by the lowering in
+/// LowerReferences.cpp viewOf) through a POINTER TO `elem`.
+bool Checker::markView(Expr *e, const char *kind, const PType *elem) {
+  e->typeName = kind;
+  PType *r = make(PTypeKind::Reference);
+  r->refKind = RefKind::Pointer;
+  r->elem = elem;
+  e->type = r;
+  return true;
+}
+
 bool Checker::viewAsBytes(Expr *e, const PType *elem) {
-  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
-      !e->type->elem || e->typeName == "BYTES")
+  if (!plainAddress(e))
     return false;
   const PType *text = baseOf(e->type->elem);
   auto oneByte = [](const PType *t) {
@@ -205,34 +221,22 @@ bool Checker::viewAsBytes(Expr *e, const PType *elem) {
       !(oneByte(elem) || (elem->kind == PTypeKind::Array &&
                           elem->dims.size() == 1 && oneByte(elem->elem))))
     return false;
-  e->typeName = "BYTES"; // read by the lowering (LowerReferences.cpp)
-  PType *r = make(PTypeKind::Reference);
-  r->refKind = RefKind::Pointer;
-  r->elem = elem;
-  e->type = r;
-  return true;
+  return markView(e, "BYTES", elem);
 }
 
 bool Checker::viewAsElements(Expr *e, const PType *array) {
-  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
-      !e->type->elem || !e->typeName.empty())
+  if (!plainAddress(e))
     return false;
   const PType *place = e->type->elem;
   if (place->kind != PTypeKind::Array || array->kind != PTypeKind::Array ||
       place->dims.size() != 1 || array->dims.size() != 1 ||
       referenceKey(place->elem) != referenceKey(array->elem))
     return false;
-  e->typeName = "ELEMENTS"; // read by the lowering (LowerReferences.cpp)
-  PType *r = make(PTypeKind::Reference);
-  r->refKind = RefKind::Pointer;
-  r->elem = array;
-  e->type = r;
-  return true;
+  return markView(e, "ELEMENTS", array);
 }
 
 bool Checker::viewAsScalar(Expr *e, const PType *elem) {
-  if (e->kind != ExprKind::Call || e->name != "ADR" || !e->type ||
-      !e->type->elem || !e->typeName.empty())
+  if (!plainAddress(e))
     return false;
   const PType *seen = baseOf(e->type->elem), *as = baseOf(elem);
   auto numeric = [](const PType *t) {
@@ -241,12 +245,7 @@ bool Checker::viewAsScalar(Expr *e, const PType *elem) {
   };
   if (!numeric(seen) || !numeric(as) || seen->width != as->width)
     return false;
-  e->typeName = "SCALAR"; // read by the lowering (LowerReferences.cpp)
-  PType *r = make(PTypeKind::Reference);
-  r->refKind = RefKind::Pointer;
-  r->elem = elem;
-  e->type = r;
-  return true;
+  return markView(e, "SCALAR", elem);
 }
 
 const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
