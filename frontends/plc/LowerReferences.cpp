@@ -136,6 +136,10 @@ static RefView viewOf(Expr *call) {
   if (call->typeName == "SCALAR") {
     view.kind = RefView::Scalar;
     view.seen = baseOf(call->args[0].value->type);
+    if (call->type->elem->kind == PTypeKind::Array) { // its bytes
+      view.lo = call->type->elem->dims[0].first;
+      view.bytes = view.seen->width / 8;
+    }
     return view;
   }
   if (call->typeName != "BYTES")
@@ -801,20 +805,34 @@ NExpr *Lowering::viewedPosition(const RefFamily &fam, const DerefTargets &t,
   return b.binary(net::BinaryOp::Add, i, b.intLit(first - lo, at), at);
 }
 
+NExpr *Lowering::scalarByteShift(const RefFamily &fam, const DerefTargets &t,
+                                 Expr *e, Frame &f, Sink &pre) {
+  if (e == t.deref && fam.view.bytes == 0)
+    return nullptr; // the whole scalar, as another of its size
+  if (fam.view.bytes == 0 || e->kind != ExprKind::Index ||
+      e->base() != t.deref || e->operands.size() != 2)
+    refuse(e->loc, "the bytes of a " + fam.view.seen->str() +
+                       " seen as an array are read and written one element "
+                       "at a time (pt^[i])");
+  // Little-endian, as the x64 layout SIZEOF assumes: byte 0 is the lowest.
+  NExpr *pos = viewedPosition(fam, t, e->operands[1], 0, "_byte", f, pre);
+  return b.binary(net::BinaryOp::Mul, pos, b.intLit(8, e->loc), e->loc);
+}
+
 NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
   if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements)
     return familyPlace(fam, t, e, f, pre);
   if (fam.view.kind == RefView::Scalar) {
-    // The place's bits, read as the pointer's type.
-    if (e != t.deref)
-      refuse(e->loc, "internal: a selection in a scalar");
+    // The place's bits, read as the pointer's type (or one byte of them).
     std::string name;
     NExpr *x = familyRoot(fam, t, name);
     NExpr *place = x ? x : b.ref(name, e->loc);
+    NExpr *bits = unionBits(fam.view.seen, place, e->loc);
     const PType *as = baseOf(e->type);
-    return fromBits(as, unionBits(fam.view.seen, place, e->loc), as->width,
-                    e->loc);
+    if (NExpr *shift = scalarByteShift(fam, t, e, f, pre))
+      bits = b.binary(net::BinaryOp::Shr, bits, shift, e->loc);
+    return fromBits(as, bits, as->width, e->loc);
   }
   std::string name;
   NExpr *x = familyRoot(fam, t, name);
@@ -832,15 +850,31 @@ void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
     return;
   }
   if (fam.view.kind == RefView::Scalar) {
-    // The value's bits, stored as the place's type.
-    if (target != t.deref)
-      refuse(target->loc, "internal: a selection in a scalar");
+    // The value's bits, stored as the place's type (or as one byte of it,
+    // the others kept).
     const PType *as = baseOf(target->type);
     std::string name;
     NExpr *x = familyRoot(fam, t, name);
     NExpr *place = x ? x : b.ref(name, at);
     NExpr *bits = unionBits(
         as, coerce(value, valueExpr ? valueExpr->type : as, as, at), at);
+    if (NExpr *shift = scalarByteShift(fam, t, target, f, pre)) {
+      NExpr *again = familyRoot(fam, t, name);
+      NExpr *old =
+          unionBits(fam.view.seen, again ? again : b.ref(name, at), at);
+      NExpr *kept = b.binary(
+          net::BinaryOp::BitAnd, old,
+          b.unary(net::UnaryOp::BitNot,
+                  b.binary(net::BinaryOp::Shl, b.intLit(255, at), shift, at),
+                  at),
+          at);
+      bits = b.binary(
+          net::BinaryOp::BitOr, kept,
+          b.binary(net::BinaryOp::Shl,
+                   b.binary(net::BinaryOp::BitAnd, bits, b.intLit(255, at), at),
+                   shift, at),
+          at);
+    }
     out.push_back(b.assign(
         place, fromBits(fam.view.seen, bits, fam.view.seen->width, at), at));
     return;

@@ -106,7 +106,7 @@ struct RefView {
   /// BYTEs or as an ARRAY OF BYTE. Elements: an array seen as an array of
   /// the same element type with other bounds.
   /// Scalar: a scalar seen as another scalar of the same size (a REAL's
-  /// bits as a DWORD).
+  /// bits as a DWORD), or as an ARRAY OF BYTE (its bytes, `bytes` of them).
   enum Kind : uint8_t {
     Plain,
     Bytes,
@@ -269,6 +269,10 @@ private:
   NExpr *viewedPosition(const RefFamily &fam, const DerefTargets &t,
                         Expr *indexExpr, int64_t first, llvm::StringRef what,
                         Frame &f, Sink &pre);
+  /// For a scalar's bytes seen as an array, the bit offset of the byte
+  /// `e` (pt^[i]) designates, checked; null for a whole scalar view.
+  NExpr *scalarByteShift(const RefFamily &fam, const DerefTargets &t, Expr *e,
+                         Frame &f, Sink &pre);
   NExpr *bytePosition(const RefFamily &fam, const DerefTargets &t, Expr *e,
                       Frame &f, Sink &pre);
   /// What `e` reads in a family's place (a byte of a string: code()).

@@ -243,7 +243,13 @@ bool Checker::viewAsScalar(Expr *e, const PType *elem) {
     return (t->kind == PTypeKind::Int && !t->isSubrange) ||
            t->kind == PTypeKind::Real;
   };
-  if (!numeric(seen) || !numeric(as) || seen->width != as->width)
+  auto oneByteArray = [](const PType *t) {
+    return t->kind == PTypeKind::Array && t->dims.size() == 1 &&
+           baseOf(t->elem)->kind == PTypeKind::Int &&
+           baseOf(t->elem)->width == 8;
+  };
+  if (!numeric(seen) ||
+      !(oneByteArray(as) || (numeric(as) && seen->width == as->width)))
     return false;
   return markView(e, "SCALAR", elem);
 }
