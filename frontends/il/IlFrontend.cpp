@@ -709,7 +709,9 @@ bool il::parseInstructionListBody(StringRef body, DiagEngine &diag, Unit &unit,
   // for matiec, conditional compilation) is the POU's refusal, reported if
   // it is translated, as in ST.
   for (antlr4::Token *t : tokens.getTokens()) {
-    if (!pou || !pou->refusal.empty() || t->getChannel() != st::kPragmaChannel)
+    if (!pou || !pou->refusal.empty())
+      break;
+    if (t->getChannel() != st::kPragmaChannel)
       continue;
     if (auto why = st::refusedBodyPragma(t->getText())) {
       pou->refusal = *why;

@@ -860,20 +860,9 @@ void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
         as, coerce(value, valueExpr ? valueExpr->type : as, as, at), at);
     if (NExpr *shift = scalarByteShift(fam, t, target, f, pre)) {
       NExpr *again = familyRoot(fam, t, name);
-      NExpr *old =
-          unionBits(fam.view.seen, again ? again : b.ref(name, at), at);
-      NExpr *kept = b.binary(
-          net::BinaryOp::BitAnd, old,
-          b.unary(net::UnaryOp::BitNot,
-                  b.binary(net::BinaryOp::Shl, b.intLit(255, at), shift, at),
-                  at),
-          at);
-      bits = b.binary(
-          net::BinaryOp::BitOr, kept,
-          b.binary(net::BinaryOp::Shl,
-                   b.binary(net::BinaryOp::BitAnd, bits, b.intLit(255, at), at),
-                   shift, at),
-          at);
+      bits = insertBits(
+          unionBits(fam.view.seen, again ? again : b.ref(name, at), at), bits,
+          8, shift, at);
     }
     out.push_back(b.assign(
         place, fromBits(fam.view.seen, bits, fam.view.seen->width, at), at));

@@ -199,20 +199,24 @@ NStmt *Lowering::unionWrite(const UnionPart &p, NExpr *value,
   const PType *t = scalarUnionMember(p, at);
   int64_t bits = unionLayout(t, at).size * 8;
   NExpr *v = unionBits(t, coerce(value, valueType, t, at), at);
-  if (bits < 64) {
-    NExpr *mask = b.intLit(maskOf(bits), at);
-    NExpr *kept = b.binary(
-        net::BinaryOp::BitAnd, lvalue(p.unionExpr, f, pre),
-        b.unary(net::UnaryOp::BitNot,
-                b.binary(net::BinaryOp::Shl, mask, p.bitOffset, at), at),
-        at);
-    NExpr *field = b.binary(
-        net::BinaryOp::Shl,
-        b.binary(net::BinaryOp::BitAnd, v, b.intLit(maskOf(bits), at), at),
-        p.bitOffset, at);
-    v = b.binary(net::BinaryOp::BitOr, kept, field, at);
-  }
+  if (bits < 64)
+    v = insertBits(lvalue(p.unionExpr, f, pre), v, bits, p.bitOffset, at);
   return b.assign(lvalue(p.unionExpr, f, pre), v, at);
+}
+
+NExpr *Lowering::insertBits(NExpr *whole, NExpr *field, int64_t bits,
+                            NExpr *offset, SMLoc at) {
+  NExpr *mask = b.intLit(maskOf(bits), at);
+  NExpr *kept =
+      b.binary(net::BinaryOp::BitAnd, whole,
+               b.unary(net::UnaryOp::BitNot,
+                       b.binary(net::BinaryOp::Shl, mask, offset, at), at),
+               at);
+  NExpr *placed = b.binary(
+      net::BinaryOp::Shl,
+      b.binary(net::BinaryOp::BitAnd, field, b.intLit(maskOf(bits), at), at),
+      offset, at);
+  return b.binary(net::BinaryOp::BitOr, kept, placed, at);
 }
 
 NExpr *Lowering::unionInitialValue(VarDecl *v, Initializer *init,

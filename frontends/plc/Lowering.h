@@ -499,6 +499,9 @@ private:
   NExpr *unionRead(const UnionPart &p, Frame &f, Sink &pre, SMLoc at);
   /// A member's value as the bits it leaves in the UNION.
   NExpr *unionBits(const PType *t, NExpr *value, SMLoc at);
+  /// `whole` with its `bits` bits at `offset` replaced by `field`'s low bits.
+  NExpr *insertBits(NExpr *whole, NExpr *field, int64_t bits, NExpr *offset,
+                    SMLoc at);
   /// The value of scalar type `t` whose `bits` low bits `raw` holds.
   NExpr *fromBits(const PType *t, NExpr *raw, int64_t bits, SMLoc at);
   NStmt *unionWrite(const UnionPart &p, NExpr *value, const PType *valueType,

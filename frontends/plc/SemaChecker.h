@@ -103,6 +103,8 @@ private:
   /// of these of the same size is wanted (`pt : POINTER TO DWORD; pt :=
   /// ADR(aReal)`): x's bits read as that type. Marks the call "SCALAR".
   bool viewAsScalar(Expr *e, const PType *elem);
+  /// Marks ADR(x) as one of the views above (`kind`) through a POINTER TO
+  /// `elem`; true.
   bool markView(Expr *e, const char *kind, const PType *elem);
   /// `r REF= x` and `r ?= q`.
   void referenceAssign(Stmt *s);

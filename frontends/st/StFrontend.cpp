@@ -973,30 +973,26 @@ Initializer *AstBuilder::arrayInitializer(
 }
 
 void AstBuilder::bodyPragmas(P::BodyStatementListContext *c) {
-  auto check = [&](antlr4::Token *t) {
+  // From the pragmas before the first statement (or before END_ of an empty
+  // body) through those after the last.
+  size_t lo = c->getStart()->getTokenIndex(), hi = lo;
+  auto before = tokens.getHiddenTokensToLeft(lo, st::kPragmaChannel);
+  if (!before.empty())
+    lo = before.front()->getTokenIndex();
+  if (c->getStop() && c->getStop()->getTokenIndex() >= hi) {
+    hi = c->getStop()->getTokenIndex();
+    auto after = tokens.getHiddenTokensToRight(hi, st::kPragmaChannel);
+    if (!after.empty())
+      hi = after.back()->getTokenIndex();
+  }
+  for (antlr4::Token *t : tokens.get(lo, hi)) {
     if (t->getChannel() != st::kPragmaChannel)
-      return true;
+      continue;
     if (auto why = st::refusedBodyPragma(t->getText())) {
       refuse(loc(t), *why);
-      return false;
+      return;
     }
-    return true;
-  };
-  size_t first = c->getStart()->getTokenIndex();
-  for (antlr4::Token *t :
-       tokens.getHiddenTokensToLeft(first, st::kPragmaChannel))
-    if (!check(t))
-      return;
-  if (!c->getStop() || c->getStop()->getTokenIndex() < first)
-    return; // an empty body: only what stands before its END_
-  size_t last = c->getStop()->getTokenIndex();
-  for (antlr4::Token *t : tokens.get(first, last))
-    if (!check(t))
-      return;
-  for (antlr4::Token *t :
-       tokens.getHiddenTokensToRight(last, st::kPragmaChannel))
-    if (!check(t))
-      return;
+  }
 }
 
 void AstBuilder::bodyStatements(P::BodyStatementListContext *c, StmtList &out) {

@@ -201,15 +201,13 @@ std::unique_ptr<antlr4::Token> StLexer::fail(size_t at,
 // `(*@KEY@:END_DESCRIPTION*)`: it is not ST, so the whole section is a
 // comment. Other sections are left to be read as ST.
 bool StLexer::skipKeySection(size_t commentStart) {
-  StringRef comment = text.slice(commentStart + 2, pos - 2).trim();
-  if (comment != "@KEY@:DESCRIPTION")
+  if (text.slice(commentStart + 2, pos - 2).trim() != "@KEY@:DESCRIPTION")
     return true;
-  comment = comment.drop_front(6);
-  std::string closing = ("(*@KEY@:END_" + comment + "*)").str();
+  StringRef closing = "(*@KEY@:END_DESCRIPTION*)";
   size_t end = text.find(closing, pos);
   if (end == StringRef::npos) {
     fail(commentStart,
-         "section '(*@KEY@:" + comment + "*)' has no '" + closing + "'");
+         "section '(*@KEY@:DESCRIPTION*)' has no '" + closing + "'");
     return false;
   }
   newlinesIn(pos, end);
