@@ -157,9 +157,14 @@ static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
   return nullptr;
 }
 
-bool netlift::loadInputs(llvm::ArrayRef<std::string> paths, StringRef from,
+bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
                          const FrontendOptions &options, DiagEngine &diag,
                          net::Design &design) {
+  std::optional<std::vector<std::string>> expanded =
+      expandProjectInputs(given, diag);
+  if (!expanded)
+    return false;
+  llvm::ArrayRef<std::string> paths = *expanded;
   FrontendContext ctx(options);
   bool allNet = true;
   for (const std::string &path : paths) {

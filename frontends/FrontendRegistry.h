@@ -116,6 +116,13 @@ bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
                 const FrontendOptions &options, DiagEngine &diag,
                 net::Design &design);
 
+/// The files a translation reads for `paths`: a TwinCAT `.plcproj` stands
+/// for the sources it compiles, a directory for the `.plcproj` files under
+/// it or else every PLC source under it (PlcProject.cpp); other paths stand
+/// for themselves. None after reporting an error.
+std::optional<std::vector<std::string>>
+expandProjectInputs(llvm::ArrayRef<std::string> paths, DiagEngine &diag);
+
 /// Frontend implementations (one per line of FrontendRegistry.def).
 bool loadNetIR(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,
                net::Design &design);

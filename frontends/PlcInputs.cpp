@@ -176,6 +176,48 @@ static bool cdataAfter(StringRef text, size_t from, size_t limit, size_t &begin,
   return end != StringRef::npos;
 }
 
+/// A TwinCAT task (`.TcTTO`): its cycle time (in microseconds) and the
+/// programs it calls, as a configuration's task and program instances.
+template <typename At>
+static bool twinCatTask(pugi::xml_node task, plc::Unit &unit, At at,
+                        DiagEngine &diag) {
+  plc::Configuration *cfg = nullptr;
+  for (plc::Configuration *c : unit.configs)
+    if (c->name == "TwinCAT")
+      cfg = c;
+  if (!cfg) {
+    cfg = unit.make<plc::Configuration>();
+    cfg->name = "TwinCAT";
+    cfg->loc = at(task.offset_debug());
+    unit.configs.push_back(cfg);
+  }
+  plc::Task t;
+  t.name = task.attribute("Name").value();
+  t.loc = at(task.offset_debug());
+  if (pugi::xml_node cycle = task.child("CycleTime")) {
+    int64_t us = 0;
+    if (StringRef(cycle.text().get()).trim().getAsInteger(10, us) || us <= 0) {
+      diag.error(at(cycle.offset_debug()),
+                 "a task's <CycleTime> is a positive number of microseconds");
+      return false;
+    }
+    auto *interval =
+        unit.make<plc::Expr>(plc::ExprKind::TimeLit, at(cycle.offset_debug()));
+    interval->intValue = us * 1000;
+    t.interval = interval;
+  }
+  cfg->tasks.push_back(t);
+  for (pugi::xml_node call : task.children("PouCall")) {
+    plc::ProgramInstance pi;
+    pi.name = call.child("Name").text().get();
+    pi.loc = pi.typeLoc = at(call.offset_debug());
+    pi.typeName = pi.name;
+    pi.task = t.name;
+    cfg->programs.push_back(pi);
+  }
+  return true;
+}
+
 /// TwinCAT keeps a POU's declaration and its body in two CDATA sections of
 /// an XML file. The Structured Text parser reads a copy of the file in
 /// which everything but those sections is blanked (line ends kept) and the
@@ -210,30 +252,100 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n')
       blanked[i] = '\n';
-  std::string trailer;
-  auto keep = [&](pugi::xml_node element, bool required) {
+  std::vector<bool> kept(text.size(), false);
+  std::string trailer, globalList;
+  // Where the section kept last ends: a method's closing keyword goes
+  // after it.
+  size_t lastKeptEnd = 0;
+  auto keep = [&](pugi::xml_node element, bool required,
+                  pugi::xml_node owner = {}) {
     size_t from = size_t(element.offset_debug());
     pugi::xml_node next = element.next_sibling();
     size_t limit = next ? size_t(next.offset_debug()) : text.size();
     size_t b, e;
-    if (!cdataAfter(text, from, limit, b, e)) {
-      if (required)
+    if (!element || !cdataAfter(text, from, limit, b, e)) {
+      if (required && !element)
+        diag.error(at(size_t(owner.offset_debug())),
+                   "expected a <Declaration> with its Structured Text in <" +
+                       std::string(owner.name()) + ">");
+      else if (required)
         diag.error(at(from), "expected the Structured Text of <" +
                                  std::string(element.name()) +
                                  "> in a CDATA section");
       return !required;
     }
-    for (size_t i = b; i < e; ++i)
+    for (size_t i = b; i < e; ++i) {
       blanked[i] = text[i];
+      kept[i] = true;
+    }
+    lastKeptEnd = e;
     return true;
+  };
+  // The keywords the XML implies (END_METHOD after a method, ACTION before
+  // an action's body) are written into the blanked markup between two
+  // kept sections, on one line, so no location moves.
+  auto place = [&](size_t from, size_t limit, const std::string &words) {
+    size_t run = 0;
+    for (size_t i = from; i < std::min(limit, text.size()); ++i) {
+      run = kept[i] || blanked[i] == '\n' ? 0 : run + 1;
+      if (run == words.size() + 2) {
+        blanked.replace(i - words.size(), words.size(), words);
+        for (size_t k = i - words.size() - 1; k <= i; ++k)
+          kept[k] = true;
+        return true;
+      }
+    }
+    diag.error(at(from), "no room in the XML markup for '" + words +
+                             "' (the TwinCAT file is laid out unusually)");
+    return false;
+  };
+  auto declaration = [&](pugi::xml_node owner, bool required) {
+    return keep(owner.child("Declaration"), required, owner);
+  };
+  auto endOf = [&](pugi::xml_node element) {
+    pugi::xml_node next = element.next_sibling();
+    for (pugi::xml_node up = element.parent(); !next && up; up = up.parent())
+      next = up.next_sibling();
+    return next ? size_t(next.offset_debug()) : text.size();
+  };
+  // The ST of an <Implementation>; none (an abstract method's) is empty.
+  auto implementation = [&](pugi::xml_node owner) {
+    pugi::xml_node impl = owner.child("Implementation");
+    if (!impl)
+      return true;
+    pugi::xml_node body = impl.first_child();
+    while (body && body.type() != pugi::node_element)
+      body = body.next_sibling();
+    if (body && StringRef(body.name()) != "ST") {
+      diag.error(at(body.offset_debug()),
+                 "TwinCAT <" + std::string(body.name()) +
+                     "> bodies are not supported (only ST)");
+      return false;
+    }
+    return !body || keep(body, false);
   };
   for (pugi::xml_node obj : root.children()) {
     if (obj.type() != pugi::node_element)
       continue;
     StringRef kind = obj.name();
     if (kind == "GVL" || kind == "DUT") {
-      if (!keep(obj.child("Declaration"), true))
+      if (!declaration(obj, true))
         return false;
+      if (kind == "GVL")
+        globalList = obj.attribute("Name").value();
+      continue;
+    }
+    if (kind == "Task") {
+      if (!twinCatTask(obj, unitFor(ctx, bufferID), at, diag))
+        return false;
+      continue;
+    }
+    if (kind == "Itf") {
+      // An interface: its declaration (its methods' signatures are not
+      // read yet; variables of its type are refused where used).
+      if (!declaration(obj, true))
+        return false;
+      trailer += "\nEND_INTERFACE";
       continue;
     }
     if (kind != "POU") {
@@ -241,33 +353,52 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
                  "TwinCAT <" + kind.str() + "> objects are not supported");
       return false;
     }
+    pugi::xml_node decl = obj.child("Declaration");
+    if (!declaration(obj, true) || !implementation(obj))
+      return false;
     for (pugi::xml_node part : obj.children()) {
       StringRef pn = part.name();
-      if (pn == "Method" || pn == "Property" || pn == "Action" ||
-          pn == "Transition") {
+      std::string name = part.attribute("Name").value();
+      if (pn == "Method") {
+        if (!declaration(part, true) || !implementation(part) ||
+            !place(lastKeptEnd, endOf(part), "END_METHOD"))
+          return false;
+      } else if (pn == "Action") {
+        pugi::xml_node impl = part.child("Implementation");
+        size_t b, e;
+        if (!impl ||
+            !cdataAfter(text, size_t(impl.offset_debug()), endOf(part), b, e)) {
+          diag.error(at(part.offset_debug()),
+                     "expected the Structured Text of action '" + name +
+                         "' in a CDATA section");
+          return false;
+        }
+        if (!place(size_t(part.offset_debug()), b, "ACTION " + name + ":") ||
+            !implementation(part) ||
+            !place(lastKeptEnd, endOf(part), "END_ACTION"))
+          return false;
+      } else if (pn == "Property") {
+        if (!declaration(part, true))
+          return false;
+        for (const char *accessor : {"Get", "Set"}) {
+          pugi::xml_node acc = part.child(accessor);
+          if (!acc)
+            continue;
+          std::string kw = StringRef(accessor).upper();
+          if (!place(lastKeptEnd, size_t(acc.offset_debug()) + 4, kw) ||
+              !declaration(acc, false) || !implementation(acc) ||
+              !place(lastKeptEnd, endOf(acc), "END_" + kw))
+            return false;
+        }
+        if (!place(lastKeptEnd, endOf(part), "END_PROPERTY"))
+          return false;
+      } else if (pn == "Transition") {
         diag.error(at(part.offset_debug()),
-                   pn.str() + " '" + part.attribute("Name").value() +
-                       "' of POU '" + obj.attribute("Name").value() +
-                       "' is not supported (object-oriented and SFC parts "
-                       "are refused)");
+                   "Transition '" + name + "' of POU '" +
+                       obj.attribute("Name").value() +
+                       "' is not supported (SFC parts are refused)");
         return false;
       }
-    }
-    pugi::xml_node decl = obj.child("Declaration");
-    if (!decl || !keep(decl, true))
-      return false;
-    if (pugi::xml_node impl = obj.child("Implementation")) {
-      pugi::xml_node body = impl.first_child();
-      while (body && body.type() != pugi::node_element)
-        body = body.next_sibling();
-      if (body && StringRef(body.name()) != "ST") {
-        diag.error(at(body.offset_debug()),
-                   "TwinCAT <" + std::string(body.name()) +
-                       "> bodies are not supported (only ST)");
-        return false;
-      }
-      if (body && !keep(body, false))
-        return false;
     }
     // The closing keyword the declaration's first keyword calls for.
     // (keep() above has required the declaration's CDATA section.)
@@ -297,8 +428,14 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
       sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBufferCopy(
                                 blanked + trailer, buf->getBufferIdentifier()),
                             SMLoc());
-  return st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag,
-                                 unitFor(ctx, bufferID), parseOptions(ctx));
+  plc::Unit &unit = unitFor(ctx, bufferID);
+  size_t globalsBefore = unit.globals.size();
+  if (!st::parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag, unit,
+                               parseOptions(ctx)))
+    return false;
+  for (size_t i = globalsBefore; i < unit.globals.size(); ++i)
+    unit.globals[i]->globalList = globalList;
+  return true;
 }
 
 //===----------------------------------------------------------------------===//

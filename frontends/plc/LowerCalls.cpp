@@ -14,14 +14,85 @@ using namespace netlift::plc::detail;
 // Calls
 //===----------------------------------------------------------------------===//
 
+/// Which implementation a method call runs and on which instances: on
+/// the running instance, the override its type has (dynamic dispatch
+/// within a block's own code), unless SUPER^ names the base's; on a named
+/// instance (or the elements of an array chosen at run time), its type's.
+Lowering::MethodTarget Lowering::methodTarget(Expr *call, Frame &f, Sink &pre) {
+  MethodTarget t;
+  if (call->operands.empty()) {
+    auto [type, prefix] = f.running();
+    t.selfType = type;
+    t.impl = call->ofSuper ? call->callee : findCallee(type, call);
+    t.prefixes.push_back(prefix);
+    t.tests.push_back(nullptr);
+  } else {
+    t.selfType = instanceBlock(call->operands[0]->type);
+    t.impl = findCallee(t.selfType, call);
+    for (InstanceChoice &c : instanceChoices(call->operands[0], f, pre)) {
+      t.prefixes.push_back(c.path + ".");
+      t.tests.push_back(c.test);
+    }
+  }
+  if (!t.impl)
+    refuse(call->loc, "internal: no implementation of '" + call->name + "'");
+  if (activeCalls.count(t.impl))
+    refuse(call->loc, "recursive call of method '" + t.impl->methodOf->name +
+                          "." + t.impl->name +
+                          "': netlift inlines every call and does not model "
+                          "recursion");
+  // A method call is a call of the instance that passes none of its
+  // inputs (they keep what they hold, which the method may read).
+  for (const std::string &p : t.prefixes)
+    if (!p.empty())
+      ++instanceUses[p.substr(0, p.size() - 1)].calls;
+  return t;
+}
+
+void Lowering::baseBody(Expr *call, Frame &f, Sink &out) {
+  Pou *base = call->callee;
+  auto [type, prefix] = f.running();
+  Frame nf;
+  nf.pou = base;
+  nf.prefix = prefix;
+  nf.self = type;
+  nf.selfPrefix = prefix;
+  nf.aliases = f.aliases;
+  nf.aliasSources = f.aliasSources;
+  nf.instanceAliases = f.instanceAliases;
+  if (mayJump(base->body, false)) {
+    nf.returnFlag = unique(prefix + "_super_return");
+    declareTemp(nf.returnFlag, elementaryType("BOOL"), call->loc);
+    out.push_back(b.assign(b.ref(nf.returnFlag, call->loc),
+                           b.boolLit(false, call->loc), call->loc));
+  }
+  body(base->body, nf, out, {});
+}
+
 NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
-  Pou *fn = call->callee;
+  if (call->method && call->callee->kind == PouKind::FunctionBlock) {
+    baseBody(call, f, pre);
+    return nullptr;
+  }
+  MethodTarget target;
+  if (call->method)
+    target = methodTarget(call, f, pre);
+  Pou *fn = call->method ? target.impl : call->callee;
   std::string prefix =
-      unique(sanitize(fn->name) + "_" + std::to_string(++callSites)) + ".";
+      unique(sanitize(call->method ? fn->methodOf->name + "_" + fn->name
+                                   : fn->name) +
+             "_" + std::to_string(++callSites)) +
+      ".";
   Frame nf;
   nf.pou = fn;
   nf.prefix = prefix;
   nf.external = false;
+  if (call->method && call->operands.empty()) {
+    // On the running instance: the block's in-out parameters stay bound.
+    nf.aliases = f.aliases;
+    nf.aliasSources = f.aliasSources;
+    nf.instanceAliases = f.instanceAliases;
+  }
   if (mayJump(fn->body, false)) {
     nf.returnFlag = prefix + "_return";
     declareTemp(nf.returnFlag, elementaryType("BOOL"), call->loc);
@@ -62,7 +133,19 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
   }
   size_t bodyStart = pre.size();
   activeCalls[fn].push_back(prefix);
-  enabledBody(fn, prefix, call, nf, pre);
+  if (!call->method) {
+    enabledBody(fn, prefix, call, nf, pre);
+  } else {
+    // The body once per instance it may run on.
+    std::vector<Sink> bodies(target.prefixes.size());
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      Frame on = nf;
+      on.self = target.selfType;
+      on.selfPrefix = target.prefixes[i];
+      enabledBody(fn, prefix, call, on, bodies[i]);
+    }
+    emitChoice(target.tests, bodies, pre, call->loc);
+  }
   if (activeCalls[fn].pop_back(), activeCalls[fn].empty())
     activeCalls.erase(fn);
   if (fn->isLibrary)

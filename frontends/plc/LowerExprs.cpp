@@ -174,7 +174,11 @@ NExpr *Lowering::varRef(VarDecl *v, Frame &f, SMLoc at) {
     return b.ref(sanitize(v->name), at);
   if (v->section == VarSection::Stat && v->owner->kind != PouKind::Program)
     return b.ref(staticVar(v, at), at);
-  return b.ref(f.prefix + sanitize(v->name), at);
+  if (f.self && v->owner != f.pou && v->section == VarSection::InOut)
+    refuse(at, "VAR_IN_OUT '" + v->name + "' of '" + f.self->name +
+                   "' used by a method called from outside the block's body "
+                   "(it is bound only while the body runs)");
+  return b.ref(f.prefixOf(v) + sanitize(v->name), at);
 }
 
 NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {

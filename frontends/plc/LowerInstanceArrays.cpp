@@ -95,8 +95,17 @@ Lowering::instanceChoices(Expr *e, Frame &f, Sink &pre) {
     if (auto alias = f.instanceAliases.find(e->var);
         alias != f.instanceAliases.end())
       return {{nullptr, alias->second}};
-    return {{nullptr, e->var->owner ? f.prefix + sanitize(e->var->name)
-                                    : sanitize(e->var->name)}};
+    return {{nullptr, e->var->owner
+                          ? f.prefixOf(e->var) + sanitize(e->var->name)
+                          : sanitize(e->var->name)}};
+  }
+  // An instance held by an instance (`outer.inner`).
+  if (e->kind == ExprKind::Field && e->var && e->base()->type &&
+      e->base()->type->kind == PTypeKind::FunctionBlock) {
+    std::vector<InstanceChoice> outer = instanceChoices(e->base(), f, pre);
+    for (InstanceChoice &c : outer)
+      c.path += "." + sanitize(e->var->name);
+    return outer;
   }
   if (e->kind != ExprKind::Index || !e->base()->type ||
       e->base()->type->kind != PTypeKind::Array)

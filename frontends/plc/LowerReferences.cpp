@@ -489,10 +489,10 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   else if (v->owner->kind == PouKind::Function)
     base = functionPlace(v);
   else if (v->owner->kind == PouKind::Program)
-    base =
-        inputImageName(rf->prefix, v).value_or(rf->prefix + sanitize(v->name));
+    base = inputImageName(rf->prefixOf(v), v)
+               .value_or(rf->prefixOf(v) + sanitize(v->name));
   else
-    base = rf->prefix + sanitize(v->name);
+    base = rf->prefixOf(v) + sanitize(v->name);
   std::vector<RefStep> steps = familySteps(chain);
   RefView view = viewOf(call);
   auto table = refPlan.tables.find(referenceKey(

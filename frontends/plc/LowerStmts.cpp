@@ -224,6 +224,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   }
   case StmtKind::Call: {
     Expr *c = s->value;
+    if (c->method) {
+      functionCall(c, f, out);
+      return;
+    }
     if (!c->operands.empty()) {
       if (throughReference(c->operands[0]))
         callThroughReference(c, f, out);

@@ -78,6 +78,20 @@ struct Frame {
   std::string returnFlag; // set when the body has RETURN
   bool external = false;  // program frame: reads of FB members count as
                           // reads from outside the instance
+  /// A method's or action's frame: the type of the instance it runs on
+  /// and that instance's prefix, under which the block's variables are
+  /// (the method's own are under `prefix`, its call site's).
+  Pou *self = nullptr;
+  std::string selfPrefix;
+  /// The prefix `v` is named under in this frame.
+  const std::string &prefixOf(const VarDecl *v) const {
+    return self && v->owner != pou ? selfPrefix : prefix;
+  }
+  /// The instance code in this frame runs on (its type and prefix): a
+  /// method's, else the block or program whose body this is.
+  std::pair<Pou *, std::string> running() const {
+    return self ? std::pair(self, selfPrefix) : std::pair(pou, prefix);
+  }
 };
 
 struct LoopCtx {
@@ -419,6 +433,17 @@ private:
   void noteClockBound(const std::string &member, Expr *value, Frame &f,
                       SMLoc at);
   NExpr *functionCall(Expr *call, Frame &f, Sink &pre);
+  /// A method's or action's call: the implementation the instance's type
+  /// runs, and the instances it may run on (LowerCalls.cpp).
+  struct MethodTarget {
+    Pou *impl = nullptr;
+    Pou *selfType = nullptr;
+    std::vector<NExpr *> tests;        // one per prefix when chosen
+    std::vector<std::string> prefixes; // each instance's, with its dot
+  };
+  MethodTarget methodTarget(Expr *call, Frame &f, Sink &pre);
+  /// `SUPER^()`: the base's body on the running instance.
+  void baseBody(Expr *call, Frame &f, Sink &out);
   void atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at);
   NExpr *stdCall(Expr *call, Frame &f, Sink &pre);
   /// A standard function's result, EN aside.

@@ -1,7 +1,12 @@
 //===- PlcAst.cpp - the PLC program model ---------------------------------===//
 #include "frontends/plc/PlcAst.h"
+#include "ir/support/Diagnostics.h"
+
+#include "llvm/ADT/STLExtras.h"
 
 #include "llvm/ADT/StringExtras.h"
+
+#include <set>
 
 using namespace netlift::plc;
 using llvm::SMLoc;
@@ -114,9 +119,95 @@ VarDecl *Pou::find(StringRef n) const {
 
 Pou *Unit::findPou(StringRef n) const {
   for (Pou *p : pous)
-    if (sameName(p->name, n))
+    if (!p->methodOf && sameName(p->name, n))
       return p;
   return nullptr;
+}
+
+Pou *netlift::plc::findMethod(const Pou *block, StringRef name) {
+  for (const Pou *b = block; b; b = b->base)
+    for (Pou *m : b->methods)
+      if (!m->property && sameName(m->name, name))
+        return m;
+  return nullptr;
+}
+
+Pou *netlift::plc::findProperty(const Pou *block, StringRef name, bool set) {
+  for (const Pou *b = block; b; b = b->base)
+    for (Pou *m : b->methods)
+      if (m->property == (set ? 'S' : 'G') && sameName(m->name, name))
+        return m;
+  return nullptr;
+}
+
+Pou *netlift::plc::findCallee(const Pou *block, const Expr *call) {
+  return call->property ? findProperty(block, call->name, call->property == 'S')
+                        : findMethod(block, call->name);
+}
+
+void netlift::plc::forEachMethod(const Pou *block,
+                                 llvm::function_ref<void(Pou *)> fn) {
+  for (const Pou *b = block; b; b = b->base)
+    for (Pou *m : b->methods)
+      fn(m);
+}
+
+bool netlift::plc::resolveInheritance(Unit &unit, netlift::DiagEngine &diag) {
+  bool ok = true;
+  for (Pou *p : unit.pous) {
+    if (p->extends.empty() || p->base)
+      continue;
+    Pou *base = unit.findPou(p->extends);
+    if (!base || base->kind != p->kind) {
+      diag.error(p->extendsLoc,
+                 "'" + p->name + "' EXTENDS '" + p->extends + "', which is " +
+                     (base ? "a " + spelling(base->kind).str() + ", not a " +
+                                 spelling(p->kind).str()
+                           : std::string("not declared")));
+      ok = false;
+      continue;
+    }
+    p->base = base;
+  }
+  // Bases first: a chain is flattened from its root, each block once.
+  std::set<Pou *> done;
+  std::function<bool(Pou *, std::vector<Pou *> &)> flatten =
+      [&](Pou *p, std::vector<Pou *> &path) {
+        if (!p->base || done.count(p))
+          return true;
+        if (llvm::is_contained(path, p)) {
+          diag.error(p->extendsLoc,
+                     "'" + p->name + "' extends itself through its bases");
+          return false;
+        }
+        path.push_back(p);
+        if (!flatten(p->base, path))
+          return false;
+        path.pop_back();
+        done.insert(p);
+        std::vector<VarDecl *> merged;
+        for (VarDecl *v : p->base->vars) {
+          if (VarDecl *own = p->find(v->name)) {
+            diag.error(own->loc, "'" + own->name + "' is declared again in '" +
+                                     p->name + "'; its base '" + p->base->name +
+                                     "' declares it");
+            return false;
+          }
+          merged.push_back(v);
+        }
+        llvm::append_range(merged, p->vars);
+        p->vars = std::move(merged);
+        p->varsReordered();
+        return true;
+      };
+  for (Pou *p : unit.pous) {
+    std::vector<Pou *> path;
+    if (!flatten(p, path)) {
+      ok = false;
+      p->base = nullptr; // no cycle left for findMethod to follow
+    }
+  }
+  return ok;
 }
 
 TypeDecl *Unit::findType(StringRef n) const {

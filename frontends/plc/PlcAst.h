@@ -124,6 +124,15 @@ struct Expr {
   DrawnBlock *drawn = nullptr;  // Call: the graphical block it was drawn as
   /// Call of a standard function: its EN argument and ENO target, if given.
   Expr *enable = nullptr, *enableOut = nullptr;
+  /// Call of a METHOD or ACTION (`inst.M(...)`): operands[0] is the
+  /// instance; without operands the call runs on the running instance
+  /// (`M(...)`, `THIS^.M(...)`, `SUPER^.M(...)`).
+  bool method = false;
+  /// Name written `THIS^.x` (the instance's x, not a method's own) or
+  /// `SUPER^.M` (the base's M); Call `SUPER^()` (the base's body).
+  bool ofThis = false, ofSuper = false;
+  /// A method call that reads ('G') or assigns ('S') a PROPERTY.
+  char property = 0;
 
   // Filled in by Sema.
   const PType *type = nullptr;
@@ -177,6 +186,7 @@ struct TypeSyntax {
   RefKind refKind = RefKind::RefTo;            // Reference
   std::vector<EnumValueSyntax> enumerators;    // Enum
   std::vector<VarDecl *> fields;               // Struct
+  std::string extends;         // Struct: `TYPE B EXTENDS A : STRUCT`, A's name
   bool isUnion = false;        // Struct: UNION ... END_UNION (members overlap)
   Initializer *init = nullptr; // `:= init` after the type
   TypeSyntax(TypeSyntaxKind k, llvm::SMLoc l) : kind(k), loc(l) {}
@@ -259,6 +269,10 @@ struct VarDecl {
   /// value stands until the next scan samples the input again, as matiec
   /// and CODESYS run it.
   bool writtenInput = false;
+
+  /// A global of a TwinCAT global variable list: the list's name, by
+  /// which the program may qualify it (`GVL_IO.bStart`).
+  std::string globalList;
 
   /// `AT %I...` / `%Q...` / `%M...`: 'I', 'Q', 'M' or 0.
   char area() const { return location.size() > 1 ? location[1] : 0; }
@@ -386,6 +400,26 @@ struct Pou {
   std::vector<Attribute> attrs;
   /// Part of netlift's standard library (TON, CTU, ...), not the user's.
   bool isLibrary = false;
+  /// Object orientation (docs/st.md, "TwinCAT and CODESYS"). A METHOD or
+  /// ACTION is a Function whose `methodOf` is the function block or
+  /// program it belongs to (an ACTION has no variables of its own); the
+  /// block lists it in `methods`. `extends` names the base block, `base`
+  /// is that block once resolved (resolveInheritance), whose variables the
+  /// block's `vars` then start with.
+  Pou *methodOf = nullptr;
+  std::vector<Pou *> methods;
+  bool isAction = false;
+  /// A PROPERTY's accessor: 'G' (GET: a method whose result is the
+  /// property's value) or 'S' (SET: a method whose input named like the
+  /// property is the value assigned); 0 otherwise.
+  char property = 0;
+  std::string extends;
+  llvm::SMLoc extendsLoc;
+  Pou *base = nullptr;
+  std::vector<std::string> implements;
+  /// PUBLIC (empty), PRIVATE, PROTECTED or INTERNAL; ABSTRACT, FINAL.
+  std::string access;
+  bool isAbstract = false;
   /// The first construct netlift refuses in this POU (its message and
   /// place); reported only if the POU is translated, so a library's unused
   /// POUs may hold what netlift does not model.
@@ -400,6 +434,11 @@ struct Pou {
   VarDecl *resultVar = nullptr; // functions: the variable named like it
   /// The variable declared with this name (case-insensitive), or null.
   VarDecl *find(llvm::StringRef name) const;
+  /// After `vars` changed other than by appending.
+  void varsReordered() {
+    index.clear();
+    indexed = 0;
+  }
 
 private:
   // Upper-case name -> first declaration; rebuilt when vars grows.
@@ -503,6 +542,28 @@ private:
 
 /// IEC identifiers are case-insensitive.
 bool sameName(llvm::StringRef a, llvm::StringRef b);
+
+/// The METHOD or ACTION `name` an instance of `block` runs: its own, else
+/// its base's (an override hides the base's); null when none.
+Pou *findMethod(const Pou *block, llvm::StringRef name);
+
+/// The GET (`set` false) or SET accessor of the PROPERTY `name` an
+/// instance of `block` runs; null when none.
+Pou *findProperty(const Pou *block, llvm::StringRef name, bool set);
+
+/// What a method call (Expr::method) runs on an instance of `block`: the
+/// method, action or property accessor it names.
+Pou *findCallee(const Pou *block, const Expr *call);
+
+/// Every method of `block` and of its bases (overridden ones included).
+void forEachMethod(const Pou *block, llvm::function_ref<void(Pou *)> fn);
+
+/// Resolves EXTENDS between function blocks: each derived block's `base`
+/// is set and its `vars` begin with its base's (the same declarations, so
+/// a base method's name designates the member whatever the instance's
+/// type). Reports an unknown base, a base that is not a function block, a
+/// cycle and a member declared again; false after an error.
+bool resolveInheritance(Unit &unit, DiagEngine &diag);
 
 /// Builds the AST of code a frontend generates rather than parses (the
 /// networks of graphical bodies, SFC charts). A maker that must watch how

@@ -36,6 +36,11 @@ public:
         type(v->typeSyntax);
       type(p->resultSyntax);
       stmts(p->body);
+      // A block's methods and actions (any may be called on an instance),
+      // a method's block, and the blocks extended.
+      pou(p->methodOf);
+      pou(p->base);
+      forEachMethod(p, [&](Pou *m) { pou(m); });
     }
   }
 

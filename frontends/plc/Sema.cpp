@@ -252,6 +252,19 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
   case TypeSyntaxKind::Struct: {
     PType *t = make(PTypeKind::Struct);
     t->isUnion = ts->isUnion;
+    if (!ts->extends.empty()) {
+      // `TYPE B EXTENDS A : STRUCT ... END_STRUCT`: A's fields, then B's.
+      const PType *base = resolveNamed(ts->extends, ts->loc);
+      if (!base)
+        return nullptr;
+      if (base->kind != PTypeKind::Struct || base->isUnion != ts->isUnion) {
+        error(ts->loc, "'" + ownerName + "' EXTENDS '" + ts->extends +
+                           "', which is not a " +
+                           (ts->isUnion ? "UNION" : "STRUCT"));
+        return nullptr;
+      }
+      t->fields = base->fields;
+    }
     for (VarDecl *f : ts->fields) {
       f->type = resolve(f->typeSyntax, f->name);
       if (!f->type)
@@ -397,9 +410,14 @@ void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
   }
 }
 
-VarDecl *Checker::lookupVar(StringRef name) {
-  if (current) {
-    if (VarDecl *v = current->find(name)) {
+VarDecl *Checker::lookupVar(StringRef name, bool ofThis) {
+  // A method sees its own variables, then its block's (inherited ones
+  // included); `THIS^.x` only the block's.
+  for (Pou *scope :
+       {ofThis ? nullptr : current, current ? current->methodOf : nullptr}) {
+    if (!scope)
+      continue;
+    if (VarDecl *v = scope->find(name)) {
       if (v->section != VarSection::External)
         return v;
       for (VarDecl *g : allGlobals)
@@ -575,6 +593,8 @@ void Checker::checkProgramArgs(ProgramInstance &pi, Pou *p) {
 }
 
 bool Checker::run() {
+  if (!resolveInheritance(unit, diag))
+    return false;
   for (Configuration *c : unit.configs)
     for (VarDecl *g : c->globals)
       allGlobals.push_back(g);
@@ -617,7 +637,9 @@ bool Checker::run() {
   for (size_t i = 0; i < unit.pous.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (sameName(unit.pous[i]->name, unit.pous[j]->name) &&
-          !unit.pous[j]->isLibrary) {
+          !unit.pous[j]->isLibrary &&
+          unit.pous[i]->methodOf == unit.pous[j]->methodOf &&
+          unit.pous[i]->property == unit.pous[j]->property) {
         error(unit.pous[i]->loc,
               "'" + unit.pous[i]->name + "' is declared twice");
         break;
@@ -701,10 +723,25 @@ void Checker::checkPou(Pou *p) {
                         " is allowed only on BOOL inputs of function blocks");
     if (v->type && instanceBlock(v->type) == p)
       error(v->loc, "function block '" + p->name + "' contains itself");
+    if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr;
+        fb && fb->isAbstract)
+      error(v->loc, "'" + fb->name +
+                        "' is ABSTRACT: only blocks that EXTEND it have "
+                        "instances");
     if (p->kind == PouKind::Function && v->type && instanceBlock(v->type))
       error(v->loc, "a function cannot hold a function block instance "
                     "(functions have no memory)");
   }
+  // A block with instances runs every method it has: none may be left
+  // ABSTRACT.
+  if (p->kind == PouKind::FunctionBlock && !p->isAbstract)
+    forEachMethod(p, [&](Pou *m) {
+      if (m->isAbstract && findMethod(p, m->name) == m)
+        error(p->loc, "'" + p->name +
+                          "' does not implement the ABSTRACT "
+                          "method '" +
+                          m->name + "' of '" + m->methodOf->name + "'");
+    });
   loopDepth = 0;
   stmts(p->body);
 }

@@ -272,6 +272,8 @@ bool Checker::drawnAsDeclared(Expr *e, Pou *type) {
 }
 
 const PType *Checker::call(Expr *e, bool asStatement) {
+  if (e->method)
+    return methodCall(e, asStatement);
   // `r^(...)`, or `r(...)` for a REFERENCE TO: the instance r designates.
   if (VarDecl *v = e->operands.empty() ? lookupVar(e->name) : nullptr;
       v && v->type && v->type->isReference() && v->type->elem &&
@@ -322,6 +324,12 @@ const PType *Checker::call(Expr *e, bool asStatement) {
                       e->drawn->typeName + "): no variable '" +
                       e->drawn->instanceName + "' is declared");
     return nullptr;
+  }
+  // A method or action of the running instance, called by its name.
+  if (Pou *running = runningBlock();
+      running && !e->drawn && findMethod(running, e->name)) {
+    e->method = true;
+    return methodCall(e, asStatement);
   }
   if (Pou *p = unit.findPou(e->name)) {
     if (p->kind != PouKind::Function) {

@@ -128,7 +128,24 @@ private:
   const PType *dateArithmetic(Op op, const PType *a, const PType *b);
   void checkProgramArgs(ProgramInstance &pi, Pou *p);
   const PType *commonNumeric(const PType *a, const PType *b, Expr *e);
-  VarDecl *lookupVar(StringRef name);
+  VarDecl *lookupVar(StringRef name, bool ofThis = false);
+  /// `Enum.Value` and `GVL.variable`: rewrites the Field `e` into what it
+  /// names; false when it is an ordinary field access.
+  bool qualifiedName(Expr *e);
+  /// `inst.M(...)`, `M(...)` on the running instance, `SUPER^.M(...)`,
+  /// `SUPER^()` (SemaObjects.cpp).
+  const PType *methodCall(Expr *e, bool asStatement);
+  /// Does `block` (or a base) have a PROPERTY `name`?
+  static bool hasProperty(const Pou *block, StringRef name);
+  /// `e` (P, inst.P) reads a PROPERTY: it becomes the GET call.
+  const PType *propertyRead(Expr *e, Expr *instance);
+  /// `P := v`, `inst.P := v`: the statement becomes the SET call; false
+  /// when its target is no property.
+  bool propertyWrite(Stmt *s);
+  /// The function block or program whose instance runs `current`.
+  Pou *runningBlock() const {
+    return current && current->methodOf ? current->methodOf : current;
+  }
   // "; did you mean 'x'?" for an unknown variable, type or function.
   std::string suggestVar(StringRef name);
   std::string suggestType(StringRef name);

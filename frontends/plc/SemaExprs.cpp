@@ -152,7 +152,13 @@ const PType *Checker::expr(Expr *e) {
       t = e->var->type;
       break;
     }
-    if (VarDecl *v = lookupVar(e->name)) {
+    if (e->ofSuper) {
+      error(e->loc, "SUPER^." + e->name +
+                        " is not called (SUPER^ gives the "
+                        "base's methods to call)");
+      return nullptr;
+    }
+    if (VarDecl *v = lookupVar(e->name, e->ofThis)) {
       e->var = v;
       t = v->type;
       break;
@@ -169,6 +175,11 @@ const PType *Checker::expr(Expr *e) {
     }
     if (sameName(e->name, "NULL")) {
       t = nullType();
+      break;
+    }
+    if (hasProperty(runningBlock(), e->name)) {
+      if (!(t = propertyRead(e, nullptr)))
+        return nullptr;
       break;
     }
     const PType *et = nullptr;
@@ -195,6 +206,8 @@ const PType *Checker::expr(Expr *e) {
     return nullptr;
   }
   case ExprKind::Field: {
+    if (qualifiedName(e))
+      return expr(e);
     const PType *bt = expr(e->base());
     if (!bt)
       return nullptr;
@@ -212,6 +225,11 @@ const PType *Checker::expr(Expr *e) {
     }
     if (bt->kind == PTypeKind::FunctionBlock) {
       VarDecl *m = bt->fb->find(e->name);
+      if (!m && hasProperty(bt->fb, e->name)) {
+        if (!(t = propertyRead(e, e->base())))
+          return nullptr;
+        break;
+      }
       if (!m)
         m = enEno(bt->fb, e->name);
       if (!m || (m->section != VarSection::Input &&
@@ -479,4 +497,31 @@ const PType *Checker::dateArithmetic(Op op, const PType *a, const PType *b) {
   if (op == Op::Sub && b->kind == PTypeKind::Date && a->dateKind == b->dateKind)
     return elementaryType(wide ? "LTIME" : "TIME");
   return nullptr;
+}
+
+/// CODESYS and TwinCAT qualify an enumerator by its type (`E_Mode.Running`,
+/// required under {attribute 'qualified_only'}) and a global by its list
+/// (`GVL_IO.bStart`): `e` becomes the enumerator or the global.
+bool Checker::qualifiedName(Expr *e) {
+  Expr *q = e->base();
+  if (q->kind != ExprKind::Name || q->ofThis || q->ofSuper ||
+      lookupVar(q->name))
+    return false;
+  if (TypeDecl *td = unit.findType(q->name)) {
+    const PType *t = resolveNamed(td->name, q->loc);
+    if (!t || t->kind != PTypeKind::Enum)
+      return false;
+    e->kind = ExprKind::EnumLit;
+    e->typeName = td->name;
+    e->operands.clear();
+    return true;
+  }
+  for (VarDecl *g : allGlobals)
+    if (sameName(g->globalList, q->name) && sameName(g->name, e->name)) {
+      e->kind = ExprKind::Name;
+      e->operands.clear();
+      e->name = g->name;
+      return true;
+    }
+  return false;
 }

@@ -18,6 +18,8 @@ void Checker::stmt(Stmt *s) {
       referenceAssign(s);
       return;
     }
+    if (propertyWrite(s))
+      return;
     if (s->target->kind == ExprKind::Name) {
       VarDecl *v = lookupVar(s->target->name);
       if (v && v->inferType && !v->type) {

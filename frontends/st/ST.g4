@@ -18,8 +18,10 @@ tokens {
   RETAIN, NON_RETAIN, PERSISTENT, AT, ARRAY, OF, STRING_KW, WSTRING_KW,
   POINTER, REFERENCE, TO, REF_TO,
   // Object orientation and other refused structure
-  METHOD, END_METHOD, PROPERTY, END_PROPERTY, INTERFACE, END_INTERFACE,
-  EXTENDS, IMPLEMENTS, ACTION, END_ACTION, NAMESPACE, END_NAMESPACE,
+  METHOD, END_METHOD, PROPERTY, END_PROPERTY, END_GET, END_SET, INTERFACE,
+  END_INTERFACE,
+  EXTENDS, IMPLEMENTS, ACTION, END_ACTION, ACTIONS, END_ACTIONS, CLASS,
+  END_CLASS, NAMESPACE, END_NAMESPACE,
   INITIAL_STEP, STEP, END_STEP, TRANSITION, END_TRANSITION, FROM,
   ABSTRACT, FINAL, PUBLIC, PRIVATE, PROTECTED, INTERNAL, OVERRIDE,
   // Statements
@@ -63,8 +65,22 @@ libraryElement
   | typeDecl
   | configurationDecl
   | globalVarBlock
+  | classDecl
+  | actionsBlock
   | refusedElement
   ;
+
+// IEC 61131-3 3rd edition CLASS: a function block without a body, used
+// through its methods.
+classDecl
+  : CLASS accessModifier* name=IDENT
+    (EXTENDS ext=qualifiedName)? (IMPLEMENTS qualifiedName (COMMA qualifiedName)*)?
+    pouVarBlock* fbMember* END_CLASS
+  ;
+
+// Actions written after the POU they belong to (`ACTIONS [pou] ACTION a
+// ... END_ACTION END_ACTIONS`, as RuSTy and CODESYS exports write them).
+actionsBlock : ACTIONS owner=ident? sfcAction* END_ACTIONS ;
 
 // Elements netlift refuses by name; their body is skipped token by token.
 refusedElement
@@ -86,12 +102,32 @@ functionBlockDecl
     pouVarBlock* fbMember* body=bodyStatementList fbMember* END_FUNCTION_BLOCK
   ;
 
-accessModifier : ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL ;
+accessModifier
+  : ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL | OVERRIDE ;
+
+// A PROPERTY (CODESYS, TwinCAT): a GET and a SET accessor, each a method
+// (`GET ... END_GET`, `SET ... END_SET`; the TwinCAT reader writes them so).
+propertyDecl
+  : PROPERTY accessModifier* name=ident COLON type=typeSpec0 SEMI?
+    propertyAccessor* END_PROPERTY SEMI?
+  ;
+
+propertyAccessor
+  : kw=IDENT accessModifier* pouVarBlock* body=bodyStatementList
+    end=(END_GET | END_SET) SEMI?
+  ;
+
+// A METHOD of a function block or program (IEC 61131-3 3rd edition, 6.6.5):
+// a function that runs on the instance, whose variables it sees.
+methodDecl
+  : METHOD accessModifier* name=ident (COLON result=typeSpec)? SEMI?
+    pouVarBlock* body=bodyStatementList END_METHOD SEMI?
+  ;
 
 // Methods, properties, actions and SFC elements inside a POU.
 fbMember
-  : kw=METHOD (~END_METHOD)* END_METHOD
-  | kw=PROPERTY (~END_PROPERTY)* END_PROPERTY
+  : methodDecl
+  | propertyDecl
   | sfcAction
   | sfcStep
   | sfcTransition
@@ -132,7 +168,8 @@ qualifiedName : ident (DOT ident)* ;
 // Words IEC reserves only in some places (SFC, resources, OOP) are ordinary
 // names everywhere else: real programs call variables `step` or `on`.
 ident
-  : IDENT | ON | STEP | FROM | ACTION | METHOD | PROPERTY | INTERFACE
+  : IDENT | ON | STEP | FROM | ACTION | ACTIONS | CLASS | METHOD | PROPERTY
+  | INTERFACE
   | NAMESPACE | ABSTRACT | FINAL | PUBLIC | PRIVATE | PROTECTED | INTERNAL
   | OVERRIDE | POINTER | REFERENCE | TRANSITION
   ;
@@ -142,7 +179,7 @@ ident
 typeDecl : TYPE typeDefinition+ END_TYPE ;
 
 typeDefinition
-  : name=ident COLON typeSpec SEMI?
+  : name=ident (EXTENDS ext=qualifiedName)? COLON typeSpec SEMI?
   ;
 
 typeSpec

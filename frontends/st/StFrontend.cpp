@@ -359,6 +359,11 @@ private:
   template <typename Ctx> Pou *pou(PouKind kind, Ctx *c);
   Pou *program(P::ProgramDeclContext *c);
   Pou *functionBlock(P::FunctionBlockDeclContext *c);
+  Pou *method(P::MethodDeclContext *c, Pou *owner);
+  void refusedElement(P::RefusedElementContext *r);
+  Pou *classDecl(P::ClassDeclContext *c);
+  void actionsBlock(P::ActionsBlockContext *c);
+  bool property(P::PropertyDeclContext *c, Pou *owner);
   Pou *function(P::FunctionDeclContext *c);
   void typeDecl(P::TypeDeclContext *c);
   void configuration(P::ConfigurationDeclContext *c);
@@ -374,6 +379,7 @@ private:
   Expr *primary(P::PrimaryContext *c);
   Expr *variable(P::VariableContext *c);
   Expr *literal(P::LiteralContext *c);
+  Expr *callOf(Expr *callee, P::VariableContext *written, SMLoc at);
   bool callArgs(const std::vector<P::CallArgContext *> &args,
                 std::vector<CallArg> &out);
 
@@ -412,12 +418,95 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
       configuration(c);
     else if (auto *g = el->globalVarBlock())
       varBlock(g->varBlock(), unit.globals);
+    else if (auto *k = el->classDecl())
+      deferRefusals(PouKind::FunctionBlock, k, [&] { classDecl(k); });
+    else if (auto *a = el->actionsBlock())
+      actionsBlock(a);
     else if (auto *r = el->refusedElement())
-      refuse(loc(r->kw), llvm::Twine(r->kw->getText()) +
-                             " is not supported (object-oriented and vendor "
-                             "extensions are refused)");
+      refusedElement(r);
   }
   return !failed;
+}
+
+/// An INTERFACE is a type whose variables are refused where they are
+/// used (a function block may name it in IMPLEMENTS); the other elements
+/// are refused where they stand.
+/// ABSTRACT, FINAL and the access specifiers written before a name.
+template <typename Mods> static void modifiers(const Mods &mods, Pou *p) {
+  for (auto *m : mods) {
+    std::string word = StringRef(m->getText()).upper();
+    if (word == "ABSTRACT")
+      p->isAbstract = true;
+    else if (word == "PRIVATE" || word == "PROTECTED" || word == "INTERNAL")
+      p->access = word;
+  }
+}
+
+bool AstBuilder::property(P::PropertyDeclContext *c, Pou *owner) {
+  for (auto *a : c->propertyAccessor()) {
+    std::string kw = StringRef(a->kw->getText()).upper();
+    bool get = kw == "GET";
+    if ((!get && kw != "SET") || (a->end->getType() == P::END_GET) != get) {
+      refuse(loc(a->kw), "expected GET ... END_GET or SET ... END_SET in "
+                         "PROPERTY '" +
+                             c->name->getText() + "'");
+      return false;
+    }
+    Pou *acc = unit.make<Pou>();
+    acc->kind = PouKind::Function;
+    acc->name = c->name->getText();
+    acc->loc = loc(a->kw);
+    acc->property = get ? 'G' : 'S';
+    modifiers(c->accessModifier(), acc);
+    modifiers(a->accessModifier(), acc);
+    for (auto *vb : a->pouVarBlock())
+      varBlock(vb->varBlock(), acc->vars);
+    for (VarDecl *v : acc->vars)
+      if (v->section == VarSection::Inst)
+        v->section = VarSection::Var;
+    if (get) {
+      acc->resultSyntax = typeSpec0(c->type);
+    } else {
+      // The value assigned is the accessor's input named like the
+      // property.
+      auto *v = unit.make<VarDecl>();
+      v->name = acc->name;
+      v->loc = loc(c->name);
+      v->section = VarSection::Input;
+      v->typeSyntax = typeSpec0(c->type);
+      acc->vars.push_back(v);
+    }
+    bodyStatements(a->body, acc->body);
+    if (failed || !plc::expandJumps(unit, *acc, diag))
+      return failed = true, false;
+    acc->methodOf = owner;
+    owner->methods.push_back(acc);
+    unit.pous.push_back(acc);
+  }
+  return true;
+}
+
+void AstBuilder::refusedElement(P::RefusedElementContext *r) {
+  if (r->kw->getType() == P::INTERFACE && r->children.size() > 2) {
+    auto *td = unit.make<TypeDecl>();
+    td->name = r->children[1]->getText();
+    td->loc = loc(r->kw);
+    td->type = refusedType(td->loc, "variables of INTERFACE type '" + td->name +
+                                        "' are not supported (calls through "
+                                        "interfaces are not modelled yet)");
+    unit.types.push_back(td);
+    return;
+  }
+  std::string kw = StringRef(r->kw->getText()).upper();
+  if (kw == "NAMESPACE")
+    refuse(loc(r->kw), "NAMESPACE is not supported (a vendor extension)");
+  else
+    refuse(loc(r->kw), kw +
+                           " outside a FUNCTION_BLOCK or PROGRAM: netlift "
+                           "reads a " +
+                           kw +
+                           " inside the block it belongs to (its variables "
+                           "are the block's)");
 }
 
 /// Builds one POU; a construct netlift refuses in it is kept on the POU
@@ -444,7 +533,8 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   pou->name = c->name->getText();
   pou->loc = loc(c->name);
   pou->attrs = pragmasBefore(c->getStart());
-  if constexpr (std::is_same_v<Ctx, P::FunctionDeclContext>) {
+  if constexpr (std::is_same_v<Ctx, P::FunctionDeclContext> ||
+                std::is_same_v<Ctx, P::MethodDeclContext>) {
     // Without a result type (IEC 61131-3 3rd edition, CODESYS) a function
     // gives its outputs only.
     if (c->result)
@@ -452,6 +542,10 @@ template <typename Ctx> Pou *AstBuilder::pou(PouKind kind, Ctx *c) {
   }
   for (auto *vb : c->pouVarBlock())
     varBlock(vb->varBlock(), pou->vars);
+  if constexpr (!std::is_same_v<Ctx, P::MethodDeclContext>)
+    for (VarDecl *v : pou->vars)
+      if (v->section == VarSection::Inst)
+        v->section = VarSection::Var;
   bodyStatements(c->body, pou->body);
   if (skipped)
     if (auto it = skipped->find(c->getStop()->getStartIndex());
@@ -475,13 +569,13 @@ bool AstBuilder::members(const std::vector<P::FbMemberContext *> &ms,
     return true;
   auto *chart = unit.make<SfcChart>();
   for (auto *m : ms) {
-    if (m->kw) {
-      refuse(loc(m->kw), m->kw->getText() + " in a " + where +
-                             " is not supported (object-oriented "
-                             "extensions are refused)");
-      return false;
-    }
-    if (auto *s = m->sfcStep()) {
+    if (auto *md = m->methodDecl()) {
+      if (!method(md, pou))
+        return false;
+    } else if (auto *pd = m->propertyDecl()) {
+      if (!property(pd, pou))
+        return false;
+    } else if (auto *s = m->sfcStep()) {
       if (!sfcStep(s, *chart))
         return false;
     } else if (auto *t = m->sfcTransition()) {
@@ -498,13 +592,24 @@ bool AstBuilder::members(const std::vector<P::FbMemberContext *> &ms,
       chart->actions.push_back(action);
     }
   }
+  if (chart->steps.empty() && chart->transitions.empty()) {
+    // CODESYS actions: code of the POU run on its instance when called
+    // (`A();`, `inst.A();`), as a method without variables.
+    for (SfcAction *a : chart->actions) {
+      Pou *action = unit.make<Pou>();
+      action->kind = PouKind::Function;
+      action->name = a->name;
+      action->loc = a->loc;
+      action->body = std::move(a->body);
+      action->isAction = true;
+      action->methodOf = pou;
+      pou->methods.push_back(action);
+      unit.pous.push_back(action);
+    }
+    return true;
+  }
   if (chart->steps.empty()) {
-    refuse(chart->actions.empty() ? pou->loc : chart->actions[0]->loc,
-           chart->actions.empty()
-               ? "an SFC transition without steps"
-               : "ACTION in a " + where +
-                     " without SFC steps is not supported (a CODESYS "
-                     "action, called as a statement, is refused)");
+    refuse(pou->loc, "an SFC transition without steps");
     return false;
   }
   if (!pou->body.empty()) {
@@ -644,18 +749,113 @@ Pou *AstBuilder::program(P::ProgramDeclContext *c) {
 }
 
 Pou *AstBuilder::functionBlock(P::FunctionBlockDeclContext *c) {
-  if (c->EXTENDS())
-    return refuse(loc(c->EXTENDS()),
-                  "EXTENDS is not supported (object-oriented function blocks "
-                  "are refused)");
-  if (c->IMPLEMENTS())
-    return refuse(loc(c->IMPLEMENTS()),
-                  "IMPLEMENTS is not supported (object-oriented function "
-                  "blocks are refused)");
   Pou *p = pou(PouKind::FunctionBlock, c);
-  if (!p || !members(c->fbMember(), "function block", p))
+  if (!p)
+    return nullptr;
+  modifiers(c->accessModifier(), p);
+  if (c->ext) {
+    p->extends = c->ext->getText();
+    p->extendsLoc = loc(c->ext);
+  }
+  if (c->IMPLEMENTS())
+    for (auto *q : c->qualifiedName())
+      if (q != c->ext)
+        p->implements.push_back(q->getText());
+  if (!members(c->fbMember(), "function block", p))
     return nullptr;
   return p;
+}
+
+Pou *AstBuilder::classDecl(P::ClassDeclContext *c) {
+  Pou *p = unit.make<Pou>();
+  p->kind = PouKind::FunctionBlock;
+  p->name = c->name->getText();
+  p->loc = loc(c->name);
+  p->attrs = pragmasBefore(c->getStart());
+  modifiers(c->accessModifier(), p);
+  if (c->ext) {
+    p->extends = c->ext->getText();
+    p->extendsLoc = loc(c->ext);
+  }
+  for (auto *vb : c->pouVarBlock())
+    varBlock(vb->varBlock(), p->vars);
+  for (VarDecl *v : p->vars)
+    if (v->section == VarSection::Inst)
+      v->section = VarSection::Var;
+  if (failed)
+    return nullptr;
+  unit.pous.push_back(p);
+  return members(c->fbMember(), "class", p) ? p : nullptr;
+}
+
+void AstBuilder::actionsBlock(P::ActionsBlockContext *c) {
+  Pou *owner = nullptr;
+  if (c->owner) {
+    owner = unit.findPou(c->owner->getText());
+    if (!owner) {
+      refuse(loc(c->owner), "ACTIONS for '" + c->owner->getText() +
+                                "', which is not declared before them");
+      return;
+    }
+  } else {
+    for (Pou *p : unit.pous)
+      if (!p->methodOf && !p->isLibrary)
+        owner = p;
+    if (!owner) {
+      refuse(loc(c->ACTIONS()), "ACTIONS without a POU before them");
+      return;
+    }
+  }
+  for (auto *a : c->sfcAction()) {
+    Pou *action = unit.make<Pou>();
+    action->kind = PouKind::Function;
+    action->name = a->name->getText();
+    action->loc = loc(a->name);
+    statements(a->body, action->body);
+    if (failed)
+      return;
+    action->isAction = true;
+    action->methodOf = owner;
+    owner->methods.push_back(action);
+    unit.pous.push_back(action);
+  }
+}
+
+Pou *AstBuilder::method(P::MethodDeclContext *c, Pou *owner) {
+  Pou *m = pou(PouKind::Function, c);
+  if (!m)
+    return nullptr;
+  modifiers(c->accessModifier(), m);
+  m->methodOf = owner;
+  owner->methods.push_back(m);
+  // VAR_INST: kept in the instance between calls; a member of the block
+  // under the method's name (`M__x`), which the method's body names.
+  std::map<std::string, std::string> renamed;
+  for (auto it = m->vars.begin(); it != m->vars.end();) {
+    VarDecl *v = *it;
+    if (v->section != VarSection::Inst) {
+      ++it;
+      continue;
+    }
+    std::string member = m->name + "__" + v->name;
+    renamed[StringRef(v->name).upper()] = member;
+    v->name = member;
+    v->section = VarSection::Var;
+    owner->vars.push_back(v);
+    it = m->vars.erase(it);
+  }
+  if (!renamed.empty()) {
+    m->varsReordered();
+    forEachStmt(m->body, nullptr, [&](Expr *root) {
+      forEachNestedExpr(root, [&](Expr *e) {
+        if (e->kind == ExprKind::Name && !e->ofThis)
+          if (auto r = renamed.find(StringRef(e->name).upper());
+              r != renamed.end())
+            e->name = r->second;
+      });
+    });
+  }
+  return m;
 }
 
 Pou *AstBuilder::function(P::FunctionDeclContext *c) {
@@ -670,6 +870,14 @@ void AstBuilder::typeDecl(P::TypeDeclContext *c) {
     td->type = typeSpec(d->typeSpec());
     if (failed)
       return;
+    if (d->ext) {
+      if (td->type->kind != TypeSyntaxKind::Struct) {
+        refuse(loc(d->ext),
+               "EXTENDS in a type declaration is for STRUCTs and UNIONs");
+        return;
+      }
+      td->type->extends = d->ext->getText();
+    }
     unit.types.push_back(td);
   }
 }
@@ -758,8 +966,9 @@ void AstBuilder::varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out) {
     section = VarSection::Stat; // one variable for every instance and call
     break;
   case P::VAR_INST:
-    // CODESYS: a method's variable kept in the instance; in a POU body it
-    // is an ordinary variable.
+    // CODESYS: a method's variable kept in the instance (AstBuilder::method
+    // moves it there); in a POU body it is an ordinary variable.
+    section = VarSection::Inst;
     break;
   case P::VAR_ACCESS:
     accessBlock(c);
@@ -1049,18 +1258,9 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     Expr *callee = variable(call->callee);
     if (!callee)
       return nullptr;
-    // `r^(...)` calls the instance r designates, `timers[i](...)` an
-    // element of an array of instances.
-    bool selected =
-        callee->kind == ExprKind::Deref || callee->kind == ExprKind::Index;
-    if (callee->kind != ExprKind::Name && !selected)
-      return refuse(loc(call), "calling '" + call->callee->getText() +
-                                   "' is not supported (methods and calls "
-                                   "through selectors are refused)");
-    Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
-    e->name = selected ? call->callee->getText() : callee->name;
-    if (selected)
-      e->operands.push_back(callee);
+    Expr *e = callOf(callee, call->callee, loc(call));
+    if (!e)
+      return nullptr;
     callArgs(call->callArg(), e->args);
     s->value = e;
     return s;
@@ -1237,14 +1437,47 @@ Expr *AstBuilder::primary(P::PrimaryContext *c) {
   Expr *callee = variable(call->callee);
   if (!callee)
     return nullptr;
-  if (callee->kind != ExprKind::Name)
-    return refuse(loc(call), "calling '" + call->callee->getText() +
-                                 "' is not supported (methods and calls "
-                                 "through selectors are refused)");
-  Expr *e = unit.make<Expr>(ExprKind::Call, loc(call));
-  e->name = callee->name;
+  Expr *e = callOf(callee, call->callee, loc(call));
+  if (!e)
+    return nullptr;
   callArgs(call->callArg(), e->args);
   return failed ? nullptr : e;
+}
+
+/// The call of what `callee` designates: a function or instance by name;
+/// `r^(...)`, the instance r designates; `timers[i](...)`, an element of
+/// an array of instances; `inst.M(...)`, a METHOD or ACTION of inst;
+/// `THIS^.M(...)`, `SUPER^.M(...)` and `SUPER^()` on the running instance.
+Expr *AstBuilder::callOf(Expr *callee, P::VariableContext *written, SMLoc at) {
+  Expr *e = unit.make<Expr>(ExprKind::Call, at);
+  switch (callee->kind) {
+  case ExprKind::Name:
+    e->name = callee->name;
+    e->method = callee->ofThis || callee->ofSuper;
+    e->ofSuper = callee->ofSuper;
+    return e;
+  case ExprKind::Deref:
+    if (Expr *r = callee->base();
+        r->kind == ExprKind::Name && sameName(r->name, "SUPER")) {
+      e->name = "SUPER^";
+      e->method = e->ofSuper = true;
+      return e;
+    }
+    [[fallthrough]];
+  case ExprKind::Index:
+    e->name = written->getText();
+    e->operands.push_back(callee);
+    return e;
+  case ExprKind::Field:
+    e->name = callee->name;
+    e->method = true;
+    e->operands.push_back(callee->base());
+    return e;
+  default:
+    return refuse(at, "calling '" + written->getText() +
+                          "' is not supported (calls through this selector "
+                          "are refused)");
+  }
 }
 
 Expr *AstBuilder::variable(P::VariableContext *c) {
@@ -1253,7 +1486,25 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
   antlr4::Token *head = c->getStart();
   Expr *e = unit.make<Expr>(ExprKind::Name, loc(head));
   e->name = head->getText();
-  for (auto *sel : c->selector()) {
+  auto selectors = c->selector();
+  // THIS^.x and SUPER^.M: the running instance's member, the base's
+  // method.
+  bool self = sameName(e->name, "THIS"), super = sameName(e->name, "SUPER");
+  if ((self || super) && !selectors.empty() &&
+      alt<P::DerefSelContext>(selectors[0])) {
+    if (selectors.size() > 1)
+      if (auto *f = alt<P::FieldSelContext>(selectors[1])) {
+        e = unit.make<Expr>(ExprKind::Name, loc(f->ident()));
+        e->name = f->ident()->getText();
+        (self ? e->ofThis : e->ofSuper) = true;
+        selectors.erase(selectors.begin(), selectors.begin() + 2);
+      }
+    if (self && !e->ofThis)
+      return refuse(loc(head), "THIS^ as a whole (the instance itself) is "
+                               "not supported; name its members "
+                               "(THIS^.x)");
+  }
+  for (auto *sel : selectors) {
     if (auto *f = alt<P::FieldSelContext>(sel)) {
       Expr *fe = unit.make<Expr>(ExprKind::Field, loc(f->ident()));
       fe->name = f->ident()->getText();

@@ -74,12 +74,18 @@ const llvm::StringMap<size_t> &keywordTable() {
     add("END_METHOD", P::END_METHOD);
     add("PROPERTY", P::PROPERTY);
     add("END_PROPERTY", P::END_PROPERTY);
+    add("END_GET", P::END_GET);
+    add("END_SET", P::END_SET);
     add("INTERFACE", P::INTERFACE);
     add("END_INTERFACE", P::END_INTERFACE);
     add("EXTENDS", P::EXTENDS);
     add("IMPLEMENTS", P::IMPLEMENTS);
     add("ACTION", P::ACTION);
     add("END_ACTION", P::END_ACTION);
+    add("ACTIONS", P::ACTIONS);
+    add("END_ACTIONS", P::END_ACTIONS);
+    add("CLASS", P::CLASS);
+    add("END_CLASS", P::END_CLASS);
     add("NAMESPACE", P::NAMESPACE);
     add("END_NAMESPACE", P::END_NAMESPACE);
     add("INITIAL_STEP", P::INITIAL_STEP);

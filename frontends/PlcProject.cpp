@@ -1,0 +1,139 @@
+//===- PlcProject.cpp - a PLC project given as a directory or project file
+//-===//
+//
+// `netlift translate DIR` and `netlift translate X.plcproj` read a whole
+// project as one design: expandProjectInputs turns such an argument into the
+// source files it stands for before the frontends read them. A TwinCAT
+// `.plcproj` (MSBuild XML) lists its sources as `<Compile Include="...">`;
+// a directory stands for the `.plcproj` files under it, or, when it has
+// none, for every PLC source file under it (ST, IL, TwinCAT), in name order
+// so that a translation does not depend on the order a file system lists.
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/FrontendRegistry.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
+
+#include <pugixml.hpp>
+
+using namespace netlift;
+using llvm::SMLoc;
+using llvm::StringRef;
+
+/// The PLC sources a project directory holds: what a TwinCAT project
+/// compiles (POUs, GVLs, DUTs, interfaces, tasks) and plain ST and IL files.
+static bool isProjectSource(StringRef path) {
+  StringRef ext = llvm::sys::path::extension(path);
+  for (StringRef known :
+       {".st", ".il", ".TcPOU", ".TcGVL", ".TcDUT", ".TcIO", ".TcTTO"})
+    if (ext.equals_insensitive(known))
+      return true;
+  return false;
+}
+
+/// Every regular file under `dir` (recursively) that `keep` accepts,
+/// sorted.
+static std::vector<std::string> filesUnder(StringRef dir,
+                                           bool (*keep)(StringRef)) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (llvm::sys::fs::recursive_directory_iterator it(dir, ec), end;
+       it != end && !ec; it.increment(ec))
+    if (it->type() == llvm::sys::fs::file_type::regular_file &&
+        keep(it->path()))
+      out.push_back(it->path());
+  llvm::sort(out);
+  return out;
+}
+
+/// The sources a `.plcproj` compiles, in the order it lists them; files of
+/// other kinds (task configurations, visualisations, text lists) are left
+/// out and named in a note.
+static bool readPlcProject(StringRef path, DiagEngine &diag,
+                           std::vector<std::string> &out) {
+  unsigned id = addInputFile(diag.sourceMgr(), path);
+  if (!id)
+    return false;
+  StringRef text = diag.sourceMgr().getMemoryBuffer(id)->getBuffer();
+  auto at = [&](ptrdiff_t offset) {
+    return SMLoc::getFromPointer(text.data() +
+                                 std::clamp<ptrdiff_t>(offset, 0, text.size()));
+  };
+  pugi::xml_document doc;
+  pugi::xml_parse_result res = doc.load_buffer(
+      text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!res) {
+    diag.error(at(res.offset),
+               std::string("malformed XML: ") + res.description());
+    return false;
+  }
+  pugi::xml_node project = doc.child("Project");
+  if (!project) {
+    diag.error(at(0), "not an MSBuild project file (no <Project> element)");
+    return false;
+  }
+  StringRef dir = llvm::sys::path::parent_path(path);
+  std::vector<std::string> skipped;
+  for (pugi::xml_node group : project.children("ItemGroup"))
+    for (pugi::xml_node item : group.children("Compile")) {
+      std::string include = item.attribute("Include").value();
+      std::replace(include.begin(), include.end(), '\\', '/');
+      llvm::SmallString<256> file(dir);
+      llvm::sys::path::append(file, include);
+      if (!isProjectSource(file)) {
+        skipped.push_back(include);
+        continue;
+      }
+      if (!llvm::sys::fs::exists(file)) {
+        diag.error(at(item.offset_debug()),
+                   "the project compiles '" + include +
+                       "', which does not exist (looked for '" + file + "')");
+        return false;
+      }
+      out.push_back(std::string(file));
+    }
+  if (!skipped.empty())
+    diag.note(at(project.offset_debug()),
+              "not PLC sources, not read: " + llvm::join(skipped, ", "));
+  return true;
+}
+
+std::optional<std::vector<std::string>>
+netlift::expandProjectInputs(llvm::ArrayRef<std::string> paths,
+                             DiagEngine &diag) {
+  std::vector<std::string> out;
+  for (const std::string &path : paths) {
+    if (StringRef(path).endswith_insensitive(".plcproj")) {
+      if (!readPlcProject(path, diag, out))
+        return std::nullopt;
+      continue;
+    }
+    if (path == "-" || !llvm::sys::fs::is_directory(path)) {
+      out.push_back(path);
+      continue;
+    }
+    std::vector<std::string> projects = filesUnder(path, [](StringRef p) {
+      return llvm::sys::path::extension(p).equals_insensitive(".plcproj");
+    });
+    if (!projects.empty()) {
+      for (const std::string &p : projects)
+        if (!readPlcProject(p, diag, out))
+          return std::nullopt;
+      continue;
+    }
+    std::vector<std::string> files = filesUnder(path, isProjectSource);
+    if (files.empty()) {
+      diag.error(SMLoc(), "'" + path +
+                              "' holds no PLC sources (.st, .il, .TcPOU, "
+                              ".TcGVL, .TcDUT, .TcIO, .TcTTO) and no "
+                              ".plcproj");
+      return std::nullopt;
+    }
+    llvm::append_range(out, files);
+  }
+  return out;
+}

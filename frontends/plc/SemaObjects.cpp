@@ -1,0 +1,158 @@
+//===- SemaObjects.cpp - checking calls of methods and actions ------------===//
+//
+// The object-oriented calls of IEC 61131-3 3rd edition and CODESYS/TwinCAT:
+// `inst.M(...)` on an instance, `M(...)` and `THIS^.M(...)` on the running
+// instance, `SUPER^.M(...)` (the base's implementation) and `SUPER^()`
+// (the base's body). A method is checked as a function whose names fall
+// back to its block's variables (Checker::lookupVar); which implementation
+// an instance runs is the lowering's choice (an override is found by the
+// instance's own type, LowerCalls.cpp).
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/SemaChecker.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+/// Does code running in `caller` (a block, or null) see `m` under its
+/// access specifier?
+static bool accessible(const Pou *m, const Pou *caller) {
+  if (m->access != "PRIVATE" && m->access != "PROTECTED")
+    return true; // PUBLIC, INTERNAL (one project is one namespace here)
+  for (const Pou *b = caller; b; b = b->base) {
+    if (b == m->methodOf)
+      return true;
+    if (m->access == "PRIVATE")
+      return false; // not from a derived block
+  }
+  return false;
+}
+
+const PType *Checker::methodCall(Expr *e, bool asStatement) {
+  Pou *running = runningBlock();
+  Pou *klass = nullptr;
+  if (e->operands.empty()) {
+    if (!running || running->kind == PouKind::Function) {
+      error(e->loc, "'" + e->name +
+                        "' is called on the running instance, but no "
+                        "function block or program runs here");
+      return nullptr;
+    }
+    klass = e->ofSuper ? running->base : running;
+    if (!klass) {
+      error(e->loc, "SUPER^ in '" + running->name +
+                        "', which EXTENDS no function block");
+      return nullptr;
+    }
+    if (e->name == "SUPER^") { // the base's body, on this instance
+      if (!asStatement || !e->args.empty()) {
+        error(e->loc, "SUPER^() runs the base's body: a statement without "
+                      "arguments");
+        return nullptr;
+      }
+      e->callee = klass;
+      return voidType();
+    }
+  } else {
+    const PType *t = expr(e->operands[0]);
+    if (!t)
+      return nullptr;
+    if (t->kind != PTypeKind::FunctionBlock) {
+      error(e->loc, "calling '" + e->name + "' on a value of type " + t->str() +
+                        " (methods and actions belong to "
+                        "function block instances)");
+      return nullptr;
+    }
+    klass = t->fb;
+  }
+  Pou *m = findCallee(klass, e);
+  if (!m) {
+    if (e->property)
+      error(e->loc, "PROPERTY '" + e->name + "' of '" + klass->name +
+                        "' has no " + (e->property == 'S' ? "SET" : "GET") +
+                        (e->property == 'S' ? ": it cannot be assigned"
+                                            : ": it cannot be read"));
+    else
+      error(e->loc,
+            "'" + klass->name + "' has no method or action '" + e->name + "'");
+    return nullptr;
+  }
+  if (!accessible(m, running)) {
+    error(e->loc, "method '" + klass->name + "." + m->name + "' is " +
+                      m->access + " and cannot be called from '" +
+                      (running ? running->name : std::string("here")) + "'");
+    return nullptr;
+  }
+  if (e->ofSuper && m->isAbstract) {
+    error(e->loc,
+          "SUPER^." + m->name + " is ABSTRACT in '" + m->methodOf->name + "'");
+    return nullptr;
+  }
+  if (m == current) {
+    error(e->loc, "recursive call of method '" + m->name + "'");
+    return nullptr;
+  }
+  e->callee = m;
+  functionArgs(e, m);
+  if (!asStatement && m->resultType == voidType()) {
+    error(e->loc, Twine(m->isAction ? "action '" : "method '") + m->name +
+                      "' has no result type: call it as a statement");
+    return nullptr;
+  }
+  return m->resultType;
+}
+
+bool Checker::hasProperty(const Pou *block, StringRef name) {
+  return block &&
+         (findProperty(block, name, false) || findProperty(block, name, true));
+}
+
+const PType *Checker::propertyRead(Expr *e, Expr *instance) {
+  e->kind = ExprKind::Call;
+  e->method = true;
+  e->property = 'G';
+  e->operands.clear();
+  if (instance)
+    e->operands.push_back(instance);
+  return methodCall(e, false);
+}
+
+bool Checker::propertyWrite(Stmt *s) {
+  Expr *target = s->target, *instance = nullptr;
+  if (target->kind == ExprKind::Name) {
+    if (target->ofSuper || lookupVar(target->name, target->ofThis) ||
+        (current && current->resultVar && !target->ofThis &&
+         sameName(current->name, target->name)) ||
+        !hasProperty(runningBlock(), target->name))
+      return false;
+  } else if (target->kind == ExprKind::Field) {
+    // (`GVL.x`, `Enum.v`: names, not instances; Checker::qualifiedName.)
+    if (Expr *q = target->base();
+        q->kind == ExprKind::Name && !q->ofThis && !lookupVar(q->name))
+      return false;
+    const PType *bt = expr(target->base());
+    if (!bt || bt->kind != PTypeKind::FunctionBlock ||
+        bt->fb->find(target->name) || !hasProperty(bt->fb, target->name))
+      return false;
+    instance = target->base();
+  } else {
+    return false;
+  }
+  Expr *c = unit.make<Expr>(ExprKind::Call, target->loc);
+  c->name = target->name;
+  c->method = true;
+  c->property = 'S';
+  if (instance)
+    c->operands.push_back(instance);
+  CallArg value;
+  value.name = target->name;
+  value.value = s->value;
+  value.loc = s->value->loc;
+  c->args.push_back(value);
+  s->kind = StmtKind::Call;
+  s->target = nullptr;
+  s->value = c;
+  methodCall(c, true);
+  return true;
+}
