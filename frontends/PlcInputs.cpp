@@ -148,7 +148,8 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
       diag.sourceMgr().getMemoryBuffer(ctx.firstPlcFile)->getBufferStart());
   if (!fo.rangesFile.empty() && !readRanges(fo.rangesFile, diag, opts))
     return false;
-  if (!st::addStandardLibrary(diag, *unit))
+  if (!st::addStandardLibrary(diag, *unit) ||
+      (unit->twinCat && !st::addTwinCatLibrary(diag, *unit)))
     return false;
   plc::CheckOptions co;
   co.top = fo.top;
@@ -248,6 +249,7 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
   unitFor(ctx, bufferID)
       .inferTimeNumbers(plc::TimeNumbers::Milliseconds,
                         "milliseconds, as TwinCAT converts");
+  unitFor(ctx, bufferID).twinCat = true;
   std::string blanked(text.size(), ' ');
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n')
@@ -340,22 +342,18 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
         return false;
       continue;
     }
-    if (kind == "Itf") {
-      // An interface: its declaration (its methods' signatures are not
-      // read yet; variables of its type are refused where used).
-      if (!declaration(obj, true))
-        return false;
-      trailer += "\nEND_INTERFACE";
-      continue;
-    }
-    if (kind != "POU") {
+    if (kind != "POU" && kind != "Itf") {
       diag.error(at(obj.offset_debug()),
                  "TwinCAT <" + kind.str() + "> objects are not supported");
       return false;
     }
+    // A POU, or an interface (its methods' and properties' declarations,
+    // without bodies).
     pugi::xml_node decl = obj.child("Declaration");
     if (!declaration(obj, true) || !implementation(obj))
       return false;
+    if (kind == "Itf")
+      trailer += "\nEND_INTERFACE";
     for (pugi::xml_node part : obj.children()) {
       StringRef pn = part.name();
       std::string name = part.attribute("Name").value();

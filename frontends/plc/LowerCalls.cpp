@@ -26,6 +26,39 @@ Lowering::MethodTarget Lowering::methodTarget(Expr *call, Frame &f, Sink &pre) {
     t.impl = call->ofSuper ? call->callee : findCallee(type, call);
     t.prefixes.push_back(prefix);
     t.tests.push_back(nullptr);
+  } else if (throughReference(call->operands[0])) {
+    // Through a reference or an interface: each instance it may designate,
+    // whose type's implementation runs there.
+    Expr *instance = call->operands[0];
+    DerefTargets d = derefTargets(instance, f, pre);
+    Pou *seenAs = instance->type->fb;
+    for (const RefFamily *fam : d.live) {
+      auto *ref =
+          llvm::dyn_cast<net::Ref>(familyPlace(*fam, d, instance, f, pre));
+      if (!ref)
+        refuse(call->loc, "internal: an instance in an element");
+      Pou *type = instanceTypes[ref->name.str()];
+      // Every interface's instances share one numbering: those of blocks
+      // that do not implement this one are never designated here.
+      if (seenAs->isInterface && type &&
+          !implementsInterface(unit, type, seenAs))
+        continue;
+      Pou *impl = type ? findCallee(type, call) : nullptr;
+      if (!impl || impl->isAbstract)
+        refuse(call->loc, "internal: no implementation of '" + call->name +
+                              "' in '" + ref->name.str() + "'");
+      if (t.impl && impl != t.impl)
+        t.mixed = true;
+      t.impl = impl;
+      t.selfTypes.push_back(type);
+      t.impls.push_back(impl);
+      t.prefixes.push_back(ref->name.str() + ".");
+      t.tests.push_back(familyTest(*fam, d));
+    }
+    if (t.prefixes.empty())
+      refuse(call->loc, "no instance is ever assigned to what '" + call->name +
+                            "' is called through (an interface or "
+                            "reference that is only NULL)");
   } else {
     t.selfType = instanceBlock(call->operands[0]->type);
     t.impl = findCallee(t.selfType, call);
@@ -70,14 +103,55 @@ void Lowering::baseBody(Expr *call, Frame &f, Sink &out) {
 }
 
 NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
-  if (call->method && call->callee->kind == PouKind::FunctionBlock) {
+  if (!call->method)
+    return inlineCall(call, call->callee, {}, f, pre);
+  if (call->callee->kind == PouKind::FunctionBlock) {
     baseBody(call, f, pre);
     return nullptr;
   }
-  MethodTarget target;
-  if (call->method)
-    target = methodTarget(call, f, pre);
-  Pou *fn = call->method ? target.impl : call->callee;
+  MethodTarget target = methodTarget(call, f, pre);
+  if (!target.mixed)
+    return inlineCall(call, target.impl, target, f, pre);
+  // Through an interface, instances of several types: one inlined call per
+  // implementation, chosen by the instance, the result through one
+  // temporary.
+  std::vector<Pou *> impls;
+  for (Pou *impl : target.impls)
+    if (!llvm::is_contained(impls, impl))
+      impls.push_back(impl);
+  std::string result;
+  if (call->type && call->type->kind != PTypeKind::Void) {
+    result = unique(sanitize(call->name) + "_result");
+    declareTemp(result, call->type, call->loc);
+  }
+  std::vector<Sink> bodies;
+  std::vector<NExpr *> tests;
+  for (Pou *impl : impls) {
+    MethodTarget group;
+    group.impl = impl;
+    NExpr *test = nullptr;
+    for (size_t i = 0; i < target.impls.size(); ++i)
+      if (target.impls[i] == impl) {
+        group.selfTypes.push_back(target.selfTypes[i]);
+        group.prefixes.push_back(target.prefixes[i]);
+        group.tests.push_back(target.tests[i]);
+        test =
+            test ? b.binary(net::BinaryOp::Or, test, target.tests[i], call->loc)
+                 : target.tests[i];
+      }
+    Sink body;
+    NExpr *value = inlineCall(call, impl, group, f, body);
+    if (value && !result.empty())
+      body.push_back(b.assign(b.ref(result, call->loc), value, call->loc));
+    bodies.push_back(std::move(body));
+    tests.push_back(test);
+  }
+  emitChoice(tests, bodies, pre, call->loc);
+  return result.empty() ? nullptr : b.ref(result, call->loc);
+}
+
+NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
+                            Frame &f, Sink &pre) {
   std::string prefix =
       unique(sanitize(call->method ? fn->methodOf->name + "_" + fn->name
                                    : fn->name) +
@@ -140,7 +214,8 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
     std::vector<Sink> bodies(target.prefixes.size());
     for (size_t i = 0; i < bodies.size(); ++i) {
       Frame on = nf;
-      on.self = target.selfType;
+      on.self =
+          target.selfTypes.empty() ? target.selfType : target.selfTypes[i];
       on.selfPrefix = target.prefixes[i];
       enabledBody(fn, prefix, call, on, bodies[i]);
     }

@@ -155,6 +155,15 @@ static RefView viewOf(Expr *call) {
   return view;
 }
 
+/// The type whose places an ADR or REF call's value is numbered among: the
+/// place's own, or what it is seen as (a view; an interface the instance's
+/// block implements).
+static const PType *designatedType(Expr *call, const RefView &view) {
+  if (view.kind != RefView::Plain || call->typeName == "INTERFACE")
+    return call->type->elem;
+  return call->args[0].value->type;
+}
+
 /// The elements the index steps of `steps` span together.
 static int64_t elementsOf(llvm::ArrayRef<RefStep> steps) {
   int64_t n = 1;
@@ -313,9 +322,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
       return;
     RefView view = viewOf(call);
     addPlace(root->var, familySteps(placeSelectors(place)),
-             plan.tables[referenceKey(
-                 view.kind == RefView::Plain ? place->type : call->type->elem)],
-             view, 0);
+             plan.tables[referenceKey(designatedType(call, view))], view, 0);
   });
   // REF(r^.f): the field f of every place r may designate, itself
   // perhaps designated through another such REF: to a fixpoint.
@@ -495,8 +502,7 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
     base = rf->prefixOf(v) + sanitize(v->name);
   std::vector<RefStep> steps = familySteps(chain);
   RefView view = viewOf(call);
-  auto table = refPlan.tables.find(referenceKey(
-      view.kind == RefView::Plain ? place->type : call->type->elem));
+  auto table = refPlan.tables.find(referenceKey(designatedType(call, view)));
   const RefFamily *fam = nullptr;
   if (table != refPlan.tables.end())
     if (auto it =

@@ -797,6 +797,13 @@ bool plc::lowerToNet(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
   return l.run();
 }
 
+/// A block a library translates to a module of its own: not an interface,
+/// not ABSTRACT (neither has instances).
+static bool translatedBlock(const Pou *p) {
+  return !p->isLibrary && p->kind == PouKind::FunctionBlock &&
+         !p->isInterface && !p->isAbstract;
+}
+
 bool plc::isLibrary(const Unit &unit) {
   for (Configuration *c : unit.configs)
     if (!c->programs.empty())
@@ -807,7 +814,7 @@ bool plc::isLibrary(const Unit &unit) {
       continue;
     if (p->kind == PouKind::Program)
       return false;
-    blocks |= p->kind == PouKind::FunctionBlock;
+    blocks |= translatedBlock(p);
   }
   return blocks;
 }
@@ -816,7 +823,7 @@ bool plc::lowerLibrary(Unit &unit, const LowerOptions &opts, DiagEngine &diag,
                        net::Design &design) {
   std::vector<Pou *> blocks;
   for (Pou *p : unit.pous)
-    if (!p->isLibrary && p->kind == PouKind::FunctionBlock)
+    if (translatedBlock(p))
       blocks.push_back(p);
   // One tick for every block: the durations of them all.
   LowerOptions each = opts;

@@ -440,8 +440,16 @@ private:
     Pou *selfType = nullptr;
     std::vector<NExpr *> tests;        // one per prefix when chosen
     std::vector<std::string> prefixes; // each instance's, with its dot
+    /// Through a reference or interface: each instance's type and the
+    /// implementation it runs; `mixed` when they differ.
+    std::vector<Pou *> selfTypes, impls;
+    bool mixed = false;
   };
   MethodTarget methodTarget(Expr *call, Frame &f, Sink &pre);
+  /// `call` of `fn` inlined at this call site: a function's, or a method's
+  /// on the instances of `target`.
+  NExpr *inlineCall(Expr *call, Pou *fn, const MethodTarget &target, Frame &f,
+                    Sink &pre);
   /// `SUPER^()`: the base's body on the running instance.
   void baseBody(Expr *call, Frame &f, Sink &out);
   void atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at);

@@ -124,25 +124,58 @@ Pou *Unit::findPou(StringRef n) const {
   return nullptr;
 }
 
-Pou *netlift::plc::findMethod(const Pou *block, StringRef name) {
-  for (const Pou *b = block; b; b = b->base)
+/// The first of `block`'s members (its bases' next; for an interface, the
+/// interfaces it extends) that `match` accepts.
+static Pou *findMember(const Pou *block,
+                       llvm::function_ref<bool(const Pou *)> match,
+                       unsigned depth = 0) {
+  for (const Pou *b = block; b && depth < 64; b = b->base, ++depth) {
     for (Pou *m : b->methods)
-      if (!m->property && sameName(m->name, name))
+      if (match(m))
         return m;
+    if (b->isInterface)
+      for (Pou *inner : b->extendedInterfaces)
+        if (Pou *m = findMember(inner, match, depth + 1))
+          return m;
+  }
   return nullptr;
 }
 
+Pou *netlift::plc::findMethod(const Pou *block, StringRef name) {
+  return findMember(block, [&](const Pou *m) {
+    return !m->property && sameName(m->name, name);
+  });
+}
+
 Pou *netlift::plc::findProperty(const Pou *block, StringRef name, bool set) {
-  for (const Pou *b = block; b; b = b->base)
-    for (Pou *m : b->methods)
-      if (m->property == (set ? 'S' : 'G') && sameName(m->name, name))
-        return m;
-  return nullptr;
+  return findMember(block, [&](const Pou *m) {
+    return m->property == (set ? 'S' : 'G') && sameName(m->name, name);
+  });
 }
 
 Pou *netlift::plc::findCallee(const Pou *block, const Expr *call) {
   return call->property ? findProperty(block, call->name, call->property == 'S')
                         : findMethod(block, call->name);
+}
+
+bool netlift::plc::implementsInterface(const Unit &unit, const Pou *block,
+                                       const Pou *itf) {
+  std::set<const Pou *> seen;
+  std::function<bool(const Pou *)> reaches = [&](const Pou *i) {
+    if (!i || !seen.insert(i).second)
+      return false;
+    if (i == itf)
+      return true;
+    for (const std::string &n : i->implements)
+      if (reaches(unit.findPou(n)))
+        return true;
+    return false;
+  };
+  for (const Pou *b = block; b; b = b->base)
+    for (const std::string &n : b->implements)
+      if (reaches(unit.findPou(n)))
+        return true;
+  return block == itf;
 }
 
 void netlift::plc::forEachMethod(const Pou *block,
@@ -152,19 +185,39 @@ void netlift::plc::forEachMethod(const Pou *block,
       fn(m);
 }
 
-bool netlift::plc::resolveInheritance(Unit &unit, netlift::DiagEngine &diag) {
-  bool ok = true;
+void netlift::plc::resolveInheritance(Unit &unit) {
+  auto refuse = [](Pou *p, SMLoc at, std::string why) {
+    if (p->refusal.empty()) {
+      p->refusal = std::move(why);
+      p->refusalLoc = at;
+    }
+  };
   for (Pou *p : unit.pous) {
+    for (const std::string &n : p->implements) {
+      // An interface the inputs do not declare (a library's) changes
+      // nothing the block does: nothing can be assigned to it here.
+      Pou *itf = unit.findPou(n);
+      if (!itf && !p->isInterface)
+        continue;
+      if (!itf || !itf->isInterface) {
+        refuse(p, p->loc,
+               "'" + p->name + "' " +
+                   (p->isInterface ? "EXTENDS" : "IMPLEMENTS") + " '" + n +
+                   "', which is " +
+                   (itf ? "not an INTERFACE" : std::string("not declared")));
+        continue;
+      }
+      if (p->isInterface && !llvm::is_contained(p->extendedInterfaces, itf))
+        p->extendedInterfaces.push_back(itf);
+    }
     if (p->extends.empty() || p->base)
       continue;
     Pou *base = unit.findPou(p->extends);
-    if (!base || base->kind != p->kind) {
-      diag.error(p->extendsLoc,
-                 "'" + p->name + "' EXTENDS '" + p->extends + "', which is " +
-                     (base ? "a " + spelling(base->kind).str() + ", not a " +
-                                 spelling(p->kind).str()
-                           : std::string("not declared")));
-      ok = false;
+    if (!base || base->kind != p->kind || base->isInterface) {
+      refuse(p, p->extendsLoc,
+             "'" + p->name + "' EXTENDS '" + p->extends + "', which is " +
+                 (base ? "not a " + spelling(p->kind).str()
+                       : std::string("not declared")));
       continue;
     }
     p->base = base;
@@ -176,8 +229,8 @@ bool netlift::plc::resolveInheritance(Unit &unit, netlift::DiagEngine &diag) {
         if (!p->base || done.count(p))
           return true;
         if (llvm::is_contained(path, p)) {
-          diag.error(p->extendsLoc,
-                     "'" + p->name + "' extends itself through its bases");
+          refuse(p, p->extendsLoc,
+                 "'" + p->name + "' extends itself through its bases");
           return false;
         }
         path.push_back(p);
@@ -188,9 +241,9 @@ bool netlift::plc::resolveInheritance(Unit &unit, netlift::DiagEngine &diag) {
         std::vector<VarDecl *> merged;
         for (VarDecl *v : p->base->vars) {
           if (VarDecl *own = p->find(v->name)) {
-            diag.error(own->loc, "'" + own->name + "' is declared again in '" +
-                                     p->name + "'; its base '" + p->base->name +
-                                     "' declares it");
+            refuse(p, own->loc,
+                   "'" + own->name + "' is declared again in '" + p->name +
+                       "'; its base '" + p->base->name + "' declares it");
             return false;
           }
           merged.push_back(v);
@@ -202,12 +255,15 @@ bool netlift::plc::resolveInheritance(Unit &unit, netlift::DiagEngine &diag) {
       };
   for (Pou *p : unit.pous) {
     std::vector<Pou *> path;
-    if (!flatten(p, path)) {
-      ok = false;
-      p->base = nullptr; // no cycle left for findMethod to follow
-    }
+    if (!flatten(p, path))
+      for (Pou *q : path) // no cycle left for findMethod to follow
+        q->base = nullptr;
   }
-  return ok;
+  for (Pou *p : unit.pous)
+    if (!p->extends.empty() && !p->base)
+      refuse(p, p->extendsLoc,
+             "'" + p->name + "' EXTENDS '" + p->extends +
+                 "', which cannot be resolved (see its base)");
 }
 
 TypeDecl *Unit::findType(StringRef n) const {

@@ -164,7 +164,7 @@ enum class TypeSyntaxKind : uint8_t {
 /// they differ in what the program may write: a REFERENCE TO is
 /// dereferenced implicitly and bound with `REF=`, a POINTER TO takes
 /// ADR and compares with 0.
-enum class RefKind : uint8_t { RefTo, Pointer, Reference };
+enum class RefKind : uint8_t { RefTo, Pointer, Reference, Interface };
 
 struct Initializer;
 
@@ -420,6 +420,10 @@ struct Pou {
   /// PUBLIC (empty), PRIVATE, PROTECTED or INTERNAL; ABSTRACT, FINAL.
   std::string access;
   bool isAbstract = false;
+  /// An INTERFACE (kind FunctionBlock, no variables, abstract methods);
+  /// `implements` then lists the interfaces it EXTENDS.
+  bool isInterface = false;
+  std::vector<Pou *> extendedInterfaces; // resolved `implements` of one
   /// The first construct netlift refuses in this POU (its message and
   /// place); reported only if the POU is translated, so a library's unused
   /// POUs may hold what netlift does not model.
@@ -513,6 +517,8 @@ public:
   /// that owns both languages (the ST library cannot depend on IL's).
   std::function<bool(llvm::StringRef, DiagEngine &, Unit &, Pou *, Expr **)>
       instructionListReader;
+  /// A TwinCAT file was read: the models of its libraries are added.
+  bool twinCat = false;
   std::vector<Pou *> pous;
   std::vector<TypeDecl *> types;
   std::vector<Configuration *> configs;
@@ -555,15 +561,21 @@ Pou *findProperty(const Pou *block, llvm::StringRef name, bool set);
 /// method, action or property accessor it names.
 Pou *findCallee(const Pou *block, const Expr *call);
 
+/// Does `block` (or a base) IMPLEMENT `itf`, or an interface that EXTENDS
+/// it?
+bool implementsInterface(const Unit &unit, const Pou *block, const Pou *itf);
+
 /// Every method of `block` and of its bases (overridden ones included).
 void forEachMethod(const Pou *block, llvm::function_ref<void(Pou *)> fn);
 
 /// Resolves EXTENDS between function blocks: each derived block's `base`
 /// is set and its `vars` begin with its base's (the same declarations, so
 /// a base method's name designates the member whatever the instance's
-/// type). Reports an unknown base, a base that is not a function block, a
-/// cycle and a member declared again; false after an error.
-bool resolveInheritance(Unit &unit, DiagEngine &diag);
+/// type); an interface's `extendedInterfaces`. An unknown base or
+/// interface, a base of the wrong kind, a cycle and a member declared
+/// again become the block's refusal (reported if the translation reaches
+/// it: a library block a project does not use may extend what it lacks).
+void resolveInheritance(Unit &unit);
 
 /// Builds the AST of code a frontend generates rather than parses (the
 /// networks of graphical bodies, SFC charts). A maker that must watch how

@@ -141,6 +141,15 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
       t->name = p->name;
       t->fb = p;
       named[key] = t;
+      if (p->isInterface) {
+        // A variable of an interface type designates an instance of a
+        // block that implements it: a reference.
+        PType *r = make(PTypeKind::Reference);
+        r->refKind = RefKind::Interface;
+        r->elem = t;
+        named[key] = r;
+        return r;
+      }
       return t;
     }
     error(at, "'" + name + "' is a " + spelling(p->kind) + ", not a type");
@@ -593,8 +602,7 @@ void Checker::checkProgramArgs(ProgramInstance &pi, Pou *p) {
 }
 
 bool Checker::run() {
-  if (!resolveInheritance(unit, diag))
-    return false;
+  resolveInheritance(unit);
   for (Configuration *c : unit.configs)
     for (VarDecl *g : c->globals)
       allGlobals.push_back(g);
@@ -732,6 +740,8 @@ void Checker::checkPou(Pou *p) {
       error(v->loc, "a function cannot hold a function block instance "
                     "(functions have no memory)");
   }
+  if (p->kind == PouKind::FunctionBlock && !p->isInterface)
+    checkImplements(p);
   // A block with instances runs every method it has: none may be left
   // ABSTRACT.
   if (p->kind == PouKind::FunctionBlock && !p->isAbstract)

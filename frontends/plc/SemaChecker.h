@@ -142,6 +142,16 @@ private:
   /// `P := v`, `inst.P := v`: the statement becomes the SET call; false
   /// when its target is no property.
   bool propertyWrite(Stmt *s);
+  /// A block that IMPLEMENTS interfaces has every method and property they
+  /// declare (SemaObjects.cpp).
+  void checkImplements(Pou *block);
+  /// `x` of an interface type where its instance is meant (`itf.M()`,
+  /// `itf.P`): `x^`; other expressions as they are.
+  Expr *throughInterface(Expr *x);
+  /// `itf := inst`: an instance (of a block implementing the interface)
+  /// where an interface is wanted becomes the reference to it; false when
+  /// `from` is no such instance.
+  bool instanceAsInterface(const PType *to, Expr *from, SMLoc at);
   /// The function block or program whose instance runs `current`.
   Pou *runningBlock() const {
     return current && current->methodOf ? current->methodOf : current;

@@ -211,6 +211,8 @@ const PType *Checker::expr(Expr *e) {
     const PType *bt = expr(e->base());
     if (!bt)
       return nullptr;
+    e->operands[0] = throughInterface(e->base());
+    bt = e->base()->type;
     if (bt->kind == PTypeKind::Struct) {
       for (VarDecl *f : bt->fields)
         if (sameName(f->name, e->name)) {

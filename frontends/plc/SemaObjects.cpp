@@ -11,6 +11,9 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/SemaChecker.h"
 
+#include <functional>
+#include <set>
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -58,6 +61,8 @@ const PType *Checker::methodCall(Expr *e, bool asStatement) {
     const PType *t = expr(e->operands[0]);
     if (!t)
       return nullptr;
+    e->operands[0] = throughInterface(e->operands[0]);
+    t = e->operands[0]->type;
     if (t->kind != PTypeKind::FunctionBlock) {
       error(e->loc, "calling '" + e->name + "' on a value of type " + t->str() +
                         " (methods and actions belong to "
@@ -132,6 +137,10 @@ bool Checker::propertyWrite(Stmt *s) {
         q->kind == ExprKind::Name && !q->ofThis && !lookupVar(q->name))
       return false;
     const PType *bt = expr(target->base());
+    if (bt) {
+      target->operands[0] = throughInterface(target->base());
+      bt = target->base()->type;
+    }
     if (!bt || bt->kind != PTypeKind::FunctionBlock ||
         bt->fb->find(target->name) || !hasProperty(bt->fb, target->name))
       return false;
@@ -154,5 +163,78 @@ bool Checker::propertyWrite(Stmt *s) {
   s->target = nullptr;
   s->value = c;
   methodCall(c, true);
+  return true;
+}
+
+void Checker::checkImplements(Pou *block) {
+  std::set<const Pou *> seen;
+  std::function<void(const Pou *)> check = [&](const Pou *itf) {
+    if (!itf || !seen.insert(itf).second)
+      return;
+    for (const Pou *m : itf->methods) {
+      const Pou *impl = m->property
+                            ? findProperty(block, m->name, m->property == 'S')
+                            : findMethod(block, m->name);
+      if ((!impl || impl->isAbstract || impl->methodOf->isInterface) &&
+          !block->isAbstract)
+        error(block->loc,
+              "'" + block->name + "' IMPLEMENTS '" + itf->name +
+                  "' but has no " +
+                  (m->property ? Twine("PROPERTY '") + m->name + "' with " +
+                                     (m->property == 'S' ? "SET" : "GET")
+                               : Twine("method '") + m->name + "'"));
+    }
+    for (const Pou *inner : itf->extendedInterfaces)
+      check(inner);
+  };
+  for (const Pou *b = block; b; b = b->base)
+    for (const std::string &n : b->implements)
+      check(unit.findPou(n));
+}
+
+Expr *Checker::throughInterface(Expr *x) {
+  if (!x->type || !x->type->isReference() ||
+      x->type->refKind != RefKind::Interface)
+    return x;
+  Expr *d = unit.make<Expr>(ExprKind::Deref, x->loc);
+  d->operands.push_back(x);
+  d->type = x->type->elem;
+  return d;
+}
+
+bool Checker::instanceAsInterface(const PType *to, Expr *from, SMLoc at) {
+  const PType *ft = from->type;
+  if (!to->isReference() || to->refKind != RefKind::Interface || !ft)
+    return false;
+  if (ft->isReference() && ft->refKind == RefKind::Interface &&
+      !implementsInterface(unit, ft->elem->fb, to->elem->fb)) {
+    // (One that extends it is one; the other way needs a query.)
+    error(at, "'" + ft->str() + "' is not '" + to->str() +
+                  "' nor EXTENDS it: an interface is assigned only to one "
+                  "it extends");
+    return true;
+  }
+  if (ft->kind != PTypeKind::FunctionBlock || ft->fb->isInterface)
+    return false;
+  if (!implementsInterface(unit, ft->fb, to->elem->fb)) {
+    error(at, "'" + ft->fb->name + "' does not IMPLEMENT '" + to->str() +
+                  "': its instance cannot be assigned to the interface");
+    return true;
+  }
+  // The instance's address, taken as the interface (LowerReferences.cpp
+  // plans it among the interface's places).
+  Expr *place = unit.make<Expr>(*from);
+  from->kind = ExprKind::Call;
+  from->name = "REF";
+  from->typeName = "INTERFACE";
+  from->operands.clear();
+  from->var = nullptr;
+  from->callee = nullptr;
+  from->args.clear();
+  CallArg arg;
+  arg.value = place;
+  arg.loc = place->loc;
+  from->args.push_back(arg);
+  from->type = to;
   return true;
 }

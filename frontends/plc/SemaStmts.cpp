@@ -121,6 +121,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
   const PType *ft = from ? from->type : nullptr;
   if (!to || !ft)
     return true; // already reported
+  if (instanceAsInterface(to, from, at))
+    return true;
   const PType *tb = baseOf(to), *fb = baseOf(ft);
   // INT_TO_BCD(n) writes the bit string its context wants (IEC 61131-3's
   // ANY_BIT result): as many digits as the target holds.

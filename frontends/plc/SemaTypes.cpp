@@ -32,6 +32,8 @@ std::string PType::str() const {
   case PTypeKind::Reference:
     if (!elem)
       return "NULL";
+    if (refKind == RefKind::Interface)
+      return elem->str(); // the interface's name
     return std::string(refKind == RefKind::Pointer     ? "POINTER TO "
                        : refKind == RefKind::Reference ? "REFERENCE TO "
                                                        : "REF_TO ") +
@@ -233,6 +235,13 @@ std::string plc::referenceKey(const PType *t) {
       return (t->width == 16 ? "WSTRING[" : "STRING[") +
              std::to_string(t->strLen) + "]";
     return t->str();
+  case PTypeKind::FunctionBlock:
+    // Every interface's places are one table: an instance is numbered
+    // once whatever interface it is seen through, so an interface
+    // reference assigned to one its interface extends keeps its number.
+    if (t->fb && t->fb->isInterface)
+      return "INTERFACE";
+    [[fallthrough]];
   default:
     // Named types are one by name; an anonymous structure or enumeration
     // only with itself.

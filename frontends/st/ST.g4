@@ -66,6 +66,7 @@ libraryElement
   | configurationDecl
   | globalVarBlock
   | classDecl
+  | interfaceDecl
   | actionsBlock
   | refusedElement
   ;
@@ -78,14 +79,20 @@ classDecl
     pouVarBlock* fbMember* END_CLASS
   ;
 
+// An INTERFACE: the methods and properties (without bodies) of the
+// blocks that IMPLEMENT it.
+interfaceDecl
+  : INTERFACE name=IDENT (EXTENDS qualifiedName (COMMA qualifiedName)*)?
+    (methodDecl | propertyDecl)* END_INTERFACE
+  ;
+
 // Actions written after the POU they belong to (`ACTIONS [pou] ACTION a
 // ... END_ACTION END_ACTIONS`, as RuSTy and CODESYS exports write them).
 actionsBlock : ACTIONS owner=ident? sfcAction* END_ACTIONS ;
 
 // Elements netlift refuses by name; their body is skipped token by token.
 refusedElement
-  : kw=INTERFACE (~END_INTERFACE)* END_INTERFACE
-  | kw=NAMESPACE (~END_NAMESPACE)* END_NAMESPACE
+  : kw=NAMESPACE (~END_NAMESPACE)* END_NAMESPACE
   | kw=ACTION (~END_ACTION)* END_ACTION
   | kw=METHOD (~END_METHOD)* END_METHOD
   | kw=PROPERTY (~END_PROPERTY)* END_PROPERTY

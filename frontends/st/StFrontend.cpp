@@ -362,6 +362,7 @@ private:
   Pou *method(P::MethodDeclContext *c, Pou *owner);
   void refusedElement(P::RefusedElementContext *r);
   Pou *classDecl(P::ClassDeclContext *c);
+  Pou *interfaceDecl(P::InterfaceDeclContext *c);
   void actionsBlock(P::ActionsBlockContext *c);
   bool property(P::PropertyDeclContext *c, Pou *owner);
   Pou *function(P::FunctionDeclContext *c);
@@ -418,6 +419,8 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
       configuration(c);
     else if (auto *g = el->globalVarBlock())
       varBlock(g->varBlock(), unit.globals);
+    else if (auto *i = el->interfaceDecl())
+      deferRefusals(PouKind::FunctionBlock, i, [&] { interfaceDecl(i); });
     else if (auto *k = el->classDecl())
       deferRefusals(PouKind::FunctionBlock, k, [&] { classDecl(k); });
     else if (auto *a = el->actionsBlock())
@@ -428,9 +431,8 @@ bool AstBuilder::build(P::CompilationUnitContext *cu) {
   return !failed;
 }
 
-/// An INTERFACE is a type whose variables are refused where they are
-/// used (a function block may name it in IMPLEMENTS); the other elements
-/// are refused where they stand.
+/// NAMESPACE, and METHOD, PROPERTY or ACTION outside their block: refused
+/// where they stand.
 /// ABSTRACT, FINAL and the access specifiers written before a name.
 template <typename Mods> static void modifiers(const Mods &mods, Pou *p) {
   for (auto *m : mods) {
@@ -487,16 +489,6 @@ bool AstBuilder::property(P::PropertyDeclContext *c, Pou *owner) {
 }
 
 void AstBuilder::refusedElement(P::RefusedElementContext *r) {
-  if (r->kw->getType() == P::INTERFACE && r->children.size() > 2) {
-    auto *td = unit.make<TypeDecl>();
-    td->name = r->children[1]->getText();
-    td->loc = loc(r->kw);
-    td->type = refusedType(td->loc, "variables of INTERFACE type '" + td->name +
-                                        "' are not supported (calls through "
-                                        "interfaces are not modelled yet)");
-    unit.types.push_back(td);
-    return;
-  }
   std::string kw = StringRef(r->kw->getText()).upper();
   if (kw == "NAMESPACE")
     refuse(loc(r->kw), "NAMESPACE is not supported (a vendor extension)");
@@ -786,6 +778,33 @@ Pou *AstBuilder::classDecl(P::ClassDeclContext *c) {
     return nullptr;
   unit.pous.push_back(p);
   return members(c->fbMember(), "class", p) ? p : nullptr;
+}
+
+Pou *AstBuilder::interfaceDecl(P::InterfaceDeclContext *c) {
+  Pou *p = unit.make<Pou>();
+  p->kind = PouKind::FunctionBlock;
+  p->name = c->name->getText();
+  p->loc = loc(c->name);
+  p->isInterface = p->isAbstract = true;
+  for (auto *q : c->qualifiedName())
+    p->implements.push_back(q->getText());
+  unit.pous.push_back(p);
+  for (auto *m : c->methodDecl()) {
+    Pou *method = this->method(m, p);
+    if (!method)
+      return nullptr;
+    method->isAbstract = true;
+    if (!method->body.empty()) {
+      refuse(loc(m), "a method of an INTERFACE has no body");
+      return nullptr;
+    }
+  }
+  for (auto *d : c->propertyDecl())
+    if (!property(d, p))
+      return nullptr;
+  for (Pou *m : p->methods)
+    m->isAbstract = true;
+  return p;
 }
 
 void AstBuilder::actionsBlock(P::ActionsBlockContext *c) {

@@ -602,15 +602,15 @@ bool st::isStandardFunctionBlock(llvm::StringRef name) {
   return false;
 }
 
-bool st::addStandardLibrary(DiagEngine &diag, plc::Unit &unit) {
-  // Only the blocks the user did not define are kept, so a user's own TON
-  // replaces netlift's.
+bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
+                        llvm::StringRef bufferName) {
+  // Only the POUs and globals the user did not define are kept, so a
+  // user's own TON replaces netlift's.
   llvm::SourceMgr &sm = diag.sourceMgr();
-  unsigned id =
-      sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBuffer(
-                                kStandardLibrary, "<netlift standard library>"),
-                            llvm::SMLoc());
+  unsigned id = sm.AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBuffer(text, bufferName), llvm::SMLoc());
   std::vector<plc::Pou *> before = unit.pous;
+  std::vector<plc::VarDecl *> globalsBefore = unit.globals;
   if (!parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag, unit))
     return false;
   std::vector<plc::Pou *> merged = before;
@@ -619,10 +619,27 @@ bool st::addStandardLibrary(DiagEngine &diag, plc::Unit &unit) {
     p->isLibrary = true;
     bool shadowed = false;
     for (plc::Pou *u : before)
-      shadowed |= plc::sameName(u->name, p->name);
+      shadowed |= !u->methodOf && plc::sameName(u->name, p->name);
     if (!shadowed)
       merged.push_back(p);
   }
   unit.pous = std::move(merged);
+  std::vector<plc::VarDecl *> globals = globalsBefore;
+  for (size_t i = globalsBefore.size(); i < unit.globals.size(); ++i) {
+    bool shadowed = false;
+    for (plc::VarDecl *g : globalsBefore)
+      shadowed |= plc::sameName(g->name, unit.globals[i]->name);
+    for (plc::Configuration *c : unit.configs)
+      for (plc::VarDecl *g : c->globals)
+        shadowed |= plc::sameName(g->name, unit.globals[i]->name);
+    if (!shadowed)
+      globals.push_back(unit.globals[i]);
+  }
+  unit.globals = std::move(globals);
   return true;
+}
+
+bool st::addStandardLibrary(DiagEngine &diag, plc::Unit &unit) {
+  return addLibraryText(diag, unit, kStandardLibrary,
+                        "<netlift standard library>");
 }

@@ -16,6 +16,17 @@ namespace netlift::st {
 /// Adds the standard function blocks the unit does not define itself.
 bool addStandardLibrary(DiagEngine &diag, plc::Unit &unit);
 
+/// Adds the POUs and globals of a library written in ST (`text`, named
+/// `bufferName` in diagnostics) that the unit does not define itself; they
+/// are the library's (Pou::isLibrary).
+bool addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
+                    llvm::StringRef bufferName);
+
+/// Adds the models of TwinCAT's libraries (TwinCatLib.cpp) the unit does
+/// not define itself: the pure functions and constants of Tc2_Math and
+/// Tc2_System that real projects call.
+bool addTwinCatLibrary(DiagEngine &diag, plc::Unit &unit);
+
 /// Is `name` (case-insensitive) one of the standard function blocks?
 bool isStandardFunctionBlock(llvm::StringRef name);
 
