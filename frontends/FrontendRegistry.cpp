@@ -160,12 +160,13 @@ static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
 bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
                          const FrontendOptions &options, DiagEngine &diag,
                          net::Design &design) {
+  FrontendOptions withProject = options;
   std::optional<std::vector<std::string>> expanded =
-      expandProjectInputs(given, diag);
+      expandProjectInputs(given, diag, withProject.defines);
   if (!expanded)
     return false;
   llvm::ArrayRef<std::string> paths = *expanded;
-  FrontendContext ctx(options);
+  FrontendContext ctx(withProject);
   bool allNet = true;
   for (const std::string &path : paths) {
     const FrontendInfo *fe = chooseFrontend(path, from);

@@ -48,6 +48,9 @@ struct FrontendOptions {
   /// --time-unit: what TIME_TO_INT and the like count in, "s" or "ms";
   /// empty: what the inputs show (plc::TimeNumbers).
   std::string timeUnit;
+  /// -D NAME[=VALUE]: names defined for PLC conditional compilation
+  /// (`{IF defined(NAME)}`), with a project's compiler defines.
+  std::vector<std::string> defines;
   /// -Wunused-refused: warn about refused constructs in PLC POUs the
   /// translation does not use.
   bool warnUnusedRefused = false;
@@ -120,8 +123,11 @@ bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
 /// for the sources it compiles, a directory for the `.plcproj` files under
 /// it or else every PLC source under it (PlcProject.cpp); other paths stand
 /// for themselves. None after reporting an error.
+/// A project's compiler defines (`<CompilerDefines>`) are added to
+/// `defines`.
 std::optional<std::vector<std::string>>
-expandProjectInputs(llvm::ArrayRef<std::string> paths, DiagEngine &diag);
+expandProjectInputs(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
+                    std::vector<std::string> &defines);
 
 /// Frontend implementations (one per line of FrontendRegistry.def).
 bool loadNetIR(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,

@@ -37,6 +37,10 @@ plc::Unit &FrontendContext::plcUnit() {
     plc = std::make_unique<plc::Unit>();
     plc->sfcDialect =
         options.sfcCodesys ? plc::SfcDialect::Codesys : plc::SfcDialect::Iec;
+    for (const std::string &d : options.defines) {
+      auto [name, value] = StringRef(d).split('=');
+      plc->defines[name.trim().upper()] = value.trim().str();
+    }
     if (options.timeUnit == "s")
       plc->inferTimeNumbers(plc::TimeNumbers::Seconds,
                             "seconds (--time-unit s)");
@@ -142,6 +146,7 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   const FrontendOptions &fo = ctx.options;
   plc::LowerOptions opts;
   opts.top = fo.top;
+  opts.opaqueRefused = fo.opaqueRefused;
   opts.timescaleNs = fo.timescaleNs;
   opts.scanPeriodNs = fo.scanPeriodNs;
   opts.unitStart = SMLoc::getFromPointer(

@@ -54,7 +54,8 @@ static std::vector<std::string> filesUnder(StringRef dir,
 /// other kinds (task configurations, visualisations, text lists) are left
 /// out and named in a note.
 static bool readPlcProject(StringRef path, DiagEngine &diag,
-                           std::vector<std::string> &out) {
+                           std::vector<std::string> &out,
+                           std::vector<std::string> &defines) {
   unsigned id = addInputFile(diag.sourceMgr(), path);
   if (!id)
     return false;
@@ -76,6 +77,20 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
     diag.error(at(0), "not an MSBuild project file (no <Project> element)");
     return false;
   }
+  // Compiler defines, for `{IF defined(NAME)}`: NAME or NAME:=VALUE,
+  // separated by commas.
+  for (pugi::xml_node group : project.children("PropertyGroup"))
+    if (pugi::xml_node d = group.child("CompilerDefines")) {
+      llvm::SmallVector<StringRef, 8> names;
+      StringRef(d.text().get()).split(names, ',', -1, false);
+      for (StringRef n : names)
+        if (!n.trim().empty()) {
+          auto [name, value] = n.split(":=");
+          defines.push_back((name.trim() + (value.empty() ? "" : "=") +
+                             value.trim().trim('\'').trim('"'))
+                                .str());
+        }
+    }
   StringRef dir = llvm::sys::path::parent_path(path);
   std::vector<std::string> skipped;
   for (pugi::xml_node group : project.children("ItemGroup"))
@@ -104,11 +119,12 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
 
 std::optional<std::vector<std::string>>
 netlift::expandProjectInputs(llvm::ArrayRef<std::string> paths,
-                             DiagEngine &diag) {
+                             DiagEngine &diag,
+                             std::vector<std::string> &defines) {
   std::vector<std::string> out;
   for (const std::string &path : paths) {
     if (StringRef(path).endswith_insensitive(".plcproj")) {
-      if (!readPlcProject(path, diag, out))
+      if (!readPlcProject(path, diag, out, defines))
         return std::nullopt;
       continue;
     }
@@ -121,7 +137,7 @@ netlift::expandProjectInputs(llvm::ArrayRef<std::string> paths,
     });
     if (!projects.empty()) {
       for (const std::string &p : projects)
-        if (!readPlcProject(p, diag, out))
+        if (!readPlcProject(p, diag, out, defines))
           return std::nullopt;
       continue;
     }

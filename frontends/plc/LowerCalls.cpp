@@ -436,8 +436,48 @@ void Lowering::fbCall(Expr *call, Frame &f, Sink &out) {
   instanceCall(call, call->var->type->fb, instancePath(&callee, f), f, out);
 }
 
+void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
+                               Frame &f, Sink &out) {
+  if (opts.opaqueRefused)
+    refuse(call->loc, "'" + path + "' (" + fb->name + ") " + fb->environment +
+                          ", which netlift does not model (--opaque=refuse; "
+                          "the default models it as environment)");
+  if (notedEnvironment.insert(path).second) {
+    std::string outputs;
+    for (VarDecl *m : fb->vars)
+      if (m->section == VarSection::Output)
+        outputs += (outputs.empty() ? "" : ", ") + m->name;
+    diag.note(call->loc, "'" + path + "' (" + fb->name + ") " +
+                             fb->environment +
+                             ": modelled as environment, its outputs " +
+                             outputs + " are free inputs of the model");
+  }
+  for (CallArg &a : call->args) {
+    if (a.isOutput) {
+      NExpr *v = b.ref(path + "." + sanitize(a.name), a.loc);
+      if (a.negated)
+        v = b.unary(net::UnaryOp::Not, v, a.loc);
+      out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));
+      continue;
+    }
+    // Not stored; what computing it calls still runs.
+    bool calls = false;
+    forEachNestedExpr(a.value,
+                      [&](Expr *e) { calls |= e->kind == ExprKind::Call; });
+    if (!calls)
+      continue;
+    Sink pre;
+    expr(a.value, f, pre);
+    out.insert(out.end(), pre.begin(), pre.end());
+  }
+}
+
 void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                             Frame &f, Sink &out) {
+  if (!fb->environment.empty()) {
+    environmentCall(call, fb, path, f, out);
+    return;
+  }
   // An instance whose body is being lowered, called again: a call through
   // a reference closed a cycle of calls.
   if (llvm::is_contained(instancesLowering, path))

@@ -394,6 +394,10 @@ void Lowering::declareProgramVar(VarDecl *v) {
 void Lowering::declareInstance(const std::string &path, Pou *fb,
                                Initializer *init) {
   instanceTypes[path] = fb;
+  if (!fb->environment.empty()) {
+    declareEnvironment(path, fb);
+    return;
+  }
   // The block type's pragmas go to the instance, as flatten would carry a
   // module's. netlift's own blocks' pragmas are directives to netlift.
   if (!fb->isLibrary)
@@ -449,6 +453,32 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     if (m->edge) // what the caller passed last time
       b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
                m->loc);
+  }
+}
+
+/// An instance of a block with effects netlift does not model: each of its
+/// outputs is a free input of the model (an integer one as a program's
+/// unranged input is), its inputs are not stored. Refused by
+/// --opaque=refuse where it is called.
+void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
+  for (VarDecl *m : fb->vars) {
+    if (m->section != VarSection::Output)
+      continue;
+    std::string name = path + "." + sanitize(m->name);
+    varTypes[name] = m->type;
+    if (m->type->kind == PTypeKind::Bool) {
+      b.addPort(name, net::PortKind::Cond, net::PortDir::In, nullptr, m->loc);
+      continue;
+    }
+    const net::Type *nt = netType(m->type, m->loc, "output " + m->name);
+    if (!nt->isScalar())
+      refuse(m->loc, "output '" + m->name + "' of " + fb->name + " (" +
+                         fb->environment +
+                         ") is not a scalar: it cannot be a free input");
+    b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, m->loc);
+    if (m->type->kind == PTypeKind::Int || m->type->kind == PTypeKind::Time)
+      b.addAttribute(name, net::kNeedsRangeAttribute,
+                     design.save(name + " : " + m->type->str()), m->loc);
   }
 }
 

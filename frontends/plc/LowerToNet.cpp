@@ -39,8 +39,12 @@ void Lowering::collectTimesExpr(Expr *e, std::set<Pou *> &seen,
     ns.push_back(std::abs(e->intValue));
   for (Expr *o : e->operands)
     collectTimesExpr(o, seen, ns);
+  // (An environment block's inputs are not stored: their durations do not
+  // count.)
+  Pou *called = e->kind == ExprKind::Call ? calledPou(e) : nullptr;
   for (CallArg &a : e->args)
-    collectTimesExpr(a.value, seen, ns);
+    if (!called || called->environment.empty() || a.isOutput)
+      collectTimesExpr(a.value, seen, ns);
   if (e->callee)
     collectTimes(e->callee, seen, ns);
   if (Pou *callee = e->kind == ExprKind::Call ? calledPou(e) : nullptr;
@@ -184,8 +188,10 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
       globalsUsed.insert(e->var);
     for (Expr *o : e->operands)
       scanExpr(o);
+    Pou *called = e->kind == ExprKind::Call ? calledPou(e) : nullptr;
     for (CallArg &a : e->args)
-      scanExpr(a.value);
+      if (!called || called->environment.empty() || a.isOutput)
+        scanExpr(a.value); // (an environment block's inputs are not stored)
   };
   std::set<Pou *> visited;
   std::function<void(Pou *)> scanPou;
@@ -588,8 +594,14 @@ bool Lowering::run() {
       if (task && task->interval && task->interval->kind == ExprKind::TimeLit)
         ns.push_back(task->interval->intValue);
     }
+    // The globals the programs use (a library's constants they do not
+    // read, such as TwinCAT's DEFAULT_ADS_TIMEOUT, do not count).
+    std::set<VarDecl *> used;
+    for (auto &[p, task] : tops)
+      for (VarDecl *g : globalsUsedBy(p))
+        used.insert(g);
     for (VarDecl *g : unit.globals)
-      if (g->typeSyntax)
+      if (g->typeSyntax && used.count(g))
         initTimes(g->typeSyntax->init, ns);
     chooseTick(std::move(ns));
 

@@ -30,6 +30,10 @@ struct LowerOptions {
   /// The program, program instance or function block to translate; empty:
   /// every program the configuration runs (or every program).
   std::string top;
+  /// --opaque=refuse: an instance of a library block with effects netlift
+  /// does not model (Pou::environment) is refused instead of modelled as
+  /// environment.
+  bool opaqueRefused = false;
   /// Length of one tick; default: the greatest common divisor of every
   /// TIME literal and task interval the translated code uses.
   std::optional<int64_t> timescaleNs;

@@ -211,6 +211,12 @@ public:
 private:
   void declareProgramVar(VarDecl *v);
   void declareInstance(const std::string &path, Pou *fb, Initializer *init);
+  void declareEnvironment(const std::string &path, Pou *fb);
+  /// The call of an instance of an environment block: its arguments
+  /// evaluated, its outputs read (LowerCalls.cpp).
+  void environmentCall(Expr *call, Pou *fb, const std::string &path, Frame &f,
+                       Sink &out);
+  std::set<std::string> notedEnvironment;
   std::string staticVar(VarDecl *v, SMLoc at);
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);

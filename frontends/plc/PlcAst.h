@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -409,6 +410,11 @@ struct Pou {
   Pou *methodOf = nullptr;
   std::vector<Pou *> methods;
   bool isAction = false;
+  /// A library block the runtime implements with effects netlift does not
+  /// model (ADS, files): what it does, for the note and the refusal; its
+  /// outputs are free inputs of the model (--opaque=environment), its
+  /// inputs are not stored. Empty for a block modelled by its body.
+  std::string environment;
   /// A PROPERTY's accessor: 'G' (GET: a method whose result is the
   /// property's value) or 'S' (SET: a method whose input named like the
   /// property is the value assigned); 0 otherwise.
@@ -519,6 +525,9 @@ public:
       instructionListReader;
   /// A TwinCAT file was read: the models of its libraries are added.
   bool twinCat = false;
+  /// Names defined for conditional compilation (-D, a project's compiler
+  /// defines), upper-case, with their values (st/StConditionals.h).
+  std::map<std::string, std::string> defines;
   std::vector<Pou *> pous;
   std::vector<TypeDecl *> types;
   std::vector<Configuration *> configs;

@@ -46,6 +46,12 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
                        : "output '" + p->name + "' must be bound with '=>'");
       return;
     }
+    if (!fn->environment.empty() && !a.isOutput) {
+      // Not stored (the runtime's): only checked to be an expression.
+      expr(a.value);
+      a.name = p->name;
+      continue;
+    }
     if (a.isOutput || p->section == VarSection::InOut) {
       const PType *t = lvalue(a.value);
       if (t && p->type &&

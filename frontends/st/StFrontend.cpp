@@ -10,6 +10,7 @@
 #include "frontends/st/StFrontend.h"
 #include "frontends/plc/JumpExpansion.h"
 #include "frontends/plc/SfcExpansion.h"
+#include "frontends/st/StConditionals.h"
 #include "frontends/st/StLexer.h"
 #include "frontends/st/StLongParts.h"
 #include "ir/support/IecTime.h"
@@ -1463,6 +1464,7 @@ Expr *AstBuilder::primary(P::PrimaryContext *c) {
   return failed ? nullptr : e;
 }
 
+
 /// The call of what `callee` designates: a function or instance by name;
 /// `r^(...)`, the instance r designates; `timers[i](...)`, an element of
 /// an array of instances; `inst.M(...)`, a METHOD or ACTION of inst;
@@ -1748,6 +1750,26 @@ bool parseDeclarations(StringRef text, DiagEngine &diag, Unit &unit,
 
 bool st::parseStructuredText(StringRef text, DiagEngine &diag, Unit &unit,
                              const ParseOptions &options) {
+  // Conditional compilation first: what is parsed is a copy of the buffer
+  // with the branches not taken blanked, under the file's name.
+  bool changed = false;
+  std::optional<std::string> resolved =
+      resolveConditionals(text, diag, unit.defines, changed);
+  if (!resolved)
+    return false;
+  if (changed) {
+    llvm::SourceMgr &sm = diag.sourceMgr();
+    unsigned id =
+        sm.FindBufferContainingLoc(SMLoc::getFromPointer(text.data()));
+    const llvm::MemoryBuffer *buf = sm.getMemoryBuffer(id);
+    size_t offset = text.data() - buf->getBufferStart();
+    std::string whole = buf->getBuffer().str();
+    whole.replace(offset, text.size(), *resolved);
+    unsigned copy = sm.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(whole, buf->getBufferIdentifier()),
+        SMLoc());
+    text = sm.getMemoryBuffer(copy)->getBuffer().substr(offset, text.size());
+  }
   st::LongParts parts = st::findLongParts(text, diag, options);
   StLexer lexer(text, diag);
   st::SkippingSource source(lexer, parts.ranges);

@@ -611,12 +611,30 @@ bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
       llvm::MemoryBuffer::getMemBuffer(text, bufferName), llvm::SMLoc());
   std::vector<plc::Pou *> before = unit.pous;
   std::vector<plc::VarDecl *> globalsBefore = unit.globals;
+  std::vector<plc::TypeDecl *> typesBefore = unit.types;
   if (!parseStructuredText(sm.getMemoryBuffer(id)->getBuffer(), diag, unit))
     return false;
+  std::vector<plc::TypeDecl *> types = typesBefore;
+  for (size_t i = typesBefore.size(); i < unit.types.size(); ++i) {
+    bool shadowed = false;
+    for (plc::TypeDecl *t : typesBefore)
+      shadowed |= plc::sameName(t->name, unit.types[i]->name);
+    if (!shadowed)
+      types.push_back(unit.types[i]);
+  }
+  unit.types = std::move(types);
   std::vector<plc::Pou *> merged = before;
   for (size_t i = before.size(); i < unit.pous.size(); ++i) {
     plc::Pou *p = unit.pous[i];
     p->isLibrary = true;
+    // `{netlift environment 'what it does'}`: a block with effects.
+    for (const plc::Attribute &a : p->attrs)
+      if (llvm::StringRef(a.text).startswith("netlift environment"))
+        p->environment = llvm::StringRef(a.text)
+                             .drop_front(strlen("netlift environment"))
+                             .trim()
+                             .trim('\'')
+                             .str();
     bool shadowed = false;
     for (plc::Pou *u : before)
       shadowed |= !u->methodOf && plc::sameName(u->name, p->name);

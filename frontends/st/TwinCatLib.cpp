@@ -4,9 +4,13 @@
 // What TwinCAT projects call from Beckhoff's libraries and netlift can model
 // exactly, written in Structured Text like the standard library (StdLib.cpp)
 // and added when a TwinCAT input is read: Tc2_Math's rounding and modulo
-// functions on LREAL and Tc2_System's PI. Their behaviour is what Beckhoff
-// documents (MODABS(-400.56, 360) = 319.44, LTRUNC(-2.8) = -2, FLOOR and
-// CEIL of negative values); twincat-lib.test checks those values.
+// functions on LREAL and Tc2_System's PI. Tc2_System's blocks with effects
+// outside the program (ADS, files, the runtime) are declared with their
+// interface only and marked `{netlift environment '...'}`: an instance's
+// outputs are free inputs of the model, said in a note (--opaque=refuse
+// refuses them; LowerDecls.cpp, declareEnvironment). Their behaviour is what
+// Beckhoff documents (MODABS(-400.56, 360) = 319.44, LTRUNC(-2.8) = -2, FLOOR
+// and CEIL of negative values); twincat-lib.test checks those values.
 // Tc2_Standard's timers, triggers and counters are the standard ones.
 //
 //===----------------------------------------------------------------------===//
@@ -18,6 +22,85 @@ static const char kTwinCatLibrary[] = R"ST(
 VAR_GLOBAL CONSTANT
   PI : LREAL := 3.14159265358979323846;
 END_VAR
+
+TYPE
+  T_AmsNetId : STRING(23);
+  T_AmsPort : UINT;
+  T_MaxString : STRING(255);
+  E_OpenPath : (PATH_GENERIC := 1, PATH_BOOTPRJ, PATH_BOOTDATA, PATH_BOOTPATH,
+                PATH_USERPATH1 := 11, PATH_USERPATH2, PATH_USERPATH3,
+                PATH_USERPATH4, PATH_USERPATH5, PATH_USERPATH6,
+                PATH_USERPATH7, PATH_USERPATH8, PATH_USERPATH9);
+END_TYPE
+
+VAR_GLOBAL CONSTANT
+  DEFAULT_ADS_TIMEOUT : TIME := T#5S;
+END_VAR
+
+(* Blocks with effects outside the PLC program (Tc2_System): environment.
+   Their inputs are the runtime's (an address input is declared DWORD: it
+   is never read); their outputs are free. *)
+{netlift environment 'communicates over ADS'}
+FUNCTION_BLOCK ADSWRITE
+  VAR_INPUT
+    NETID : T_AmsNetId; PORT : T_AmsPort; IDXGRP, IDXOFFS, LEN : UDINT;
+    SRCADDR : DWORD; WRITE : BOOL; TMOUT : TIME;
+  END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'communicates over ADS'}
+FUNCTION_BLOCK ADSRDSTATE
+  VAR_INPUT NETID : T_AmsNetId; PORT : T_AmsPort; RDSTATE : BOOL; TMOUT : TIME; END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; ADSSTATE, DEVSTATE : UINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'communicates over ADS'}
+FUNCTION_BLOCK ADSWRTCTL
+  VAR_INPUT
+    NETID : T_AmsNetId; PORT : T_AmsPort; ADSSTATE, DEVSTATE : UINT;
+    LEN : UDINT; SRCADDR : DWORD; WRITE : BOOL; TMOUT : TIME;
+  END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FileOpen
+  VAR_INPUT
+    sNetId : T_AmsNetId; sPathName : T_MaxString; nMode : DWORD;
+    ePath : E_OpenPath; bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId : UDINT; hFile : UINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FileClose
+  VAR_INPUT sNetId : T_AmsNetId; hFile : UINT; bExecute : BOOL; tTimeout : TIME; END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FileWrite
+  VAR_INPUT
+    sNetId : T_AmsNetId; hFile : UINT; pWriteBuff : DWORD; cbWriteLen : UDINT;
+    bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId, cbWrite : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FileDelete
+  VAR_INPUT
+    sNetId : T_AmsNetId; sPathName : T_MaxString; ePath : E_OpenPath;
+    bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'asks the runtime which task runs'}
+FUNCTION_BLOCK GETCURTASKINDEX
+  VAR_OUTPUT index : BYTE; END_VAR
+END_FUNCTION_BLOCK
 
 (* The integer part of a float as an LREAL, whatever its size: from 2^52 up
    every LREAL is whole; below, rounding half away from zero of |x| - 0.5

@@ -115,6 +115,11 @@ static cl::list<std::string>
                            "subdirectories) for the .fbt/.sub types a "
                            "network uses"),
                   cl::value_desc("DIR"), cl::Prefix, NETLIFT_READING);
+static cl::list<std::string>
+    defines("D",
+            cl::desc("PLC input: a name defined for conditional compilation "
+                     "({IF defined(NAME)}), with a value for hasvalue"),
+            cl::value_desc("NAME[=VALUE]"), cl::Prefix, NETLIFT_READING);
 static cl::opt<bool> warnUnusedRefused(
     "Wunused-refused",
     cl::desc("PLC input: warn about constructs netlift refuses in POUs the "
@@ -283,6 +288,7 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
     return false;
   }
   fo.warnUnusedRefused = warnUnusedRefused;
+  fo.defines.assign(defines.begin(), defines.end());
   fo.stLongPartTokens = stLongPartTokens;
   fo.stGroupTokens = stGroupTokens;
   return parseDurationOption("timescale", timescale, fo.timescaleNs, diag) &&
