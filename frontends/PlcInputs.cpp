@@ -7,6 +7,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
+#include "frontends/XmlSupport.h"
 #include "frontends/iec61499/Iec61499.h"
 #include "frontends/il/IlFrontend.h"
 #include "frontends/plc/LowerToNet.h"
@@ -239,13 +240,8 @@ bool netlift::loadTwinCat(FrontendContext &ctx, unsigned bufferID,
                                  std::clamp<ptrdiff_t>(offset, 0, text.size()));
   };
   pugi::xml_document doc;
-  pugi::xml_parse_result res = doc.load_buffer(
-      text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!res) {
-    diag.error(at(res.offset),
-               std::string("malformed XML: ") + res.description());
+  if (!XmlBuffer(text).parse(doc, diag))
     return false;
-  }
   pugi::xml_node root = doc.child("TcPlcObject");
   if (!root) {
     diag.error(at(0), "not a TwinCAT file (no TcPlcObject element)");

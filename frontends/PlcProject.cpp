@@ -11,6 +11,7 @@
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
+#include "frontends/XmlSupport.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/StringExtras.h"
@@ -59,22 +60,14 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
   unsigned id = addInputFile(diag.sourceMgr(), path);
   if (!id)
     return false;
-  StringRef text = diag.sourceMgr().getMemoryBuffer(id)->getBuffer();
-  auto at = [&](ptrdiff_t offset) {
-    return SMLoc::getFromPointer(text.data() +
-                                 std::clamp<ptrdiff_t>(offset, 0, text.size()));
-  };
+  XmlBuffer xml(diag.sourceMgr().getMemoryBuffer(id)->getBuffer());
   pugi::xml_document doc;
-  pugi::xml_parse_result res = doc.load_buffer(
-      text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!res) {
-    diag.error(at(res.offset),
-               std::string("malformed XML: ") + res.description());
+  if (!xml.parse(doc, diag))
     return false;
-  }
   pugi::xml_node project = doc.child("Project");
   if (!project) {
-    diag.error(at(0), "not an MSBuild project file (no <Project> element)");
+    diag.error(xml.locOf(doc), "not an MSBuild project file (no <Project> "
+                               "element)");
     return false;
   }
   // Compiler defines, for `{IF defined(NAME)}`: NAME or NAME:=VALUE,
@@ -104,7 +97,7 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
         continue;
       }
       if (!llvm::sys::fs::exists(file)) {
-        diag.error(at(item.offset_debug()),
+        diag.error(xml.locOf(item),
                    "the project compiles '" + include +
                        "', which does not exist (looked for '" + file + "')");
         return false;
@@ -112,7 +105,7 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
       out.push_back(std::string(file));
     }
   if (!skipped.empty())
-    diag.note(at(project.offset_debug()),
+    diag.note(xml.locOf(project),
               "not PLC sources, not read: " + llvm::join(skipped, ", "));
   return true;
 }

@@ -310,6 +310,29 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
   std::vector<Expr *> throughReferences;
   forEachAddressTaken(unit, [&](Expr *call) {
     Expr *place = call->args[0].value;
+    if (place->selfInstance) {
+      // THIS^ as an interface: every instance that runs the block's code
+      // (its own type's and those derived from it).
+      RefTable &table =
+          plan.tables[referenceKey(designatedType(call, viewOf(call)))];
+      for (Pou *p : unit.pous) {
+        bool runs = false;
+        for (Pou *b = p; b && !runs; b = b->base)
+          runs = b == place->callee;
+        if (!runs)
+          continue;
+        for (const std::string &path : instances[p])
+          if (!table.byKey.count(path)) {
+            table.byKey[path] = table.families.size();
+            RefFamily fam;
+            fam.key = fam.base = path;
+            fam.offset = table.count + 1;
+            table.count += 1;
+            table.families.push_back(std::move(fam));
+          }
+      }
+      return;
+    }
     bool throughDeref;
     Expr *root = placeRoot(place, throughDeref);
     if (!place->type || place->kind == ExprKind::Deref)
@@ -449,6 +472,17 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   SMLoc at = call->loc;
   if (place->kind == ExprKind::Deref)
     return expr(place->base(), f, pre); // REF(r^) is r
+  if (place->selfInstance) {            // the running instance's number
+    std::string path = f.running().second;
+    if (!path.empty())
+      path.pop_back();
+    auto table =
+        refPlan.tables.find(referenceKey(designatedType(call, viewOf(call))));
+    if (table == refPlan.tables.end() || !table->second.byKey.count(path))
+      refuse(at, "internal: no place planned for THIS^ ('" + path + "')");
+    return b.intLit(table->second.families[table->second.byKey[path]].offset,
+                    at);
+  }
   bool throughDeref;
   Expr *root = placeRoot(place, throughDeref);
   if (throughDeref)

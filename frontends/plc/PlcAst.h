@@ -134,6 +134,9 @@ struct Expr {
   bool ofThis = false, ofSuper = false;
   /// A method call that reads ('G') or assigns ('S') a PROPERTY.
   char property = 0;
+  /// Name `THIS^`: the running instance itself (Sema sets `callee` to the
+  /// block whose code it is in).
+  bool selfInstance = false;
 
   // Filled in by Sema.
   const PType *type = nullptr;

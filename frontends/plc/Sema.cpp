@@ -422,8 +422,10 @@ void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
 VarDecl *Checker::lookupVar(StringRef name, bool ofThis) {
   // A method sees its own variables, then its block's (inherited ones
   // included); `THIS^.x` only the block's.
+  // (In a block's own body THIS^.x is the body's x.)
+  bool ownOnly = ofThis && current && current->methodOf;
   for (Pou *scope :
-       {ofThis ? nullptr : current, current ? current->methodOf : nullptr}) {
+       {ownOnly ? nullptr : current, current ? current->methodOf : nullptr}) {
     if (!scope)
       continue;
     if (VarDecl *v = scope->find(name)) {

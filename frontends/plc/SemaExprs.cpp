@@ -158,6 +158,17 @@ const PType *Checker::expr(Expr *e) {
                         "base's methods to call)");
       return nullptr;
     }
+    if (e->selfInstance) {
+      Pou *running = runningBlock();
+      if (!running || running->kind != PouKind::FunctionBlock) {
+        error(e->loc, "THIS^ is the running function block instance: there "
+                      "is none here");
+        return nullptr;
+      }
+      e->callee = running;
+      t = resolveNamed(running->name, e->loc);
+      break;
+    }
     if (VarDecl *v = lookupVar(e->name, e->ofThis)) {
       e->var = v;
       t = v->type;

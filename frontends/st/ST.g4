@@ -306,7 +306,7 @@ statement
   | target=variable ASSIGN value=expression SEMI                # assignStmt
   | target=variable op=(REF_ASSIGN | ATTEMPT_ASSIGN) value=expression SEMI # refAssignStmt
   | target=variable op=(SET_ASSIGN | RESET_ASSIGN) value=expression SEMI # refusedAssignStmt
-  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN SEMI # callStmt
+  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN callSuffix* SEMI # callStmt
   | IF cond=expression THEN statementList
     (elsifPart)* (ELSE elseBody=statementList)? END_IF SEMI?    # ifStmt
   | CASE sel=expression OF caseArm* (ELSE elseBody=statementList)? END_CASE SEMI? # caseStmt
@@ -327,6 +327,12 @@ caseArm : caseLabel (COMMA caseLabel)* COLON statementList ;
 
 caseLabel
   : lo=expression (DOTDOT hi=expression)?
+  ;
+
+// A method called on what a call returns (`log.Info('x').Send()`, through
+// a pointer: `p()^.M()`).
+callSuffix
+  : deref=CARET? DOT name=ident LPAREN (callArg (COMMA callArg)*)? RPAREN
   ;
 
 callArg
@@ -353,7 +359,7 @@ expression
 
 primary
   : literal                                                     # literalPrimary
-  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN   # callPrimary
+  | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN callSuffix* # callPrimary
   // Operators written as standard functions (the ST OpenPLC writes for
   // FBD): AND(a, b, c), XOR(a, b), MOD(a, b). NOT(x) is the unary form.
   | op=(AND | OR | XOR | MOD) LPAREN callArg (COMMA callArg)* RPAREN # operatorCallPrimary

@@ -382,6 +382,8 @@ private:
   Expr *variable(P::VariableContext *c);
   Expr *literal(P::LiteralContext *c);
   Expr *callOf(Expr *callee, P::VariableContext *written, SMLoc at);
+  Expr *chained(Expr *first,
+                const std::vector<P::CallSuffixContext *> &suffixes);
   bool callArgs(const std::vector<P::CallArgContext *> &args,
                 std::vector<CallArg> &out);
 
@@ -1282,8 +1284,8 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
     if (!e)
       return nullptr;
     callArgs(call->callArg(), e->args);
-    s->value = e;
-    return s;
+    s->value = chained(e, call->callSuffix());
+    return s->value ? s : nullptr;
   }
   if (auto *i = alt<P::IfStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::If, loc(i));
@@ -1461,9 +1463,27 @@ Expr *AstBuilder::primary(P::PrimaryContext *c) {
   if (!e)
     return nullptr;
   callArgs(call->callArg(), e->args);
-  return failed ? nullptr : e;
+  return failed ? nullptr : chained(e, call->callSuffix());
 }
 
+/// `first` followed by the method calls on what each returns.
+Expr *AstBuilder::chained(Expr *first,
+                          const std::vector<P::CallSuffixContext *> &suffixes) {
+  Expr *e = first;
+  for (auto *s : suffixes) {
+    Expr *on = e;
+    if (s->deref) {
+      on = unit.make<Expr>(ExprKind::Deref, loc(s->deref));
+      on->operands.push_back(e);
+    }
+    e = unit.make<Expr>(ExprKind::Call, loc(s->name));
+    e->name = s->name->getText();
+    e->method = true;
+    e->operands.push_back(on);
+    callArgs(s->callArg(), e->args);
+  }
+  return failed ? nullptr : e;
+}
 
 /// The call of what `callee` designates: a function or instance by name;
 /// `r^(...)`, the instance r designates; `timers[i](...)`, an element of
@@ -1520,10 +1540,11 @@ Expr *AstBuilder::variable(P::VariableContext *c) {
         (self ? e->ofThis : e->ofSuper) = true;
         selectors.erase(selectors.begin(), selectors.begin() + 2);
       }
-    if (self && !e->ofThis)
-      return refuse(loc(head), "THIS^ as a whole (the instance itself) is "
-                               "not supported; name its members "
-                               "(THIS^.x)");
+    if (self && !e->ofThis) { // THIS^ itself
+      e->name = "THIS^";
+      e->selfInstance = true;
+      selectors.erase(selectors.begin());
+    }
   }
   for (auto *sel : selectors) {
     if (auto *f = alt<P::FieldSelContext>(sel)) {
