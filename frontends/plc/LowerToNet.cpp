@@ -214,10 +214,28 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
       scanStmts(s->body);
     }
   };
+  std::function<void(Initializer *)> scanInit = [&](Initializer *i) {
+    if (!i)
+      return;
+    scanExpr(i->value);
+    for (auto &[n, e] : i->elems)
+      scanInit(e);
+    for (auto &[n, e] : i->fields)
+      scanInit(e);
+  };
   scanPou = [&](Pou *p) {
     if (!visited.insert(p).second)
       return;
     scanStmts(p->body);
+    // Initial values may name globals (`d2r : LREAL := PI / 180.0`), and
+    // the blocks a POU holds instances of are run by it.
+    for (VarDecl *v : p->vars) {
+      if (v->typeSyntax)
+        scanInit(v->typeSyntax->init);
+      if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr)
+        scanPou(fb);
+    }
+    forEachMethod(p, [&](Pou *m) { scanPou(m); });
   };
   scanPou(program);
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
