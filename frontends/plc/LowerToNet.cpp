@@ -325,6 +325,48 @@ void Lowering::attachPragmas() {
   pendingPragmas.clear();
 }
 
+/// FB_init of every instance the program holds (members before the block
+/// holding them), once, before the first scan: at the start of the first
+/// scan, under a flag that is then set for good.
+void Lowering::runInitCalls(ProgramRun &run, Frame &top, Sink &action) {
+  Sink calls;
+  std::function<void(Pou *, const std::string &, Frame &)> visit =
+      [&](Pou *owner, const std::string &prefix, Frame &in) {
+        for (VarDecl *v : owner->vars) {
+          Pou *fb = v->type && v->type->kind == PTypeKind::FunctionBlock
+                        ? v->type->fb
+                        : nullptr;
+          if (!fb || !fb->environment.empty() ||
+              v->section == VarSection::InOut ||
+              v->section == VarSection::External)
+            continue;
+          std::string path = prefix + sanitize(v->name);
+          Frame inner;
+          inner.pou = fb;
+          inner.prefix = path + ".";
+          visit(fb, inner.prefix, inner);
+          if (!v->initCall)
+            continue;
+          MethodTarget target;
+          target.impl = v->initCall->callee;
+          target.selfType = fb;
+          target.prefixes.push_back(path + ".");
+          target.tests.push_back(nullptr);
+          inlineCall(v->initCall, target.impl, target, in, calls);
+        }
+      };
+  visit(run.pou, run.prefix, top);
+  if (calls.empty())
+    return;
+  SMLoc at = run.pou->loc;
+  std::string done = unique(run.prefix + "_initialised");
+  b.addVar(done, design.types.getBool(), b.boolLit(false, at), at);
+  calls.push_back(b.assign(b.ref(done, at), b.boolLit(true, at), at));
+  net::IfArm arm{b.unary(net::UnaryOp::Not, b.ref(done, at), at),
+                 design.copy(llvm::ArrayRef<NStmt *>(calls))};
+  action.push_back(b.ifStmt({arm}, false, {}, at));
+}
+
 void Lowering::lowerProgramBody(ProgramRun &run) {
   InProgram in(*this, run);
   Pou *program = run.pou;
@@ -369,6 +411,7 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
     action.push_back(
         b.assign(b.ref(image, v->loc), b.ref(port, v->loc), v->loc));
   }
+  runInitCalls(run, top, action);
   body(program->body, top, action, {});
   for (auto &[v, g] : argOut)
     action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),

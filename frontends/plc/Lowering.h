@@ -351,6 +351,7 @@ private:
   void startModule(const std::string &name, SMLoc loc);
   void declareProgram(ProgramRun &run);
   void lowerProgramBody(ProgramRun &run);
+  void runInitCalls(ProgramRun &run, Frame &top, Sink &action);
   void deadValueResets(ProgramRun &run);
   /// One module holding `runs`; runs with the same scan share it, in
   /// order.

@@ -190,7 +190,10 @@ struct TypeSyntax {
   RefKind refKind = RefKind::RefTo;            // Reference
   std::vector<EnumValueSyntax> enumerators;    // Enum
   std::vector<VarDecl *> fields;               // Struct
-  std::string extends;         // Struct: `TYPE B EXTENDS A : STRUCT`, A's name
+  std::string extends; // Struct: `TYPE B EXTENDS A : STRUCT`, A's name
+  /// Named: `fb : FB_Axis(nId := 1)`, the arguments of the instance's
+  /// FB_init.
+  std::vector<CallArg> instanceArgs;
   bool isUnion = false;        // Struct: UNION ... END_UNION (members overlap)
   Initializer *init = nullptr; // `:= init` after the type
   TypeSyntax(TypeSyntaxKind k, llvm::SMLoc l) : kind(k), loc(l) {}
@@ -274,6 +277,9 @@ struct VarDecl {
   /// and CODESYS run it.
   bool writtenInput = false;
 
+  /// An instance whose block has an FB_init: its call before the first
+  /// scan, with the declaration's arguments (Sema builds and checks it).
+  Expr *initCall = nullptr;
   /// A global of a TwinCAT global variable list: the list's name, by
   /// which the program may qualify it (`GVL_IO.bStart`).
   std::string globalList;

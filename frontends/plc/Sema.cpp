@@ -733,6 +733,8 @@ void Checker::checkPou(Pou *p) {
                         " is allowed only on BOOL inputs of function blocks");
     if (v->type && instanceBlock(v->type) == p)
       error(v->loc, "function block '" + p->name + "' contains itself");
+    if (v->typeSyntax && v->type)
+      initCall(v);
     if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr;
         fb && fb->isAbstract)
       error(v->loc, "'" + fb->name +

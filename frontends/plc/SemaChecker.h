@@ -142,6 +142,10 @@ private:
   /// `P := v`, `inst.P := v`: the statement becomes the SET call; false
   /// when its target is no property.
   bool propertyWrite(Stmt *s);
+  /// An instance of a block with an FB_init: the call run before the first
+  /// scan, with the declaration's arguments (`fb : FB_X(n := 1)`), checked
+  /// and kept on the declaration (SemaObjects.cpp).
+  void initCall(VarDecl *v);
   /// A block that IMPLEMENTS interfaces has every method and property they
   /// declare (SemaObjects.cpp).
   void checkImplements(Pou *block);

@@ -238,3 +238,26 @@ bool Checker::instanceAsInterface(const PType *to, Expr *from, SMLoc at) {
   from->type = to;
   return true;
 }
+
+void Checker::initCall(VarDecl *v) {
+  std::vector<CallArg> &args = v->typeSyntax->instanceArgs;
+  Pou *fb = v->type->kind == PTypeKind::FunctionBlock ? v->type->fb : nullptr;
+  Pou *init = fb ? findMethod(fb, "FB_init") : nullptr;
+  if (!init) {
+    if (!args.empty())
+      error(args[0].loc, "'" + v->name +
+                             "' is declared with arguments, which are for an "
+                             "FB_init, but " +
+                             (fb ? "'" + fb->name + "' has none"
+                                 : v->type->str() + " is no function "
+                                                    "block"));
+    return;
+  }
+  Expr *call = unit.make<Expr>(ExprKind::Call, v->loc);
+  call->name = init->name;
+  call->method = true;
+  call->callee = init;
+  call->args = args;
+  functionArgs(call, init);
+  v->initCall = call;
+}

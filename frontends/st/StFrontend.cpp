@@ -9,6 +9,7 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StFrontend.h"
 #include "frontends/plc/JumpExpansion.h"
+#include "frontends/plc/Sema.h"
 #include "frontends/plc/SfcExpansion.h"
 #include "frontends/st/StAstBuilder.h"
 #include "frontends/st/StConditionals.h"
@@ -608,6 +609,25 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     return t->elem ? t : nullptr;
   }
   if (auto *e = alt<P::EnumTypeContext>(c)) {
+    // `fb : FB_Axis(nId := 1)`: an instance and the arguments of its
+    // FB_init (CODESYS), read like an enumeration with a base type that
+    // is no elementary type.
+    bool allValued = !e->enumValue().empty();
+    for (auto *v : e->enumValue())
+      allValued &= v->value != nullptr;
+    if (e->base && !e->after && allValued &&
+        !plc::elementaryType(e->base->getText())) {
+      auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(e));
+      t->name = e->base->getText();
+      for (auto *v : e->enumValue()) {
+        CallArg a;
+        a.name = v->name->getText();
+        a.value = expr(v->value);
+        a.loc = loc(v->name);
+        t->instanceArgs.push_back(a);
+      }
+      return t;
+    }
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, loc(e));
     // CODESYS writes the base type after the values: (a := 1, b := 2) INT.
     if (e->base)
