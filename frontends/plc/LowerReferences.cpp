@@ -40,18 +40,9 @@ static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
   };
   forEachStmt(
       l, [](Stmt *) {}, walk);
-  std::function<void(Initializer *)> init = [&](Initializer *i) {
-    if (!i)
-      return;
-    walk(i->value);
-    for (auto &[n, e] : i->elems)
-      init(e);
-    for (auto &[n, e] : i->fields)
-      init(e);
-  };
   for (VarDecl *v : vars)
     if (v->typeSyntax)
-      init(v->typeSyntax->init);
+      forEachInitialValue(v->typeSyntax->init, walk);
 }
 
 /// The same over every POU and global of `unit`.

@@ -69,15 +69,10 @@ void Lowering::collectTimesStmts(StmtList &l, std::set<Pou *> &seen,
 }
 
 static void initTimes(Initializer *init, std::vector<int64_t> &ns) {
-  if (!init)
-    return;
-  if (init->value && init->value->kind == ExprKind::TimeLit &&
-      init->value->intValue)
-    ns.push_back(std::abs(init->value->intValue));
-  for (auto &[n, i] : init->elems)
-    initTimes(i, ns);
-  for (auto &[n, i] : init->fields)
-    initTimes(i, ns);
+  forEachInitialValue(init, [&](Expr *v) {
+    if (v->kind == ExprKind::TimeLit && v->intValue)
+      ns.push_back(std::abs(v->intValue));
+  });
 }
 
 void Lowering::collectTimes(Pou *p, std::set<Pou *> &seen,
@@ -214,15 +209,6 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
       scanStmts(s->body);
     }
   };
-  std::function<void(Initializer *)> scanInit = [&](Initializer *i) {
-    if (!i)
-      return;
-    scanExpr(i->value);
-    for (auto &[n, e] : i->elems)
-      scanInit(e);
-    for (auto &[n, e] : i->fields)
-      scanInit(e);
-  };
   scanPou = [&](Pou *p) {
     if (!visited.insert(p).second)
       return;
@@ -231,7 +217,7 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
     // the blocks a POU holds instances of are run by it.
     for (VarDecl *v : p->vars) {
       if (v->typeSyntax)
-        scanInit(v->typeSyntax->init);
+        forEachInitialValue(v->typeSyntax->init, scanExpr);
       if (Pou *fb = v->type ? instanceBlock(v->type) : nullptr)
         scanPou(fb);
     }

@@ -158,6 +158,18 @@ Pou *netlift::plc::findCallee(const Pou *block, const Expr *call) {
                         : findMethod(block, call->name);
 }
 
+void netlift::plc::forEachInitialValue(Initializer *init,
+                                       llvm::function_ref<void(Expr *)> fn) {
+  if (!init)
+    return;
+  if (init->value)
+    fn(init->value);
+  for (auto &[n, e] : init->elems)
+    forEachInitialValue(e, fn);
+  for (auto &[n, e] : init->fields)
+    forEachInitialValue(e, fn);
+}
+
 bool netlift::plc::implementsInterface(const Unit &unit, const Pou *block,
                                        const Pou *itf) {
   std::set<const Pou *> seen;

@@ -680,6 +680,11 @@ void keepRefusedPou(Unit &unit, size_t pousBefore, PouKind kind,
 void forEachStmt(StmtList &l, llvm::function_ref<void(Stmt *)> stmt,
                  llvm::function_ref<void(Expr *)> expr = nullptr);
 
+/// Visits the value of every element of an initial value (`[1, 2]`,
+/// `(x := 1)`, nested), in order; not their sub-expressions.
+void forEachInitialValue(Initializer *init,
+                         llvm::function_ref<void(Expr *)> fn);
+
 /// Visits `e` and every expression nested in it (operands, call
 /// arguments), outermost first.
 void forEachNestedExpr(Expr *e, llvm::function_ref<void(Expr *)> fn);

@@ -157,6 +157,20 @@ std::optional<std::string> st::resolveConditionals(StringRef text,
                                                    Defines defines,
                                                    bool &changed) {
   changed = false;
+  // Most files have no directive: a scan for `{IF`, `{define`... (any
+  // case, spaces allowed) spares them a second lexing.
+  bool maybe = false;
+  for (size_t at = text.find('{'); at != StringRef::npos && !maybe;
+       at = text.find('{', at + 1)) {
+    StringRef word = text.substr(at + 1).ltrim().take_while([](char ch) {
+      return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_';
+    });
+    for (const char *d :
+         {"IF", "ELSIF", "ELSE", "END_IF", "define", "undefine"})
+      maybe |= word.equals_insensitive(d);
+  }
+  if (!maybe)
+    return text.str();
   // The directives: pragma tokens found by the lexer (not in comments or
   // strings).
   struct Directive {
