@@ -333,14 +333,55 @@ void Lowering::runInitCalls(ProgramRun &run, Frame &top, Sink &action) {
           visit(fb, inner.prefix, inner);
           if (!v->initCall)
             continue;
-          MethodTarget target;
-          target.impl = v->initCall->callee;
-          target.selfType = fb;
-          target.prefixes.push_back(path + ".");
-          target.tests.push_back(nullptr);
-          inlineCall(v->initCall, target.impl, target, in, calls);
+          // A base's FB_init runs first, then each derived block's own
+          // (given the arguments it declares).
+          std::vector<Pou *> chain;
+          for (Pou *b = fb; b; b = b->base)
+            for (Pou *m : b->methods)
+              if (!m->property && sameName(m->name, "FB_init"))
+                chain.insert(chain.begin(), m);
+          for (Pou *impl : chain) {
+            Expr *call = v->initCall;
+            if (impl != call->callee) {
+              call = unit.make<Expr>(*v->initCall);
+              call->callee = impl;
+              call->args.clear();
+              for (CallArg &a : v->initCall->args)
+                if (impl->find(a.name))
+                  call->args.push_back(a);
+            }
+            MethodTarget target;
+            target.impl = impl;
+            target.selfType = fb;
+            target.prefixes.push_back(path + ".");
+            target.tests.push_back(nullptr);
+            inlineCall(call, impl, target, in, calls);
+          }
         }
       };
+  // Instances netlift would not initialise are refused, not left
+  // uninitialised.
+  auto hasInit = [](const PType *t) {
+    Pou *fb = t ? instanceBlock(t) : nullptr;
+    return fb && findMethod(fb, "FB_init");
+  };
+  for (VarDecl *g : globalsUsedBy(run.pou))
+    if (hasInit(g->type))
+      refuse(g->loc, "FB_init of the global instance '" + g->name +
+                         "' is not run by netlift (global instances with "
+                         "FB_init are refused)");
+  std::function<void(Pou *)> arrays = [&](Pou *owner) {
+    for (VarDecl *v : owner->vars)
+      if (v->type && v->type->kind == PTypeKind::Array && hasInit(v->type))
+        refuse(v->loc, "FB_init of the elements of '" + v->name +
+                           "' is not run by netlift (arrays of instances "
+                           "with FB_init are refused)");
+      else if (Pou *fb = v->type && v->type->kind == PTypeKind::FunctionBlock
+                             ? v->type->fb
+                             : nullptr)
+        arrays(fb);
+  };
+  arrays(run.pou);
   visit(run.pou, run.prefix, top);
   if (calls.empty())
     return;
