@@ -319,9 +319,15 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return; // the global is declared once
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   declaringPrefix = programPrefix;
-  if (v->section == VarSection::InOut)
-    refuse(v->loc, "VAR_IN_OUT of the translated program '" +
-                       currentProgram->name + "' has nothing to refer to");
+  // The caller's variable: the environment's (LowerEnvironment.cpp).
+  if (v->section == VarSection::InOut) {
+    if (eventDriven)
+      refuse(v->loc, "VAR_IN_OUT '" + v->name +
+                         "' of an event-driven block "
+                         "is not supported");
+    declareEnvironmentValue(v, name);
+    return;
+  }
   if (instanceBlock(t)) {
     keepPragmas(name, v->attrs);
     declareInstances(name, t, v->typeSyntax ? v->typeSyntax->init : nullptr);
@@ -366,9 +372,10 @@ void Lowering::declareProgramVar(VarDecl *v) {
     // An IEC 61499 block's inputs are connected in its network (what is
     // left free at the top is refused when explored); a PLC program's are
     // the environment's, which chooses scalars.
-    if (!eventDriven && !nt->isScalar() && !nt->isString())
-      refuse(v->loc, "input '" + v->name + "' of type " + t->str() +
-                         ": inputs must be scalars or strings");
+    if (!eventDriven && !nt->isScalar() && !nt->isString()) {
+      declareEnvironmentValue(v, name);
+      return;
+    }
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, v->loc);
     return;
   }

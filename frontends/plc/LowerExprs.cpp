@@ -699,6 +699,8 @@ NExpr *Lowering::stdValue(Expr *e, Frame &f, Sink &pre) {
     return stringFunction(e, a, at);
   case StdFn::Bcd:
     return bcdConversion(e, info, a[0], pre, at);
+  case StdFn::Clock:
+    return clockReading(e);
   case StdFn::Refused:
   case StdFn::None:
     break;

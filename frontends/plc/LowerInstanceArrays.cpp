@@ -25,10 +25,8 @@ std::string Lowering::elementPath(const std::string &path,
   return p;
 }
 
-/// Calls `fn` with every index of an array's dimensions, in row-major
-/// order.
-static void forEachIndex(const PType *array,
-                         llvm::function_ref<void(llvm::ArrayRef<int64_t>)> fn) {
+void netlift::plc::detail::forEachIndex(
+    const PType *array, llvm::function_ref<void(llvm::ArrayRef<int64_t>)> fn) {
   std::vector<int64_t> index;
   for (auto &[lo, hi] : array->dims)
     index.push_back(lo);

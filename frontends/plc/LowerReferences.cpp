@@ -184,14 +184,15 @@ Lowering::placeBases(VarDecl *v,
     return {"static." + sanitize(v->owner->name) + "." + sanitize(v->name)};
   if (v->owner->kind == PouKind::Function)
     return {functionPlace(v)};
+  // A program's variables, and those of a function block translated as
+  // the top (`--top FB`), which is run as a program is.
   std::vector<std::string> bases;
-  if (v->owner->kind == PouKind::Program) {
-    for (const ProgramRun &run : runs)
-      if (run.pou == v->owner)
-        bases.push_back(inputImageName(run.prefix, v)
-                            .value_or(run.prefix + sanitize(v->name)));
+  for (const ProgramRun &run : runs)
+    if (run.pou == v->owner)
+      bases.push_back(inputImageName(run.prefix, v)
+                          .value_or(run.prefix + sanitize(v->name)));
+  if (!bases.empty() || v->owner->kind == PouKind::Program)
     return bases;
-  }
   if (auto it = instances.find(v->owner); it != instances.end())
     for (const std::string &path : it->second)
       bases.push_back(path + "." + sanitize(v->name));
@@ -204,7 +205,7 @@ std::string Lowering::functionPlace(VarDecl *v) {
 
 std::optional<std::string> Lowering::inputImageName(const std::string &prefix,
                                                     VarDecl *v) {
-  if (!v->writtenInput || !v->owner || v->owner->kind != PouKind::Program ||
+  if (!v->writtenInput || !runAsProgram(v->owner) || isEnvironmentValue(v) ||
       !(v->area() == 'I' || v->section == VarSection::Input))
     return std::nullopt;
   return prefix + "_in_" + sanitize(v->name);
@@ -520,7 +521,7 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
     base = "static." + sanitize(v->owner->name) + "." + sanitize(v->name);
   else if (v->owner->kind == PouKind::Function)
     base = functionPlace(v);
-  else if (v->owner->kind == PouKind::Program)
+  else if (runAsProgram(v->owner))
     base = inputImageName(rf->prefixOf(v), v)
                .value_or(rf->prefixOf(v) + sanitize(v->name));
   else

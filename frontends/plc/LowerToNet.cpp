@@ -415,6 +415,10 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   for (auto &[v, g] : argIn)
     action.push_back(b.assign(b.ref(run.prefix + sanitize(v->name), v->loc),
                               b.ref(sanitize(g->name), v->loc), v->loc));
+  // What the environment chooses whole, scalar by scalar.
+  for (VarDecl *v : program->vars)
+    if (auto it = environmentSamples.find(v); it != environmentSamples.end())
+      action.insert(action.end(), it->second.begin(), it->second.end());
   // An input the program writes is read through a copy the scan samples
   // first; what the program writes stands until the next scan samples it.
   std::vector<VarDecl *> inputs(program->vars.begin(), program->vars.end());
@@ -425,7 +429,7 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
     bound.insert(v);
   for (VarDecl *v : inputs) {
     if (!v->writtenInput || v->section == VarSection::External ||
-        bound.count(v) ||
+        bound.count(v) || isEnvironmentValue(v) ||
         !(v->area() == 'I' || v->section == VarSection::Input))
       continue;
     std::string port = (v->owner ? run.prefix : "") + sanitize(v->name);
@@ -440,6 +444,9 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   }
   runInitCalls(run, top, action);
   body(program->body, top, action, {});
+  for (VarDecl *v : program->vars)
+    if (auto it = environmentResets.find(v); it != environmentResets.end())
+      action.insert(action.end(), it->second.begin(), it->second.end());
   for (auto &[v, g] : argOut)
     action.push_back(b.assign(b.ref(sanitize(g->name), v->loc),
                               b.ref(run.prefix + sanitize(v->name), v->loc),
@@ -487,6 +494,9 @@ void Lowering::deadValueResets(ProgramRun &run) {
 void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
                              std::vector<ProgramRun> &runs) {
   startModule(name, loc);
+  runPous.clear();
+  for (ProgramRun &run : runs)
+    runPous.insert(run.pou);
   adoptReferencePlan(planReferences(runs));
   for (ProgramRun &run : runs)
     declareProgram(run);

@@ -8,8 +8,9 @@
 // LowerInstanceArrays.cpp (arrays of instances), LowerStmts.cpp
 // (statements and loops), LowerReals.cpp, LowerStrings.cpp and
 // LowerDates.cpp and LowerUnions.cpp (the data types that need more than
-// integers). LowerToNet.h is
-// the API.
+// integers), LowerEnvironment.cpp (what the environment of the translated
+// POU chooses: its aggregate inputs, its VAR_IN_OUTs, the clock). LowerToNet.h
+// is the API.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_FRONTENDS_PLC_LOWERING_H
@@ -36,6 +37,11 @@ namespace netlift::plc::detail {
 
 /// A subrange's elementary type (SemaTypes.cpp).
 const PType *baseOf(const PType *t);
+
+/// Calls `fn` with every index of an array's dimensions, in row-major
+/// order (LowerInstanceArrays.cpp).
+void forEachIndex(const PType *array,
+                  llvm::function_ref<void(llvm::ArrayRef<int64_t>)> fn);
 
 using llvm::SMLoc;
 using llvm::StringRef;
@@ -210,6 +216,24 @@ public:
 
 private:
   void declareProgramVar(VarDecl *v);
+  // The translated POU's environment (LowerEnvironment.cpp).
+  /// An input of an array or structure type, or a VAR_IN_OUT, of the POU
+  /// run as a program: the environment chooses each of its scalars at the
+  /// start of every scan (`environmentSamples`).
+  void declareEnvironmentValue(VarDecl *v, const std::string &name);
+  /// A free input port for a value of type `t` (`shown` names it in
+  /// messages and in the range an exploration asks for).
+  void addFreeInputPort(const std::string &port, const PType *t,
+                        const std::string &shown, SMLoc at);
+  std::map<VarDecl *, std::vector<NStmt *>> environmentSamples;
+  /// TIME() or LTIME(): the clock, a free input chosen at every scan.
+  NExpr *clockReading(Expr *call);
+  /// Their scalars back to defaults at the end of the scan, so that what
+  /// the environment chose last is not state.
+  std::map<VarDecl *, std::vector<NStmt *>> environmentResets;
+  /// Is `v` chosen by the environment scalar by scalar (then it is a
+  /// variable of the scan itself, written without a copy)?
+  bool isEnvironmentValue(VarDecl *v) const;
   void declareInstance(const std::string &path, Pou *fb, Initializer *init);
   void declareEnvironment(const std::string &path, Pou *fb);
   /// The call of an instance of an environment block: its arguments
@@ -237,9 +261,15 @@ private:
   placeBases(VarDecl *v,
              const std::map<Pou *, std::vector<std::string>> &instances,
              llvm::ArrayRef<ProgramRun> runs);
-  /// The scan-local copy a written program input is read through.
-  static std::optional<std::string> inputImageName(const std::string &prefix,
-                                                   VarDecl *v);
+  /// The scan-local copy a written program input is read through (also
+  /// one of a function block translated as the top, run as a program is).
+  std::optional<std::string> inputImageName(const std::string &prefix,
+                                            VarDecl *v);
+  /// The POUs run as programs in the module being lowered.
+  std::set<Pou *> runPous;
+  bool runAsProgram(Pou *p) const {
+    return p && (p->kind == PouKind::Program || runPous.count(p));
+  }
   void adoptReferencePlan(ReferencePlan plan);
   /// Variables whose address is taken count as written everywhere.
   void markAddressTaken();

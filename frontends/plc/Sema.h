@@ -124,6 +124,7 @@ enum class StdFn : uint8_t {
   RealMath, // SQRT, SIN, EXPT, TRUNC, ...
   StringOp, // LEN, LEFT, RIGHT, MID, CONCAT, INSERT, DELETE, REPLACE, FIND
   Bcd,      // BCD_TO_INT, WORD_BCD_TO_UINT, INT_TO_BCD, UINT_TO_BCD_WORD
+  Clock,    // TIME(), LTIME(): the PLC's clock, chosen by the environment
   Refused,  // recognised but not supported at all (NOW)
 };
 

@@ -628,6 +628,10 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     }
     return info.to;
   }
+  case StdFn::Clock:
+    if (!arity(0, 0))
+      return nullptr;
+    return elementaryType(StringRef(e->name).upper());
   case StdFn::Refused:
     error(e->loc, "'" + e->name +
                       "' reads the runtime's clock, which grows without "

@@ -27,9 +27,11 @@ const PType *Checker::lvalue(Expr *e) {
     return nullptr;
   }
   // A program's input image may be written (matiec and CODESYS accept
-  // it); the lowering gives such an input a scan-local copy.
+  // it); the lowering gives such an input a scan-local copy, and so for a
+  // function block's input when the block is translated as the top (an
+  // instance's own input is an ordinary variable: the flag is unused).
   if (v->area() == 'I' || (v->section == VarSection::Input && v->owner &&
-                           v->owner->kind == PouKind::Program))
+                           v->owner->kind != PouKind::Function))
     v->writtenInput = true;
   // `fb.Q := x` writes an instance's output from outside.
   if (e->kind == ExprKind::Field && e->base()->type &&

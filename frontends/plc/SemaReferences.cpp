@@ -102,7 +102,7 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
       // the input image (as for any written input).
       if (x->var->area() == 'I' ||
           (x->var->section == VarSection::Input && x->var->owner &&
-           x->var->owner->kind == PouKind::Program))
+           x->var->owner->kind != PouKind::Function))
         x->var->writtenInput = true;
     } else if (x->kind == ExprKind::Deref) {
       break;

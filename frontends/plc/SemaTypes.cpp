@@ -310,6 +310,8 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
                 .Cases("LEN", "LEFT", "RIGHT", "MID", "CONCAT", "INSERT",
                        StdFn::StringOp)
                 .Cases("DELETE", "REPLACE", "FIND", StdFn::StringOp)
+                // CODESYS's and TwinCAT's clock since the PLC started.
+                .Cases("TIME", "LTIME", StdFn::Clock)
                 // 4diac's clocks: unbounded, refused by name.
                 .Cases("NOW_MONOTONIC", "NOW", StdFn::Refused)
                 .Default(StdFn::None);

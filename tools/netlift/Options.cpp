@@ -137,8 +137,9 @@ static cl::opt<std::string> fbSemantics(
 enum class OpaqueBlocks { Environment, Refuse };
 static cl::opt<OpaqueBlocks> opaqueBlocks(
     "opaque",
-    cl::desc("Blocks the runtime implements and netlift has no model of "
-             "(IEC 61499 service interface FBs)"),
+    cl::desc("Blocks and readings the runtime implements and netlift has "
+             "no model of (IEC 61499 service interface FBs, TwinCAT's ADS "
+             "and file blocks, the clock TIME() reads)"),
     cl::init(OpaqueBlocks::Environment),
     cl::values(clEnumValN(OpaqueBlocks::Environment, "environment",
                           "modelled as environment, with a note (the "
