@@ -371,6 +371,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
       }
     }
   }
+  giveEndSlots(plan);
   return plan;
 }
 
@@ -441,6 +442,33 @@ static int64_t contiguousBlock(const RefFamily &fam) {
   if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
     return elementsOf(fam.steps.back());
   return 1;
+}
+
+void Lowering::giveEndSlots(ReferencePlan &plan) {
+  // The types a program steps pointers through (Sema typed each step as
+  // its pointer).
+  std::set<std::string> stepped;
+  for (Pou *p : unit.pous)
+    forEachStmt(
+        p->body, [](Stmt *) {},
+        [&](Expr *e) {
+          forEachNestedExpr(e, [&](Expr *x) {
+            if (x->kind == ExprKind::Binary &&
+                (x->op == Op::Add || x->op == Op::Sub) && x->type &&
+                x->type->isReference() && x->type->elem)
+              stepped.insert(referenceKey(x->type->elem));
+          });
+        });
+  for (auto &[key, table] : plan.tables) {
+    if (!stepped.count(key))
+      continue;
+    table.count = 0;
+    for (RefFamily &fam : table.families) {
+      fam.hasEnd = contiguousBlock(fam) == fam.size;
+      fam.offset = table.count + 1;
+      table.count += fam.size + (fam.hasEnd ? 1 : 0);
+    }
+  }
 }
 
 /// `v`, known to lie in lo..hi when it is not a constant, copied into a
@@ -655,14 +683,18 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
       lit && lit->value >= 1 && lit->value <= n) {
     t.constant = lit->value;
     t.number = what;
-    for (const RefFamily &fam : t.table->families)
-      if (lit->value >= fam.offset && lit->value < fam.offset + fam.size) {
+    for (const RefFamily &fam : t.table->families) {
+      if (fam.hasEnd && lit->value == fam.offset + fam.size)
+        refuse(d->loc, "the pointer is dereferenced one past the end of '" +
+                           fam.key + "'");
+      if (fam.holds(lit->value)) {
         if (fam.function && !activeCalls.count(fam.function))
           refuse(d->loc, "a reference to a variable of function '" +
                              fam.function->name +
                              "' is dereferenced outside its call");
         t.live.push_back(&fam);
       }
+    }
     return t;
   }
   // NULL (0) or uninitialised: a run-time error naming the reference.
@@ -672,6 +704,23 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.number = name;
   if (!t.table)
     return t;
+  // One past the end of an array designates nothing: a run-time error.
+  NExpr *pastEnd = nullptr;
+  for (const RefFamily &fam : t.table->families)
+    if (fam.hasEnd) {
+      NExpr *test = b.binary(net::BinaryOp::Eq, b.ref(name, d->loc),
+                             b.intLit(fam.offset + fam.size, d->loc), d->loc);
+      pastEnd =
+          pastEnd ? b.binary(net::BinaryOp::Or, pastEnd, test, d->loc) : test;
+    }
+  if (pastEnd) {
+    std::string check = scanVariable(stemOf(d->base()) + "_past_end",
+                                     design.types.getRange(1, 1), 1, d->loc);
+    pre.push_back(b.assign(
+        b.ref(check, d->loc),
+        b.cond(pastEnd, b.intLit(0, d->loc), b.intLit(1, d->loc), d->loc),
+        d->loc));
+  }
   // A function's variables exist only while a call of it runs: a
   // reference to them dereferenced elsewhere dangles, a run-time error.
   NExpr *dangling = nullptr;
@@ -1027,11 +1076,12 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   if (kLit && dLit && kLit->value >= 1 && kLit->value <= count) {
     // Known now: moved now, and checked now.
     for (const RefFamily &fam : table->second.families) {
-      if (kLit->value < fam.offset || kLit->value >= fam.offset + fam.size)
+      if (!fam.holds(kLit->value, /*withEnd=*/true))
         continue;
       int64_t block = contiguousBlock(fam);
-      int64_t pos = (kLit->value - fam.offset) % block + dLit->value;
-      if (pos < 0 || pos >= block)
+      int64_t pos =
+          (kLit->value - fam.offset) % (block + fam.hasEnd) + dLit->value;
+      if (pos < 0 || pos >= block + fam.hasEnd)
         refuse(at, "the pointer moves " + Twine(dLit->value) +
                        " element(s) out of the " + Twine(block) +
                        " of its array");
@@ -1055,7 +1105,10 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   // single place moves nowhere): checked per family.
   std::vector<net::IfArm> arms;
   for (const RefFamily &fam : table->second.families) {
-    int64_t block = contiguousBlock(fam);
+    // Its end is a place to stand on (one past the last element).
+    int64_t block = contiguousBlock(fam) + fam.hasEnd;
+    RefFamily withEnd = fam;
+    withEnd.size += fam.hasEnd;
     DerefTargets t;
     t.deref = e;
     t.number = number;
@@ -1063,13 +1116,13 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
         stem + "_element", design.types.getRange(0, block - 1), 0, at);
     NExpr *pos = b.binary(net::BinaryOp::Sub, b.ref(number, at),
                           b.intLit(fam.offset, at), at);
-    if (block > 1)
+    if (block > 1 && block < withEnd.size)
       pos = b.binary(net::BinaryOp::Mod, pos, b.intLit(block, at), at);
     Sink body{b.assign(b.ref(inBlock, at),
                        b.binary(net::BinaryOp::Add, pos, b.ref(step, at), at),
                        at)};
     arms.push_back(
-        {familyTest(fam, t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+        {familyTest(withEnd, t), design.copy(llvm::ArrayRef<NStmt *>(body))});
   }
   pre.push_back(b.ifStmt(arms, false, {}, at));
   return b.binary(net::BinaryOp::Add, b.ref(number, at), b.ref(step, at), at);

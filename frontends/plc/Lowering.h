@@ -157,6 +157,15 @@ struct RefFamily {
   Pou *function = nullptr;
   std::vector<RefStep> steps;
   int64_t offset = 1, size = 1;
+  /// A pointer stepped through the family may stand one past its last
+  /// element (C's rule, and every PLC's loop `pt := pt + 1` after the
+  /// last): the number offset + size, which designates nothing. Given to
+  /// a family of one contiguous block whose type a program steps through.
+  bool hasEnd = false;
+  /// Is `k` one of its elements, or (`withEnd`) its end?
+  bool holds(int64_t k, bool withEnd = false) const {
+    return k >= offset && k < offset + size + (withEnd && hasEnd ? 1 : 0);
+  }
 };
 
 /// The places of one designated type (by referenceKey) in one module.
@@ -270,6 +279,9 @@ private:
   bool runAsProgram(Pou *p) const {
     return p && (p->kind == PouKind::Program || runPous.count(p));
   }
+  /// Numbers one past the end of each family a pointer steps through
+  /// (RefFamily::hasEnd), renumbering those tables.
+  void giveEndSlots(ReferencePlan &plan);
   void adoptReferencePlan(ReferencePlan plan);
   /// Variables whose address is taken count as written everywhere.
   void markAddressTaken();
