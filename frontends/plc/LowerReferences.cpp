@@ -130,6 +130,9 @@ static RefView viewOf(Expr *call) {
     if (call->type->elem->kind == PTypeKind::Array) { // its bytes
       view.lo = call->type->elem->dims[0].first;
       view.bytes = view.seen->width / 8;
+    } else if (baseOf(call->type->elem)->width == 8 && view.seen->width > 8) {
+      view.byteSteps = true; // its bytes, one place each
+      view.bytes = view.seen->width / 8;
     }
     return view;
   }
@@ -277,7 +280,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           return;
         }
         int64_t size =
-            elementsOf(steps) * (view.kind == RefView::Bytes ? view.bytes : 1);
+            elementsOf(steps) * (view.numbersBytes() ? view.bytes : 1);
         for (const std::string &base : placeBases(v, instances, runs)) {
           std::string key = familyKey(base, steps) + view.suffix();
           if (table.byKey.count(key))
@@ -437,8 +440,8 @@ static std::string stemOf(Expr *reference) {
 /// The elements of a family that lie next to each other in memory: those
 /// of its last index step (1 when it ends in a field or is one place).
 static int64_t contiguousBlock(const RefFamily &fam) {
-  if (fam.view.kind == RefView::Bytes)
-    return fam.view.bytes; // one string's
+  if (fam.view.numbersBytes())
+    return fam.view.bytes; // one string's, one scalar's
   if (!fam.steps.empty() && fam.steps.back().kind == RefStep::Index)
     return elementsOf(fam.steps.back());
   return 1;
@@ -569,7 +572,7 @@ NExpr *Lowering::addressOf(Expr *call, Frame &f, Sink &pre) {
   // Its number: the family's first, plus the element's row-major offset.
   auto [constant, number] =
       elementOffset(selectors, sanitize(v->name) + "_index", pre, at);
-  if (view.kind == RefView::Bytes) { // the first byte of the string chosen
+  if (view.numbersBytes()) { // the first byte of the string chosen
     constant *= view.bytes;
     if (number)
       number =
@@ -890,6 +893,19 @@ NExpr *Lowering::scalarByteShift(const RefFamily &fam, const DerefTargets &t,
                                  Expr *e, Frame &f, Sink &pre) {
   if (e == t.deref && fam.view.bytes == 0)
     return nullptr; // the whole scalar, as another of its size
+  if (fam.view.byteSteps) {
+    // The byte the pointer stands on, counted from the scalar's first.
+    if (e != t.deref)
+      refuse(e->loc, "internal: a selection in a byte");
+    SMLoc at = e->loc;
+    if (t.constant)
+      return b.intLit((*t.constant - fam.offset) % fam.view.bytes * 8, at);
+    NExpr *rel = b.binary(net::BinaryOp::Sub, numberOf(t, at),
+                          b.intLit(fam.offset, at), at);
+    if (fam.size > fam.view.bytes)
+      rel = b.binary(net::BinaryOp::Mod, rel, b.intLit(fam.view.bytes, at), at);
+    return b.binary(net::BinaryOp::Mul, rel, b.intLit(8, at), at);
+  }
   if (fam.view.bytes == 0 || e->kind != ExprKind::Index ||
       e->base() != t.deref || e->operands.size() != 2)
     refuse(e->loc, "the bytes of a " + fam.view.seen->str() +

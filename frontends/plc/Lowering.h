@@ -126,7 +126,8 @@ struct RefView {
   /// BYTEs or as an ARRAY OF BYTE. Elements: an array seen as an array of
   /// the same element type with other bounds.
   /// Scalar: a scalar seen as another scalar of the same size (a REAL's
-  /// bits as a DWORD), or as an ARRAY OF BYTE (its bytes, `bytes` of them).
+  /// bits as a DWORD), or as an ARRAY OF BYTE (its bytes, `bytes` of them),
+  /// or (`byteSteps`) as BYTEs a POINTER TO BYTE steps through.
   enum Kind : uint8_t {
     Plain,
     Bytes,
@@ -138,9 +139,13 @@ struct RefView {
   int64_t lo = 0;      // ByteArray, Elements: the viewing array's first index
   int64_t placeLo = 0; // Elements: the first index of the array seen
   const PType *seen = nullptr; // Scalar: the type of the place seen
+  bool byteSteps = false;
+  /// Places numbered byte by byte (`bytes` per element of the family).
+  bool numbersBytes() const { return kind == Bytes || byteSteps; }
   std::string suffix() const {
     return kind == Plain      ? ""
            : kind == Elements ? "#elements"
+           : byteSteps        ? "#scalarbytes"
            : kind == Scalar   ? "#scalar"
                               : "#bytes";
   }

@@ -248,8 +248,11 @@ bool Checker::viewAsScalar(Expr *e, const PType *elem) {
            baseOf(t->elem)->kind == PTypeKind::Int &&
            baseOf(t->elem)->width == 8;
   };
+  // A POINTER TO BYTE over a wider scalar steps through its bytes.
+  bool oneByte = as->kind == PTypeKind::Int && as->width == 8;
   if (!numeric(seen) ||
-      !(oneByteArray(as) || (numeric(as) && seen->width == as->width)))
+      !(oneByteArray(as) || (numeric(as) && seen->width == as->width) ||
+        (oneByte && seen->width > 8)))
     return false;
   return markView(e, "SCALAR", elem);
 }
@@ -275,7 +278,8 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
   // STRING's through its bytes.
   if (pt->elem->kind == PTypeKind::Array && decayToElement(ptr, pt->elem->elem))
     pt = ptr->type;
-  else if (viewAsBytes(ptr, elementaryType("BYTE")))
+  else if (viewAsBytes(ptr, elementaryType("BYTE")) ||
+           viewAsScalar(ptr, elementaryType("BYTE")))
     pt = ptr->type;
   std::string why;
   auto layout = memoryLayout(pt->elem, why);
