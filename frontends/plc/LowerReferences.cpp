@@ -1170,6 +1170,49 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
 // MEMCPY, MEMMOVE, MEMSET, MEMCMP
 //===----------------------------------------------------------------------===//
 
+void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
+                                    SMLoc at) {
+  const PType *t = baseOf(place->type);
+  switch (t->kind) {
+  case PTypeKind::Array:
+    forEachIndex(t, [&](llvm::ArrayRef<int64_t> index) {
+      Expr *element = unit.make<Expr>(ExprKind::Index, at);
+      element->operands.push_back(place);
+      for (int64_t i : index) {
+        Expr *lit = unit.make<Expr>(ExprKind::IntLit, at);
+        lit->intValue = i;
+        lit->type = elementaryType("DINT");
+        element->operands.push_back(lit);
+      }
+      element->type = t->elem;
+      zeroThroughReference(element, f, pre, at);
+    });
+    return;
+  case PTypeKind::Struct:
+    if (t->isUnion)
+      break;
+    for (VarDecl *fld : t->fields) {
+      Expr *field = unit.make<Expr>(ExprKind::Field, at);
+      field->operands.push_back(place);
+      field->name = fld->name;
+      field->var = fld;
+      field->type = fld->type;
+      zeroThroughReference(field, f, pre, at);
+    }
+    return;
+  case PTypeKind::FunctionBlock:
+    refuse(at, "MEMSET over a function block instance (" + t->str() +
+                   ") is not modelled");
+  default:
+    break;
+  }
+  // All bits zero: 0, 0.0, FALSE, '', NULL, 1970-01-01; an enumeration
+  // its first value.
+  NExpr *zero =
+      t->kind == PTypeKind::Int ? b.intLit(0, at) : defaultValue(t, at);
+  writeThroughReference(place, zero, nullptr, f, pre, at);
+}
+
 NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
   SMLoc at = call->loc;
   Expr *dst = call->args[0].value, *src = call->args[1].value;
@@ -1208,6 +1251,15 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
       r = b.cond(b.binary(net::BinaryOp::Ne, x, y, at), sign, r, at);
     }
     return r;
+  }
+  if (call->name == "MEMSET" &&
+      (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
+       t->isString()) &&
+      !(t->kind == PTypeKind::Struct && t->isUnion)) {
+    // Sema let only 0 through: every scalar of every element zeroed.
+    for (int64_t j = 0; j < k; ++j)
+      zeroThroughReference(element(dst, j), f, pre, at);
+    return b.intLit(0, at);
   }
   if (call->name == "MEMSET") {
     NExpr *fill = expr(src, f, pre);

@@ -361,6 +361,9 @@ private:
   NExpr *pointerStep(Expr *e, Frame &f, Sink &pre);
   /// MEMCPY, MEMMOVE, MEMSET (statements around nothing) and MEMCMP.
   NExpr *memoryCall(Expr *call, Frame &f, Sink &pre);
+  /// MEMSET(..., 0, ...) of one array or structure: each scalar of the
+  /// place `place` designates (a dereference, perhaps selected) set to 0.
+  void zeroThroughReference(Expr *place, Frame &f, Sink &pre, SMLoc at);
   ReferencePlan refPlan;
   /// The prefix of the instance whose variables are being declared (a
   /// reference's initial value REF(x) is numbered in it).

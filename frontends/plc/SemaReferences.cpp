@@ -438,11 +438,13 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
   }
   bool scalar = t->kind != PTypeKind::Array && t->kind != PTypeKind::Struct &&
                 !t->isString();
+  // Zero bytes are every value's zero (MEMSET(ADR(s), 0, SIZEOF(s)) of a
+  // structure or array); other fills only bytes take.
   int64_t fill;
   if (set && (!scalar || layout->size != 1) &&
-      !(scalar && constInt(src, fill) && fill == 0)) {
+      !(constInt(src, fill) && fill == 0)) {
     error(e->loc, "MEMSET of " + t->str() +
-                      ": only bytes take any value, and other scalars 0");
+                      ": only bytes take any value, and everything else 0");
     return nullptr;
   }
   if (compare && (!scalar || layout->size != 1)) {
