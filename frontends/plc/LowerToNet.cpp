@@ -643,9 +643,14 @@ bool Lowering::run() {
                        "it)");
         return false;
       }
-      at = !unit.types.empty()     ? unit.types[0]->loc
-           : !unit.globals.empty() ? unit.globals[0]->loc
-                                   : opts.unitStart;
+      // The user's first type or global, not one of netlift's library.
+      at = opts.unitStart;
+      for (VarDecl *g : llvm::reverse(unit.globals))
+        if (!g->isLibrary)
+          at = g->loc;
+      for (TypeDecl *t : llvm::reverse(unit.types))
+        if (!t->isLibrary)
+          at = t->loc;
       diag.error(at, "no PROGRAM to translate: the input declares no "
                      "program, function block or function (only types or "
                      "global variables)");

@@ -256,6 +256,7 @@ struct DrawnBlock {
 struct VarDecl {
   std::string name;
   llvm::SMLoc loc;
+  bool isLibrary = false; // a global of netlift's own (st::addLibraryText)
   VarSection section = VarSection::Var;
   bool constant = false;
   bool retain = false;
@@ -470,6 +471,7 @@ struct TypeDecl {
   llvm::SMLoc loc;
   TypeSyntax *type = nullptr;
   const PType *resolved = nullptr; // Sema
+  bool isLibrary = false;          // netlift's own (st::addLibraryText)
 };
 
 struct Task {

@@ -619,6 +619,7 @@ bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
     bool shadowed = false;
     for (plc::TypeDecl *t : typesBefore)
       shadowed |= plc::sameName(t->name, unit.types[i]->name);
+    unit.types[i]->isLibrary = true;
     if (!shadowed)
       types.push_back(unit.types[i]);
   }
@@ -644,6 +645,7 @@ bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
   unit.pous = std::move(merged);
   std::vector<plc::VarDecl *> globals = globalsBefore;
   for (size_t i = globalsBefore.size(); i < unit.globals.size(); ++i) {
+    unit.globals[i]->isLibrary = true;
     bool shadowed = false;
     for (plc::VarDecl *g : globalsBefore)
       shadowed |= plc::sameName(g->name, unit.globals[i]->name);
