@@ -103,6 +103,8 @@ void Lowering::baseBody(Expr *call, Frame &f, Sink &out) {
 }
 
 NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
+  if (!call->method && !call->callee->environment.empty())
+    return environmentFunction(call, f, pre);
   if (!call->method)
     return inlineCall(call, call->callee, {}, f, pre);
   if (call->callee->kind == PouKind::FunctionBlock) {
@@ -452,6 +454,10 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
                              ": modelled as environment, its outputs " +
                              outputs + " are free inputs of the model");
   }
+  if (auto it = environmentOutputs.find(path); it != environmentOutputs.end())
+    for (const ChosenScalars &chosen : it->second)
+      for (NStmt *s : samplesOf(chosen))
+        out.push_back(s);
   for (CallArg &a : call->args) {
     if (a.isOutput) {
       NExpr *v = b.ref(path + "." + sanitize(a.name), a.loc);
@@ -460,16 +466,20 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
       out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));
       continue;
     }
-    // Not stored; what computing it calls still runs.
-    bool calls = false;
-    forEachNestedExpr(a.value,
-                      [&](Expr *e) { calls |= e->kind == ExprKind::Call; });
-    if (!calls)
-      continue;
-    Sink pre;
-    expr(a.value, f, pre);
-    out.insert(out.end(), pre.begin(), pre.end());
+    runArgumentCalls(a.value, f, out);
   }
+}
+
+void Lowering::runArgumentCalls(Expr *value, Frame &f, Sink &out) {
+  // Not stored; what computing it calls still runs.
+  bool calls = false;
+  forEachNestedExpr(value,
+                    [&](Expr *e) { calls |= e->kind == ExprKind::Call; });
+  if (!calls)
+    return;
+  Sink pre;
+  expr(value, f, pre);
+  out.insert(out.end(), pre.begin(), pre.end());
 }
 
 void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,

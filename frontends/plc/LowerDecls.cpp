@@ -478,10 +478,16 @@ void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
       continue;
     }
     const net::Type *nt = netType(m->type, m->loc, "output " + m->name);
-    if (!nt->isScalar())
-      refuse(m->loc, "output '" + m->name + "' of " + fb->name + " (" +
-                         fb->environment +
-                         ") is not a scalar: it cannot be a free input");
+    if (!nt->isScalar() && !nt->isString()) {
+      // A structure or array: the block's variable, its scalars chosen at
+      // every call (LowerEnvironment.cpp).
+      b.addVar(name, nt, nullptr, m->loc);
+      ChosenScalars chosen = chooseScalars(
+          name, name, m->type, "output '" + m->name + "' of " + fb->name, name,
+          m->loc);
+      environmentOutputs[path].push_back(chosen);
+      continue;
+    }
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, m->loc);
     if (m->type->kind == PTypeKind::Int || m->type->kind == PTypeKind::Time)
       b.addAttribute(name, net::kNeedsRangeAttribute,

@@ -11,6 +11,10 @@
 // scan covers whatever the caller does between calls, the value it left
 // unchanged included; it is the sound side of not knowing the caller.
 //
+// The same choice serves what the runtime answers: a structured output of
+// an environment block (chosen at each call), the result of an environment
+// function (TwinCAT's LREAL_TO_FMTSTR), and the clock TIME() reads.
+//
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
 
@@ -39,11 +43,10 @@ void Lowering::addFreeInputPort(const std::string &port, const PType *t,
   b.addPort(port, net::PortKind::Data, net::PortDir::In, nt, at);
 }
 
-void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
-  const PType *t = v->type;
-  bool inOut = v->section == VarSection::InOut;
-  std::string what =
-      std::string(inOut ? "VAR_IN_OUT '" : "input '") + v->name + "'";
+Lowering::ChosenScalars
+Lowering::chooseScalars(const std::string &name, const std::string &portStem,
+                        const PType *t, const std::string &what,
+                        const std::string &shown, SMLoc at) {
   // The scalars, each with the selectors that reach it from the variable
   // and the suffix its port is named by (`buf_0`, `s_a`, `m_1_m2`).
   struct Selector {
@@ -53,16 +56,16 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   struct Scalar {
     std::vector<Selector> path;
     std::string suffix;
-    const PType *type;
+    const PType *type = nullptr;
   };
   std::vector<Scalar> scalars;
   std::function<void(const PType *, Scalar &)> collect = [&](const PType *pt,
-                                                             Scalar &at) {
+                                                             Scalar &in) {
     const PType *base = baseOf(pt);
     switch (base->kind) {
     case PTypeKind::Array:
       forEachIndex(base, [&](llvm::ArrayRef<int64_t> index) {
-        Scalar inner = at;
+        Scalar inner = in;
         for (int64_t i : index)
           inner.path.push_back({"", i});
         inner.suffix = elementPath(inner.suffix, index);
@@ -73,39 +76,95 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
       if (base->isUnion)
         break; // one scalar: its bytes (LowerUnions.cpp)
       for (VarDecl *fld : base->fields) {
-        Scalar inner = at;
+        Scalar inner = in;
         inner.path.push_back({sanitize(fld->name), 0});
         inner.suffix += "_" + sanitize(fld->name);
         collect(fld->type, inner);
       }
       return;
     case PTypeKind::FunctionBlock:
-      refuse(v->loc, what + " is an instance of " + base->str() +
-                         " that the caller owns: translate the caller, "
-                         "which calls it");
+      refuse(at, what + " is an instance of " + base->str() +
+                     " that the caller owns: translate the caller, which "
+                     "calls it");
     case PTypeKind::Reference:
-      refuse(v->loc, what + " holds a reference (" + base->str() +
-                         "): what it designates belongs to the caller; "
-                         "translate the caller");
+      refuse(at, what + " holds a reference (" + base->str() +
+                     "): what it designates belongs to the caller; "
+                     "translate the caller");
     default:
       break;
     }
-    at.type = pt;
-    scalars.push_back(at);
+    in.type = pt;
+    scalars.push_back(in);
     if (scalars.size() > kMaxEnvironmentScalars)
-      refuse(v->loc, what + " of type " + t->str() + " has more than " +
-                         Twine(kMaxEnvironmentScalars) +
-                         " scalars, each a free input of the model; "
-                         "translate its caller");
+      refuse(at, what + " of type " + t->str() + " has more than " +
+                     Twine(kMaxEnvironmentScalars) +
+                     " scalars, each a free input of the model; translate "
+                     "its caller");
   };
   Scalar whole;
   collect(t, whole);
 
+  // A port name no declaration of the POU uses.
+  auto freeName = [&](std::string n) {
+    std::string candidate = n;
+    for (unsigned i = 2; mod->lookup(candidate).kind != net::SymKind::None ||
+                         (currentProgram && currentProgram->find(candidate));
+         ++i)
+      candidate = n + "_" + std::to_string(i);
+    return candidate;
+  };
+  ChosenScalars chosen;
+  chosen.name = name;
+  chosen.at = at;
+  for (Scalar &sc : scalars) {
+    ChosenScalars::Scalar c;
+    c.port = freeName(portStem + sc.suffix);
+    addFreeInputPort(c.port, sc.type, shown + sc.suffix, at);
+    for (Selector &step : sc.path)
+      c.path.push_back({step.field, step.index});
+    c.type = sc.type;
+    chosen.scalars.push_back(std::move(c));
+  }
+  return chosen;
+}
+
+NExpr *Lowering::scalarOf(const ChosenScalars &chosen,
+                          const ChosenScalars::Scalar &c) {
+  NExpr *x = b.ref(chosen.name, chosen.at);
+  for (auto &[field, index] : c.path)
+    x = field.empty() ? b.index(x, b.intLit(index, chosen.at), chosen.at)
+                      : b.field(x, field, chosen.at);
+  return x;
+}
+
+std::vector<NStmt *> Lowering::samplesOf(const ChosenScalars &c) {
+  std::vector<NStmt *> out;
+  for (const ChosenScalars::Scalar &sc : c.scalars)
+    out.push_back(b.assign(scalarOf(c, sc), b.ref(sc.port, c.at), c.at));
+  return out;
+}
+
+std::vector<NStmt *> Lowering::defaultsOf(const ChosenScalars &c) {
+  std::vector<NStmt *> out;
+  for (const ChosenScalars::Scalar &sc : c.scalars)
+    out.push_back(b.assign(scalarOf(c, sc), defaultValue(sc.type, c.at), c.at));
+  return out;
+}
+
+void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
+  const PType *t = v->type;
+  bool inOut = v->section == VarSection::InOut;
+  std::string what =
+      std::string(inOut ? "VAR_IN_OUT '" : "input '") + v->name + "'";
   // The variable the body reads and writes: a VAR_IN_OUT's is an output
   // port (what the block leaves in the caller's variable); an input's is
   // a variable of the scan.
   varTypes[name] = t;
   if (inOut) {
+    // Refused before anything is declared if it cannot be chosen.
+    if (baseOf(t)->kind == PTypeKind::FunctionBlock ||
+        baseOf(t)->kind == PTypeKind::Reference)
+      chooseScalars(name, name, t, what, v->name, v->loc);
     uint32_t p = t->kind == PTypeKind::Bool
                      ? b.addPort(name, net::PortKind::Cond, net::PortDir::Out,
                                  nullptr, v->loc)
@@ -115,32 +174,11 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   } else {
     declareTemp(name, t, v->loc);
   }
-  // A port name the POU's own declarations do not use.
-  auto freeName = [&](std::string n) {
-    std::string candidate = n;
-    for (unsigned i = 2; mod->lookup(candidate).kind != net::SymKind::None ||
-                         (currentProgram && currentProgram->find(candidate));
-         ++i)
-      candidate = n + "_" + std::to_string(i);
-    return candidate;
-  };
-  std::vector<NStmt *> &samples = environmentSamples[v];
-  for (Scalar &s : scalars) {
-    std::string port = freeName(name + (inOut ? "_in" : "") + s.suffix);
-    addFreeInputPort(port, s.type, v->name + s.suffix, v->loc);
-    auto scalar = [&] {
-      NExpr *x = b.ref(name, v->loc);
-      for (Selector &step : s.path)
-        x = step.field.empty()
-                ? b.index(x, b.intLit(step.index, v->loc), v->loc)
-                : b.field(x, step.field, v->loc);
-      return x;
-    };
-    samples.push_back(b.assign(scalar(), b.ref(port, v->loc), v->loc));
-    if (!inOut)
-      environmentResets[v].push_back(
-          b.assign(scalar(), defaultValue(s.type, v->loc), v->loc));
-  }
+  ChosenScalars chosen = chooseScalars(name, name + (inOut ? "_in" : ""), t,
+                                       what, v->name, v->loc);
+  environmentSamples[v] = samplesOf(chosen);
+  if (!inOut)
+    environmentResets[v] = defaultsOf(chosen);
 }
 
 bool Lowering::isEnvironmentValue(VarDecl *v) const {
@@ -173,5 +211,28 @@ NExpr *Lowering::clockReading(Expr *call) {
                   "' read once per scan (any value: the model does not "
                   "know that the clock advances)");
   }
+  return b.ref(port, call->loc);
+}
+
+NExpr *Lowering::environmentFunction(Expr *call, Frame &f, Sink &pre) {
+  Pou *fn = call->callee;
+  if (opts.opaqueRefused)
+    refuse(call->loc, "'" + fn->name + "' " + fn->environment +
+                          ", which netlift does not model (--opaque=refuse; "
+                          "the default models it as environment)");
+  for (VarDecl *p : fn->vars)
+    if (p->section == VarSection::Output || p->section == VarSection::InOut)
+      refuse(call->loc, "'" + fn->name + "' " + fn->environment +
+                            ": an environment function with outputs is not "
+                            "modelled");
+  for (CallArg &a : call->args)
+    runArgumentCalls(a.value, f, pre);
+  // One free result per call site, read once per scan.
+  std::string port = unique(sanitize(fn->name) + "_result");
+  addFreeInputPort(port, call->type, fn->name + "()", call->loc);
+  diag.note(call->loc, "'" + fn->name + "' " + fn->environment +
+                           ": modelled as environment, its result the free "
+                           "input '" +
+                           port + "'");
   return b.ref(port, call->loc);
 }

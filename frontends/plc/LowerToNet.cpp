@@ -77,8 +77,8 @@ static void initTimes(Initializer *init, std::vector<int64_t> &ns) {
 
 void Lowering::collectTimes(Pou *p, std::set<Pou *> &seen,
                             std::vector<int64_t> &ns) {
-  if (!seen.insert(p).second)
-    return;
+  if (!seen.insert(p).second || !p->environment.empty())
+    return; // an environment block's inputs are not stored
   for (VarDecl *v : p->vars) {
     if (v->typeSyntax)
       initTimes(v->typeSyntax->init, ns);
@@ -210,7 +210,8 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
     }
   };
   scanPou = [&](Pou *p) {
-    if (!visited.insert(p).second)
+    // An environment block's inputs (and their defaults) are not stored.
+    if (!visited.insert(p).second || !p->environment.empty())
       return;
     scanStmts(p->body);
     // Initial values may name globals (`d2r : LREAL := PI / 180.0`), and

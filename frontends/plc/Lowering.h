@@ -235,6 +235,29 @@ private:
   /// run as a program: the environment chooses each of its scalars at the
   /// start of every scan (`environmentSamples`).
   void declareEnvironmentValue(VarDecl *v, const std::string &name);
+  /// One free input port per scalar of a value of type `t` held in the
+  /// variable `name` (named `portStem` and the scalar's suffix: `s_a`,
+  /// `buf_0`): what copies them in (`samplesOf()`, fresh statements each
+  /// time) and sets them back to their defaults (`defaultsOf()`). `what` names
+  /// the value in refusals.
+  struct ChosenScalars {
+    struct Scalar {
+      std::string port;
+      std::vector<std::pair<std::string, int64_t>> path; // field, else index
+      const PType *type = nullptr;
+    };
+    std::string name;
+    SMLoc at;
+    std::vector<Scalar> scalars;
+  };
+  std::vector<NStmt *> samplesOf(const ChosenScalars &c);
+  /// The scalar `c` of the chosen value.
+  NExpr *scalarOf(const ChosenScalars &chosen, const ChosenScalars::Scalar &c);
+  std::vector<NStmt *> defaultsOf(const ChosenScalars &c);
+  ChosenScalars chooseScalars(const std::string &name,
+                              const std::string &portStem, const PType *t,
+                              const std::string &what, const std::string &shown,
+                              SMLoc at);
   /// A free input port for a value of type `t` (`shown` names it in
   /// messages and in the range an exploration asks for).
   void addFreeInputPort(const std::string &port, const PType *t,
@@ -255,6 +278,14 @@ private:
   void environmentCall(Expr *call, Pou *fb, const std::string &path, Frame &f,
                        Sink &out);
   std::set<std::string> notedEnvironment;
+  /// An argument of an environment block or function is not stored, but
+  /// the calls computing it run.
+  void runArgumentCalls(Expr *value, Frame &f, Sink &out);
+  /// A call of a function marked `{netlift environment '...'}`: its result
+  /// a free input (LowerEnvironment.cpp).
+  NExpr *environmentFunction(Expr *call, Frame &f, Sink &pre);
+  /// An environment block's structured outputs, chosen at each call.
+  std::map<std::string, std::vector<ChosenScalars>> environmentOutputs;
   std::string staticVar(VarDecl *v, SMLoc at);
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);

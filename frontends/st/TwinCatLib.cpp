@@ -4,14 +4,17 @@
 // What TwinCAT projects call from Beckhoff's libraries and netlift can model
 // exactly, written in Structured Text like the standard library (StdLib.cpp)
 // and added when a TwinCAT input is read: Tc2_Math's rounding and modulo
-// functions on LREAL and Tc2_System's PI. Tc2_System's blocks with effects
-// outside the program (ADS, files, the runtime) are declared with their
-// interface only and marked `{netlift environment '...'}`: an instance's
-// outputs are free inputs of the model, said in a note (--opaque=refuse
-// refuses them; LowerDecls.cpp, declareEnvironment). Their behaviour is what
-// Beckhoff documents (MODABS(-400.56, 360) = 319.44, LTRUNC(-2.8) = -2, FLOOR
-// and CEIL of negative values); twincat-lib.test checks those values.
-// Tc2_Standard's timers, triggers and counters are the standard ones.
+// functions on LREAL and Tc2_System's PI. Tc2_System's and Tc2_Utilities'
+// blocks and functions with effects outside the program (ADS, files, the
+// runtime, the clock) or results netlift does not reproduce exactly (text
+// formatting) are declared with their interface only and marked
+// `{netlift environment '...'}`: an instance's outputs, a call's result,
+// are free inputs of the model, said in a note (--opaque=refuse refuses
+// them; LowerDecls.cpp, declareEnvironment; LowerEnvironment.cpp). Their
+// behaviour is what Beckhoff documents (MODABS(-400.56, 360) = 319.44,
+// LTRUNC(-2.8) = -2, FLOOR and CEIL of negative values); twincat-lib.test
+// checks those values. Tc2_Standard's timers, triggers and counters are the
+// standard ones.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StdLib.h"
@@ -101,6 +104,29 @@ END_FUNCTION_BLOCK
 FUNCTION_BLOCK GETCURTASKINDEX
   VAR_OUTPUT index : BYTE; END_VAR
 END_FUNCTION_BLOCK
+
+(* Tc2_System: the system time, in 100 ns since 1601-01-01. *)
+{netlift environment 'reads the system clock'}
+FUNCTION F_GetSystemTime : ULINT
+END_FUNCTION
+
+(* Tc2_Utilities: Windows' local time, and text formatting netlift does not
+   reproduce digit for digit. *)
+TYPE TIMESTRUCT : STRUCT
+  wYear, wMonth, wDayOfWeek, wDay, wHour, wMinute, wSecond,
+  wMilliseconds : WORD;
+END_STRUCT END_TYPE
+
+{netlift environment 'reads the system clock over ADS'}
+FUNCTION_BLOCK NT_GetTime
+  VAR_INPUT NETID : T_AmsNetId; START : BOOL; TMOUT : TIME := DEFAULT_ADS_TIMEOUT; END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; TIMESTR : TIMESTRUCT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'formats a number as text'}
+FUNCTION LREAL_TO_FMTSTR : STRING(510)
+  VAR_INPUT in : LREAL; iPrecision : INT; bRound : BOOL; END_VAR
+END_FUNCTION
 
 (* The integer part of a float as an LREAL, whatever its size: from 2^52 up
    every LREAL is whole; below, rounding half away from zero of |x| - 0.5
