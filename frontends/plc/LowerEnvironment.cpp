@@ -160,6 +160,10 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   // port (what the block leaves in the caller's variable); an input's is
   // a variable of the scan.
   varTypes[name] = t;
+  if (t->kind == PTypeKind::Array && t->anyBounds)
+    refuse(v->loc, what + " is " + t->str() +
+                       ": its bounds are those of the caller's array; "
+                       "translate the caller");
   if (inOut) {
     // Refused before anything is declared if it cannot be chosen.
     if (baseOf(t)->kind == PTypeKind::FunctionBlock ||

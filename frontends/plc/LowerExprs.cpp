@@ -701,6 +701,8 @@ NExpr *Lowering::stdValue(Expr *e, Frame &f, Sink &pre) {
     return bcdConversion(e, info, a[0], pre, at);
   case StdFn::Clock:
     return clockReading(e);
+  case StdFn::Bound:
+    return arrayBound(e, f);
   case StdFn::Refused:
   case StdFn::None:
     break;

@@ -274,3 +274,25 @@ void Lowering::chosenMemberWrite(Stmt *s, NExpr *value, Frame &f, Sink &out) {
   }
   emitChoice(tests, bodies, out, s->loc);
 }
+
+NExpr *Lowering::arrayBound(Expr *call, Frame &f) {
+  SMLoc at = call->loc;
+  Expr *array = call->args[0].value;
+  int64_t dim = call->intValue; // Sema's: a constant in 1..dimensions
+  // An ARRAY[*] is the argument its call was given, perhaps itself a
+  // VAR_IN_OUT of the caller's: followed until the bounds are known.
+  const PType *t = baseOf(array->type);
+  Frame *rf = &f;
+  while (t->anyBounds) {
+    auto source = array->kind == ExprKind::Name && array->var
+                      ? rf->aliasSources.find(array->var)
+                      : rf->aliasSources.end();
+    if (source == rf->aliasSources.end())
+      refuse(at, "internal: the array an ARRAY[*] is given is not known here");
+    array = source->second.first;
+    rf = source->second.second;
+    t = baseOf(array->type);
+  }
+  auto [lo, hi] = t->dims[size_t(dim - 1)];
+  return b.intLit(StringRef(call->name).upper() == "LOWER_BOUND" ? lo : hi, at);
+}

@@ -265,6 +265,9 @@ private:
   std::map<VarDecl *, std::vector<NStmt *>> environmentSamples;
   /// TIME() or LTIME(): the clock, a free input chosen at every scan.
   NExpr *clockReading(Expr *call);
+  /// LOWER_BOUND / UPPER_BOUND: a constant, the bounds of the array an
+  /// ARRAY[*] is given at this call (LowerInstanceArrays.cpp).
+  NExpr *arrayBound(Expr *call, Frame &f);
   /// Their scalars back to defaults at the end of the scan, so that what
   /// the environment chose last is not state.
   std::map<VarDecl *, std::vector<NStmt *>> environmentResets;

@@ -228,6 +228,11 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
     t->elem = elem;
     for (auto &[loE, hiE] : ts->dims) {
       int64_t lo, hi;
+      if (!loE && !hiE) { // ARRAY[*]
+        t->anyBounds = true;
+        t->dims.push_back({0, 0});
+        continue;
+      }
       if (!constInt(loE, lo) || !constInt(hiE, hi)) {
         error(loE ? loE->loc : ts->loc,
               "array bounds must be constant integers");
@@ -416,6 +421,12 @@ void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
       v->type = vars[i - 1]->type;
     else
       v->type = resolve(v->typeSyntax, v->name);
+    if (v->type && v->type->kind == PTypeKind::Array && v->type->anyBounds &&
+        (v->section != VarSection::InOut || !owner ||
+         owner->kind == PouKind::Program))
+      error(v->loc, "'" + v->name + "' is " + v->type->str() +
+                        ": an array of any bounds is a VAR_IN_OUT of a "
+                        "function, function block or method");
   }
 }
 

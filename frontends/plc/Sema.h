@@ -58,6 +58,9 @@ struct PType {
   // Array: elem and one (lo, hi) per dimension
   const PType *elem = nullptr;
   std::vector<std::pair<int64_t, int64_t>> dims;
+  /// Array: ARRAY[*]: a VAR_IN_OUT's, whose bounds are the argument's
+  /// (`dims` holds one (0, 0) per dimension).
+  bool anyBounds = false;
   // String: the most characters it holds (`width` is then the bits of a
   // character, 8 or 16); 0 for CHAR and WCHAR, single characters.
   uint32_t strLen = 0;
@@ -125,6 +128,7 @@ enum class StdFn : uint8_t {
   StringOp, // LEN, LEFT, RIGHT, MID, CONCAT, INSERT, DELETE, REPLACE, FIND
   Bcd,      // BCD_TO_INT, WORD_BCD_TO_UINT, INT_TO_BCD, UINT_TO_BCD_WORD
   Clock,    // TIME(), LTIME(): the PLC's clock, chosen by the environment
+  Bound,    // LOWER_BOUND, UPPER_BOUND of an array (ARRAY[*]: the argument's)
   Refused,  // recognised but not supported at all (NOW)
 };
 

@@ -54,6 +54,16 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
     }
     if (a.isOutput || p->section == VarSection::InOut) {
       const PType *t = lvalue(a.value);
+      // ARRAY[*]: any array of its element type and dimensions.
+      if (t && p->type && p->section == VarSection::InOut &&
+          p->type->kind == PTypeKind::Array && p->type->anyBounds &&
+          (baseOf(t)->kind != PTypeKind::Array ||
+           baseOf(t)->dims.size() != p->type->dims.size() ||
+           referenceKey(baseOf(t)->elem) != referenceKey(p->type->elem))) {
+        error(a.loc, "VAR_IN_OUT '" + p->name + "' of type " + p->type->str() +
+                         " bound to a " + t->str());
+        return;
+      }
       if (t && p->type &&
           (p->section == VarSection::InOut
                ? baseOf(t) != baseOf(p->type) &&
@@ -627,6 +637,27 @@ const PType *Checker::call(Expr *e, bool asStatement) {
       return nullptr;
     }
     return info.to;
+  }
+  case StdFn::Bound: {
+    if (!arity(2, 2))
+      return nullptr;
+    const PType *array = baseOf(types[0]);
+    int64_t dim;
+    if (array->kind != PTypeKind::Array) {
+      error(e->args[0].loc,
+            "'" + e->name + "' of a " + types[0]->str() + ", not an array");
+      return nullptr;
+    }
+    if (!constInt(e->args[1].value, dim) || dim < 1 ||
+        dim > int64_t(array->dims.size())) {
+      error(e->args[1].loc, "'" + e->name +
+                                "' takes a dimension, a constant "
+                                "1.." +
+                                Twine(array->dims.size()));
+      return nullptr;
+    }
+    e->intValue = dim;
+    return elementaryType("DINT");
   }
   case StdFn::Clock:
     if (!arity(0, 0))

@@ -19,8 +19,9 @@ std::string PType::str() const {
   case PTypeKind::Array: {
     std::string r = "ARRAY[";
     for (size_t d = 0; d < dims.size(); ++d)
-      r += (d ? "," : "") + std::to_string(dims[d].first) + ".." +
-           std::to_string(dims[d].second);
+      r += (d ? "," : "") + (anyBounds ? std::string("*")
+                                       : std::to_string(dims[d].first) + ".." +
+                                             std::to_string(dims[d].second));
     return r + "] OF " + (elem ? elem->str() : "?");
   }
   case PTypeKind::Enum:
@@ -188,6 +189,10 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
   case PTypeKind::Enum: // an INT unless a base type is given
     return t->base ? memoryLayout(t->base, why) : MemoryLayout{2, 2};
   case PTypeKind::Array: {
+    if (t->anyBounds) {
+      why = "the size of " + t->str() + " is the size of the array given";
+      return std::nullopt;
+    }
     auto e = memoryLayout(t->elem, why);
     if (!e)
       return e;
@@ -312,6 +317,7 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
                 .Cases("DELETE", "REPLACE", "FIND", StdFn::StringOp)
                 // CODESYS's and TwinCAT's clock since the PLC started.
                 .Cases("TIME", "LTIME", StdFn::Clock)
+                .Cases("LOWER_BOUND", "UPPER_BOUND", StdFn::Bound)
                 // 4diac's clocks: unbounded, refused by name.
                 .Cases("NOW_MONOTONIC", "NOW", StdFn::Refused)
                 .Default(StdFn::None);

@@ -198,7 +198,7 @@ typeSpec
 bareArrayInit : arrayInitElem (COMMA arrayInitElem)+ ;
 
 typeSpec0
-  : ARRAY LBRACKET subrange (COMMA subrange)* RBRACKET OF elem=typeSpec0   # arrayType
+  : ARRAY LBRACKET arrayDim (COMMA arrayDim)* RBRACKET OF elem=typeSpec0   # arrayType
   | STRUCT (structField)* END_STRUCT                                      # structType
   | UNION (structField)* END_UNION                                        # unionType
   | (POINTER TO | REFERENCE TO | REF_TO) typeSpec0                        # pointerType
@@ -211,6 +211,10 @@ typeSpec0
 enumValue : name=ident (ASSIGN value=expression)? ;
 
 subrange : lo=expression DOTDOT hi=expression ;
+
+// `*`: the bounds of the array a VAR_IN_OUT is given (IEC 61131-3 3rd
+// edition, CODESYS V3, TwinCAT 3).
+arrayDim : subrange | STAR ;
 
 structField
   : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec SEMI

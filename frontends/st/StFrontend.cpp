@@ -572,8 +572,11 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
   }
   if (auto *a = alt<P::ArrayTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
-    for (auto *s : a->subrange())
-      t->dims.push_back({expr(s->lo), expr(s->hi)});
+    for (auto *d : a->arrayDim())
+      if (auto *s = d->subrange())
+        t->dims.push_back({expr(s->lo), expr(s->hi)});
+      else
+        t->dims.push_back({nullptr, nullptr}); // ARRAY[*]
     t->elem = typeSpec0(a->elem);
     return t;
   }
