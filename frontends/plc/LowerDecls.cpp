@@ -377,6 +377,8 @@ void Lowering::declareProgramVar(VarDecl *v) {
       return;
     }
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, v->loc);
+    if (const PType *elem = callerTarget(v))
+      declareCallerTarget(v, name, elem);
     return;
   }
   if (v->section == VarSection::Temp) {

@@ -240,3 +240,59 @@ NExpr *Lowering::environmentFunction(Expr *call, Frame &f, Sink &pre) {
                            port + "'");
   return b.ref(port, call->loc);
 }
+
+/// How many scalars a value of type `t` is chosen in (capped past `cap`).
+static size_t scalarCount(const PType *t, size_t cap) {
+  t = baseOf(t);
+  if (t->kind == PTypeKind::Array) {
+    size_t n = 1;
+    for (auto &[lo, hi] : t->dims)
+      n = std::min(cap + 1, n * size_t(hi - lo + 1));
+    return std::min(cap + 1, n * scalarCount(t->elem, cap));
+  }
+  if (t->kind == PTypeKind::Struct && !t->isUnion) {
+    size_t n = 0;
+    for (VarDecl *f : t->fields)
+      n = std::min(cap + 1, n + scalarCount(f->type, cap));
+    return n;
+  }
+  return 1;
+}
+
+const PType *Lowering::callerTarget(VarDecl *v) const {
+  if (!v->owner || !runAsProgram(v->owner) || !v->type ||
+      v->section != VarSection::Input || !v->type->isReference() ||
+      v->type->refKind == RefKind::Interface || !v->type->elem)
+    return nullptr;
+  const PType *elem = v->type->elem;
+  const PType *base = baseOf(elem);
+  if (base->kind == PTypeKind::FunctionBlock ||
+      base->kind == PTypeKind::Reference ||
+      (base->kind == PTypeKind::Array && base->anyBounds) ||
+      scalarCount(elem, kMaxEnvironmentScalars) > kMaxEnvironmentScalars)
+    return nullptr;
+  return elem;
+}
+
+void Lowering::declareCallerTarget(VarDecl *v, const std::string &name,
+                                   const PType *elem) {
+  std::string target = name + "_target";
+  varTypes[target] = elem;
+  uint32_t p = baseOf(elem)->kind == PTypeKind::Bool
+                   ? b.addPort(target, net::PortKind::Cond, net::PortDir::Out,
+                               nullptr, v->loc)
+                   : b.addPort(target, net::PortKind::Data, net::PortDir::Out,
+                               netType(elem, v->loc,
+                                       "what '" + v->name + "' designates"),
+                               v->loc);
+  mod->ports[p].init = defaultValue(elem, v->loc);
+  ChosenScalars chosen = chooseScalars(
+      target, target + "_in", elem, "what input '" + v->name + "' designates",
+      v->name + "^", v->loc);
+  environmentSamples[v] = samplesOf(chosen);
+  diag.note(v->loc, "input '" + v->name + "' may designate its caller's " +
+                        elem->str() + ": modelled as '" + target +
+                        "', chosen by the environment at every scan as an "
+                        "in-out is (or NULL, or what the design's own REF "
+                        "and ADR take)");
+}

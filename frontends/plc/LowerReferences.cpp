@@ -216,6 +216,13 @@ std::optional<std::string> Lowering::inputImageName(const std::string &prefix,
 
 Lowering::ReferencePlan
 Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
+  // The POUs run as programs decide whose variables are named as a
+  // program's (and which reference inputs designate the caller's objects);
+  // an IEC 61499 block's are its own.
+  runPous.clear();
+  if (!eventDriven)
+    for (const ProgramRun &run : runs)
+      runPous.insert(run.pou);
   // The instance tree: every path of every function block type.
   std::map<Pou *, std::vector<std::string>> instances;
   std::function<void(const std::string &, Pou *)> walk =
@@ -302,6 +309,22 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           table.families.push_back(std::move(fam));
         }
       };
+  // A reference input of the POU run as a program may designate an object
+  // of its caller's (the environment's): one place each.
+  for (const ProgramRun &run : runs)
+    for (VarDecl *v : run.pou->vars)
+      if (const PType *elem = callerTarget(v)) {
+        RefTable &table = plan.tables[referenceKey(elem)];
+        std::string base = run.prefix + sanitize(v->name) + "_target";
+        if (table.byKey.count(base))
+          continue;
+        table.byKey[base] = table.families.size();
+        RefFamily fam;
+        fam.key = fam.base = base;
+        fam.offset = table.count + 1;
+        table.count += 1;
+        table.families.push_back(std::move(fam));
+      }
   std::vector<Expr *> throughReferences;
   forEachAddressTaken(unit, [&](Expr *call) {
     Expr *place = call->args[0].value;

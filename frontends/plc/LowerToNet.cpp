@@ -495,10 +495,7 @@ void Lowering::deadValueResets(ProgramRun &run) {
 void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
                              std::vector<ProgramRun> &runs) {
   startModule(name, loc);
-  runPous.clear();
-  for (ProgramRun &run : runs)
-    runPous.insert(run.pou);
-  adoptReferencePlan(planReferences(runs));
+  adoptReferencePlan(planReferences(runs)); // (sets runPous)
   for (ProgramRun &run : runs)
     declareProgram(run);
   for (ProgramRun &run : runs)

@@ -263,6 +263,14 @@ private:
   void addFreeInputPort(const std::string &port, const PType *t,
                         const std::string &shown, SMLoc at);
   std::map<VarDecl *, std::vector<NStmt *>> environmentSamples;
+  /// The type of the caller's object a reference input of the POU run as a
+  /// program may designate (null when none is modelled: an instance, an
+  /// interface, more scalars than the environment chooses).
+  const PType *callerTarget(VarDecl *v) const;
+  /// That object, `<name>_target`: an output port chosen by the
+  /// environment at each scan, as a VAR_IN_OUT of the translated POU is.
+  void declareCallerTarget(VarDecl *v, const std::string &name,
+                           const PType *elem);
   /// TIME() or LTIME(): the clock, a free input chosen at every scan.
   NExpr *clockReading(Expr *call);
   /// LOWER_BOUND / UPPER_BOUND: a constant, the bounds of the array an

@@ -13,6 +13,9 @@ using namespace netlift::plc::detail;
 std::string PType::str() const {
   if (!name.empty())
     return name;
+  if (isSubrange && base)
+    return base->str() + "(" + std::to_string(lo) + ".." + std::to_string(hi) +
+           ")";
   switch (kind) {
   case PTypeKind::AnyInt:
     return "ANY_INT";
