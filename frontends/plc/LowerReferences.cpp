@@ -309,22 +309,24 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           table.families.push_back(std::move(fam));
         }
       };
+  // A single place named `base` (a variable, an instance), once.
+  auto addSinglePlace = [](RefTable &table, const std::string &base) {
+    if (table.byKey.count(base))
+      return;
+    table.byKey[base] = table.families.size();
+    RefFamily fam;
+    fam.key = fam.base = base;
+    fam.offset = table.count + 1;
+    table.count += 1;
+    table.families.push_back(std::move(fam));
+  };
   // A reference input of the POU run as a program may designate an object
   // of its caller's (the environment's): one place each.
   for (const ProgramRun &run : runs)
     for (VarDecl *v : run.pou->vars)
-      if (const PType *elem = callerTarget(v)) {
-        RefTable &table = plan.tables[referenceKey(elem)];
-        std::string base = run.prefix + sanitize(v->name) + "_target";
-        if (table.byKey.count(base))
-          continue;
-        table.byKey[base] = table.families.size();
-        RefFamily fam;
-        fam.key = fam.base = base;
-        fam.offset = table.count + 1;
-        table.count += 1;
-        table.families.push_back(std::move(fam));
-      }
+      if (const PType *elem = callerTarget(v))
+        addSinglePlace(plan.tables[referenceKey(elem)],
+                       run.prefix + sanitize(v->name) + "_target");
   std::vector<Expr *> throughReferences;
   forEachAddressTaken(unit, [&](Expr *call) {
     Expr *place = call->args[0].value;
@@ -340,14 +342,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         if (!runs)
           continue;
         for (const std::string &path : instances[p])
-          if (!table.byKey.count(path)) {
-            table.byKey[path] = table.families.size();
-            RefFamily fam;
-            fam.key = fam.base = path;
-            fam.offset = table.count + 1;
-            table.count += 1;
-            table.families.push_back(std::move(fam));
-          }
+          addSinglePlace(table, path);
       }
       return;
     }
@@ -730,44 +725,36 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.number = name;
   if (!t.table)
     return t;
-  // One past the end of an array designates nothing: a run-time error.
-  NExpr *pastEnd = nullptr;
-  for (const RefFamily &fam : t.table->families)
-    if (fam.hasEnd) {
-      NExpr *test = b.binary(net::BinaryOp::Eq, b.ref(name, d->loc),
-                             b.intLit(fam.offset + fam.size, d->loc), d->loc);
-      pastEnd =
-          pastEnd ? b.binary(net::BinaryOp::Or, pastEnd, test, d->loc) : test;
-    }
-  if (pastEnd) {
-    std::string check = scanVariable(stemOf(d->base()) + "_past_end",
-                                     design.types.getRange(1, 1), 1, d->loc);
-    pre.push_back(b.assign(
-        b.ref(check, d->loc),
-        b.cond(pastEnd, b.intLit(0, d->loc), b.intLit(1, d->loc), d->loc),
-        d->loc));
-  }
-  // A function's variables exist only while a call of it runs: a
-  // reference to them dereferenced elsewhere dangles, a run-time error.
-  NExpr *dangling = nullptr;
+  // One past the end of an array designates nothing, and a function's
+  // variables exist only while a call of it runs (a reference to them
+  // dereferenced elsewhere dangles): run-time errors, each named.
+  std::vector<NExpr *> pastEnd, dangling;
   for (const RefFamily &fam : t.table->families) {
-    if (!fam.function || activeCalls.count(fam.function)) {
+    if (fam.hasEnd)
+      pastEnd.push_back(b.binary(net::BinaryOp::Eq, b.ref(name, d->loc),
+                                 b.intLit(fam.offset + fam.size, d->loc),
+                                 d->loc));
+    if (!fam.function || activeCalls.count(fam.function))
       t.live.push_back(&fam);
-      continue;
-    }
-    NExpr *test = familyTest(fam, t);
-    dangling =
-        dangling ? b.binary(net::BinaryOp::Or, dangling, test, d->loc) : test;
+    else
+      dangling.push_back(familyTest(fam, t));
   }
-  if (dangling) {
-    std::string check = scanVariable(stemOf(d->base()) + "_dangling",
-                                     design.types.getRange(1, 1), 1, d->loc);
-    pre.push_back(b.assign(
-        b.ref(check, d->loc),
-        b.cond(dangling, b.intLit(0, d->loc), b.intLit(1, d->loc), d->loc),
-        d->loc));
-  }
+  failWhenAny(pastEnd, stemOf(d->base()) + "_past_end", pre, d->loc);
+  failWhenAny(dangling, stemOf(d->base()) + "_dangling", pre, d->loc);
   return t;
+}
+
+void Lowering::failWhenAny(llvm::ArrayRef<NExpr *> tests,
+                           const std::string &stem, Sink &pre, SMLoc at) {
+  if (tests.empty())
+    return;
+  NExpr *any = tests[0];
+  for (NExpr *test : tests.drop_front())
+    any = b.binary(net::BinaryOp::Or, any, test, at);
+  // A variable of range 1..1 given 0: the engine's range check reports it.
+  std::string check = scanVariable(stem, design.types.getRange(1, 1), 1, at);
+  pre.push_back(b.assign(
+      b.ref(check, at), b.cond(any, b.intLit(0, at), b.intLit(1, at), at), at));
 }
 
 NExpr *Lowering::familyRoot(const RefFamily &fam, const DerefTargets &t,

@@ -365,6 +365,9 @@ private:
   NExpr *numberOf(const DerefTargets &t, SMLoc at);
   bool throughReference(Expr *e);
   DerefTargets derefTargets(Expr *e, Frame &f, Sink &pre);
+  /// A run-time error named `stem` when any of `tests` holds.
+  void failWhenAny(llvm::ArrayRef<NExpr *> tests, const std::string &stem,
+                   Sink &pre, SMLoc at);
   NExpr *familyPlace(const RefFamily &fam, const DerefTargets &t, Expr *e,
                      Frame &f, Sink &pre);
   NExpr *familyTest(const RefFamily &fam, const DerefTargets &t);
