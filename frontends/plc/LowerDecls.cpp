@@ -321,10 +321,6 @@ void Lowering::declareProgramVar(VarDecl *v) {
   declaringPrefix = programPrefix;
   // The caller's variable: the environment's (LowerEnvironment.cpp).
   if (v->section == VarSection::InOut) {
-    if (eventDriven)
-      refuse(v->loc, "VAR_IN_OUT '" + v->name +
-                         "' of an event-driven block "
-                         "is not supported");
     declareEnvironmentValue(v, name);
     return;
   }

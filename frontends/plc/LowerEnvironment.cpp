@@ -156,19 +156,19 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   bool inOut = v->section == VarSection::InOut;
   std::string what =
       std::string(inOut ? "VAR_IN_OUT '" : "input '") + v->name + "'";
-  // The variable the body reads and writes: a VAR_IN_OUT's is an output
-  // port (what the block leaves in the caller's variable); an input's is
-  // a variable of the scan.
   varTypes[name] = t;
   if (t->kind == PTypeKind::Array && t->anyBounds)
     refuse(v->loc, what + " is " + t->str() +
                        ": its bounds are those of the caller's array; "
                        "translate the caller");
+  // Its scalars first: what cannot be chosen (an instance, a reference) is
+  // refused before anything is declared.
+  ChosenScalars chosen = chooseScalars(name, name + (inOut ? "_in" : ""), t,
+                                       what, v->name, v->loc);
+  // The variable the body reads and writes: a VAR_IN_OUT's is an output
+  // port (what the block leaves in the caller's variable); an input's is
+  // a variable of the scan.
   if (inOut) {
-    // Refused before anything is declared if it cannot be chosen.
-    if (baseOf(t)->kind == PTypeKind::FunctionBlock ||
-        baseOf(t)->kind == PTypeKind::Reference)
-      chooseScalars(name, name, t, what, v->name, v->loc);
     uint32_t p = t->kind == PTypeKind::Bool
                      ? b.addPort(name, net::PortKind::Cond, net::PortDir::Out,
                                  nullptr, v->loc)
@@ -178,8 +178,6 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   } else {
     declareTemp(name, t, v->loc);
   }
-  ChosenScalars chosen = chooseScalars(name, name + (inOut ? "_in" : ""), t,
-                                       what, v->name, v->loc);
   environmentSamples[v] = samplesOf(chosen);
   if (!inOut)
     environmentResets[v] = defaultsOf(chosen);
