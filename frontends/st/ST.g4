@@ -44,7 +44,9 @@ tokens {
 
 // ---------------------------------------------------------------- units
 
-compilationUnit : libraryElement* EOF ;
+// A `;` between elements (after a comment, as TwinCAT exports write one) is
+// empty.
+compilationUnit : (libraryElement | SEMI)* EOF ;
 
 // One expression alone (IL operands, --ranges values).
 expressionOnly : expression EOF ;
@@ -183,7 +185,8 @@ ident
 
 // ---------------------------------------------------------------- types
 
-typeDecl : TYPE typeDefinition+ END_TYPE ;
+// `TYPE INTERNAL ...` (CODESYS, TwinCAT: visible in its library only).
+typeDecl : TYPE access=(INTERNAL | PUBLIC)? typeDefinition* END_TYPE ;
 
 typeDefinition
   : name=ident (EXTENDS ext=qualifiedName)? COLON typeSpec SEMI?
@@ -248,7 +251,9 @@ varBlock
 
 globalVarBlock : varBlock ;
 
-varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT ;
+// INTERNAL (CODESYS, TwinCAT: visible in its library only) changes nothing
+// in one design.
+varQualifier : CONSTANT | RETAIN | NON_RETAIN | PERSISTENT | INTERNAL ;
 
 varDecl
   : ident (COMMA ident)* (AT DIRECT)? COLON typeSpec edge=IDENT? SEMI
@@ -309,7 +314,7 @@ statement
   : SEMI                                                        # emptyStmt
   | target=variable ASSIGN value=expression SEMI                # assignStmt
   | target=variable op=(REF_ASSIGN | ATTEMPT_ASSIGN) value=expression SEMI # refAssignStmt
-  | target=variable op=(SET_ASSIGN | RESET_ASSIGN) value=expression SEMI # refusedAssignStmt
+  | setOrReset+ value=expression SEMI                           # setResetStmt
   | callee=variable LPAREN (callArg (COMMA callArg)*)? RPAREN callSuffix* SEMI # callStmt
   | IF cond=expression THEN statementList
     (elsifPart)* (ELSE elseBody=statementList)? END_IF SEMI?    # ifStmt
@@ -324,6 +329,11 @@ statement
   | JMP IDENT SEMI                                              # jumpStmt
   | EMBEDDED_C                                                  # embeddedCStmt
   ;
+
+// CODESYS's and TwinCAT's set and reset assignments `x S= c;`, `x R= c;`,
+// chained `x S= y R= c;` (each target from the one operand at the end).
+// The lexer reads `S=` as one token only right after a variable.
+setOrReset : target=variable op=(SET_ASSIGN | RESET_ASSIGN) ;
 
 elsifPart : ELSIF cond=expression THEN statementList ;
 
@@ -368,6 +378,8 @@ primary
   // FBD): AND(a, b, c), XOR(a, b), MOD(a, b). NOT(x) is the unary form.
   | op=(AND | OR | XOR | MOD) LPAREN callArg (COMMA callArg)* RPAREN # operatorCallPrimary
   | variable                                                    # variablePrimary
+  // RuSTy's address operator: `&x` is REF(x).
+  | AMP variable                                                # addressPrimary
   | LPAREN expression RPAREN                                    # parenPrimary
   ;
 

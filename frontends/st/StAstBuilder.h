@@ -118,6 +118,7 @@ private:
   arrayInitializer(antlr4::ParserRuleContext *at,
                    const std::vector<P::ArrayInitElemContext *> &elems);
   Stmt *statement(P::StatementContext *c);
+  Stmt *setReset(P::SetResetStmtContext *c);
   Expr *primary(P::PrimaryContext *c);
   Expr *variable(P::VariableContext *c);
   Expr *literal(P::LiteralContext *c);

@@ -739,6 +739,23 @@ void AstBuilder::statements(P::StatementListContext *c, StmtList &out) {
   }
 }
 
+// `x S= c;` sets x where c holds, `x R= c;` resets it (CODESYS, TwinCAT).
+// In a chain `x S= y R= c;` every target takes the one operand at the end,
+// evaluated once: IF c THEN y := FALSE; x := TRUE; END_IF.
+Stmt *AstBuilder::setReset(P::SetResetStmtContext *c) {
+  Stmt *s = unit.make<Stmt>(StmtKind::If, loc(c));
+  s->arms.push_back({expr(c->value), {}});
+  auto targets = c->setOrReset();
+  for (auto it = targets.rbegin(); it != targets.rend(); ++it) {
+    Stmt *a = unit.make<Stmt>(StmtKind::Assign, loc((*it)->op));
+    a->target = variable((*it)->target);
+    a->value = unit.make<Expr>(ExprKind::BoolLit, loc((*it)->op));
+    a->value->intValue = (*it)->op->getType() == P::SET_ASSIGN;
+    s->arms.back().second.push_back(a);
+  }
+  return s;
+}
+
 Stmt *AstBuilder::statement(P::StatementContext *c) {
   if (alt<P::EmptyStmtContext>(c))
     return nullptr;
@@ -760,8 +777,8 @@ Stmt *AstBuilder::statement(P::StatementContext *c) {
   if (auto *e = alt<P::EmbeddedCStmtContext>(c))
     return refuse(loc(e->EMBEDDED_C()), "embedded C code '{{ ... }}' is not "
                                         "supported (it cannot be modelled)");
-  if (auto *r = alt<P::RefusedAssignStmtContext>(c))
-    return refuse(loc(r->op), "'" + r->op->getText() + "' is not supported");
+  if (auto *sr = alt<P::SetResetStmtContext>(c))
+    return setReset(sr);
   if (auto *call = alt<P::CallStmtContext>(c)) {
     Stmt *s = unit.make<Stmt>(StmtKind::Call, loc(call));
     Expr *callee = variable(call->callee);
@@ -934,6 +951,15 @@ Expr *AstBuilder::primary(P::PrimaryContext *c) {
     return literal(l->literal());
   if (auto *p = alt<P::ParenPrimaryContext>(c))
     return expr(p->expression());
+  if (auto *a = alt<P::AddressPrimaryContext>(c)) {
+    Expr *e = unit.make<Expr>(ExprKind::Call, loc(a->AMP()));
+    e->name = "REF";
+    Expr *of = variable(a->variable());
+    if (!of)
+      return nullptr;
+    e->args.push_back({"", false, false, of, of->loc});
+    return e;
+  }
   if (auto *v = alt<P::VariablePrimaryContext>(c))
     return variable(v->variable());
   if (auto *o = alt<P::OperatorCallPrimaryContext>(c)) {

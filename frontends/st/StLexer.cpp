@@ -189,6 +189,8 @@ std::unique_ptr<antlr4::Token> StLexer::make(size_t type, size_t start,
   tok->setLine(tokenLine);
   tok->setCharPositionInLine(tokenCol);
   tok->setTokenIndex(tokenIndex++);
+  if (channel == 0)
+    lastType = type;
   return tok;
 }
 
@@ -301,6 +303,42 @@ void StLexer::lexBasedOrDecimal() {
     ++pos;
 }
 
+// Can a token of this type end a variable access (a name, including the
+// words IEC reserves only in some places, an index, a dereference, a bit
+// number, a direct address)?
+bool StLexer::endsVariable(size_t type) const {
+  switch (type) {
+  case P::IDENT:
+  case P::RBRACKET:
+  case P::CARET:
+  case P::INTEGER:
+  case P::DIRECT:
+  case P::ON:
+  case P::STEP:
+  case P::FROM:
+  case P::ACTION:
+  case P::ACTIONS:
+  case P::CLASS:
+  case P::METHOD:
+  case P::PROPERTY:
+  case P::INTERFACE:
+  case P::NAMESPACE:
+  case P::ABSTRACT:
+  case P::FINAL:
+  case P::PUBLIC:
+  case P::PRIVATE:
+  case P::PROTECTED:
+  case P::INTERNAL:
+  case P::OVERRIDE:
+  case P::POINTER:
+  case P::REFERENCE:
+  case P::TRANSITION:
+    return true;
+  default:
+    return false;
+  }
+}
+
 std::unique_ptr<antlr4::Token> StLexer::nextToken() {
   if (failed || !skipTrivia()) {
     pos = text.size();
@@ -339,6 +377,15 @@ std::unique_ptr<antlr4::Token> StLexer::nextToken() {
     if (word.equals_insensitive("REF") && peek(0) == '=' && peek(1) != '>') {
       ++pos;
       return make(P::REF_ASSIGN, start);
+    }
+    // `x S= c`, `x R= c` (CODESYS's set and reset assignments): only right
+    // after a variable, where a name cannot follow; `IF S=1` compares S.
+    if ((word.equals_insensitive("S") || word.equals_insensitive("R")) &&
+        peek(0) == '=' && peek(1) != '>' && endsVariable(lastType)) {
+      ++pos;
+      return make(word.equals_insensitive("S") ? P::SET_ASSIGN
+                                               : P::RESET_ASSIGN,
+                  start);
     }
     if (size_t kw = keywordType(word))
       return make(kw, start);

@@ -63,6 +63,7 @@ private:
   /// After `(*@KEY@:DESCRIPTION*)`, skips to `(*@KEY@:END_DESCRIPTION*)`.
   bool skipKeySection(size_t commentStart);
   void lexBasedOrDecimal();
+  bool endsVariable(size_t type) const;
   void newlinesIn(size_t from, size_t to);
 
   llvm::StringRef text;
@@ -72,6 +73,7 @@ private:
   size_t lineStart = 0;
   size_t tokenLine = 1, tokenCol = 0;
   size_t tokenIndex = 0;
+  size_t lastType = 0; // of the last token on the parser's channel
   bool failed = false;
   bool lineEnds = false;
   bool silent = false;
