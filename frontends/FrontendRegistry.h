@@ -54,6 +54,11 @@ struct FrontendOptions {
   /// -Wunused-refused: warn about refused constructs in PLC POUs the
   /// translation does not use.
   bool warnUnusedRefused = false;
+  /// --cfg: the SpaceEx configuration of a SpaceEx model (empty: the .cfg
+  /// beside it, "none": none).
+  std::string spaceexConfig;
+  /// --param NAME=VALUE: values of hybrid models' constants.
+  std::vector<std::string> params;
   /// How ST parses long bodies and VAR blocks (hidden knobs for tests).
   unsigned stLongPartTokens = 16384;
   unsigned stGroupTokens = 4096;

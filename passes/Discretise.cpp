@@ -87,17 +87,23 @@ static std::optional<VarBound> varBound(const Expr *c) {
 bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
                              std::string &why) {
   const Var &v = m.vars[var];
-  double init = 0;
+  double init = 0, initHi = 0;
   if (v.init) {
     auto c = evalConstReal(v.init);
-    if (!c) {
+    auto h = v.initHi ? evalConstReal(v.initHi) : c;
+    if (!c || !h) {
       why = "its initial value is not a constant";
       return false;
     }
+    if (!std::isfinite(*c) || !std::isfinite(*h)) {
+      why = "its initial set is unbounded";
+      return false;
+    }
     init = *c;
+    initHi = *h;
   }
   double newLo = std::isfinite(lo) ? lo : init;
-  double newHi = std::isfinite(hi) ? hi : init;
+  double newHi = std::isfinite(hi) ? hi : initHi;
   bool needLo = !std::isfinite(lo), needHi = !std::isfinite(hi);
   auto widen = [&](double c) {
     if (needLo)
@@ -185,6 +191,14 @@ bool Discretiser::collectReals() {
                       : v.name.rsplit('.').second.str();
     r.lo = v.type->realLo;
     r.hi = v.type->realHi;
+    if (v.initHi)
+      for (const Expr *e : {v.init, v.initHi})
+        if (auto c = evalConstReal(e); c && !std::isfinite(*c))
+          return error(v.loc, "real '" + v.name +
+                                  "' may start at any value (its initial set "
+                                  "does not bound it); discretise needs a "
+                                  "bounded start (bound it in the initial "
+                                  "set)");
     if (!std::isfinite(r.lo) || !std::isfinite(r.hi)) {
       std::string why;
       if (!inferRange(i, r.lo, r.hi, why))
@@ -205,6 +219,9 @@ bool Discretiser::collectReals() {
                                       "' is not a constant");
       r.init = *c;
     }
+    r.initHi = r.init;
+    if (v.initHi)
+      r.initHi = *evalConstReal(v.initHi); // the verifier checked it
     realOfVar[i] = reals.size();
     reals.push_back(std::move(r));
   }
@@ -221,21 +238,9 @@ bool Discretiser::collectReals() {
       r.flows.push_back(std::move(fl));
     }
   }
-  // One moving variable per place: the chain of a place measures one
-  // variable's progress.
-  for (const Flow &f : m.flows) {
-    unsigned moving = 0;
-    for (const Flow::Equation &eq : f.equations) {
-      auto c = evalConstReal(eq.rate);
-      if (!c || *c != 0)
-        ++moving;
-    }
-    if (moving > 1)
-      return error(f.loc, "place '" + f.placeName +
-                              "' moves more than one real variable; "
-                              "discretise handles one moving variable per "
-                              "place (split the motion into parallel places)");
-  }
+  // A place may move several reals: each has its own position places, whose
+  // clocks measure its own progress (its rate reads only itself, checked
+  // with the rates).
   return true;
 }
 
@@ -318,7 +323,7 @@ bool Discretiser::collectAssignments() {
                         realOfVar.count(tr->sym.index);
           const Expr *where = nullptr;
           if (mentionsReal(a->value, realOfVar, where))
-            return error(where->loc,
+            return error(where->loc.isValid() ? where->loc : t.loc,
                          "an action reads a real variable; after discretise "
                          "reals exist only as position places, which actions "
                          "can only reset (`x := constant`); test thresholds "
@@ -586,6 +591,7 @@ bool Discretiser::run() {
     if (diag.hadError())
       return false;
   }
+  emitStartChoices();
   if (report) {
     *report << "rounding: grid times rounded to whole ticks, worst error "
             << num(worstRounding) << " tick per segment\n";

@@ -11,7 +11,7 @@ using namespace netlift::discretise;
 //===----------------------------------------------------------------------===//
 
 bool Discretiser::buildGrid(Real &r) {
-  std::vector<double> g{r.lo, r.hi, r.init};
+  std::vector<double> g{r.lo, r.hi, r.init, r.initHi};
   switch (spec.mode) {
   case GridSpec::Mode::Count:
     for (unsigned i = 1; i < spec.count; ++i)
@@ -34,14 +34,14 @@ bool Discretiser::buildGrid(Real &r) {
                                           num(a) + ", outside its range");
     g.push_back(a);
   }
-  if (r.init < r.lo || r.init > r.hi)
+  if (r.init < r.lo || r.initHi > r.hi)
     return error(m.vars[r.var].loc,
                  "the initial value of real '" + r.name + "' is out of range");
   if (spec.mode == GridSpec::Mode::Step) {
     // The points each flow reaches at multiples of the time step, starting
     // from where x can start a flow: its initial and assigned values and
     // the range's ends.
-    std::vector<double> starts{r.lo, r.hi, r.init};
+    std::vector<double> starts{r.lo, r.hi, r.init, r.initHi};
     starts.insert(starts.end(), r.assigned.begin(), r.assigned.end());
     for (FlowOf &fl : r.flows)
       for (double s : starts) {
@@ -384,19 +384,65 @@ std::optional<bool> Discretiser::truthAt(const Expr *e, const Real &r,
 }
 
 bool Discretiser::buildForms(Real &r) {
-  unsigned k0 =
-      std::lower_bound(r.grid.begin(), r.grid.end(),
-                       r.init - 1e-12 * std::max(1.0, std::fabs(r.init))) -
-      r.grid.begin();
-  Form start = global({true, k0});
-  for (FlowOf &fl : r.flows)
-    if (m.places[fl.place].tokens) {
-      auto f = entry(r, r.flowOfPlace[fl.place], {true, k0});
-      if (!f)
-        return false;
-      start = *f;
+  auto indexOf = [&](double v) {
+    return unsigned(std::lower_bound(r.grid.begin(), r.grid.end(),
+                                     v - 1e-12 * std::max(1.0, std::fabs(v))) -
+                    r.grid.begin());
+  };
+  // Every value of the initial interval: its grid points and the open
+  // segments between them.
+  unsigned k0 = indexOf(r.init), k1 = indexOf(r.initHi);
+  for (unsigned k = k0; k <= k1; ++k)
+    for (Value v : {Value{false, k}, Value{true, k}}) {
+      if (!v.atPoint && k == k0)
+        continue;
+      Form start = global(v);
+      for (FlowOf &fl : r.flows)
+        if (m.places[fl.place].tokens) {
+          auto f = entry(r, r.flowOfPlace[fl.place], v);
+          if (!f)
+            return false;
+          start = *f;
+        }
+      if (!llvm::is_contained(r.starts, start))
+        r.starts.push_back(start);
     }
-  uint32_t p = placeOf(r, start);
-  m.places[p].tokens = 1;
+  for (Form f : r.starts)
+    placeOf(r, f);
+  if (r.starts.size() == 1)
+    m.places[placeOf(r, r.starts[0])].tokens = 1;
   return true;
+}
+
+void Discretiser::emitStartChoices() {
+  std::vector<StringRef> initPlaces;
+  std::set<uint32_t> choices;
+  for (Real &r : reals) {
+    if (r.starts.size() < 2)
+      continue;
+    llvm::SMLoc at = m.vars[r.var].loc;
+    std::string init = fresh(r.name + "_init");
+    uint32_t p = b.addPlace(d.save(init), 1, 1, at);
+    for (Form f : r.starts) {
+      uint32_t t =
+          b.addTransition(d.save(fresh(formName(r, f) + "_start")),
+                          {PreArc{p, 1, {}}}, {PostArc{placeOf(r, f), 1}}, at);
+      b.setUrgent(t);
+      choices.insert(t);
+      ++numTransitions;
+    }
+    initPlaces.push_back(d.save(init));
+  }
+  // Nothing else happens before every start is chosen (all at time 0: the
+  // choices are urgent).
+  for (uint32_t ti = 0; !initPlaces.empty() && ti < m.transitions.size();
+       ++ti) {
+    Transition &t = m.transitions[ti];
+    if (choices.count(ti) || t.isForced())
+      continue;
+    std::vector<Expr *> conds(t.conds().begin(), t.conds().end());
+    for (StringRef p : initPlaces)
+      conds.push_back(b.unary(UnaryOp::Not, b.ref(p)));
+    b.setConds(ti, conds);
+  }
 }

@@ -181,6 +181,9 @@ struct Real {
   std::string name;      // the variable's name
   std::string shortName; // its last name component (for place names)
   double lo, hi, init;
+  double initHi; // the initial value is anywhere in [init, initHi]
+  /// Where x may start (one: its place is marked; more: chosen at time 0).
+  std::vector<Form> starts;
   std::vector<double> grid;
   std::vector<FlowOf> flows;
   llvm::DenseMap<uint32_t, int> flowOfPlace;
@@ -218,6 +221,9 @@ private:
   bool checkExclusive(Real &r);
   bool computeTimes(Real &r);
   bool buildForms(Real &r);
+  /// A real starting in an interval: a choice of its start at time 0,
+  /// before anything else.
+  void emitStartChoices();
   void emitTransitions(Real &r);
   Expr *rewrite(Expr *e, Real *only = nullptr);
   void finish();

@@ -112,9 +112,11 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
     np.definitionLoc = p.definitionLoc;
     np.init = cloneExpr(b, y, p.init, rename);
   }
-  for (const Var &v : y.vars)
-    b.addVar(prefix + v.name.str(), v.type, cloneExpr(b, y, v.init, rename),
-             v.loc);
+  for (const Var &v : y.vars) {
+    uint32_t nv = b.addVar(prefix + v.name.str(), v.type,
+                           cloneExpr(b, y, v.init, rename), v.loc);
+    flat->vars[nv].initHi = cloneExpr(b, y, v.initHi, rename);
+  }
   uint32_t placeBase = flat->places.size();
   for (const Place &p : y.places)
     b.addPlace(prefix + p.name.str(), p.tokens, p.capacity, p.loc);

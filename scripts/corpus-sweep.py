@@ -14,9 +14,9 @@ import re
 import subprocess
 import sys
 
-# Format folder -> (file extensions, --from format or None for "by
-# extension", files to skip, subcommand). matiec keeps ST in .txt and .test
-# files.
+# Format -> (file extensions, --from format or None for "by extension",
+# files to skip, subcommand and its options[, the corpus folder when it is
+# not the format's name]). matiec keeps ST in .txt and .test files.
 FORMATS = {
     "pnml": ((".pnml",), None, (), "translate"),
     "st": ((".st", ".txt", ".test", ".EXP"), "st",
@@ -27,6 +27,9 @@ FORMATS = {
     "kiss2": ((".kiss2",), None, (), "mealy"),
     "dot": ((".dot",), None, (), "mealy"),
     "spaceex": ((".xml",), None, (), "translate"),
+    # The same files on to a discretised timed net (issue 39's measure).
+    "spaceex-discretise": ((".xml",), None, (),
+                           "opt -p discretise{grid=4}", "spaceex"),
     "plcopen_xml": ((".xml",), None, (), "translate"),
     "iec61499": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct", ".dev",
                   ".res", ".seg"), None, (), "translate"),
@@ -63,16 +66,17 @@ def main():
         return 0
     crashed_any = False
     only = sys.argv[3:]
-    for fmt, (exts, from_fmt, skip, command) in FORMATS.items():
+    for fmt, (exts, from_fmt, skip, command, *folder) in FORMATS.items():
         if only and fmt not in only:
             continue
         files = sorted(os.path.join(d, f)
-                       for d, _, fs in os.walk(os.path.join(corpus, fmt))
+                       for d, _, fs in os.walk(
+                           os.path.join(corpus, folder[0] if folder else fmt))
                        for f in fs if f.endswith(exts) and f not in skip)
         ok, refused, crashed, unlocated = 0, collections.Counter(), [], []
         for f in files:
             try:
-                cmd = [netlift, command, f, "-o", os.devnull]
+                cmd = [netlift, *command.split(), f, "-o", os.devnull]
                 if from_fmt:
                     cmd += ["--from", from_fmt]
                 r = subprocess.run(cmd, capture_output=True, text=True,

@@ -25,6 +25,8 @@ TESTS = {
     "test/frontends/iec61499/corpus-sweep.test":
         ("corpus-sweep.py", ["iec61499"]),
     "test/frontends/hybrid/corpus-sweep.test": ("corpus-sweep.py", ["spaceex"]),
+    "test/passes/discretise/corpus-sweep.test":
+        ("corpus-sweep.py", ["spaceex-discretise"]),
     "test/frontends/sfc/corpus-sweep.test": ("sfc-sweep.py", []),
 }
 

@@ -7,9 +7,12 @@
 // into one NetIR module:
 //   - each location of each bound instance is a place `inst.loc`, the
 //     first location of each instance marked;
-//   - real params become `real` variables (unbounded range, starting at 0:
-//     SpaceEx keeps ranges and initial states in its .cfg file, which is
-//     not read), constant params are replaced by the values bound to them;
+//   - real params become `real` variables (unbounded range), constant
+//     params are replaced by the values bound to them;
+//   - the configuration (`model.cfg` beside the model, or --cfg) names the
+//     system and gives the initial set: initial locations, values of
+//     constants, initial values or intervals of variables (a variable it
+//     leaves free starts anywhere); without one, variables start at 0;
 //   - flows `x' == e` become `flow` blocks, invariants `invariant` blocks,
 //     guards NetIR guards, resets `x' == e` / `x := e` actions;
 //   - transitions sharing a label synchronise: one NetIR transition per
@@ -21,6 +24,8 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/FrontendRegistry.h"
 #include "frontends/XmlSupport.h"
+#include "frontends/hybrid/SpaceExConfig.h"
+#include "frontends/hybrid/SpaceExText.h"
 
 #include "ir/net/Builder.h"
 #include "ir/net/Names.h"
@@ -28,6 +33,8 @@
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringSet.h"
+#include "llvm/Support/FileSystem.h"
+#include "llvm/Support/Path.h"
 
 #include <cmath>
 #include <deque>
@@ -38,6 +45,7 @@
 
 using namespace netlift;
 using namespace netlift::net;
+using namespace netlift::spaceex;
 using llvm::StringRef;
 
 namespace {
@@ -61,11 +69,12 @@ struct ProtoTransition {
 class SpaceExReader {
 public:
   /// `top`: the component to translate (--top); empty: the last one.
+  /// `cfg`: the configuration read with the model, or null.
   SpaceExReader(unsigned bufferID, DiagEngine &diag, Design &design,
-                StringRef top)
+                StringRef top, Config *cfg)
       : diag(diag), d(design), b(design),
         xml(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()),
-        wantedTop(top.str()) {}
+        wantedTop(top.str()), cfg(cfg) {}
   bool run();
 
 private:
@@ -88,6 +97,16 @@ private:
     return {};
   }
   std::string real(const std::string &flat, pugi::xml_node where);
+  /// The configuration's initial set on the flat model: locations and
+  /// variables' starts; every name it gives must be the system's.
+  bool applyInitialSet(pugi::xml_node top);
+  /// The forbidden set as a defined output `forbidden`, for `check`.
+  bool addForbidden();
+  /// The place of location `loc` of instance `inst` (`loc()` and the
+  /// system's own name: its only instance); false after reporting at `at`.
+  bool locationPlace(StringRef inst, StringRef loc, llvm::SMLoc at,
+                     std::string &place, std::string *prefix = nullptr);
+  pugi::xml_node topNode;
 
   // Expressions (SpaceEx math syntax) -------------------------------------
   struct ExprParser;
@@ -99,11 +118,18 @@ private:
   Builder b;
   XmlBuffer xml;
   std::string wantedTop;
+  Config *cfg;
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
-  /// Texts made from the file's (a chained comparison's parts).
-  std::deque<std::string> ownedText;
+  /// Every flat name of a param (variables and constants): what the
+  /// initial set may name.
+  llvm::StringSet<> paramNames;
+  /// The first declaration of each flat param (for messages).
+  std::map<std::string, pugi::xml_node> paramNode;
+  /// Per instance (its prefix), its locations' places by name.
+  std::map<std::string, std::vector<std::pair<std::string, uint32_t>>>
+      locationsOf;
   std::vector<std::string> realOrder;
   std::vector<ProtoTransition> protos;
   std::vector<std::set<std::string>> labelsOf; // per instance
@@ -121,6 +147,10 @@ struct SpaceExReader::ExprParser {
   const std::string &prefix;
   bool ok = true;
   std::string primed; // set when the last primary was `x'`
+  /// The configuration's sets: `loc(inst) == name` is that location's
+  /// place, and messages point into the configuration.
+  bool inConfig = false;
+  llvm::SMLoc configLoc = {};
 
   void skip() {
     while (pos < s.size() && isspace((unsigned char)s[pos]))
@@ -135,7 +165,9 @@ struct SpaceExReader::ExprParser {
     return false;
   }
   Expr *fail(const llvm::Twine &msg) {
-    if (ok)
+    if (ok && inConfig)
+      r.diag.error(configLoc, msg + " in '" + s.trim() + "'");
+    else if (ok)
       r.error(where, msg + " in '" + s.trim() + "'");
     ok = false;
     return nullptr;
@@ -254,6 +286,8 @@ struct SpaceExReader::ExprParser {
         ++pos;
       std::string name = s.slice(start, pos).str();
       skip();
+      if (name == "loc" && inConfig && eat("("))
+        return location();
       if (pos < s.size() && s[pos] == '(')
         return fail("function '" + name +
                     "' has no NetIR counterpart (flows and guards use + - * "
@@ -280,6 +314,26 @@ struct SpaceExReader::ExprParser {
     }
     return fail("unexpected '" + s.substr(pos, 1) + "'");
   }
+  /// After `loc(`: `inst) == name` as the place of that location.
+  Expr *location() {
+    size_t close = s.find(')', pos);
+    if (close == StringRef::npos)
+      return fail("expected ')'");
+    StringRef inst = s.slice(pos, close).trim();
+    pos = close + 1;
+    if (!eat("==") && !eat("="))
+      return fail("expected '==' after loc(" + inst + ")");
+    skip();
+    size_t start = pos;
+    while (pos < s.size() && (isalnum((unsigned char)s[pos]) || s[pos] == '_'))
+      ++pos;
+    std::string place;
+    if (!r.locationPlace(inst, s.slice(start, pos), configLoc, place)) {
+      ok = false;
+      return nullptr;
+    }
+    return r.b.ref(r.d.save(place));
+  }
 };
 
 } // namespace
@@ -291,66 +345,11 @@ std::string SpaceExReader::real(const std::string &flat, pugi::xml_node where) {
   return flat;
 }
 
-/// Splits a conjunction `a & b & c` at top-level '&' (not inside parens).
-static std::vector<StringRef> conjuncts(StringRef text) {
-  std::vector<StringRef> out;
-  int depth = 0;
-  size_t start = 0;
-  for (size_t i = 0; i < text.size(); ++i) {
-    char c = text[i];
-    if (c == '(')
-      ++depth;
-    else if (c == ')')
-      --depth;
-    else if (c == '&' && depth == 0) {
-      out.push_back(text.slice(start, i).trim());
-      if (i + 1 < text.size() && text[i + 1] == '&')
-        ++i;
-      start = i + 1;
-    }
-  }
-  out.push_back(text.substr(start).trim());
-  llvm::erase_if(out, [](StringRef s) { return s.empty(); });
-  return out;
-}
-
-/// A chained comparison `a <= x <= b` (SpaceEx writes bounds so) as the
-/// comparisons it chains, `a <= x` and `x <= b`; anything else as it is.
-static std::vector<std::string> unchain(StringRef c) {
-  std::vector<std::pair<size_t, size_t>> ops; // position, length
-  int depth = 0;
-  for (size_t i = 0; i < c.size(); ++i) {
-    char ch = c[i];
-    if (ch == '(')
-      ++depth;
-    else if (ch == ')')
-      --depth;
-    else if (depth == 0 &&
-             (ch == '<' || ch == '>' ||
-              (ch == '=' && i + 1 < c.size() && c[i + 1] == '='))) {
-      size_t len = i + 1 < c.size() && c[i + 1] == '=' ? 2 : 1;
-      ops.push_back({i, len});
-      i += len - 1;
-    }
-  }
-  if (ops.size() < 2)
-    return {c.str()};
-  std::vector<std::string> out;
-  size_t from = 0;
-  for (size_t k = 0; k < ops.size(); ++k) {
-    size_t end = k + 1 < ops.size() ? ops[k + 1].first : c.size();
-    out.push_back(c.slice(from, end).trim().str());
-    from = ops[k].first + ops[k].second;
-  }
-  return out;
-}
-
 bool SpaceExReader::conditions(pugi::xml_node node, const Bindings &bind,
                                const std::string &prefix,
                                std::vector<Expr *> &out) {
   for (StringRef chained : conjuncts(node.child_value()))
-    for (const std::string &one : unchain(chained)) {
-      StringRef c = ownedText.emplace_back(one);
+    for (StringRef c : unchain(chained)) {
       if (c == "true")
         continue;
       ExprParser ep{*this, c, 0, node, bind, prefix, true, {}};
@@ -421,13 +420,24 @@ bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
 
 bool SpaceExReader::instantiateBase(pugi::xml_node comp,
                                     const std::string &prefix,
-                                    const Bindings &bind) {
+                                    const Bindings &given) {
   unsigned inst = numInstances++;
   labelsOf.emplace_back();
+  Bindings bind = given;
   for (pugi::xml_node p : comp.children("param")) {
     std::string name = p.attribute("name").value();
     StringRef type = p.attribute("type").value();
     auto it = bind.find(name);
+    if (it != bind.end() && type == "real") {
+      paramNames.insert(it->second.name);
+      paramNode.insert({it->second.name, p});
+      // A constant the configuration's initial set fixes.
+      if (!it->second.value && cfg &&
+          StringRef(p.attribute("dynamics").value()) == "const")
+        if (auto *bd = cfg->initial.lookup(it->second.name);
+            bd && bd->lo && bd->hi && *bd->lo == *bd->hi)
+          it->second.value = bd->lo;
+    }
     if (type == "label") {
       labelsOf[inst].insert(it != bind.end() ? it->second.name
                                              : prefix + "." + name);
@@ -436,6 +446,13 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     if (type != "real")
       return error(p, "param type '" + type + "' is not supported");
     StringRef dyn = p.attribute("dynamics").value();
+    if (dyn == "const" && it != bind.end() && !it->second.value && cfg)
+      if (cfg->initial.lookup(it->second.name))
+        return error(p, "constant '" + name + "' of component '" +
+                            comp.attribute("id").value() +
+                            "' is given a range, not a value, by the initial "
+                            "set (fix it with --param '" +
+                            it->second.name + "=VALUE')");
     if (dyn == "const" && (it == bind.end() || !it->second.value))
       return error(p, "constant '" + name + "' of component '" +
                           comp.attribute("id").value() +
@@ -468,6 +485,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
       return error(loc, "location name '" + name + "' is used twice");
     uint32_t pl = b.addPlace(d.save(flat), first ? 1 : 0, 1, xml.locOf(loc));
     first = false;
+    locationsOf[prefix].push_back({name, pl});
     placeOfId[id] = pl;
     // The invariant: a condition of the location (discretise bounds the
     // dwell time by it).
@@ -586,10 +604,20 @@ bool SpaceExReader::run() {
                      llvm::Twine(doc.first_child().name()) +
                      ">, expected <sspaceex>");
   pugi::xml_node top;
+  // The configuration names the system unless --top does.
+  bool fromConfig = wantedTop.empty() && cfg && cfg->system;
+  if (fromConfig)
+    wantedTop = cfg->system->text.trim().trim('"').str();
   const std::string &want = wantedTop;
   for (pugi::xml_node c : root.children("component"))
     if (want.empty() || want == c.attribute("id").value())
       top = c;
+  if (!top && fromConfig) {
+    diag.error(cfg->system->loc, "system '" + want +
+                                     "' of the configuration is not a "
+                                     "component of the model");
+    return false;
+  }
   if (!top)
     return error(root, want.empty() ? llvm::Twine("no component")
                                     : "no component '" + want + "'");
@@ -597,19 +625,39 @@ bool SpaceExReader::run() {
     if (StringRef(n.name()) != "component")
       return error(n, "unsupported element <" + llvm::Twine(n.name()) +
                           "> in <sspaceex>");
+  topNode = top;
   std::string modName = toIdentifier(top.attribute("id").value());
   mod = b.createModule(d.save(modName), false, xml.locOf(top));
   if (!mod)
     return error(top, "a module named '" + modName + "' exists");
   Bindings bind;
-  for (pugi::xml_node p : top.children("param"))
-    bind[p.attribute("name").value()] =
-        Binding{p.attribute("name").value(), std::nullopt};
+  for (pugi::xml_node p : top.children("param")) {
+    std::string name = p.attribute("name").value();
+    bind[name] = Binding{name, std::nullopt};
+    paramNames.insert(name);
+  }
   if (!instantiate(top, "", bind, 0))
     return false;
+  // A variable no location gives a flow varies freely in SpaceEx (an input
+  // or a disturbance, bounded by invariants); a NetIR real without a flow
+  // stays constant, which would lose its behaviours.
+  std::set<std::string> flowing;
+  for (const Flow &f : mod->flows)
+    for (const Flow::Equation &eq : f.equations)
+      flowing.insert(eq.var.str());
+  for (const std::string &v : realOrder)
+    if (!flowing.count(v))
+      return error(paramNode.count(v) ? paramNode[v] : top,
+                   "'" + v +
+                       "' has no flow in any location: SpaceEx lets it vary "
+                       "freely (an input or a disturbance, bounded by "
+                       "invariants); netlift would hold it constant");
   // Variables: declared before their use is resolved by the verifier.
   for (const std::string &v : realOrder)
-    b.addVar(d.save(v), d.types.getReal(-INFINITY, INFINITY), b.realLit(0));
+    b.addVar(d.save(v), d.types.getReal(-INFINITY, INFINITY), b.realLit(0),
+             paramNode.count(v) ? xml.locOf(paramNode[v]) : llvm::SMLoc());
+  if (cfg && !applyInitialSet(top))
+    return false;
   // Transitions: unlabelled ones alone, labelled ones synchronised.
   std::map<std::string, std::vector<std::vector<const ProtoTransition *>>>
       byLabel;
@@ -681,7 +729,157 @@ bool SpaceExReader::run() {
   return true;
 }
 
+bool SpaceExReader::locationPlace(StringRef inst, StringRef loc, llvm::SMLoc at,
+                                  std::string &place, std::string *prefix) {
+  auto it = locationsOf.find(inst.str());
+  if (it == locationsOf.end() && locationsOf.size() == 1 &&
+      (inst.empty() || inst == topNode.attribute("id").value()))
+    it = locationsOf.begin();
+  if (it == locationsOf.end()) {
+    diag.error(at, "no instance '" + inst + "' in the system");
+    return false;
+  }
+  for (auto &[name, pl] : it->second)
+    if (name == loc) {
+      place = mod->places[pl].name.str();
+      if (prefix)
+        *prefix = it->first;
+      return true;
+    }
+  diag.error(at, "instance '" + inst + "' has no location '" + loc + "'");
+  return false;
+}
+
+bool SpaceExReader::addForbidden() {
+  StringRef text = cfg->forbidden->text.trim();
+  if (text.empty())
+    return true;
+  // Flat names, and a local's own name where only one local has it.
+  Bindings flat;
+  std::map<std::string, unsigned> shortUses;
+  for (const std::string &v : realOrder)
+    for (size_t dot = v.find('.'); dot != std::string::npos;
+         dot = v.find('.', dot + 1))
+      ++shortUses[v.substr(dot + 1)];
+  for (const std::string &v : realOrder) {
+    flat[v] = Binding{v, std::nullopt};
+    for (size_t dot = v.find('.'); dot != std::string::npos;
+         dot = v.find('.', dot + 1))
+      if (shortUses[v.substr(dot + 1)] == 1 && !flat.count(v.substr(dot + 1)))
+        flat[v.substr(dot + 1)] = Binding{v, std::nullopt};
+  }
+  ExprParser ep{*this, text, 0, topNode, flat, "", true, {}};
+  ep.inConfig = true;
+  ep.configLoc = cfg->forbidden->loc;
+  Expr *e = ep.orExpr();
+  ep.skip();
+  if (ep.ok && ep.pos != text.size())
+    ep.fail("unexpected '" + text.substr(ep.pos) + "'");
+  if (!ep.ok)
+    return false;
+  std::string name = "forbidden";
+  if (mod->lookup(name).kind != SymKind::None)
+    name = "cfg_forbidden";
+  uint32_t port = b.addPort(d.save(name), PortKind::Cond, PortDir::Out,
+                            d.types.getBool(), cfg->forbidden->loc);
+  mod->ports[port].definition = e;
+  mod->ports[port].definitionLoc = cfg->forbidden->loc;
+  return true;
+}
+
+bool SpaceExReader::applyInitialSet(pugi::xml_node top) {
+  InitialSet &init = cfg->initial;
+  // Locations.
+  std::map<std::string, std::string> chosen;
+  for (const InitialSet::Location &l : init.locations) {
+    std::string place, prefix;
+    if (!locationPlace(l.instance, l.location, l.loc, place, &prefix))
+      return false;
+    auto [prev, fresh] = chosen.insert({prefix, l.location});
+    if (!fresh && prev->second != l.location) {
+      diag.error(l.loc,
+                 "a second initial location for instance '" + l.instance + "'");
+      return false;
+    }
+    for (auto &[name, pl] : locationsOf[prefix])
+      mod->places[pl].tokens = name == l.location;
+  }
+  // Variables: the value or interval the set gives; free if none (when
+  // there is a set: --param alone fixes only what it names).
+  std::map<std::string, std::string> varOfKey;
+  for (Var &v : mod->vars) {
+    std::string key;
+    InitialSet::Bounds *found = init.lookup(v.name, &key);
+    if (!found && !cfg->initially)
+      continue;
+    if (!found) {
+      v.init = b.realLit(-INFINITY);
+      v.initHi = b.realLit(INFINITY);
+      continue;
+    }
+    InitialSet::Bounds &bd = *found;
+    auto [other, fresh] = varOfKey.insert({key, v.name.str()});
+    if (!fresh) {
+      diag.error(bd.loc, "'" + key + "' in the initial set may be '" +
+                             other->second + "' or '" + v.name +
+                             "'; name it with its instance");
+      return false;
+    }
+    if (!bd.lo || !bd.hi) {
+      diag.error(bd.loc, "the initial set bounds '" + v.name + "' only " +
+                             (bd.lo ? "from below" : "from above") +
+                             "; it must give both bounds or a value");
+      return false;
+    }
+    v.init = b.realLit(*bd.lo);
+    if (*bd.hi != *bd.lo)
+      v.initHi = b.realLit(*bd.hi);
+  }
+  for (auto &[name, bd] : init.bounds)
+    if (!llvm::any_of(paramNames, [&, &name = name](const auto &p) {
+          return namedBy(p.getKey(), name);
+        })) {
+      diag.error(bd.loc, "'" + name +
+                             "' in the initial set is not a "
+                             "variable or constant of system '" +
+                             top.attribute("id").value() + "'");
+      return false;
+    }
+  return !cfg->forbidden || addForbidden();
+}
+
+/// The configuration that goes with a model: --cfg, else the file beside
+/// it with the same name and `.cfg`.
+static bool findConfig(FrontendContext &ctx, unsigned bufferID,
+                       DiagEngine &diag, std::optional<Config> &cfg) {
+  std::string path = ctx.options.spaceexConfig;
+  if (path == "none")
+    path.clear();
+  else if (path.empty()) {
+    llvm::SmallString<256> beside(
+        diag.sourceMgr().getMemoryBuffer(bufferID)->getBufferIdentifier());
+    llvm::sys::path::replace_extension(beside, "cfg");
+    if (llvm::sys::fs::exists(beside)) {
+      path = beside.str().str();
+      diag.note(llvm::SMLoc(), "reading the SpaceEx configuration " + path +
+                                   " (system and initial set; --cfg none reads "
+                                   "none)");
+    }
+  }
+  if (path.empty() && ctx.options.params.empty())
+    return true;
+  cfg.emplace();
+  if (!path.empty() && !readConfig(path, diag, *cfg))
+    return false;
+  return addParams(ctx.options.params, diag, cfg->initial);
+}
+
 bool netlift::loadSpaceEx(FrontendContext &ctx, unsigned bufferID,
                           DiagEngine &diag, Design &design) {
-  return SpaceExReader(bufferID, diag, design, ctx.options.top).run();
+  std::optional<Config> cfg;
+  if (!findConfig(ctx, bufferID, diag, cfg))
+    return false;
+  return SpaceExReader(bufferID, diag, design, ctx.options.top,
+                       cfg ? &*cfg : nullptr)
+      .run();
 }

@@ -171,6 +171,9 @@ struct Var {
   const Type *type;
   /// Initial value (null: false / low bound / 0 for clocks).
   Expr *init = nullptr;
+  /// Hybrid reals only: the initial value is anywhere from `init` to this
+  /// (`in [a, b]`, a SpaceEx initial set); null: exactly `init`.
+  Expr *initHi = nullptr;
 };
 
 /// `flow place { x' = e; }`: while `place` is marked, real variable x

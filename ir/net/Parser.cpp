@@ -739,10 +739,24 @@ bool Parser::parseRealDecl() {
     return false;
   if (lo > hi)
     return error(loc, "empty real interval");
-  Expr *init = nullptr;
-  if (!parseInitAndSemi(init))
+  Expr *init = nullptr, *initHi = nullptr;
+  // `in [a, b]`: the initial value is anywhere between a and b (either
+  // may be infinite: a SpaceEx initial set that does not bound it).
+  if (tok.isIdent("in")) {
+    consume();
+    SMLoc at = tok.loc();
+    double a, c;
+    if (!expect(Tok::LBrack, "'['") || !parseRealBound(a) ||
+        !expect(Tok::Comma, "','") || !parseRealBound(c) ||
+        !expect(Tok::RBrack, "']'") || !expect(Tok::Semi, "';'"))
+      return false;
+    init = b.realLit(a, at);
+    initHi = b.realLit(c, at);
+  } else if (!parseInitAndSemi(init)) {
     return false;
-  b.addVar(name, design.types.getReal(lo, hi), init, loc);
+  }
+  uint32_t v = b.addVar(name, design.types.getReal(lo, hi), init, loc);
+  b.getModule()->vars[v].initHi = initHi;
   return true;
 }
 

@@ -327,6 +327,12 @@ void ModulePrinter::run() {
     } else if (v.type->isReal()) {
       os << "  real " << v.name << " : [" << formatReal(v.type->realLo) << ", "
          << formatReal(v.type->realHi) << "]";
+      auto lo = v.initHi ? evalConstReal(v.init) : std::nullopt;
+      auto hi = v.initHi ? evalConstReal(v.initHi) : std::nullopt;
+      if (lo && hi) {
+        os << " in [" << formatReal(*lo) << ", " << formatReal(*hi) << "];\n";
+        continue;
+      }
     } else {
       os << "  var " << v.name << " : ";
       v.type->print(os);

@@ -281,6 +281,21 @@ void ModuleVerifier::checkVars() {
       continue;
     }
     checkInit(v.init, v.type, ("variable '" + v.name + "'").str());
+    if (!v.initHi)
+      continue;
+    if (!v.type->isReal()) {
+      error(v.initHi->loc, "only a hybrid real starts in an interval ('" +
+                               v.name + "' is not one)");
+      continue;
+    }
+    checkInit(v.initHi, v.type, ("variable '" + v.name + "'").str());
+    auto lo = evalConstReal(v.init), hi = evalConstReal(v.initHi);
+    if (!lo || !hi)
+      error(v.init->loc, "the initial interval of real '" + v.name +
+                             "' has bounds that are not constants");
+    else if (*lo > *hi)
+      error(v.init->loc,
+            "the initial interval of real '" + v.name + "' is empty");
   }
 }
 

@@ -109,6 +109,17 @@ static cl::opt<std::string>
            cl::desc("PLC input: value ranges of integer inputs, one "
                     "'NAME LO..HI' a line"),
            cl::value_desc("FILE"), NETLIFT_READING);
+static cl::opt<std::string> spaceexConfig(
+    "cfg",
+    cl::desc("SpaceEx input: the configuration giving the system and the "
+             "initial set (default: the .cfg beside the model with its name; "
+             "'none': none)"),
+    cl::value_desc("FILE"), NETLIFT_READING);
+static cl::list<std::string>
+    params("param",
+           cl::desc("SpaceEx input: the value of a constant (overrides the "
+                    "configuration's)"),
+           cl::value_desc("NAME=VALUE"), NETLIFT_READING);
 static cl::list<std::string>
     typeLibraries("I",
                   cl::desc("IEC 61499 input: a directory searched (with its "
@@ -276,6 +287,8 @@ static cl::opt<double> timeLimit("time-limit", cl::desc("Stop after SECONDS"),
 bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.top = topName;
   fo.rangesFile = ranges;
+  fo.spaceexConfig = spaceexConfig;
+  fo.params.assign(params.begin(), params.end());
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
   fo.opaqueRefused = opaqueBlocks == OpaqueBlocks::Refuse;
