@@ -84,9 +84,21 @@ static std::optional<VarBound> varBound(const Expr *c) {
 /// the constants it is reset to, and, in each place whose flow moves it,
 /// the invariant's bound in the direction it moves (a constant rate) or in
 /// both (any other rate). `why` says what leaves it unbounded.
-bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
-                             std::string &why) {
+bool Discretiser::inferRange(Real &r, std::string &why) {
+  uint32_t var = r.var;
+  double &lo = r.lo, &hi = r.hi;
   const Var &v = m.vars[var];
+  // Does every place that moves it move it one way, at a constant rate?
+  auto monotone = [&](int sign) {
+    for (const Flow &f : m.flows)
+      for (const Flow::Equation &eq : f.equations)
+        if (eq.varIndex == var) {
+          auto rate = evalConstReal(eq.rate);
+          if (!rate || *rate * sign < 0)
+            return false;
+        }
+    return true;
+  };
   double init = 0, initHi = 0;
   if (v.init) {
     auto c = evalConstReal(v.init);
@@ -153,11 +165,21 @@ bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
             lower = lower ? std::max(*lower, vb->value) : vb->value;
         }
       }
+      if (up && needHi && !upper && monotone(+1)) {
+        r.openTop = true;
+        continue;
+      }
+      if (down && needLo && !lower && monotone(-1)) {
+        r.openBottom = true;
+        continue;
+      }
       if ((up && needHi && !upper) || (down && needLo && !lower)) {
+        bool rising = up && needHi && !upper;
         why = "place '" + f.placeName.str() + "' moves it " +
-              (up && needHi && !upper ? "up" : "down") +
-              " and its invariant gives no " +
-              (up && needHi && !upper ? "upper" : "lower") + " bound";
+              (rising ? "up" : "down") + " and its invariant gives no " +
+              (rising ? "upper" : "lower") + " bound, and it does not only " +
+              (rising ? "rise" : "fall") +
+              " at constant rates (then its guards would bound it)";
         return false;
       }
       if (up && needHi)
@@ -167,7 +189,7 @@ bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
     }
   // A real nothing moves or resets keeps its initial value: any range
   // around it serves (the grid's other point is never reached).
-  if (!(newLo < newHi)) {
+  if (!(newLo < newHi) && !r.openTop && !r.openBottom) {
     if (needHi)
       newHi = newLo + 1;
     else
@@ -176,6 +198,43 @@ bool Discretiser::inferRange(uint32_t var, double &lo, double &hi,
   lo = newLo;
   hi = newHi;
   return true;
+}
+
+void Discretiser::closeOpenRanges() {
+  for (Real &r : reals) {
+    if (!r.openTop && !r.openBottom)
+      continue;
+    std::vector<double> known{r.init, r.initHi};
+    known.insert(known.end(), r.thresholds.begin(), r.thresholds.end());
+    known.insert(known.end(), r.assigned.begin(), r.assigned.end());
+    if (!r.openTop)
+      known.push_back(r.hi);
+    if (!r.openBottom)
+      known.push_back(r.lo);
+    double last = *std::max_element(known.begin(), known.end());
+    double first = *std::min_element(known.begin(), known.end());
+    double step =
+        (last - first) / (spec.mode == GridSpec::Mode::Count ? spec.count : 1);
+    if (!(step > 0))
+      step = 1;
+    if (r.openTop)
+      r.hi = last + step;
+    if (r.openBottom)
+      r.lo = first - step;
+    diag.note(m.vars[r.var].loc,
+              "real '" + r.name + "' " +
+                  (r.openTop && r.openBottom ? "moves without bound"
+                   : r.openTop               ? "rises without bound"
+                                             : "falls without bound") +
+                  "; past " +
+                  (r.openTop && r.openBottom ? num(first) + " and " + num(last)
+                                             : num(r.openTop ? last : first)) +
+                  ", the last value it is compared with, set to or starts "
+                  "at, nothing tells its values apart: its range ends at " +
+                  num(r.openBottom ? r.lo : r.hi) +
+                  (r.openTop && r.openBottom ? " and " + num(r.hi) : "") +
+                  ", where it rests");
+  }
 }
 
 bool Discretiser::collectReals() {
@@ -201,7 +260,7 @@ bool Discretiser::collectReals() {
                                   "set)");
     if (!std::isfinite(r.lo) || !std::isfinite(r.hi)) {
       std::string why;
-      if (!inferRange(i, r.lo, r.hi, why))
+      if (!inferRange(r, why))
         return error(v.loc, "real '" + v.name +
                                 "' has an unbounded range, and the model "
                                 "does not bound it: " +
@@ -209,7 +268,7 @@ bool Discretiser::collectReals() {
                                 "; discretise needs finite bounds to place "
                                 "its grid (give a range)");
     }
-    if (!(r.lo < r.hi))
+    if (!(r.lo < r.hi) && !r.openTop && !r.openBottom)
       return error(v.loc, "real '" + v.name + "' has an empty range");
     r.init = r.lo;
     if (v.init) {
@@ -507,6 +566,7 @@ bool Discretiser::run() {
   }
   if (!collectReals() || !collectUses() || !collectInvariants())
     return false;
+  closeOpenRanges();
   for (Real &r : reals)
     if (!computeTimes(r))
       return false;

@@ -189,6 +189,11 @@ struct Real {
   llvm::DenseMap<uint32_t, int> flowOfPlace;
   std::set<double> thresholds, assigned;
   std::set<uint32_t> component; // the exclusive places holding its flows
+  /// It only rises (falls) and nothing bounds it above (below): past its
+  /// last threshold no guard tells its values apart, so its range is
+  /// closed there (closeOpenRanges), the way timed automata abstract a
+  /// clock beyond its largest constant.
+  bool openTop = false, openBottom = false;
   std::map<Form, uint32_t> places;
 };
 
@@ -209,7 +214,10 @@ private:
     return false;
   }
   bool collectReals();
-  bool inferRange(uint32_t var, double &lo, double &hi, std::string &why);
+  bool inferRange(Real &r, std::string &why);
+  /// A range left open by inferRange ends one grid step past the last
+  /// constant the real is compared with, set to or starts at.
+  void closeOpenRanges();
   bool collectUses();
   bool scanExpr(Expr *e);
   bool collectAssignments();

@@ -12,9 +12,11 @@ discretisation reaches.
 Covers rectangular models: constant rates, guards, invariants and outputs
 built from comparisons of one real with a constant (and/or/not, places),
 resets to constants, initial values or intervals (sampled every DT).
-A real may not leave its declared range (time stops there).
+A real may not leave its declared range (time stops there). With HORIZON,
+runs stop at that time (in ticks): a model whose reals grow without bound
+is simulated up to it.
 
-usage: simulate-hybrid.py NETLIFT HYBRID.net DISCRETISED.net [DT] [MAX_STATES]
+usage: simulate-hybrid.py NETLIFT HYBRID.net DISCRETISED.net [DT] [MAX_STATES] [HORIZON]
 exit: 0 subset, 1 a combination the discretisation misses, 2 unsupported
 """
 import json
@@ -107,7 +109,7 @@ def parse(text):
     return model
 
 
-def simulate(model, dt, max_states):
+def simulate(model, dt, max_states, horizon):
     reals = list(model["reals"])
     places = list(model["places"])
     env = {"Fraction": Fraction}
@@ -133,13 +135,14 @@ def simulate(model, dt, max_states):
     marking0 = frozenset(p for p, n in model["places"].items() if n)
     seen = set()
     work = []
+    # A state is (marking, values, time): time stays 0 without a horizon.
     for s in starts:
-        st = (marking0, tuple(s))
-        if invariant_ok(*st) and st not in seen:
+        st = (marking0, tuple(s), Fraction(0))
+        if invariant_ok(*st[:2]) and st not in seen:
             seen.add(st)
             work.append(st)
     while work:
-        marking, values = work.pop()
+        marking, values, now = work.pop()
         succ = []
         urgent = False
         for name, pre, post, guard, resets, is_urgent in model["trans"]:
@@ -153,14 +156,15 @@ def simulate(model, dt, max_states):
             m2 = (marking - set(pre)) | set(post)
             v2 = tuple(new[r] for r in reals)
             if invariant_ok(m2, v2):
-                succ.append((m2, v2))
-        if not urgent:
+                succ.append((m2, v2, now))
+        if not urgent and (horizon is None or now + dt <= horizon):
             rate = {r: Fraction(0) for r in reals}
             for p in marking:
                 rate.update(model["flows"].get(p, {}))
             v2 = tuple(values[i] + rate[r] * dt for i, r in enumerate(reals))
             if invariant_ok(marking, v2):
-                succ.append((marking, v2))
+                succ.append((marking, v2,
+                             now + dt if horizon is not None else now))
         for st in succ:
             if st not in seen:
                 seen.add(st)
@@ -170,7 +174,7 @@ def simulate(model, dt, max_states):
     outputs = list(model["outputs"])
     return {(tuple(sorted(m)),
              tuple(bool(holds(model["outputs"][o], m, v)) for o in outputs))
-            for m, v in seen}, places, outputs
+            for m, v, _ in seen}, places, outputs
 
 
 def main():
@@ -180,8 +184,9 @@ def main():
     netlift, hybrid, discretised = sys.argv[1:4]
     dt = Fraction(sys.argv[4]) if len(sys.argv) > 4 else Fraction(1, 4)
     max_states = int(sys.argv[5]) if len(sys.argv) > 5 else 200000
+    horizon = Fraction(sys.argv[6]) if len(sys.argv) > 6 else None
     model = parse(open(hybrid).read())
-    sim, places, outputs = simulate(model, dt, max_states)
+    sim, places, outputs = simulate(model, dt, max_states, horizon)
     graph = json.loads(subprocess.run(
         [netlift, "reach", discretised, "--format", "json", "-o", "-"],
         check=True, capture_output=True, text=True).stdout)
