@@ -527,6 +527,19 @@ bool Discretiser::collectUses() {
 bool Discretiser::collectInvariants() {
   for (const Invariant &inv : m.invariants) {
     for (Expr *c : inv.conditions) {
+      // A place no time may pass in (SpaceEx's `flow false`).
+      if (auto *lit = llvm::dyn_cast<BoolLit>(c); lit && !lit->value) {
+        bool leaves = false;
+        for (const Transition &t : m.transitions)
+          for (const PreArc &a : t.pre())
+            leaves |= a.place == inv.place;
+        if (!leaves)
+          return error(inv.loc, "place '" + inv.placeName +
+                                    "' is a timelock: no time may pass in "
+                                    "it, and no transition leaves it");
+        urgentPlaces.push_back({inv.place, c->loc});
+        continue;
+      }
       std::optional<VarBound> vb = varBound(c);
       if (!vb || !realOfVar.count(vb->var))
         return error(c->loc, "location invariant '" + exprToString(c) +
@@ -651,6 +664,8 @@ bool Discretiser::run() {
     if (diag.hadError())
       return false;
   }
+  for (auto [place, loc] : urgentPlaces)
+    addStop(place, m.places[place].name.str() + "_urgent", loc);
   emitStartChoices();
   if (report) {
     *report << "rounding: grid times rounded to whole ticks, worst error "

@@ -303,24 +303,28 @@ void Discretiser::emitInvariantStops(Real &r, const std::vector<Form> &forms) {
                                r.grid[f.k] == ib.bound;
       if (!atBound)
         continue;
-      if (!neverFires) {
-        uint32_t p = b.addPlace(d.save(fresh("_never_marked")), 0, 1);
-        neverFires = b.addTransition(d.save(fresh("_never")), {PreArc{p, 1}},
-                                     {PostArc{p, 1}});
-        ++numPlaces;
-        ++numTransitions;
-      }
-      uint32_t at = placeOf(r, f);
-      Interval now{0, 0};
-      now.deadline = true;
-      uint32_t t =
-          b.addTransition(d.save(fresh(m.places[ib.place].name.str() + "_" +
-                                       r.shortName + "_invariant")),
-                          {PreArc{at, 1, now}}, {PostArc{at, 1}}, ib.loc);
-      b.setEvents(t, {EventSource{*neverFires, false}});
-      ++numTransitions;
+      addStop(placeOf(r, f),
+              m.places[ib.place].name.str() + "_" + r.shortName + "_invariant",
+              ib.loc);
     }
   }
+}
+
+void Discretiser::addStop(uint32_t place, const std::string &name,
+                          llvm::SMLoc loc) {
+  if (!neverFires) {
+    uint32_t p = b.addPlace(d.save(fresh("_never_marked")), 0, 1);
+    neverFires = b.addTransition(d.save(fresh("_never")), {PreArc{p, 1}},
+                                 {PostArc{p, 1}});
+    ++numPlaces;
+    ++numTransitions;
+  }
+  Interval now{0, 0};
+  now.deadline = true;
+  uint32_t t = b.addTransition(d.save(fresh(name)), {PreArc{place, 1, now}},
+                               {PostArc{place, 1}}, loc);
+  b.setEvents(t, {EventSource{*neverFires, false}});
+  ++numTransitions;
 }
 
 //===----------------------------------------------------------------------===//

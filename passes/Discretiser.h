@@ -225,6 +225,9 @@ private:
   bool collectInvariants();
   /// Blocks time where x stands at an invariant's bound in its place.
   void emitInvariantStops(Real &r, const std::vector<Form> &forms);
+  /// No time passes while `place` is marked: a `[0,0 deadline]` arc from
+  /// it into a transition that never fires.
+  void addStop(uint32_t place, const std::string &name, llvm::SMLoc loc);
   bool buildGrid(Real &r);
   bool checkExclusive(Real &r);
   bool computeTimes(Real &r);
@@ -292,6 +295,9 @@ private:
     llvm::SMLoc loc;
   };
   std::vector<InvariantBound> invariantBounds;
+  /// Places with the invariant `false` (SpaceEx's urgent locations): left
+  /// in the instant they are entered.
+  std::vector<std::pair<uint32_t, llvm::SMLoc>> urgentPlaces;
   /// The transition that never fires, whose event the stops wait for.
   std::optional<uint32_t> neverFires;
 };

@@ -9,7 +9,8 @@ over-approximates positions between grid points, so the simulation's set
 must be a subset; the script says how many combinations only the
 discretisation reaches.
 
-Covers rectangular models: constant rates, guards, invariants and outputs
+Covers rectangular models: constant rates, guards, invariants (`false`:
+an urgent location, left in the instant it is entered) and outputs
 built from comparisons of one real with a constant (and/or/not, places),
 resets to constants, initial values or intervals (sampled every DT).
 A real may not leave its declared range (time stops there). With HORIZON,
@@ -103,9 +104,15 @@ def parse(text):
             except ValueError:
                 unsupported(f"rate {e.group(2)} (constant rates only)")
         model["flows"][m.group(1)] = rates
+    model["urgent"] = set()
     for m in re.finditer(r"invariant (\S+) \{(.*?)\}", body):
+        conds = [c.strip() for c in m.group(2).split(";") if c.strip()]
+        # `false`: an urgent location (no time passes there; it may be
+        # entered), not a condition its states must meet.
+        if "false" in conds:
+            model["urgent"].add(m.group(1))
         model["invariants"][m.group(1)] = [
-            compile_expr(c) for c in m.group(2).split(";") if c.strip()]
+            compile_expr(c) for c in conds if c != "false"]
     return model
 
 
@@ -157,6 +164,7 @@ def simulate(model, dt, max_states, horizon):
             v2 = tuple(new[r] for r in reals)
             if invariant_ok(m2, v2):
                 succ.append((m2, v2, now))
+        urgent |= any(p in model["urgent"] for p in marking)
         if not urgent and (horizon is None or now + dt <= horizon):
             rate = {r: Fraction(0) for r in reals}
             for p in marking:

@@ -472,6 +472,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     std::vector<Flow::Equation> eqs;
     std::set<std::string> vars;
     pugi::xml_node node;
+    bool urgent = false;
   };
   std::vector<PendingFlow> flows;
   bool first = true;
@@ -492,11 +493,20 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     std::vector<Expr *> invariant;
     if (!conditions(loc.child("invariant"), bind, prefix, invariant))
       return false;
-    if (!invariant.empty())
-      b.addInvariant(pl, invariant, xml.locOf(loc.child("invariant")));
     PendingFlow pf;
     pf.place = pl;
     pf.node = loc;
+    // `flow false` (HyST's urgent locations): no time passes there, so its
+    // variables need no flow; the location's invariant is `false`.
+    if (StringRef(loc.child_value("flow")).trim() == "false") {
+      pf.urgent = true;
+      invariant.push_back(b.boolLit(false));
+      b.addInvariant(pl, invariant, xml.locOf(loc.child("flow")));
+      flows.push_back(std::move(pf));
+      continue;
+    }
+    if (!invariant.empty())
+      b.addInvariant(pl, invariant, xml.locOf(loc.child("invariant")));
     for (StringRef c : conjuncts(loc.child_value("flow"))) {
       if (c == "true")
         continue;
@@ -514,6 +524,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
                          "' is not an equation x' == expression (SpaceEx "
                          "differential inclusions are not supported)");
       Flow::Equation fe;
+      fe.loc = xml.locOf(loc.child("flow"));
       fe.var = lhs->name;
       fe.rate = eq->rhs;
       pf.eqs.push_back(fe);
@@ -528,7 +539,7 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
                            "' has no location");
   for (PendingFlow &pf : flows) {
     for (const std::string &v : flowVars)
-      if (!pf.vars.count(v))
+      if (!pf.urgent && !pf.vars.count(v))
         return error(pf.node, "'" + v + "' has no flow in location '" +
                                   pf.node.attribute("name").value() +
                                   "' (SpaceEx leaves it free there; netlift "
