@@ -160,6 +160,7 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   plc::CheckOptions co;
   co.top = fo.top;
   co.warnUnusedRefused = fo.warnUnusedRefused;
+  co.opaqueRefused = fo.opaqueRefused;
   bool checked = plc::checkUnit(*unit, diag, co);
   // A library of function blocks: each translated that can be, each that
   // cannot reported.

@@ -319,8 +319,9 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return; // the global is declared once
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   declaringPrefix = programPrefix;
-  // The caller's variable: the environment's (LowerEnvironment.cpp).
-  if (v->section == VarSection::InOut) {
+  // The caller's variable, or one shared with code outside the design: the
+  // environment's (LowerEnvironment.cpp).
+  if (v->section == VarSection::InOut || v->sharedOutside) {
     declareEnvironmentValue(v, name);
     return;
   }

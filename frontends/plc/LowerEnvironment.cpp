@@ -153,9 +153,13 @@ std::vector<NStmt *> Lowering::defaultsOf(const ChosenScalars &c) {
 
 void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
   const PType *t = v->type;
-  bool inOut = v->section == VarSection::InOut;
-  std::string what =
-      std::string(inOut ? "VAR_IN_OUT '" : "input '") + v->name + "'";
+  // A VAR_IN_OUT and a variable shared outside: what the program leaves
+  // there, which the environment may change before the next scan.
+  bool inOut = v->section == VarSection::InOut || v->sharedOutside;
+  std::string what = std::string(v->sharedOutside ? "shared variable '"
+                                 : inOut          ? "VAR_IN_OUT '"
+                                                  : "input '") +
+                     v->name + "'";
   varTypes[name] = t;
   if (t->kind == PTypeKind::Array && t->anyBounds)
     refuse(v->loc, what + " is " + t->str() +

@@ -416,8 +416,14 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   for (auto &[v, g] : argIn)
     action.push_back(b.assign(b.ref(run.prefix + sanitize(v->name), v->loc),
                               b.ref(sanitize(g->name), v->loc), v->loc));
-  // What the environment chooses whole, scalar by scalar.
-  for (VarDecl *v : program->vars)
+  // What the environment chooses whole, scalar by scalar (also what it
+  // shares with the program outside the design).
+  std::vector<VarDecl *> chosenByEnvironment(program->vars.begin(),
+                                             program->vars.end());
+  for (VarDecl *g : globalsUsedBy(program))
+    if (g->sharedOutside)
+      chosenByEnvironment.push_back(g);
+  for (VarDecl *v : chosenByEnvironment)
     if (auto it = environmentSamples.find(v); it != environmentSamples.end())
       action.insert(action.end(), it->second.begin(), it->second.end());
   // An input the program writes is read through a copy the scan samples

@@ -257,6 +257,10 @@ struct VarDecl {
   std::string name;
   llvm::SMLoc loc;
   bool isLibrary = false; // a global of netlift's own (st::addLibraryText)
+  /// A global no input declares, made for a VAR_EXTERNAL: the variable is
+  /// shared with code outside the design (an Arduino sketch, a runtime
+  /// extension), which may write it between scans (Sema, LowerEnvironment).
+  bool sharedOutside = false;
   VarSection section = VarSection::Var;
   bool constant = false;
   bool retain = false;

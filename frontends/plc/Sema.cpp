@@ -730,6 +730,24 @@ void Checker::checkPou(Pou *p) {
       bool found = false;
       for (VarDecl *g : allGlobals)
         found |= sameName(g->name, v->name);
+      if (!found && !v->constant && !options.opaqueRefused && v->type) {
+        // Shared with code outside the design (an Arduino sketch, a
+        // runtime extension's variable): the environment's, between scans.
+        VarDecl *g = unit.make<VarDecl>();
+        g->name = v->name;
+        g->loc = v->loc;
+        g->section = VarSection::Global;
+        g->typeSyntax = v->typeSyntax;
+        g->type = v->type;
+        g->sharedOutside = true;
+        unit.globals.push_back(g);
+        allGlobals.push_back(g);
+        diag.note(v->loc, "no global declares '" + v->name +
+                              "': it is taken as shared with code outside "
+                              "the design, which may write it between scans "
+                              "(declare it VAR_GLOBAL to model it inside)");
+        found = true;
+      }
       if (!found)
         error(v->loc, "no global variable '" + v->name +
                           "' for this VAR_EXTERNAL declaration");

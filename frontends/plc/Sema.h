@@ -163,6 +163,9 @@ struct CheckOptions {
   /// Warn about the constructs netlift refuses in POUs nothing translated
   /// uses (-Wunused-refused); they are not errors.
   bool warnUnusedRefused = false;
+  /// --opaque=refuse: a VAR_EXTERNAL no global declares is an error rather
+  /// than a variable shared with code outside the design.
+  bool opaqueRefused = false;
 };
 
 /// Checks the POUs the translation reaches from its top (every POU when
