@@ -155,7 +155,8 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   if (!fo.rangesFile.empty() && !readRanges(fo.rangesFile, diag, opts))
     return false;
   if (!st::addStandardLibrary(diag, *unit) ||
-      (unit->twinCat && !st::addTwinCatLibrary(diag, *unit)))
+      (unit->twinCat && !st::addTwinCatLibrary(diag, *unit)) ||
+      (!unit->twinCat && !st::addBeremizLibrary(diag, *unit)))
     return false;
   plc::CheckOptions co;
   co.top = fo.top;

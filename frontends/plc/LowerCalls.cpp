@@ -449,10 +449,13 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
     for (VarDecl *m : fb->vars)
       if (m->section == VarSection::Output)
         outputs += (outputs.empty() ? "" : ", ") + m->name;
-    diag.note(call->loc, "'" + path + "' (" + fb->name + ") " +
-                             fb->environment +
-                             ": modelled as environment, its outputs " +
-                             outputs + " are free inputs of the model");
+    diag.note(call->loc,
+              "'" + path + "' (" + fb->name + ") " + fb->environment +
+                  (outputs.empty()
+                       ? ": modelled as environment; it has no outputs, so "
+                         "a call changes nothing the program sees"
+                       : ": modelled as environment, its outputs " + outputs +
+                             " are free inputs of the model"));
   }
   if (auto it = environmentOutputs.find(path); it != environmentOutputs.end())
     for (const ChosenScalars &chosen : it->second)

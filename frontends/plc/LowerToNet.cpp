@@ -420,8 +420,10 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   // shares with the program outside the design).
   std::vector<VarDecl *> chosenByEnvironment(program->vars.begin(),
                                              program->vars.end());
-  for (VarDecl *g : globalsUsedBy(program))
-    if (g->sharedOutside)
+  // In declaration order (globalsUsedBy is ordered by address).
+  std::set<VarDecl *> used = globalsUsedBy(program);
+  for (VarDecl *g : unit.globals)
+    if (g->sharedOutside && used.count(g))
       chosenByEnvironment.push_back(g);
   for (VarDecl *v : chosenByEnvironment)
     if (auto it = environmentSamples.find(v); it != environmentSamples.end())

@@ -27,6 +27,11 @@ bool addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
 /// Tc2_System that real projects call.
 bool addTwinCatLibrary(DiagEngine &diag, plc::Unit &unit);
 
+/// Adds the blocks Beremiz's and OpenPLC's runtime implements
+/// (BeremizLib.cpp) the unit does not define itself: LOGGER and the Python
+/// extension's blocks, as environment.
+bool addBeremizLibrary(DiagEngine &diag, plc::Unit &unit);
+
 /// Is `name` (case-insensitive) one of the standard function blocks?
 bool isStandardFunctionBlock(llvm::StringRef name);
 
