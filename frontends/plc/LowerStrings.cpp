@@ -57,6 +57,10 @@ NExpr *Lowering::convertString(NExpr *v, const PType *from, const PType *to,
     if (!(from->isString() || from->kind == PTypeKind::Bool ||
           from->kind == PTypeKind::Int || from->kind == PTypeKind::Real))
       refused();
+    // A REAL literal takes its float type from its context, which a
+    // conversion to text does not give: the REAL or LREAL it is, first.
+    if (from->kind == PTypeKind::Real && llvm::isa<net::RealLit>(v))
+      v = b.convert(floatType(from), v, at);
     return b.convert(stringType(to, at, "conversion result"), v, at);
   }
   if (!from->isString())

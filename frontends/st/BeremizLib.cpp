@@ -2,12 +2,12 @@
 //
 // Beremiz (and OpenPLC, built on it) ships blocks whose bodies are C code
 // run by its runtime: LOGGER, which writes the runtime's log
-// (NativeLib.xml), and the Python extension's python_eval, python_poll and
-// python_gear, which run Python code (py_ext/pous.xml); and OpenPLC's
-// extension blocks, which drive its boards' hardware and talk over CAN, TCP
-// and MQTT (its editor's plcopen/*.xml). Projects call them without
-// declaring them. netlift declares their interfaces, as Beremiz
-// defines them, marked `{netlift environment '...'}`: a call changes
+// (NativeLib.xml), RTC, the real-time clock, and the Python extension's
+// python_eval, python_poll and python_gear, which run Python code
+// (py_ext/pous.xml); and OpenPLC's extension blocks, which drive its boards'
+// hardware and talk over CAN, TCP and MQTT (its editor's plcopen/*.xml).
+// Projects call them without declaring them. netlift declares their interfaces,
+// as Beremiz defines them, marked `{netlift environment '...'}`: a call changes
 // nothing the program sees but their outputs, which are free inputs of the
 // model, said in a note (--opaque=refuse refuses them). LOGGER has no
 // outputs: the log is seen outside the program only. A project's own
@@ -27,6 +27,14 @@ END_TYPE
 {netlift environment 'writes the runtime log'}
 FUNCTION_BLOCK LOGGER
   VAR_INPUT TRIG : BOOL; MSG : STRING; LEVEL : LOGLEVEL := INFO; END_VAR
+END_FUNCTION_BLOCK
+
+(* matiec's real-time clock (Beremiz's Additional_Function_Blocks): Q
+   follows IN, CDT is the clock, set to PDT on IN's rising edge. *)
+{netlift environment 'reads and sets the real-time clock'}
+FUNCTION_BLOCK RTC
+  VAR_INPUT IN : BOOL; PDT : DT; END_VAR
+  VAR_OUTPUT Q : BOOL; CDT : DT; END_VAR
 END_FUNCTION_BLOCK
 
 {netlift environment 'runs Python code in the runtime'}
