@@ -525,15 +525,18 @@ bool Discretiser::collectUses() {
 /// real the place does not move holds or fails on entry and is not
 /// checked (an over-approximation, docs/hybrid.md).
 bool Discretiser::collectInvariants() {
+  auto leaves = [&](uint32_t place) {
+    for (const Transition &t : m.transitions)
+      for (const PreArc &a : t.pre())
+        if (a.place == place)
+          return true;
+    return false;
+  };
   for (const Invariant &inv : m.invariants) {
     for (Expr *c : inv.conditions) {
       // A place no time may pass in (SpaceEx's `flow false`).
       if (auto *lit = llvm::dyn_cast<BoolLit>(c); lit && !lit->value) {
-        bool leaves = false;
-        for (const Transition &t : m.transitions)
-          for (const PreArc &a : t.pre())
-            leaves |= a.place == inv.place;
-        if (!leaves)
+        if (!leaves(inv.place))
           return error(inv.loc, "place '" + inv.placeName +
                                     "' is a timelock: no time may pass in "
                                     "it, and no transition leaves it");
@@ -554,11 +557,7 @@ bool Discretiser::collectInvariants() {
       if (rate && *rate == 0)
         continue;
       // A place the invariant bounds must have a way out.
-      bool leaves = false;
-      for (const Transition &t : m.transitions)
-        for (const PreArc &a : t.pre())
-          leaves |= a.place == inv.place;
-      if (!leaves)
+      if (!leaves(inv.place))
         return error(inv.loc, "place '" + inv.placeName +
                                   "' is a timelock: its invariant '" +
                                   exprToString(c) +

@@ -169,22 +169,12 @@ private:
 /// `x op c` with the operator at the top level: (lhs, op, rhs); op empty
 /// when there is none.
 std::tuple<StringRef, StringRef, StringRef> splitComparison(StringRef c) {
-  int depth = 0;
-  for (size_t i = 0; i < c.size(); ++i) {
-    char ch = c[i];
-    if (ch == '(')
-      ++depth;
-    else if (ch == ')')
-      --depth;
-    else if (depth == 0 &&
-             (ch == '<' || ch == '>' || ch == '=' ||
-              (ch == '!' && i + 1 < c.size() && c[i + 1] == '='))) {
-      size_t len = i + 1 < c.size() && c[i + 1] == '=' ? 2 : 1;
-      return {c.take_front(i).trim(), c.substr(i, len),
-              c.substr(i + len).trim()};
-    }
-  }
-  return {c, "", ""};
+  auto ops = comparisonOperators(c, /*singleEquals=*/true);
+  if (ops.empty())
+    return {c, "", ""};
+  auto [at, len] = ops.front();
+  return {c.take_front(at).trim(), c.substr(at, len),
+          c.substr(at + len).trim()};
 }
 
 StringRef flip(StringRef op) {

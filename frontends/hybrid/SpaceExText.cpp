@@ -29,25 +29,32 @@ std::vector<StringRef> spaceex::conjuncts(StringRef text) {
   return out;
 }
 
-/// A chained comparison `a <= x <= b` (SpaceEx writes bounds so) as the
-/// comparisons it chains, `a <= x` and `x <= b`; anything else as it is.
-std::vector<StringRef> spaceex::unchain(StringRef c) {
-  std::vector<std::pair<size_t, size_t>> ops; // position, length
+std::vector<std::pair<size_t, size_t>>
+spaceex::comparisonOperators(StringRef c, bool singleEquals) {
+  std::vector<std::pair<size_t, size_t>> ops;
   int depth = 0;
   for (size_t i = 0; i < c.size(); ++i) {
     char ch = c[i];
+    bool eqNext = i + 1 < c.size() && c[i + 1] == '=';
     if (ch == '(')
       ++depth;
     else if (ch == ')')
       --depth;
-    else if (depth == 0 &&
-             (ch == '<' || ch == '>' ||
-              (ch == '=' && i + 1 < c.size() && c[i + 1] == '='))) {
-      size_t len = i + 1 < c.size() && c[i + 1] == '=' ? 2 : 1;
+    else if (depth == 0 && (ch == '<' || ch == '>' ||
+                            (ch == '=' && (eqNext || singleEquals)) ||
+                            (ch == '!' && eqNext && singleEquals))) {
+      size_t len = eqNext ? 2 : 1;
       ops.push_back({i, len});
       i += len - 1;
     }
   }
+  return ops;
+}
+
+/// A chained comparison `a <= x <= b` (SpaceEx writes bounds so) as the
+/// comparisons it chains, `a <= x` and `x <= b`; anything else as it is.
+std::vector<StringRef> spaceex::unchain(StringRef c) {
+  std::vector<std::pair<size_t, size_t>> ops = comparisonOperators(c, false);
   if (ops.size() < 2)
     return {c};
   std::vector<StringRef> out;

@@ -20,6 +20,12 @@ namespace netlift::spaceex {
 /// parentheses), trimmed, empty ones left out.
 std::vector<llvm::StringRef> conjuncts(llvm::StringRef text);
 
+/// The comparison operators of `text` outside parentheses, in order, as
+/// (position, length): `<`, `<=`, `>`, `>=`, `==`; with `singleEquals`
+/// also `=` (SpaceEx's configurations write it for `==`) and `!=`.
+std::vector<std::pair<size_t, size_t>> comparisonOperators(llvm::StringRef text,
+                                                           bool singleEquals);
+
 /// A chained comparison `a <= x <= b` as the comparisons it chains, `a <= x`
 /// and `x <= b`; anything else as it is.
 std::vector<llvm::StringRef> unchain(llvm::StringRef comparison);
