@@ -15,6 +15,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <functional>
 
 using namespace netlift;
 using namespace netlift::spaceex;
@@ -166,6 +167,33 @@ private:
   size_t pos = 0;
 };
 
+/// Does `c` hold `ch` outside parentheses?
+bool hasTopLevel(StringRef c, char ch) {
+  int depth = 0;
+  for (char x : c) {
+    depth += x == '(' ? 1 : x == ')' ? -1 : 0;
+    if (depth == 0 && x == ch)
+      return true;
+  }
+  return false;
+}
+
+/// `(a <= x)` as `a <= x`: parentheses around the whole, removed.
+StringRef unparenthesize(StringRef c) {
+  while (c.startswith("(") && c.endswith(")")) {
+    int depth = 0;
+    bool whole = true;
+    for (size_t i = 0; i + 1 < c.size() && whole; ++i) {
+      depth += c[i] == '(' ? 1 : c[i] == ')' ? -1 : 0;
+      whole = depth > 0;
+    }
+    if (!whole)
+      break;
+    c = c.drop_front().drop_back().trim();
+  }
+  return c;
+}
+
 /// `x op c` with the operator at the top level: (lhs, op, rhs); op empty
 /// when there is none.
 std::tuple<StringRef, StringRef, StringRef> splitComparison(StringRef c) {
@@ -194,7 +222,27 @@ bool splitInitialSet(const ConfigEntry &e, DiagEngine &diag, InitialSet &out) {
     StringRef text;
   };
   std::vector<Pending> pending;
-  for (StringRef chained : conjuncts(e.text))
+  // The conjuncts, through parentheses around conjunctions.
+  std::vector<StringRef> flat;
+  std::function<void(StringRef)> flatten = [&](StringRef text) {
+    for (StringRef c : conjuncts(text)) {
+      StringRef inner = unparenthesize(c);
+      if (inner.size() != c.size() && hasTopLevel(inner, '&'))
+        flatten(inner);
+      else
+        flat.push_back(inner);
+    }
+  };
+  flatten(e.text);
+  for (StringRef chained : flat) {
+    if (hasTopLevel(chained, '|')) {
+      diag.error(SMLoc::getFromPointer(chained.data()),
+                 "initial condition '" + chained +
+                     "' is a disjunction; netlift takes an initial set that "
+                     "is a conjunction of bounds (one start interval per "
+                     "variable)");
+      return false;
+    }
     for (StringRef one : unchain(chained)) {
       if (one == "true")
         continue;
@@ -214,6 +262,7 @@ bool splitInitialSet(const ConfigEntry &e, DiagEngine &diag, InitialSet &out) {
       }
       pending.push_back({one});
     }
+  }
   // Rounds: a bound whose constant side can be evaluated with the names
   // fixed so far.
   for (bool progress = true; progress && !pending.empty();) {
