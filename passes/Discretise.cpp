@@ -201,16 +201,14 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
 }
 
 void Discretiser::closeOpenRanges() {
+  // One direction at most: a real open both ways would move both ways,
+  // which inferRange refuses.
   for (Real &r : reals) {
     if (!r.openTop && !r.openBottom)
       continue;
-    std::vector<double> known{r.init, r.initHi};
+    std::vector<double> known{r.init, r.initHi, r.openTop ? r.lo : r.hi};
     known.insert(known.end(), r.thresholds.begin(), r.thresholds.end());
     known.insert(known.end(), r.assigned.begin(), r.assigned.end());
-    if (!r.openTop)
-      known.push_back(r.hi);
-    if (!r.openBottom)
-      known.push_back(r.lo);
     double last = *std::max_element(known.begin(), known.end());
     double first = *std::min_element(known.begin(), known.end());
     double step =
@@ -219,21 +217,14 @@ void Discretiser::closeOpenRanges() {
       step = 1;
     if (r.openTop)
       r.hi = last + step;
-    if (r.openBottom)
+    else
       r.lo = first - step;
     diag.note(m.vars[r.var].loc,
-              "real '" + r.name + "' " +
-                  (r.openTop && r.openBottom ? "moves without bound"
-                   : r.openTop               ? "rises without bound"
-                                             : "falls without bound") +
-                  "; past " +
-                  (r.openTop && r.openBottom ? num(first) + " and " + num(last)
-                                             : num(r.openTop ? last : first)) +
+              "real '" + r.name + "' " + (r.openTop ? "rises" : "falls") +
+                  " without bound; past " + num(r.openTop ? last : first) +
                   ", the last value it is compared with, set to or starts "
                   "at, nothing tells its values apart: its range ends at " +
-                  num(r.openBottom ? r.lo : r.hi) +
-                  (r.openTop && r.openBottom ? " and " + num(r.hi) : "") +
-                  ", where it rests");
+                  num(r.openTop ? r.hi : r.lo) + ", where it rests");
   }
 }
 

@@ -37,7 +37,6 @@
 #include "llvm/Support/Path.h"
 
 #include <cmath>
-#include <deque>
 #include <map>
 #include <optional>
 #include <pugixml.hpp>
@@ -122,10 +121,9 @@ private:
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
-  /// Every flat name of a param (variables and constants): what the
-  /// initial set may name.
-  llvm::StringSet<> paramNames;
-  /// The first declaration of each flat param (for messages).
+  /// Every flat name of a param (variables and constants; what the initial
+  /// set may name) and its declaration in a base component if it has one,
+  /// else in the system (for messages).
   std::map<std::string, pugi::xml_node> paramNode;
   /// Per instance (its prefix), its locations' places by name.
   std::map<std::string, std::vector<std::pair<std::string, uint32_t>>>
@@ -429,7 +427,6 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     StringRef type = p.attribute("type").value();
     auto it = bind.find(name);
     if (it != bind.end() && type == "real") {
-      paramNames.insert(it->second.name);
       paramNode.insert({it->second.name, p});
       // A constant the configuration's initial set fixes.
       if (!it->second.value && cfg &&
@@ -645,10 +642,11 @@ bool SpaceExReader::run() {
   for (pugi::xml_node p : top.children("param")) {
     std::string name = p.attribute("name").value();
     bind[name] = Binding{name, std::nullopt};
-    paramNames.insert(name);
   }
   if (!instantiate(top, "", bind, 0))
     return false;
+  for (pugi::xml_node p : top.children("param"))
+    paramNode.insert({p.attribute("name").value(), p});
   // A variable no location gives a flow varies freely in SpaceEx (an input
   // or a disturbance, bounded by invariants); a NetIR real without a flow
   // stays constant, which would lose its behaviours.
@@ -847,8 +845,8 @@ bool SpaceExReader::applyInitialSet(pugi::xml_node top) {
       v.initHi = b.realLit(*bd.hi);
   }
   for (auto &[name, bd] : init.bounds)
-    if (!llvm::any_of(paramNames, [&, &name = name](const auto &p) {
-          return namedBy(p.getKey(), name);
+    if (!llvm::any_of(paramNode, [&, &name = name](const auto &p) {
+          return namedBy(p.first, name);
         })) {
       diag.error(bd.loc, "'" + name +
                              "' in the initial set is not a "
