@@ -93,8 +93,8 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
     for (const Flow &f : m.flows)
       for (const Flow::Equation &eq : f.equations)
         if (eq.varIndex == var) {
-          auto rate = evalConstReal(eq.rate);
-          if (!rate || *rate * sign < 0)
+          std::optional<int> dir = constantDirection(eq);
+          if (!dir || *dir * sign < 0)
             return false;
         }
     return true;
@@ -147,10 +147,10 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
     for (const Flow::Equation &eq : f.equations) {
       if (eq.varIndex != var)
         continue;
-      auto rate = evalConstReal(eq.rate);
-      if (rate && *rate == 0)
+      std::optional<int> dir = constantDirection(eq);
+      if (dir && *dir == 0)
         continue;
-      bool up = !rate || *rate > 0, down = !rate || *rate < 0;
+      bool up = !dir || *dir > 0, down = !dir || *dir < 0;
       std::optional<double> upper, lower;
       for (const Invariant &inv : m.invariants) {
         if (inv.place != f.place)
@@ -226,6 +226,49 @@ void Discretiser::closeOpenRanges() {
                   "at, nothing tells its values apart: its range ends at " +
                   num(r.openTop ? r.hi : r.lo) + ", where it rests");
   }
+}
+
+std::optional<int> discretise::constantDirection(const Flow::Equation &eq) {
+  auto lo = evalConstReal(eq.rate);
+  auto hi = eq.rateHi ? evalConstReal(eq.rateHi) : lo;
+  if (!lo || !hi)
+    return std::nullopt;
+  if (*lo > 0 && *hi > 0)
+    return +1;
+  if (*lo < 0 && *hi < 0)
+    return -1;
+  if (*lo == 0 && *hi == 0)
+    return 0;
+  return std::nullopt; // a rectangular flow whose rates include 0
+}
+
+bool Discretiser::checkRectangularFlows() {
+  for (const Flow &f : m.flows)
+    for (const Flow::Equation &eq : f.equations) {
+      if (!eq.rateHi)
+        continue;
+      StringRef place = m.places[f.place].name;
+      auto lo = evalConstReal(eq.rate), hi = evalConstReal(eq.rateHi);
+      if (!lo || !hi)
+        return error((lo ? eq.rateHi : eq.rate)->loc,
+                     "the rates of '" + eq.var + "' in place '" + place +
+                         "' are bounded by something that is not a "
+                         "constant; discretise takes rectangular flows x' "
+                         "in [a, b] with constant a and b");
+      if (spec.mode == GridSpec::Mode::Step)
+        return error(eq.loc, "step= places grid points where a flow is "
+                             "after each step, which a rectangular flow ('" +
+                                 eq.var + "' in place '" + place +
+                                 "') does not fix; use grid= or points=");
+      if (*lo <= 0 && *hi >= 0 && !(*lo == 0 && *hi == 0))
+        return error(eq.loc,
+                     "the rates of '" + eq.var + "' in place '" + place +
+                         "' range over [" + num(*lo) + ", " + num(*hi) +
+                         "], which contains 0: it may stop or turn back "
+                         "anywhere, which a grid of timed segments cannot "
+                         "follow (discretise takes 0 < a <= b or a <= b < 0)");
+    }
+  return true;
 }
 
 bool Discretiser::collectReals() {
@@ -544,8 +587,9 @@ bool Discretiser::collectInvariants() {
       x.thresholds.insert(vb->value);
       if (!x.flowOfPlace.count(inv.place))
         continue;
-      auto rate = evalConstReal(x.flows[x.flowOfPlace[inv.place]].eq->rate);
-      if (rate && *rate == 0)
+      std::optional<int> dir =
+          constantDirection(*x.flows[x.flowOfPlace[inv.place]].eq);
+      if (dir && *dir == 0)
         continue;
       // A place the invariant bounds must have a way out.
       if (!leaves(inv.place))
@@ -567,7 +611,8 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!collectReals() || !collectUses() || !collectInvariants())
+  if (!checkRectangularFlows() || !collectReals() || !collectUses() ||
+      !collectInvariants())
     return false;
   closeOpenRanges();
   for (Real &r : reals)
@@ -601,7 +646,11 @@ bool Discretiser::run() {
     for (size_t fi = 0; fi < r.flows.size(); ++fi) {
       FlowOf &fl = r.flows[fi];
       StringRef pname = m.places[fl.place].name;
-      if (report)
+      if (report && fl.rectangular)
+        *report << "  flow " << pname << ": " << r.name << "' in ["
+                << exprToString(fl.eq->rate) << ", "
+                << exprToString(fl.eq->rateHi) << "] (rectangular)\n";
+      else if (report)
         *report << "  flow " << pname << ": " << r.name
                 << "' = " << exprToString(fl.eq->rate) << " ("
                 << hybrid::methodName(fl.rate) << ")\n";
@@ -631,18 +680,28 @@ bool Discretiser::run() {
             break;
           }
           total += s.time;
-          if (exact &&
-              std::fabs(s.time - s.ticks) > 1e-9 * std::max(1.0, s.time))
-            return error(fl.eq->loc,
-                         "in place '" + pname + "', '" + r.name +
-                             "' goes from " + num(r.grid[a]) + " to " +
-                             num(r.grid[c]) + " in " + num(s.time) +
-                             " ticks, not a whole number (exact=true)");
+          auto whole = [](double t, uint32_t ticks) {
+            return std::fabs(t - ticks) <= 1e-9 * std::max(1.0, t);
+          };
+          if (exact && (!whole(s.time, s.ticks) || !whole(s.timeLo, s.ticksLo)))
+            return error(
+                fl.eq->loc,
+                "in place '" + pname + "', '" + r.name + "' goes from " +
+                    num(r.grid[a]) + " to " + num(r.grid[c]) + " in " +
+                    (fl.rectangular ? num(s.timeLo) + " to " : "") +
+                    num(s.time) + " ticks, not a whole number (exact=true)");
+          // A rectangular flow: the shortest and the longest time, and
+          // the total of the longest.
+          std::string time = num(s.time), ticks = std::to_string(s.ticks);
+          if (fl.rectangular) {
+            time = num(s.timeLo) + ".." + time;
+            ticks = std::to_string(s.ticksLo) + ".." + ticks;
+          }
           if (report)
             *report << llvm::formatv("          {0,-9} {1,-9} {2,-13} {3,-9} "
                                      "{4}\n",
-                                     num(r.grid[a]), num(r.grid[c]),
-                                     num(s.time), num(total), s.ticks);
+                                     num(r.grid[a]), num(r.grid[c]), time,
+                                     num(total), ticks);
         }
       }
     }

@@ -88,9 +88,28 @@ Discretiser::Segment Discretiser::segment(Real &r, int fl, unsigned a,
   auto it = segCache.find(key);
   if (it != segCache.end())
     return it->second;
+  Segment s;
+  if (r.flows[fl].rectangular) {
+    // Any time from distance/|fast| to distance/|slow|, rounded outward so
+    // that no arrival time is lost.
+    double dist = std::fabs(r.grid[bIdx] - r.grid[a]);
+    double slow = std::fabs(r.flows[fl].fn(r.grid[a]));
+    double fast = std::fabs(r.flows[fl].fast);
+    s.reached = true;
+    s.timeLo = dist / fast;
+    s.time = dist / slow;
+    auto clamp = [](double t) { return std::min(t, double(kInf - 1)); };
+    double lo = clamp(std::floor(s.timeLo + 1e-9 * std::max(1.0, s.timeLo)));
+    double hi = clamp(std::ceil(s.time - 1e-9 * std::max(1.0, s.time)));
+    s.ticksLo = uint32_t(lo);
+    s.ticks = uint32_t(hi);
+    worstRounding = std::max(
+        {worstRounding, std::fabs(s.timeLo - lo), std::fabs(s.time - hi)});
+    segCache[key] = s;
+    return s;
+  }
   hybrid::Crossing c =
       hybrid::timeToReach(r.flows[fl].rate, r.grid[a], r.grid[bIdx]);
-  Segment s;
   s.reached = c.reached;
   s.why = c.why;
   s.ticks = 0;
@@ -102,6 +121,8 @@ Discretiser::Segment Discretiser::segment(Real &r, int fl, unsigned a,
       rounded = double(kInf - 1);
     s.ticks = uint32_t(rounded);
     worstRounding = std::max(worstRounding, std::fabs(ticks - rounded));
+    s.timeLo = s.time;
+    s.ticksLo = s.ticks;
   }
   segCache[key] = s;
   return s;
@@ -109,6 +130,21 @@ Discretiser::Segment Discretiser::segment(Real &r, int fl, unsigned a,
 
 bool Discretiser::computeTimes(Real &r) {
   for (FlowOf &fl : r.flows) {
+    if (fl.eq->rateHi) {
+      // Constants of one sign (checkRectangularFlows): the slow rate gives
+      // the direction and the longest times.
+      double lo = *evalConstReal(fl.eq->rate) / ticksPerUnit;
+      double hi = *evalConstReal(fl.eq->rateHi) / ticksPerUnit;
+      double slow = std::fabs(lo) <= std::fabs(hi) ? lo : hi;
+      fl.fast = slow == lo ? hi : lo;
+      fl.rectangular = lo != hi;
+      fl.fn = [slow](double) { return slow; };
+      fl.rate.f = fl.fn;
+      fl.rate.shape = hybrid::Rate::Shape::Constant;
+      fl.rate.a = 0;
+      fl.rate.b = slow;
+      continue;
+    }
     RealEval ev(r.var);
     if (!ev.eval(fl.eq->rate, r.lo)) {
       const Expr *bad = ev.bad ? ev.bad : fl.eq->rate;
@@ -310,6 +346,16 @@ std::vector<Discretiser::Motion> Discretiser::motionsOf(Real &r, Form f) {
     if (mid &&
         hybrid::timeToReach(r.flows[f.flow].rate, start, r.grid[to]).reached)
       out.push_back({f, *next, 0, kInf, false, base + "_reach_early"});
+    return out;
+  }
+  if (r.flows[f.flow].rectangular) {
+    // Any time in [lo, hi] from the grid point, any in [0, hi] from
+    // inside; at hi at the latest (a deadline).
+    bool mid = f.kind == FormKind::UpMid || f.kind == FormKind::DownMid;
+    uint32_t lo = mid ? 0 : s.ticksLo;
+    Motion mo{f, *next, lo, s.ticks, lo == s.ticks, base + "_reach"};
+    mo.deadline = lo != s.ticks;
+    out.push_back(mo);
     return out;
   }
   if (f.kind == FormKind::Up || f.kind == FormKind::Down) {

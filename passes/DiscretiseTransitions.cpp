@@ -190,7 +190,9 @@ void Discretiser::emitTransitions(Real &r) {
   for (Form f : forms) {
     for (Motion &mo : motionsOf(r, f)) {
       ++numSegments;
-      PreArc pre{placeOf(r, f), 1, Interval{mo.lo, mo.hi}};
+      Interval when{mo.lo, mo.hi};
+      when.deadline = mo.deadline;
+      PreArc pre{placeOf(r, f), 1, when};
       std::optional<uint32_t> fuseWith = fusionFor(f, mo);
       if (!fuseWith) {
         uint32_t t = b.addTransition(d.save(fresh(mo.name)), {pre},

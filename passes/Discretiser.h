@@ -168,6 +168,11 @@ struct FlowOf {
   const Flow::Equation *eq;
   hybrid::Rate rate;
   std::function<double(double)> fn; // in units per tick
+  /// A rectangular flow `x' in [a, b]` (a and b of one sign): `fn` is the
+  /// slow rate (closest to 0), `fast` the other, per tick; a segment takes
+  /// any time between distance/|fast| and distance/|slow|.
+  bool rectangular = false;
+  double fast = 0;
 };
 
 /// A value state of x: a grid point or an open segment.
@@ -214,6 +219,8 @@ private:
     return false;
   }
   bool collectReals();
+  /// The bounds of every rectangular flow: constants of one sign.
+  bool checkRectangularFlows();
   bool inferRange(Real &r, std::string &why);
   /// A range left open by inferRange ends one grid step past the last
   /// constant the real is compared with, set to or starts at.
@@ -259,14 +266,21 @@ private:
     uint32_t lo, hi; // interval in ticks
     bool urgent;
     std::string name;
+    /// No tick past `hi` while it is enabled (a rectangular flow arrives
+    /// at any time in [lo, hi], at hi at the latest).
+    bool deadline = false;
   };
   std::vector<Motion> motionsOf(Real &r, Form f);
   /// Grid-time table: duration in ticks from g_a to g_b under flow `fl`.
   struct Segment {
     bool reached;
-    double time;    // model time units (ticks)
+    double time;    // model time units (ticks); the longest
     uint32_t ticks; // rounded
     std::string why;
+    /// A rectangular flow's shortest time and its ticks, rounded down
+    /// (`ticks` is then the longest rounded up); otherwise the same.
+    double timeLo = 0;
+    uint32_t ticksLo = 0;
   };
   Segment segment(Real &r, int fl, unsigned a, unsigned b);
   std::map<std::tuple<uint32_t, int, unsigned, unsigned>, Segment> segCache;
@@ -301,6 +315,11 @@ private:
   /// The transition that never fires, whose event the stops wait for.
   std::optional<uint32_t> neverFires;
 };
+
+/// The direction a flow moves its variable, where its rate (or both ends
+/// of a rectangular one) is constant: +1, -1 or 0; nullopt when it
+/// depends on the value.
+std::optional<int> constantDirection(const Flow::Equation &eq);
 
 /// Does `e` read a real variable (`where`: the first such read)?
 bool mentionsReal(const Expr *e,

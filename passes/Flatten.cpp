@@ -172,6 +172,8 @@ bool Flattener::inlineModule(const Module &y, const std::string &prefix,
       Flow::Equation n = eq;
       n.var = d.save(prefix + eq.var.str());
       n.rate = cloneExpr(b, y, eq.rate, rename);
+      if (eq.rateHi)
+        n.rateHi = cloneExpr(b, y, eq.rateHi, rename);
       eqs.push_back(n);
     }
     b.addFlow(placeBase + f.place, eqs, f.loc);

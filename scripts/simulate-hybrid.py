@@ -9,7 +9,9 @@ over-approximates positions between grid points, so the simulation's set
 must be a subset; the script says how many combinations only the
 discretisation reaches.
 
-Covers rectangular models: constant rates, guards, invariants (`false`:
+Covers rectangular models: constant rates and rectangular flows `x' in
+[a, b]` (each time step at rate a or b: every position a run at those
+rates reaches), guards, invariants (`false`:
 an urgent location, left in the instant it is entered) and outputs
 built from comparisons of one real with a constant (and/or/not, places),
 resets to constants, initial values or intervals (sampled every DT).
@@ -98,11 +100,18 @@ def parse(text):
                                bool(m.group(5))))
     for m in re.finditer(r"flow (\S+) \{(.*?)\}", body):
         rates = {}
-        for e in re.finditer(r"(\S+)' = ([^;]+);", m.group(2)):
+        # x' = r, or a rectangular flow x' in [a, b]: (a, b).
+        for e in re.finditer(r"(\S+)' (?:= ([^;]+)|in \[([^,]+), ([^\]]+)\]);",
+                             m.group(2)):
             try:
-                rates[e.group(1)] = Fraction(e.group(2).strip())
+                if e.group(2):
+                    rate = Fraction(e.group(2).strip())
+                    rates[e.group(1)] = (rate, rate)
+                else:
+                    rates[e.group(1)] = (Fraction(e.group(3).strip()),
+                                         Fraction(e.group(4).strip()))
             except ValueError:
-                unsupported(f"rate {e.group(2)} (constant rates only)")
+                unsupported(f"rate {e.group(0)} (constant rates only)")
         model["flows"][m.group(1)] = rates
     model["urgent"] = set()
     for m in re.finditer(r"invariant (\S+) \{(.*?)\}", body):
@@ -166,13 +175,19 @@ def simulate(model, dt, max_states, horizon):
                 succ.append((m2, v2, now))
         urgent |= any(p in model["urgent"] for p in marking)
         if not urgent and (horizon is None or now + dt <= horizon):
-            rate = {r: Fraction(0) for r in reals}
+            rate = {r: (Fraction(0), Fraction(0)) for r in reals}
             for p in marking:
                 rate.update(model["flows"].get(p, {}))
-            v2 = tuple(values[i] + rate[r] * dt for i, r in enumerate(reals))
-            if invariant_ok(marking, v2):
-                succ.append((marking, v2,
-                             now + dt if horizon is not None else now))
+            # A rectangular flow may take any rate in its interval at any
+            # instant: each step takes one of its two ends.
+            moves = [()]
+            for r in reals:
+                moves = [mv + (x,) for mv in moves for x in sorted(set(rate[r]))]
+            for mv in moves:
+                v2 = tuple(values[i] + mv[i] * dt for i in range(len(reals)))
+                if invariant_ok(marking, v2):
+                    succ.append((marking, v2,
+                                 now + dt if horizon is not None else now))
         for st in succ:
             if st not in seen:
                 seen.add(st)

@@ -409,16 +409,24 @@ bool ChartReader::parseState(unsigned region) {
         continue;
       }
       if (tok().is(Tok::Ident)) {
-        // A flow equation `x' = rate;`.
+        // A flow equation `x' = rate;`, or a rectangular flow
+        // `x' in [lo, hi];`.
         Flow::Equation eq;
         if (!p.name(eq.var, eq.loc, "a real variable"))
           return false;
-        if (!p.expect(Tok::Prime, "\"'\" (a flow x' = rate)") ||
-            !p.expect(Tok::Equal, "'='"))
+        if (!p.expect(Tok::Prime, "\"'\" (a flow x' = rate)"))
           return false;
-        eq.rate = p.expr();
-        if (!eq.rate)
+        if (isKw("in")) {
+          p.consume();
+          if (!p.expect(Tok::LBrack, "'['") || !(eq.rate = p.expr()) ||
+              !p.expect(Tok::Comma, "','") || !(eq.rateHi = p.expr()) ||
+              !p.expect(Tok::RBrack, "']'"))
+            return false;
+          eq.rateHi = substitute(eq.rateHi);
+        } else if (!p.expect(Tok::Equal, "'=' or 'in'") ||
+                   !(eq.rate = p.expr())) {
           return false;
+        }
         eq.rate = substitute(eq.rate);
         if (s.flows.empty())
           s.flowLoc = eq.loc;
@@ -581,8 +589,11 @@ bool ChartReader::build() {
     substituteIn(st.entry);
     substituteIn(st.during);
     substituteIn(st.exit);
-    for (Flow::Equation &eq : st.flows)
+    for (Flow::Equation &eq : st.flows) {
       eq.rate = substitute(eq.rate);
+      if (eq.rateHi)
+        eq.rateHi = substitute(eq.rateHi);
+    }
   }
   for (HybTransition &t : transitions) {
     t.guard = substitute(t.guard);

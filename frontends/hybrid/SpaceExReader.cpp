@@ -96,6 +96,8 @@ private:
     return {};
   }
   std::string real(const std::string &flat, pugi::xml_node where);
+  bool flowOf(pugi::xml_node loc, const Bindings &bind,
+              const std::string &prefix, std::vector<Flow::Equation> &out);
   /// The configuration's initial set on the flat model: locations and
   /// variables' starts; every name it gives must be the system's.
   bool applyInitialSet(pugi::xml_node top);
@@ -362,6 +364,118 @@ bool SpaceExReader::conditions(pugi::xml_node node, const Bindings &bind,
   return true;
 }
 
+/// A location's flow: per variable an equation `x' == e`, or bounds of its
+/// rate `a <= x' <= b` (also written `x' >= a & x' <= b`; a strict bound
+/// is read as closed), which make a rectangular flow `x' in [a, b]`.
+bool SpaceExReader::flowOf(pugi::xml_node loc, const Bindings &bind,
+                           const std::string &prefix,
+                           std::vector<Flow::Equation> &out) {
+  pugi::xml_node node = loc.child("flow");
+  struct Rates {
+    Expr *equal = nullptr, *lower = nullptr, *upper = nullptr;
+    std::string text; // the first conjunct naming it, for messages
+  };
+  std::map<std::string, Rates> rates;
+  std::vector<std::string> order;
+  auto notAFlow = [&](StringRef c) {
+    return error(node, "flow '" + c +
+                           "' is not x' == expression or a bound of x' by "
+                           "an expression (SpaceEx differential inclusions "
+                           "other than a <= x' <= b are not supported)");
+  };
+  for (StringRef chained : conjuncts(node.child_value()))
+    for (StringRef c : unchain(chained)) {
+      if (c == "true")
+        continue;
+      // SpaceEx prints a flow plus a set (`... with offset
+      // support_function(...)`) in the problems it flattens.
+      if (c.contains("support_function("))
+        return error(node, "flow '" + c +
+                               "' adds a set given by its support function "
+                               "(a differential inclusion netlift does not "
+                               "take; it takes a <= x' <= b)");
+      auto ops = comparisonOperators(c, /*singleEquals=*/true);
+      if (ops.size() != 1)
+        return notAFlow(c);
+      StringRef opText = c.substr(ops[0].first, ops[0].second);
+      if (opText == "=")
+        opText = "==";
+      StringRef sides[2] = {c.take_front(ops[0].first).trim(),
+                            c.drop_front(ops[0].first + ops[0].second).trim()};
+      Expr *parsed[2];
+      std::string primed[2];
+      for (int i = 0; i < 2; ++i) {
+        ExprParser ep{*this, sides[i], 0, node, bind, prefix, true, {}};
+        parsed[i] = ep.orExpr();
+        ep.skip();
+        if (ep.ok && ep.pos != sides[i].size())
+          ep.fail("unexpected '" + sides[i].substr(ep.pos) + "'");
+        if (!ep.ok)
+          return false;
+        primed[i] = ep.primed;
+      }
+      // The primed variable alone on one side, and no prime on the other.
+      int side = -1;
+      for (int i = 0; i < 2; ++i)
+        if (auto *ref = llvm::dyn_cast<Ref>(parsed[i]);
+            ref && !primed[i].empty() && ref->name == primed[i] &&
+            primed[1 - i].empty())
+          side = i;
+      if (side < 0 || opText == "!=")
+        return notAFlow(c);
+      std::string var = primed[side];
+      Expr *rate = parsed[1 - side];
+      Rates &r = rates[var];
+      if (r.text.empty()) {
+        r.text = c.str();
+        order.push_back(var);
+      }
+      // `x' <= b` bounds from above; written `b >= x'` likewise.
+      bool less = opText.startswith("<");
+      Expr *&slot = opText == "=="          ? r.equal
+                    : (less == (side == 0)) ? r.upper
+                                            : r.lower;
+      if (slot)
+        return error(node, "flow '" + c + "' gives " + var + "' a second " +
+                               (opText == "=="      ? "rate"
+                                : &slot == &r.upper ? "upper bound"
+                                                    : "lower bound") +
+                               " in location '" +
+                               loc.attribute("name").value() + "'");
+      slot = rate;
+    }
+  for (const std::string &var : order) {
+    Rates &r = rates[var];
+    Flow::Equation fe;
+    fe.loc = xml.locOf(node);
+    fe.var = d.save(var);
+    if (r.equal && (r.lower || r.upper))
+      return error(node, "flow of '" + var + "' in location '" +
+                             loc.attribute("name").value() +
+                             "' gives both an equation and a bound of its "
+                             "rate ('" +
+                             r.text + "')");
+    if (r.equal) {
+      fe.rate = r.equal;
+    } else if (r.lower && r.upper) {
+      fe.rate = r.lower;
+      fe.rateHi = r.upper;
+    } else {
+      return error(node, "flow of '" + var + "' in location '" +
+                             loc.attribute("name").value() +
+                             "' bounds its "
+                             "rate " +
+                             (r.lower ? "from below" : "from above") +
+                             " only ('" + r.text +
+                             "'): netlift takes a "
+                             "differential inclusion with both bounds, a <= " +
+                             var + "' <= b");
+    }
+    out.push_back(fe);
+  }
+  return true;
+}
+
 bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
                                 const Bindings &bind, unsigned depth) {
   if (depth > 32)
@@ -504,29 +618,11 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     }
     if (!invariant.empty())
       b.addInvariant(pl, invariant, xml.locOf(loc.child("invariant")));
-    for (StringRef c : conjuncts(loc.child_value("flow"))) {
-      if (c == "true")
-        continue;
-      ExprParser ep{*this, c, 0, loc.child("flow"), bind, prefix, true, {}};
-      Expr *e = ep.orExpr();
-      ep.skip();
-      if (!ep.ok)
-        return false;
-      auto *eq = llvm::dyn_cast<BinaryExpr>(e);
-      auto *lhs = eq ? llvm::dyn_cast<Ref>(eq->lhs) : nullptr;
-      if (ep.pos != c.size() || !eq || eq->op != BinaryOp::Eq || !lhs ||
-          lhs->name != ep.primed)
-        return error(loc.child("flow"),
-                     "flow '" + c +
-                         "' is not an equation x' == expression (SpaceEx "
-                         "differential inclusions are not supported)");
-      Flow::Equation fe;
-      fe.loc = xml.locOf(loc.child("flow"));
-      fe.var = lhs->name;
-      fe.rate = eq->rhs;
-      pf.eqs.push_back(fe);
-      pf.vars.insert(lhs->name.str());
-      flowVars.insert(lhs->name.str());
+    if (!flowOf(loc, bind, prefix, pf.eqs))
+      return false;
+    for (const Flow::Equation &fe : pf.eqs) {
+      pf.vars.insert(fe.var.str());
+      flowVars.insert(fe.var.str());
     }
     flows.push_back(std::move(pf));
   }

@@ -176,8 +176,10 @@ struct Var {
   Expr *initHi = nullptr;
 };
 
-/// `flow place { x' = e; }`: while `place` is marked, real variable x
-/// evolves with derivative e.
+/// `flow place { x' = e; y' in [a, b]; }`: while `place` is marked, real
+/// variable x evolves with derivative e, and y with a derivative that may
+/// be anything between a and b at every instant (a rectangular flow, the
+/// differential inclusion a <= y' <= b).
 struct Flow {
   llvm::SMLoc loc;
   uint32_t place;
@@ -187,6 +189,9 @@ struct Flow {
     llvm::StringRef var;
     uint32_t varIndex = 0; // resolved by the verifier
     Expr *rate;
+    /// Rectangular flows only: the highest rate (`rate` is the lowest);
+    /// null for an equation x' = rate.
+    Expr *rateHi = nullptr;
   };
   llvm::ArrayRef<Equation> equations;
 };

@@ -797,8 +797,19 @@ bool Parser::parseFlowDecl() {
     Flow::Equation eq;
     if (!parseName(eq.var, eq.loc, "a real variable"))
       return false;
-    if (!expect(Tok::Prime, "''' (a flow is written x' = rate)") ||
-        !expect(Tok::Equal, "'='"))
+    if (!expect(Tok::Prime, "''' (a flow is written x' = rate)"))
+      return false;
+    if (tok.isIdent("in")) {
+      // A rectangular flow `x' in [lo, hi]`.
+      consume();
+      if (!expect(Tok::LBrack, "'['") || !(eq.rate = parseExpr()) ||
+          !expect(Tok::Comma, "','") || !(eq.rateHi = parseExpr()) ||
+          !expect(Tok::RBrack, "']'") || !expect(Tok::Semi, "';'"))
+        return false;
+      eqs.push_back(eq);
+      continue;
+    }
+    if (!expect(Tok::Equal, "'=' or 'in'"))
       return false;
     if (!(eq.rate = parseExpr()) || !expect(Tok::Semi, "';'"))
       return false;

@@ -358,7 +358,16 @@ void ModulePrinter::run() {
   for (const Flow &f : m.flows) {
     os << "  flow " << m.places[f.place].name << " {";
     for (const Flow::Equation &eq : f.equations) {
-      os << ' ' << eq.var << "' = ";
+      os << ' ' << eq.var << "' ";
+      if (eq.rateHi) {
+        os << "in [";
+        printExpr(eq.rate, os);
+        os << ", ";
+        printExpr(eq.rateHi, os);
+        os << "];";
+        continue;
+      }
+      os << "= ";
       printExpr(eq.rate, os);
       os << ';';
     }

@@ -397,11 +397,24 @@ void ModuleVerifier::checkFlows() {
       if (!vars.insert(s.index).second)
         error(eq.loc, "two flows for '" + eq.var + "' in place '" +
                           m.places[f.place].name + "'");
-      const Type *t = check(eq.rate, Ctx::Guard);
-      if (t && !isNumeric(t))
-        error(eq.rate->loc, "the rate of '" + eq.var +
-                                "' must be a number, not '" + typeName(t) +
-                                "'");
+      for (Expr *rate : {eq.rate, eq.rateHi}) {
+        if (!rate)
+          continue;
+        const Type *t = check(rate, Ctx::Guard);
+        if (t && !isNumeric(t))
+          error(rate->loc, "the rate of '" + eq.var +
+                               "' must be a number, not '" + typeName(t) + "'");
+      }
+      if (!eq.rateHi)
+        continue;
+      auto lo = evalConstReal(eq.rate), hi = evalConstReal(eq.rateHi);
+      if (lo && hi && *lo > *hi)
+        error(eq.rate->loc, "the rates of '" + eq.var + "' in place '" +
+                                m.places[f.place].name +
+                                "' are an empty "
+                                "interval [" +
+                                exprToString(eq.rate) + ", " +
+                                exprToString(eq.rateHi) + "]");
     }
   }
 }
