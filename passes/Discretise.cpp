@@ -260,6 +260,13 @@ bool Discretiser::checkRectangularFlows() {
                              "after each step, which a rectangular flow ('" +
                                  eq.var + "' in place '" + place +
                                  "') does not fix; use grid= or points=");
+      if (!std::isfinite(*lo) || !std::isfinite(*hi))
+        return error(eq.loc,
+                     "'" + eq.var + "' changes freely in place '" + place +
+                         "' (its rates are [" + num(*lo) + ", " + num(*hi) +
+                         "]: SpaceEx gives it no flow there, an input or a "
+                         "disturbance); discretise needs rates that are "
+                         "bounded");
       if (*lo <= 0 && *hi >= 0 && !(*lo == 0 && *hi == 0))
         return error(eq.loc,
                      "the rates of '" + eq.var + "' in place '" + place +
@@ -408,6 +415,7 @@ bool Discretiser::collectAssignments() {
     Transition &t = m.transitions[ti];
     if (!t.hasAction())
       continue;
+    context = t.loc;
     std::function<bool(Block, bool)> walk = [&](Block blk, bool top) -> bool {
       for (Stmt *s : blk) {
         if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
@@ -520,6 +528,7 @@ bool Discretiser::collectUses() {
   for (Port &p : m.ports) {
     if (!p.definition)
       continue;
+    context = p.definitionLoc.isValid() ? p.definitionLoc : p.loc;
     if (p.kind == PortKind::Data) {
       const Expr *where = nullptr;
       if (mentionsReal(p.definition, realOfVar, where))
@@ -534,6 +543,7 @@ bool Discretiser::collectUses() {
       return false;
   }
   for (Transition &t : m.transitions) {
+    context = t.loc;
     for (Expr *c : t.conds())
       if (!scanExpr(c))
         return false;

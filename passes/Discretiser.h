@@ -215,9 +215,13 @@ public:
 
 private:
   bool error(llvm::SMLoc loc, const llvm::Twine &msg) {
-    diag.error(loc, msg);
+    diag.error(loc.isValid() ? loc : context, msg);
     return false;
   }
+  /// Where an error points when its expression has no position (frontends
+  /// such as SpaceEx's build expressions from XML text): the port or
+  /// transition being read.
+  llvm::SMLoc context;
   bool collectReals();
   /// The bounds of every rectangular flow: constants of one sign.
   bool checkRectangularFlows();

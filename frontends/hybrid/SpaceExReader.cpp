@@ -96,6 +96,8 @@ private:
     return {};
   }
   std::string real(const std::string &flat, pugi::xml_node where);
+  /// `var' in [-inf, inf]`: SpaceEx leaves the variable's rate free.
+  Flow::Equation freeFlow(const std::string &var, llvm::SMLoc at);
   bool flowOf(pugi::xml_node loc, const Bindings &bind,
               const std::string &prefix, std::vector<Flow::Equation> &out);
   /// The configuration's initial set on the flat model: locations and
@@ -123,6 +125,9 @@ private:
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
+  /// Constants the initial set gives a range, not a value: reals that do
+  /// not change.
+  std::set<std::string> rangedConstants;
   /// Every flat name of a param (variables and constants; what the initial
   /// set may name) and its declaration in a base component if it has one,
   /// else in the system (for messages).
@@ -200,10 +205,30 @@ struct SpaceExReader::ExprParser {
         {"==", BinaryOp::Eq}, {"!=", BinaryOp::Ne}, {"<=", BinaryOp::Le},
         {">=", BinaryOp::Ge}, {"<", BinaryOp::Lt},  {">", BinaryOp::Gt},
         {"=", BinaryOp::Eq}};
-    for (auto &[t, op] : ops)
-      if (eat(t))
-        return r.b.binary(op, a, addExpr());
-    return a;
+    // A chain `a <= x <= b` is `a <= x & x <= b` (x read twice, so that
+    // each comparison has its own operand).
+    Expr *chain = nullptr;
+    for (bool more = true; more && ok;) {
+      more = false;
+      for (auto &[t, op] : ops) {
+        if (!eat(t))
+          continue;
+        skip();
+        size_t start = pos;
+        Expr *c = addExpr();
+        if (!ok)
+          return nullptr;
+        Expr *cmp = r.b.binary(op, a, c);
+        chain = chain ? r.b.binary(BinaryOp::And, chain, cmp) : cmp;
+        size_t end = pos;
+        pos = start;
+        a = addExpr(); // the right operand again, for the next link
+        pos = end;
+        more = true;
+        break;
+      }
+    }
+    return chain ? chain : a;
   }
   Expr *addExpr() {
     Expr *e = mulExpr();
@@ -337,6 +362,15 @@ struct SpaceExReader::ExprParser {
 };
 
 } // namespace
+
+Flow::Equation SpaceExReader::freeFlow(const std::string &var, llvm::SMLoc at) {
+  Flow::Equation fe;
+  fe.loc = at;
+  fe.var = d.save(var);
+  fe.rate = b.realLit(-INFINITY, at);
+  fe.rateHi = b.realLit(INFINITY, at);
+  return fe;
+}
 
 std::string SpaceExReader::real(const std::string &flat, pugi::xml_node where) {
   (void)where;
@@ -557,13 +591,19 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     if (type != "real")
       return error(p, "param type '" + type + "' is not supported");
     StringRef dyn = p.attribute("dynamics").value();
-    if (dyn == "const" && it != bind.end() && !it->second.value && cfg)
-      if (cfg->initial.lookup(it->second.name))
-        return error(p, "constant '" + name + "' of component '" +
-                            comp.attribute("id").value() +
-                            "' is given a range, not a value, by the initial "
-                            "set (fix it with --param '" +
-                            it->second.name + "=VALUE')");
+    // A constant the initial set gives a range: a real that starts
+    // anywhere in it and never changes (no flow, no reset).
+    if (dyn == "const" && it != bind.end() && !it->second.value && cfg &&
+        cfg->initial.lookup(it->second.name)) {
+      if (rangedConstants.insert(it->second.name).second)
+        diag.note(xml.locOf(p),
+                  "constant '" + it->second.name +
+                      "' is given a range by the initial set: it is a real "
+                      "that starts anywhere in it and does not change "
+                      "(--param '" +
+                      it->second.name + "=VALUE' fixes it)");
+      continue;
+    }
     if (dyn == "const" && (it == bind.end() || !it->second.value))
       return error(p, "constant '" + name + "' of component '" +
                           comp.attribute("id").value() +
@@ -631,12 +671,10 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
                            llvm::Twine(comp.attribute("id").value()) +
                            "' has no location");
   for (PendingFlow &pf : flows) {
+    // A variable the component moves elsewhere changes freely here.
     for (const std::string &v : flowVars)
       if (!pf.urgent && !pf.vars.count(v))
-        return error(pf.node, "'" + v + "' has no flow in location '" +
-                                  pf.node.attribute("name").value() +
-                                  "' (SpaceEx leaves it free there; netlift "
-                                  "would hold it constant)");
+        pf.eqs.push_back(freeFlow(v, xml.locOf(pf.node)));
     if (!pf.eqs.empty())
       b.addFlow(pf.place, pf.eqs);
   }
@@ -746,17 +784,33 @@ bool SpaceExReader::run() {
   // A variable no location gives a flow varies freely in SpaceEx (an input
   // or a disturbance, bounded by invariants); a NetIR real without a flow
   // stays constant, which would lose its behaviours.
+  // Such a variable changes freely at all times: its flow is on a place
+  // of its own, always marked.
   std::set<std::string> flowing;
   for (const Flow &f : mod->flows)
     for (const Flow::Equation &eq : f.equations)
       flowing.insert(eq.var.str());
+  std::vector<Flow::Equation> free;
   for (const std::string &v : realOrder)
-    if (!flowing.count(v))
-      return error(paramNode.count(v) ? paramNode[v] : top,
-                   "'" + v +
-                       "' has no flow in any location: SpaceEx lets it vary "
-                       "freely (an input or a disturbance, bounded by "
-                       "invariants); netlift would hold it constant");
+    if (!flowing.count(v) && !rangedConstants.count(v))
+      free.push_back(
+          freeFlow(v, xml.locOf(paramNode.count(v) ? paramNode[v] : top)));
+  if (!free.empty()) {
+    std::string name = "free";
+    for (unsigned i = 1; mod->lookup(name).kind != SymKind::None; ++i)
+      name = "free_" + std::to_string(i);
+    uint32_t place = b.addPlace(d.save(name), 1, 1);
+    b.addFlow(place, free);
+    std::string names;
+    for (const Flow::Equation &eq : free)
+      names += (names.empty() ? "'" : ", '") + eq.var.str() + "'";
+    diag.note(xml.locOf(top),
+              "no location gives a flow to " + names + ": SpaceEx lets " +
+                  (free.size() > 1 ? "them" : "it") +
+                  " change freely (an input or a disturbance, bounded by "
+                  "invariants), written `x' in [-inf, inf]` on the place '" +
+                  name + "', always marked");
+  }
   // Variables: declared before their use is resolved by the verifier.
   for (const std::string &v : realOrder)
     b.addVar(d.save(v), d.types.getReal(-INFINITY, INFINITY), b.realLit(0),
@@ -873,6 +927,14 @@ bool SpaceExReader::addForbidden() {
       if (shortUses[v.substr(dot + 1)] == 1 && !flat.count(v.substr(dot + 1)))
         flat[v.substr(dot + 1)] = Binding{v, std::nullopt};
   }
+  // The system's constants the initial set (or --param) fixes.
+  for (pugi::xml_node p : topNode.children("param"))
+    if (StringRef(p.attribute("dynamics").value()) == "const")
+      if (auto *bd = cfg->initial.lookup(p.attribute("name").value());
+          bd && bd->lo && bd->hi && *bd->lo == *bd->hi &&
+          !rangedConstants.count(p.attribute("name").value()))
+        flat[p.attribute("name").value()] =
+            Binding{p.attribute("name").value(), bd->lo};
   ExprParser ep{*this, text, 0, topNode, flat, "", true, {}};
   ep.inConfig = true;
   ep.configLoc = cfg->forbidden->loc;

@@ -49,6 +49,23 @@ bool Parser::parseUInt32(uint32_t &v, StringRef what, bool allowInf) {
   return true;
 }
 
+bool Parser::parseRateBound(Expr *&e) {
+  Lexer before = lex;
+  Token beforeTok = tok;
+  SMLoc at = tok.loc();
+  bool neg = tok.is(Tok::Minus);
+  if (neg)
+    consume();
+  if (tok.isIdent("inf")) {
+    consume();
+    e = b.realLit(neg ? -INFINITY : INFINITY, at);
+    return true;
+  }
+  lex = before;
+  tok = beforeTok;
+  return (e = parseExpr()) != nullptr;
+}
+
 bool Parser::parseRealBound(double &v) {
   bool neg = false;
   if (tok.is(Tok::Minus)) {
@@ -802,8 +819,8 @@ bool Parser::parseFlowDecl() {
     if (tok.isIdent("in")) {
       // A rectangular flow `x' in [lo, hi]`.
       consume();
-      if (!expect(Tok::LBrack, "'['") || !(eq.rate = parseExpr()) ||
-          !expect(Tok::Comma, "','") || !(eq.rateHi = parseExpr()) ||
+      if (!expect(Tok::LBrack, "'['") || !parseRateBound(eq.rate) ||
+          !expect(Tok::Comma, "','") || !parseRateBound(eq.rateHi) ||
           !expect(Tok::RBrack, "']'") || !expect(Tok::Semi, "';'"))
         return false;
       eqs.push_back(eq);

@@ -129,6 +129,9 @@ private:
   bool parseUInt32(uint32_t &v, StringRef what, bool allowInf);
   bool parseSignedInt(int64_t &v, StringRef what);
   bool parseRealBound(double &v);
+  /// A bound of a rectangular flow's rates: an expression, or `inf` /
+  /// `-inf` (a rate SpaceEx leaves unconstrained).
+  bool parseRateBound(Expr *&e);
 
   // Top level ------------------------------------------------------------
   bool parseTimescale();
