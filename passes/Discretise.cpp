@@ -130,10 +130,17 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
       for (Stmt *s : blk) {
         if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
           auto *target = llvm::dyn_cast<Ref>(a->target);
+          auto *reset = llvm::dyn_cast<CallExpr>(a->value);
           if (target && target->sym.kind == SymKind::Var &&
-              target->sym.index == var)
-            if (auto c = evalConstReal(a->value))
+              target->sym.index == var) {
+            if (reset && reset->fn == Builtin::Between) {
+              for (Expr *end : reset->args)
+                if (auto c = evalConstReal(end))
+                  widen(*c);
+            } else if (auto c = evalConstReal(a->value)) {
               widen(*c);
+            }
+          }
         } else if (auto *i = llvm::dyn_cast<IfStmt>(s)) {
           for (const IfArm &arm : i->arms)
             walk(arm.body);
@@ -437,13 +444,19 @@ bool Discretiser::collectAssignments() {
                                      tr->name +
                                      "' is not supported by discretise "
                                      "(write it at the top of the action)");
-          auto c = evalConstReal(a->value);
-          if (!c)
+          // `x := c`, or `x := between(a, b)`: any value from a to b.
+          auto *reset = llvm::dyn_cast<CallExpr>(a->value);
+          bool interval = reset && reset->fn == Builtin::Between;
+          auto c = evalConstReal(interval ? reset->args[0] : a->value);
+          auto h = interval ? evalConstReal(reset->args[1]) : c;
+          if (!c || !h)
             return error(a->value->loc, "real '" + tr->name +
                                             "' is assigned something that is "
-                                            "not a constant");
+                                            "not a constant" +
+                                            (interval ? " interval" : ""));
           reals[ri].assigned.insert(*c);
-          assigns[{ti, ri}] = *c;
+          reals[ri].assigned.insert(*h);
+          assigns[{ti, ri}] = {*c, *h};
           continue;
         }
         if (auto *i = llvm::dyn_cast<IfStmt>(s)) {

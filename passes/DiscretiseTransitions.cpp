@@ -17,7 +17,8 @@ void Discretiser::emitTransitions(Real &r) {
   // place of its state machine component it moves the token between).
   struct Effect {
     int leaves = -1, enters = -1;
-    std::optional<double> assign;
+    std::optional<std::pair<double, double>> assign; // [lo, hi]
+    bool interval() const { return assign && assign->first < assign->second; }
     int locFrom = -1, locTo = -1; // component places; -1: not touched
     bool touchesOtherReal = false;
     bool relevant() const { return leaves >= 0 || enters >= 0 || assign; }
@@ -70,20 +71,47 @@ void Discretiser::emitTransitions(Real &r) {
                     r.grid.begin());
   };
   // Where the token goes when t fires from form f (clockZero: the form's
-  // place clock is 0, i.e. a moving token is exactly at its entry point).
-  auto targetOf = [&](uint32_t ti, Form f,
-                      bool clockZero) -> std::optional<Form> {
+  // place clock is 0, i.e. a moving token is exactly at its entry point):
+  // one form, or one per value of a reset to an interval (its grid points
+  // and the open segments between them); empty after an error.
+  auto targetsOf = [&](uint32_t ti, Form f, bool clockZero) {
     const Effect &e = effects[ti];
     int flowAfter = e.enters >= 0                         ? e.enters
                     : (f.flow >= 0 && e.leaves != f.flow) ? f.flow
                                                           : -1;
-    if (flowAfter == f.flow && !e.assign)
-      return f;
-    Value v = e.assign ? Value{true, valueIndex(*e.assign)}
-                       : valueOf(r, f, clockZero);
-    if (flowAfter < 0)
-      return global(v);
-    return entry(r, flowAfter, v);
+    std::vector<Form> out;
+    if (flowAfter == f.flow && !e.assign) {
+      out.push_back(f);
+      return out;
+    }
+    std::vector<Value> values;
+    if (e.assign) {
+      unsigned k0 = valueIndex(e.assign->first);
+      unsigned k1 = valueIndex(e.assign->second);
+      for (unsigned k = k0; k <= k1; ++k) {
+        if (k > k0)
+          values.push_back({false, k});
+        values.push_back({true, k});
+      }
+    } else {
+      values.push_back(valueOf(r, f, clockZero));
+    }
+    for (Value v : values) {
+      std::optional<Form> to =
+          flowAfter < 0 ? global(v) : entry(r, flowAfter, v);
+      if (!to)
+        return std::vector<Form>();
+      if (!llvm::is_contained(out, *to))
+        out.push_back(*to);
+    }
+    return out;
+  };
+  auto targetOf = [&](uint32_t ti, Form f,
+                      bool clockZero) -> std::optional<Form> {
+    std::vector<Form> to = targetsOf(ti, f, clockZero);
+    if (to.empty())
+      return std::nullopt;
+    return to.front();
   };
   auto guardMayHold = [&](uint32_t ti, Form f) {
     const Expr *g = m.transitions[ti].guard();
@@ -101,7 +129,7 @@ void Discretiser::emitTransitions(Real &r) {
     const Effect &e = effects[ti];
     bool ok = t.urgent && !t.isForced() && t.conds().empty() && t.guard() &&
               e.leaves >= 0 && !e.touchesOtherReal && !isEventSource[ti] &&
-              t.pre().size() == 1 && t.pre()[0].weight == 1 &&
+              !e.interval() && t.pre().size() == 1 && t.pre()[0].weight == 1 &&
               t.pre()[0].time.isTrivial();
     for (const PostArc &a : t.post())
       ok &= r.component.count(a.place) && a.weight == 1;
@@ -173,9 +201,15 @@ void Discretiser::emitTransitions(Real &r) {
         continue;
       }
       fires.insert({ti, f});
-      add(locAfter, targetOf(ti, f, false));
-      if (f.kind == FormKind::Up || f.kind == FormKind::Down)
-        add(locAfter, targetOf(ti, f, true));
+      for (bool clockZero : {false, true}) {
+        if (clockZero && f.kind != FormKind::Up && f.kind != FormKind::Down)
+          break;
+        std::vector<Form> to = targetsOf(ti, f, clockZero);
+        if (to.empty())
+          add(locAfter, std::nullopt);
+        for (Form g : to)
+          add(locAfter, g);
+      }
     }
   }
   if (failed)
@@ -227,10 +261,13 @@ void Discretiser::emitTransitions(Real &r) {
   // The position follows location changes and resets in the same step.
   for (auto &[ti, f] : fires) {
     bool split = f.kind == FormKind::Up || f.kind == FormKind::Down;
-    Form later = *targetOf(ti, f, false);
-    Form now = split ? *targetOf(ti, f, true) : later;
+    const Effect &e = effects[ti];
     auto emit = [&, ti = ti, f = f](Form to, Interval iv, StringRef suffix) {
-      if (to == f)
+      // A reset to where a moving token entered restarts its place clock
+      // (a self-loop re-marks the place); a choice among several values
+      // must be made even where one of them is the current form (the
+      // forced transitions of a step are maximal).
+      if (to == f && !(e.assign && (f.moving() || e.interval())))
         return;
       std::string name =
           m.transitions[ti].name.str() + "_" + formName(r, f) + suffix.str();
@@ -240,6 +277,15 @@ void Discretiser::emitTransitions(Real &r) {
       b.setEvents(t, {EventSource{ti, false}});
       ++numTransitions;
     };
+    if (e.interval()) {
+      // One forced transition per value: they take the same token, so each
+      // firing of t takes one of them.
+      for (Form to : targetsOf(ti, f, false))
+        emit(to, Interval{}, "_to_" + formName(r, to));
+      continue;
+    }
+    Form later = *targetOf(ti, f, false);
+    Form now = split ? *targetOf(ti, f, true) : later;
     if (now == later) {
       emit(later, Interval{}, "");
     } else {

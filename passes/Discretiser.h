@@ -298,8 +298,9 @@ private:
   llvm::raw_ostream *report;
   std::vector<Real> reals;
   llvm::DenseMap<uint32_t, size_t> realOfVar;
-  // Per transition and real: `x := c` assigned at the top of its action.
-  std::map<std::pair<uint32_t, size_t>, double> assigns;
+  // Per transition and real: `x := c` assigned at the top of its action,
+  // as [c, c], or `x := between(a, b)` as [a, b].
+  std::map<std::pair<uint32_t, size_t>, std::pair<double, double>> assigns;
   llvm::StringSet<> taken;
   double ticksPerUnit = 1; // model time units per second or tick
   std::string timeUnit = "tick";

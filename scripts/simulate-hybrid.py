@@ -14,7 +14,8 @@ Covers rectangular models: constant rates and rectangular flows `x' in
 rates reaches), guards, invariants (`false`:
 an urgent location, left in the instant it is entered) and outputs
 built from comparisons of one real with a constant (and/or/not, places),
-resets to constants, initial values or intervals (sampled every DT).
+resets to constants or intervals (`between(a, b)`), initial values or
+intervals (intervals sampled every DT).
 A real may not leave its declared range (time stops there). With HORIZON,
 runs stop at that time (in ticks): a model whose reals grow without bound
 is simulated up to it.
@@ -94,7 +95,11 @@ def parse(text):
             unsupported(f"arc weights or times in transition {m.group(1)}")
         resets = []
         for a in re.finditer(r"(\S+) := ([^;]+);", m.group(7) or ""):
-            resets.append((a.group(1), compile_expr(a.group(2))))
+            # A reset to an interval: (target, (lo, hi)).
+            iv = re.fullmatch(r"between\(([^,]+), ([^)]+)\)", a.group(2))
+            resets.append((a.group(1),
+                           (Fraction(iv.group(1)), Fraction(iv.group(2)))
+                           if iv else compile_expr(a.group(2))))
         model["trans"].append((m.group(1), pre, post,
                                compile_expr(m.group(4) or "true"), resets,
                                bool(m.group(5))))
@@ -166,13 +171,22 @@ def simulate(model, dt, max_states, horizon):
                     not holds(guard, marking, values):
                 continue
             urgent |= is_urgent
-            new = dict(zip(reals, values))
+            # Every combination of the reset values (an interval sampled
+            # every DT, its ends included).
+            news = [dict(zip(reals, values))]
             for target, expr in resets:
-                new[target] = holds(expr, marking, values)
+                if isinstance(expr, tuple):
+                    lo, hi = expr
+                    choices = sorted({lo, hi} | {lo + k * dt for k in
+                                                 range(int((hi - lo) / dt) + 1)})
+                else:
+                    choices = [holds(expr, marking, values)]
+                news = [{**n, target: c} for n in news for c in choices]
             m2 = (marking - set(pre)) | set(post)
-            v2 = tuple(new[r] for r in reals)
-            if invariant_ok(m2, v2):
-                succ.append((m2, v2, now))
+            for new in news:
+                v2 = tuple(new[r] for r in reals)
+                if invariant_ok(m2, v2):
+                    succ.append((m2, v2, now))
         urgent |= any(p in model["urgent"] for p in marking)
         if not urgent and (horizon is None or now + dt <= horizon):
             rate = {r: (Fraction(0), Fraction(0)) for r in reals}

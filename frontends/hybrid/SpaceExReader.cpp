@@ -98,6 +98,23 @@ private:
   std::string real(const std::string &flat, pugi::xml_node where);
   /// `var' in [-inf, inf]`: SpaceEx leaves the variable's rate free.
   Flow::Equation freeFlow(const std::string &var, llvm::SMLoc at);
+  /// What a flow or an assignment says of each primed variable, in the
+  /// order they are first named.
+  struct PrimedBounds {
+    struct Of {
+      Expr *equal = nullptr, *lower = nullptr, *upper = nullptr;
+      std::string text; // the first comparison naming it, for messages
+    };
+    std::map<std::string, Of> of;
+    std::vector<std::string> order;
+    /// `var`'s value (hi null) or interval [lo, hi]; false after an error.
+    bool interval(SpaceExReader &r, pugi::xml_node node, const std::string &var,
+                  llvm::StringRef what, const std::string &where, Expr *&lo,
+                  Expr *&hi);
+  };
+  bool primedBound(pugi::xml_node node, llvm::StringRef c, const Bindings &bind,
+                   const std::string &prefix, llvm::StringRef what,
+                   PrimedBounds &acc);
   bool flowOf(pugi::xml_node loc, const Bindings &bind,
               const std::string &prefix, std::vector<Flow::Equation> &out);
   /// The configuration's initial set on the flat model: locations and
@@ -398,116 +415,129 @@ bool SpaceExReader::conditions(pugi::xml_node node, const Bindings &bind,
   return true;
 }
 
+/// One comparison of a primed variable with an expression (`x' == e`,
+/// `x' <= e`, `e <= x'`; a strict bound read as closed) added to what is
+/// known of that variable's primed value; false after an error. `what`
+/// names the part of the model for messages ("flow", "assignment").
+bool SpaceExReader::primedBound(pugi::xml_node node, StringRef c,
+                                const Bindings &bind, const std::string &prefix,
+                                StringRef what, PrimedBounds &acc) {
+  auto notOne = [&] {
+    return error(node, what + " '" + c +
+                           "' is not x' == expression or a bound of x' by an "
+                           "expression (" +
+                           (what == "flow"
+                                ? "SpaceEx differential inclusions other than "
+                                  "a <= x' <= b are not supported"
+                                : "nondeterministic resets other than a <= "
+                                  "x' <= b are not supported") +
+                           ")");
+  };
+  // SpaceEx prints a flow plus a set (`... with offset
+  // support_function(...)`) in the problems it flattens.
+  if (c.contains("support_function("))
+    return error(node, what + " '" + c +
+                           "' adds a set given by its support function (a "
+                           "differential inclusion netlift does not take; it "
+                           "takes a <= x' <= b)");
+  auto ops = comparisonOperators(c, /*singleEquals=*/true);
+  if (ops.size() != 1)
+    return notOne();
+  StringRef opText = c.substr(ops[0].first, ops[0].second);
+  if (opText == "=")
+    opText = "==";
+  StringRef sides[2] = {c.take_front(ops[0].first).trim(),
+                        c.drop_front(ops[0].first + ops[0].second).trim()};
+  Expr *parsed[2];
+  std::string primed[2];
+  for (int i = 0; i < 2; ++i) {
+    ExprParser ep{*this, sides[i], 0, node, bind, prefix, true, {}};
+    parsed[i] = ep.orExpr();
+    ep.skip();
+    if (ep.ok && ep.pos != sides[i].size())
+      ep.fail("unexpected '" + sides[i].substr(ep.pos) + "'");
+    if (!ep.ok)
+      return false;
+    primed[i] = ep.primed;
+  }
+  // The primed variable alone on one side, and no prime on the other.
+  int side = -1;
+  for (int i = 0; i < 2; ++i)
+    if (auto *ref = llvm::dyn_cast<Ref>(parsed[i]); ref && !primed[i].empty() &&
+                                                    ref->name == primed[i] &&
+                                                    primed[1 - i].empty())
+      side = i;
+  if (side < 0 || opText == "!=")
+    return notOne();
+  std::string var = primed[side];
+  PrimedBounds::Of &r = acc.of[var];
+  if (r.text.empty()) {
+    r.text = c.str();
+    acc.order.push_back(var);
+  }
+  // `x' <= b` bounds from above; written `b >= x'` likewise.
+  bool less = opText.startswith("<");
+  Expr *&slot = opText == "=="          ? r.equal
+                : (less == (side == 0)) ? r.upper
+                                        : r.lower;
+  if (slot)
+    return error(node, what + " '" + c + "' gives " + var + "' a second " +
+                           (opText == "=="      ? "value"
+                            : &slot == &r.upper ? "upper bound"
+                                                : "lower bound"));
+  slot = parsed[1 - side];
+  return true;
+}
+
 /// A location's flow: per variable an equation `x' == e`, or bounds of its
-/// rate `a <= x' <= b` (also written `x' >= a & x' <= b`; a strict bound
-/// is read as closed), which make a rectangular flow `x' in [a, b]`.
+/// rate `a <= x' <= b` (also written `x' >= a & x' <= b`), which make a
+/// rectangular flow `x' in [a, b]`.
 bool SpaceExReader::flowOf(pugi::xml_node loc, const Bindings &bind,
                            const std::string &prefix,
                            std::vector<Flow::Equation> &out) {
   pugi::xml_node node = loc.child("flow");
-  struct Rates {
-    Expr *equal = nullptr, *lower = nullptr, *upper = nullptr;
-    std::string text; // the first conjunct naming it, for messages
-  };
-  std::map<std::string, Rates> rates;
-  std::vector<std::string> order;
-  auto notAFlow = [&](StringRef c) {
-    return error(node, "flow '" + c +
-                           "' is not x' == expression or a bound of x' by "
-                           "an expression (SpaceEx differential inclusions "
-                           "other than a <= x' <= b are not supported)");
-  };
+  PrimedBounds acc;
   for (StringRef chained : conjuncts(node.child_value()))
-    for (StringRef c : unchain(chained)) {
-      if (c == "true")
-        continue;
-      // SpaceEx prints a flow plus a set (`... with offset
-      // support_function(...)`) in the problems it flattens.
-      if (c.contains("support_function("))
-        return error(node, "flow '" + c +
-                               "' adds a set given by its support function "
-                               "(a differential inclusion netlift does not "
-                               "take; it takes a <= x' <= b)");
-      auto ops = comparisonOperators(c, /*singleEquals=*/true);
-      if (ops.size() != 1)
-        return notAFlow(c);
-      StringRef opText = c.substr(ops[0].first, ops[0].second);
-      if (opText == "=")
-        opText = "==";
-      StringRef sides[2] = {c.take_front(ops[0].first).trim(),
-                            c.drop_front(ops[0].first + ops[0].second).trim()};
-      Expr *parsed[2];
-      std::string primed[2];
-      for (int i = 0; i < 2; ++i) {
-        ExprParser ep{*this, sides[i], 0, node, bind, prefix, true, {}};
-        parsed[i] = ep.orExpr();
-        ep.skip();
-        if (ep.ok && ep.pos != sides[i].size())
-          ep.fail("unexpected '" + sides[i].substr(ep.pos) + "'");
-        if (!ep.ok)
-          return false;
-        primed[i] = ep.primed;
-      }
-      // The primed variable alone on one side, and no prime on the other.
-      int side = -1;
-      for (int i = 0; i < 2; ++i)
-        if (auto *ref = llvm::dyn_cast<Ref>(parsed[i]);
-            ref && !primed[i].empty() && ref->name == primed[i] &&
-            primed[1 - i].empty())
-          side = i;
-      if (side < 0 || opText == "!=")
-        return notAFlow(c);
-      std::string var = primed[side];
-      Expr *rate = parsed[1 - side];
-      Rates &r = rates[var];
-      if (r.text.empty()) {
-        r.text = c.str();
-        order.push_back(var);
-      }
-      // `x' <= b` bounds from above; written `b >= x'` likewise.
-      bool less = opText.startswith("<");
-      Expr *&slot = opText == "=="          ? r.equal
-                    : (less == (side == 0)) ? r.upper
-                                            : r.lower;
-      if (slot)
-        return error(node, "flow '" + c + "' gives " + var + "' a second " +
-                               (opText == "=="      ? "rate"
-                                : &slot == &r.upper ? "upper bound"
-                                                    : "lower bound") +
-                               " in location '" +
-                               loc.attribute("name").value() + "'");
-      slot = rate;
-    }
-  for (const std::string &var : order) {
-    Rates &r = rates[var];
+    for (StringRef c : unchain(chained))
+      if (c != "true" && !primedBound(node, c, bind, prefix, "flow", acc))
+        return false;
+  std::string where =
+      "in location '" + std::string(loc.attribute("name").value()) + "'";
+  for (const std::string &var : acc.order) {
     Flow::Equation fe;
     fe.loc = xml.locOf(node);
     fe.var = d.save(var);
-    if (r.equal && (r.lower || r.upper))
-      return error(node, "flow of '" + var + "' in location '" +
-                             loc.attribute("name").value() +
-                             "' gives both an equation and a bound of its "
-                             "rate ('" +
-                             r.text + "')");
-    if (r.equal) {
-      fe.rate = r.equal;
-    } else if (r.lower && r.upper) {
-      fe.rate = r.lower;
-      fe.rateHi = r.upper;
-    } else {
-      return error(node, "flow of '" + var + "' in location '" +
-                             loc.attribute("name").value() +
-                             "' bounds its "
-                             "rate " +
-                             (r.lower ? "from below" : "from above") +
-                             " only ('" + r.text +
-                             "'): netlift takes a "
-                             "differential inclusion with both bounds, a <= " +
-                             var + "' <= b");
-    }
+    if (!acc.interval(*this, node, var, "flow", where, fe.rate, fe.rateHi))
+      return false;
     out.push_back(fe);
   }
   return true;
+}
+
+bool SpaceExReader::PrimedBounds::interval(
+    SpaceExReader &r, pugi::xml_node node, const std::string &var,
+    StringRef what, const std::string &where, Expr *&lo, Expr *&hi) {
+  Of &o = of[var];
+  if (o.equal && (o.lower || o.upper))
+    return r.error(node, what + " of '" + var + "' " + where +
+                             " gives both a value and a bound of " + var +
+                             "' ('" + o.text + "')");
+  if (o.equal) {
+    lo = o.equal;
+    hi = nullptr;
+    return true;
+  }
+  if (o.lower && o.upper) {
+    lo = o.lower;
+    hi = o.upper;
+    return true;
+  }
+  return r.error(node, what + " of '" + var + "' " + where + " bounds " + var +
+                           "' " + (o.lower ? "from below" : "from above") +
+                           " only ('" + o.text +
+                           "'): netlift takes an interval with both bounds, "
+                           "a <= " +
+                           var + "' <= b");
 }
 
 bool SpaceExReader::instantiate(pugi::xml_node comp, const std::string &prefix,
@@ -698,37 +728,46 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
     }
     if (!conditions(t.child("guard"), bind, prefix, pt.guards))
       return false;
-    for (StringRef c : conjuncts(t.child_value("assignment"))) {
-      // `x' == e`, `x' = e` or `x := e`.
-      auto [lhsText, rhsText] = c.split(":=");
-      bool assign = c.contains(":=");
-      ExprParser ep{*this, assign ? lhsText : c,
-                    0,     t.child("assignment"),
-                    bind,  prefix,
-                    true,  {}};
-      Expr *e = ep.orExpr();
-      if (!ep.ok)
-        return false;
-      Ref *target = nullptr;
-      Expr *value = nullptr;
-      if (assign) {
-        target = llvm::dyn_cast<Ref>(e);
-        ExprParser rp{*this, rhsText, 0,    t.child("assignment"),
-                      bind,  prefix,  true, {}};
-        value = rp.orExpr();
+    // `x := e`, `x' == e` (or `x' = e`), and `a <= x' <= b`: a reset to
+    // any value in [a, b].
+    pugi::xml_node assignment = t.child("assignment");
+    PrimedBounds acc;
+    for (StringRef c : conjuncts(assignment.child_value())) {
+      if (c.contains(":=")) {
+        auto [lhsText, rhsText] = c.split(":=");
+        ExprParser ep{*this, lhsText, 0, assignment, bind, prefix, true, {}};
+        auto *target = llvm::dyn_cast_or_null<Ref>(ep.orExpr());
+        if (!ep.ok)
+          return false;
+        if (!target)
+          return error(assignment,
+                       "assignment '" + c + "' does not assign a variable");
+        ExprParser rp{*this, rhsText, 0, assignment, bind, prefix, true, {}};
+        Expr *value = rp.orExpr();
         if (!rp.ok)
           return false;
-      } else if (auto *eq = llvm::dyn_cast<BinaryExpr>(e);
-                 eq && eq->op == BinaryOp::Eq && !ep.primed.empty()) {
-        target = llvm::dyn_cast<Ref>(eq->lhs);
-        value = eq->rhs;
+        PrimedBounds::Of &o = acc.of[target->name.str()];
+        if (o.text.empty()) {
+          o.text = c.str();
+          acc.order.push_back(target->name.str());
+        }
+        if (o.equal)
+          return error(assignment, "assignment '" + c + "' gives " +
+                                       target->name + "' a second value");
+        o.equal = value;
+        continue;
       }
-      if (!target || !value)
-        return error(t.child("assignment"),
-                     "assignment '" + c +
-                         "' is not x' == expression or x := expression "
-                         "(nondeterministic resets are not supported)");
-      pt.resets.push_back(b.assign(target, value));
+      for (StringRef one : unchain(c))
+        if (!primedBound(assignment, one, bind, prefix, "assignment", acc))
+          return false;
+    }
+    for (const std::string &var : acc.order) {
+      Expr *lo = nullptr, *hi = nullptr;
+      if (!acc.interval(*this, assignment, var, "assignment",
+                        "on this transition", lo, hi))
+        return false;
+      Expr *value = hi ? b.call(Builtin::Between, {lo, hi}, lo->loc) : lo;
+      pt.resets.push_back(b.assign(b.ref(d.save(var)), value));
     }
     protos.push_back(std::move(pt));
   }

@@ -78,6 +78,9 @@ private:
   bool checkInit(Expr *init, const Type *type, StringRef what);
   void checkBlock(Block b);
   void checkStmt(Stmt *s);
+  /// The `between(a, b)` being checked as the whole value of an assignment
+  /// (the only place it may appear).
+  const CallExpr *resetValue = nullptr;
   const Type *checkTarget(Expr *e);
   bool isNumeric(const Type *t) {
     return t->isInteger() || t->isReal() || t->isFloat();
@@ -970,6 +973,19 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
   if (isStringBuiltin(c->fn))
     return checkStringCall(c);
   switch (c->fn) {
+  case Builtin::Between:
+    if (c != resetValue) {
+      error(c->loc, "between() is a hybrid reset to an interval: only the "
+                    "whole value assigned to a real variable");
+      return nullptr;
+    }
+    for (Expr *a : c->args)
+      if (!isNumeric(a->type)) {
+        error(a->loc,
+              "between() needs numbers, not '" + typeName(a->type) + "'");
+        return nullptr;
+      }
+    return c->type = types.getAnyReal();
   case Builtin::Convert:
     if (c->to->isString() || c->args[0]->type->isString()) {
       const Type *from = c->args[0]->type;
@@ -1123,9 +1139,25 @@ void ModuleVerifier::checkStmt(Stmt *s) {
   case StmtKind::Assign: {
     auto *a = llvm::cast<AssignStmt>(s);
     const Type *tt = checkTarget(a->target);
+    auto *reset = llvm::dyn_cast<CallExpr>(a->value);
+    if (reset && reset->fn == Builtin::Between) {
+      if (tt && !tt->isReal()) {
+        error(a->value->loc, "between() resets a hybrid real; '" +
+                                 exprToString(a->target) + "' is not one");
+        return;
+      }
+      resetValue = reset;
+    }
     const Type *vt = check(a->value, Ctx::Guard);
+    resetValue = nullptr;
     if (!tt || !vt)
       return;
+    if (reset && reset->fn == Builtin::Between) {
+      auto lo = evalConstReal(reset->args[0]),
+           hi = evalConstReal(reset->args[1]);
+      if (lo && hi && *lo > *hi)
+        error(a->value->loc, "between() of an empty interval");
+    }
     if (!takes(tt, a->value)) {
       error(a->value->loc, "cannot assign a value of type '" +
                                typeName(a->value->type) + "' to '" +
