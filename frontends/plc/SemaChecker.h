@@ -83,6 +83,9 @@ private:
   bool referenceAssignable(const PType *to, Expr *from, SMLoc at,
                            const Twine &what);
   bool comparableReferences(const PType *a, const PType *b, Expr *e);
+  /// A pointer met as a number (its address: `dw := ptr`, `ptr < end`):
+  /// refused by name, true when reported.
+  bool addressAsNumber(const PType *a, const PType *b, SMLoc at);
   /// `p + n`, `n + p`, `p - n` on a POINTER TO T, n a whole number of T's
   /// (a multiple of SIZEOF(T)): the pointer's type, or null after an error.
   const PType *pointerArithmetic(Expr *e, const PType *a, const PType *b);

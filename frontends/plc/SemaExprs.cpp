@@ -412,7 +412,8 @@ const PType *Checker::expr(Expr *e) {
                (e->op == Op::Eq || e->op == Op::Ne))
         ok = comparableReferences(ab, bb, e);
       if (!ok) {
-        error(e->loc, "cannot compare " + a->str() + " with " + b->str());
+        if (!addressAsNumber(a, b, e->loc))
+          error(e->loc, "cannot compare " + a->str() + " with " + b->str());
         return nullptr;
       }
       t = boolType();

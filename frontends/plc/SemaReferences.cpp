@@ -319,9 +319,24 @@ bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
   if (to->refKind == RefKind::Pointer && ft->kind == PTypeKind::AnyInt &&
       from->kind == ExprKind::IntLit && from->intValue == 0)
     return true;
+  if (addressAsNumber(to, ft, at))
+    return false;
   error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
                 " to " + to->str());
   return false;
+}
+
+bool Checker::addressAsNumber(const PType *a, const PType *b, SMLoc at) {
+  const PType *ptr = a->isReference() ? a : b->isReference() ? b : nullptr;
+  const PType *num = ptr == a ? baseOf(b) : baseOf(a);
+  if (!ptr || ptr->refKind != RefKind::Pointer || !num->isInteger())
+    return false;
+  error(at, "a " + ptr->str() + " used as a number (its address, with " +
+                num->str() +
+                "): netlift models a pointer as the location it designates, "
+                "not as an address; pointer arithmetic other than element "
+                "steps (ADR(x) + n * SIZEOF(element)) is not modelled");
+  return true;
 }
 
 bool Checker::comparableReferences(const PType *a, const PType *b, Expr *e) {

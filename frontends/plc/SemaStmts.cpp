@@ -133,8 +133,9 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     return true;
   }
   auto mismatch = [&] {
-    error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
-                  " to " + to->str());
+    if (!addressAsNumber(to, ft, at))
+      error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
+                    " to " + to->str());
     return false;
   };
   switch (tb->kind) {
