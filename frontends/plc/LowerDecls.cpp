@@ -44,7 +44,7 @@ const net::Type *Lowering::netType(const PType *t, SMLoc at, StringRef what) {
     r = floatType(t);
     break;
   case PTypeKind::String:
-    r = stringType(t, at, what);
+    r = t->isChar() ? scalarNetType(t, tt) : stringType(t, at, what);
     break;
   case PTypeKind::Date:
     r = scalarNetType(t, tt);
@@ -113,7 +113,9 @@ const net::Type *plc::scalarNetType(const PType *t, net::TypeTable &tt) {
   case PTypeKind::Real:
     return tt.getFloat(t->width == 32 ? 32 : 64);
   case PTypeKind::String:
-    return t->isString() ? tt.getString(t->strLen, t->width == 16) : nullptr;
+    // CHAR and WCHAR hold a character's code.
+    return t->isString() ? tt.getString(t->strLen, t->width == 16)
+                         : tt.getInt(t->width, false, net::Overflow::Wrap);
   default:
     return nullptr;
   }
@@ -134,7 +136,7 @@ NExpr *Lowering::defaultValue(const PType *t, SMLoc at) {
   case PTypeKind::Real:
     return b.realLit(0.0, at);
   case PTypeKind::String:
-    return b.stringLit({}, at);
+    return t->isChar() ? b.intLit(0, at) : b.stringLit({}, at);
   case PTypeKind::Enum:
     return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[0]), at);
   case PTypeKind::Reference:
@@ -233,7 +235,7 @@ NExpr *Lowering::initialValue(VarDecl *v, Initializer *init, const PType *t,
     if (lit->kind != ExprKind::StringLit)
       refuse(e->loc, "initial value of '" + v->name +
                          "' must be a string literal or a CONSTANT");
-    return stringLiteral(lit);
+    return t->isChar() ? charLiteral(lit) : stringLiteral(lit);
   }
   if (t->kind == PTypeKind::Real || t->kind == PTypeKind::Date) {
     Sink pre;

@@ -242,7 +242,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::RealLit:
     return b.realLit(e->realValue, e->loc);
   case ExprKind::StringLit:
-    return stringLiteral(e);
+    // Sema types a one-character literal met by a CHAR as that CHAR.
+    return e->type && e->type->isChar() ? charLiteral(e) : stringLiteral(e);
   case ExprKind::DateLit:
     return b.intLit(e->intValue, e->loc); // nanoseconds
   case ExprKind::EnumLit:

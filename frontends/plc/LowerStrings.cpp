@@ -4,8 +4,11 @@
 // the engine executes (docs/netir.md, "Strings"): literals are decoded from
 // IEC's `$` escapes, the standard string functions map one to one onto
 // NetIR's built-ins (CONCAT's extra operands chained), and the conversions
-// *_TO_STRING / STRING_TO_* onto NetIR conversions. CHAR and WCHAR, and
-// conversions between strings and TIME or dates, are refused by name.
+// *_TO_STRING / STRING_TO_* onto NetIR conversions. CHAR and WCHAR hold a
+// character's code (an unsigned integer of 8 or 16 bits): a one-character
+// literal is its code, CHAR_TO_STRING the one-character string (empty for
+// code 0, the terminator), STRING_TO_CHAR the first character's code (0 for
+// an empty string), conversions to and from integers the code itself.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
@@ -21,6 +24,13 @@ const net::Type *Lowering::stringType(const PType *t, SMLoc at,
                    ": single characters (CHAR, WCHAR) are not supported; "
                    "use STRING[1]");
   return design.types.getString(t->strLen, t->width == 16);
+}
+
+NExpr *Lowering::charLiteral(Expr *e) {
+  std::u16string chars;
+  if (auto err = decodeStringLiteral(e->name, chars))
+    refuse(e->loc, *err); // Sema has reported it
+  return b.intLit(chars.empty() ? 0 : int64_t(chars[0]), e->loc);
 }
 
 NExpr *Lowering::stringLiteral(Expr *e) {
@@ -53,6 +63,29 @@ NExpr *Lowering::convertString(NExpr *v, const PType *from, const PType *to,
     refuse(at, "conversion from " + from->str() + " to " + to->str() +
                    " is not supported");
   };
+  // A character as the unsigned integer of its width.
+  auto code = [&](const PType *c) {
+    return elementaryType(c->width == 16 ? "WORD" : "BYTE");
+  };
+  if (from->isChar() && to->isString()) {
+    const net::Type *one = design.types.getString(1, to->width == 16);
+    NExpr *text =
+        b.call(net::Builtin::WithCode,
+               {b.convert(one, b.stringLit({}, at), at), b.intLit(1, at),
+                convert(v, code(from), code(to), at)},
+               at);
+    return b.convert(stringType(to, at, "conversion result"), text, at);
+  }
+  if (from->isString() && to->isChar())
+    return convert(b.call(net::Builtin::Code, {v, b.intLit(1, at)}, at),
+                   elementaryType("DWORD"), code(to), at);
+  if (from->isChar() || to->isChar()) {
+    if (!(from->isChar() || from->kind == PTypeKind::Int) ||
+        !(to->isChar() || to->kind == PTypeKind::Int))
+      return refused();
+    return convert(v, from->isChar() ? code(from) : from,
+                   to->isChar() ? code(to) : to, at);
+  }
   if (to->kind == PTypeKind::String) {
     if (!(from->isString() || from->kind == PTypeKind::Bool ||
           from->kind == PTypeKind::Int || from->kind == PTypeKind::Real))

@@ -599,6 +599,8 @@ private:
   // STRING and WSTRING (LowerStrings.cpp).
   const net::Type *stringType(const PType *t, SMLoc at, StringRef what);
   NExpr *stringLiteral(Expr *literal);
+  /// A one-character literal where a CHAR or WCHAR is meant: its code.
+  NExpr *charLiteral(Expr *literal);
   /// LEN, LEFT, ... FIND on lowered operands.
   NExpr *stringFunction(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
   /// A conversion to or from a string.

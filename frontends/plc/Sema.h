@@ -78,6 +78,8 @@ struct PType {
     return kind == PTypeKind::Int || kind == PTypeKind::AnyInt;
   }
   bool isString() const { return kind == PTypeKind::String && strLen > 0; }
+  /// CHAR or WCHAR (`width` 8 or 16): one character, held as its code.
+  bool isChar() const { return kind == PTypeKind::String && strLen == 0; }
   bool isReference() const { return kind == PTypeKind::Reference; }
   bool isAnyBit() const {
     return kind == PTypeKind::Bool || (kind == PTypeKind::Int && isBits);

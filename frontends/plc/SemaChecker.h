@@ -86,6 +86,9 @@ private:
   /// A pointer met as a number (its address: `dw := ptr`, `ptr < end`):
   /// refused by name, true when reported.
   bool addressAsNumber(const PType *a, const PType *b, SMLoc at);
+  /// Is `x` a value of the character type `c` (a CHAR of the same width,
+  /// or a literal of one character, which is then typed `c`)?
+  bool charValue(const PType *c, Expr *x);
   /// `p + n`, `n + p`, `p - n` on a POINTER TO T, n a whole number of T's
   /// (a multiple of SIZEOF(T)): the pointer's type, or null after an error.
   const PType *pointerArithmetic(Expr *e, const PType *a, const PType *b);

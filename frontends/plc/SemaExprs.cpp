@@ -411,6 +411,9 @@ const PType *Checker::expr(Expr *e) {
       else if ((ab->isReference() || bb->isReference()) &&
                (e->op == Op::Eq || e->op == Op::Ne))
         ok = comparableReferences(ab, bb, e);
+      else if (ab->isChar() || bb->isChar())
+        ok = ab->isChar() ? charValue(ab, e->operands[1])
+                          : charValue(bb, e->operands[0]);
       if (!ok) {
         if (!addressAsNumber(a, b, e->loc))
           error(e->loc, "cannot compare " + a->str() + " with " + b->str());

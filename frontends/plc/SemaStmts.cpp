@@ -116,6 +116,18 @@ void Checker::stmt(Stmt *s) {
   }
 }
 
+bool Checker::charValue(const PType *c, Expr *x) {
+  const PType *t = baseOf(x->type);
+  if (t->isChar())
+    return t->width == c->width;
+  std::u16string chars;
+  if (x->kind != ExprKind::StringLit || decodeStringLiteral(x->name, chars) ||
+      chars.size() != 1 || (c->width == 8 && chars[0] > 255))
+    return false;
+  x->type = c;
+  return true;
+}
+
 bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
                          const Twine &what) {
   const PType *ft = from ? from->type : nullptr;
@@ -200,8 +212,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
         (tb->width == fb->width ||
          (fb->width < tb->width && from->kind == ExprKind::StringLit)))
       return true;
-    if (tb->kind == fb->kind && tb == fb)
-      return true; // CHAR, WCHAR: refused when lowered
+    if (tb->isChar() && charValue(tb, from))
+      return true;
     return mismatch();
   case PTypeKind::Reference:
     return referenceAssignable(tb, from, at, what);

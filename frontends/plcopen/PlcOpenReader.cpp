@@ -55,9 +55,9 @@ private:
 } // namespace
 
 static const char *const elementaryTypes[] = {
-    "BOOL",  "SINT",  "INT",  "DINT", "LINT",  "USINT", "UINT",
-    "UDINT", "ULINT", "BYTE", "WORD", "DWORD", "LWORD", "REAL",
-    "LREAL", "TIME",  "DATE", "DT",   "TOD",   "LTIME"};
+    "BOOL",  "SINT", "INT",  "DINT",  "LINT",  "USINT", "UINT",  "UDINT",
+    "ULINT", "BYTE", "WORD", "DWORD", "LWORD", "REAL",  "LREAL", "TIME",
+    "DATE",  "DT",   "TOD",  "LTIME", "CHAR",  "WCHAR"};
 
 /// The type held by a <type> or <baseType> element.
 TypeSyntax *Reader::type(pugi::xml_node holder) {
