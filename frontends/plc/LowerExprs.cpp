@@ -208,6 +208,9 @@ NExpr *Lowering::lvalue(Expr *e, Frame &f, Sink &pre) {
     return b.field(lvalue(base, f, pre), sanitize(e->name), e->loc);
   }
   case ExprKind::Index: {
+    if (isStringIndex(e))
+      refuse(e->loc, "a character of a string (s[i]) is passed by reference "
+                     "or bound to an output; netlift reads and assigns it");
     if (e->type && e->type->kind == PTypeKind::FunctionBlock)
       refuse(e->loc, "an element of an array of function block instances is "
                      "called, or its inputs and outputs are read or "
@@ -263,6 +266,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     return lvalue(e, f, pre);
   case ExprKind::Field:
   case ExprKind::Index:
+    if (isStringIndex(e))
+      return stringByteRead(e, f, pre);
     if (throughReference(e))
       return readThroughReference(e, f, pre);
     if (memberOfChosenInstance(e, f))

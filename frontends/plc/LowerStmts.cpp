@@ -200,6 +200,10 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
           b.assign(lvalue(s->target, f, out), b.intLit(0, s->loc), s->loc));
       return;
     }
+    if (isStringIndex(s->target)) {
+      stringByteWrite(s->target, value, f, out, s->loc);
+      return;
+    }
     if (s->target->kind != ExprKind::BitAccess && throughReference(s->target)) {
       writeThroughReference(s->target, value, s->value, f, out, s->loc);
       return;

@@ -33,6 +33,33 @@ NExpr *Lowering::charLiteral(Expr *e) {
   return b.intLit(chars.empty() ? 0 : int64_t(chars[0]), e->loc);
 }
 
+bool Lowering::isStringIndex(const Expr *e) {
+  return e->kind == ExprKind::Index && e->operands.size() == 2 &&
+         e->base()->type && baseOf(e->base()->type)->isString();
+}
+
+NExpr *Lowering::stringByteRead(Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = e->loc;
+  NExpr *s = expr(e->base(), f, pre);
+  NExpr *p = b.binary(net::BinaryOp::Add, expr(e->operands[1], f, pre),
+                      b.intLit(1, at), at);
+  return b.call(net::Builtin::Code, {s, p}, at);
+}
+
+void Lowering::stringByteWrite(Expr *target, NExpr *value, Frame &f, Sink &out,
+                               SMLoc at) {
+  Expr *base = target->base();
+  NExpr *p = b.binary(net::BinaryOp::Add, expr(target->operands[1], f, out),
+                      b.intLit(1, at), at);
+  NExpr *updated =
+      b.call(net::Builtin::WithCode, {expr(base, f, out), p, value}, at);
+  if (throughReference(base)) {
+    writeThroughReference(base, updated, base, f, out, at);
+    return;
+  }
+  out.push_back(b.assign(lvalue(base, f, out), updated, at));
+}
+
 NExpr *Lowering::stringLiteral(Expr *e) {
   std::u16string chars;
   if (auto err = decodeStringLiteral(e->name, chars))

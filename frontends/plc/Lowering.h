@@ -601,6 +601,12 @@ private:
   NExpr *stringLiteral(Expr *literal);
   /// A one-character literal where a CHAR or WCHAR is meant: its code.
   NExpr *charLiteral(Expr *literal);
+  /// `s[i]` on a STRING or WSTRING (CODESYS, TwinCAT): the code of its
+  /// (i+1)-th character, read and assigned as code() and with_code().
+  static bool isStringIndex(const Expr *e);
+  NExpr *stringByteRead(Expr *e, Frame &f, Sink &pre);
+  void stringByteWrite(Expr *target, NExpr *value, Frame &f, Sink &out,
+                       SMLoc at);
   /// LEN, LEFT, ... FIND on lowered operands.
   NExpr *stringFunction(Expr *call, llvm::ArrayRef<NExpr *> args, SMLoc at);
   /// A conversion to or from a string.

@@ -293,6 +293,17 @@ const PType *Checker::expr(Expr *e) {
     const PType *bt = expr(e->base());
     if (!bt)
       return nullptr;
+    // CODESYS and TwinCAT index a STRING's bytes (a WSTRING's words) from
+    // 0: s[i] is the code of its (i+1)-th character (LowerStrings.cpp).
+    if (baseOf(bt)->isString() && e->operands.size() == 2) {
+      const PType *it = expr(e->operands[1]);
+      if (it && !baseOf(it)->isInteger()) {
+        error(e->operands[1]->loc, "string index must be an integer");
+        return nullptr;
+      }
+      t = elementaryType(baseOf(bt)->width == 16 ? "WORD" : "BYTE");
+      break;
+    }
     if (bt->kind != PTypeKind::Array) {
       error(e->loc, "indexing a value of type " + bt->str());
       return nullptr;

@@ -87,6 +87,28 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
   const PType *t = expr(arg);
   if (!t)
     return nullptr;
+  // ADR(s[i]), a character of a STRING (CODESYS, TwinCAT): ADR(s) + i, a
+  // step through the string's bytes.
+  if (arg->kind == ExprKind::Index && arg->operands.size() == 2 &&
+      arg->base()->type && baseOf(arg->base()->type)->isString()) {
+    if (!isAdr || baseOf(arg->base()->type)->width == 16) {
+      error(arg->loc, e->name + " of a character of a " +
+                          baseOf(arg->base()->type)->str() +
+                          ": netlift takes ADR(s[i]) of a STRING (ADR(s) + "
+                          "i, a POINTER TO BYTE)");
+      return nullptr;
+    }
+    Expr *whole = unit.make<Expr>(*e);
+    whole->args[0].value = arg->base();
+    whole->type = nullptr;
+    Expr *offset = arg->operands[1];
+    e->kind = ExprKind::Binary;
+    e->op = Op::Add;
+    e->name.clear();
+    e->args.clear();
+    e->operands = {whole, offset};
+    return expr(e);
+  }
   if (!designatesStorage(arg)) {
     error(arg->loc, e->name + " needs a variable, a field, an element or a "
                               "dereference");
