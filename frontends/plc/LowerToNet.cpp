@@ -312,78 +312,68 @@ void Lowering::attachPragmas() {
   pendingPragmas.clear();
 }
 
-/// FB_init of every instance the program holds (members before the block
-/// holding them), once, before the first scan: at the start of the first
-/// scan, under a flag that is then set for good.
+/// The FB_init calls of instance `v` at `path` (its members' first, then a
+/// base's before each derived block's own), or of every element of an
+/// array of instances (without arguments: a declaration gives an array
+/// none), appended to `calls`.
+void Lowering::initCallsOf(VarDecl *v, const PType *type,
+                           const std::string &path, Frame &in, Sink &calls) {
+  if (type && type->kind == PTypeKind::Array) {
+    forEachIndex(type, [&](llvm::ArrayRef<int64_t> index) {
+      initCallsOf(v, type->elem, elementPath(path, index), in, calls);
+    });
+    return;
+  }
+  Pou *fb = type && type->kind == PTypeKind::FunctionBlock ? type->fb : nullptr;
+  if (!fb || !fb->environment.empty())
+    return;
+  Frame inner;
+  inner.pou = fb;
+  inner.prefix = path + ".";
+  for (VarDecl *m : fb->vars)
+    if (m->section != VarSection::InOut && m->section != VarSection::External)
+      initCallsOf(m, m->type, inner.prefix + sanitize(m->name), inner, calls);
+  std::vector<Pou *> chain;
+  for (Pou *b = fb; b; b = b->base)
+    for (Pou *m : b->methods)
+      if (!m->property && sameName(m->name, "FB_init"))
+        chain.insert(chain.begin(), m);
+  if (chain.empty())
+    return;
+  // A declared instance has its call (with the declaration's arguments);
+  // an element of an array one without arguments.
+  Expr *given = type == v->type ? v->initCall : nullptr;
+  for (Pou *impl : chain) {
+    Expr *call = unit.make<Expr>(ExprKind::Call, v->loc);
+    if (given) {
+      *call = *given;
+      call->args.clear();
+      for (CallArg &a : given->args)
+        if (impl->find(a.name))
+          call->args.push_back(a);
+    } else {
+      call->name = impl->name;
+      call->method = true;
+    }
+    call->callee = impl;
+    MethodTarget target;
+    target.impl = impl;
+    target.selfType = fb;
+    target.prefixes.push_back(path + ".");
+    target.tests.push_back(nullptr);
+    inlineCall(call, impl, target, in, calls);
+  }
+}
+
+/// FB_init of every instance the program holds, once, before the first
+/// scan: at the start of the first scan, under a flag that is then set for
+/// good. The global instances' run before any program's
+/// (globalInitCalls).
 void Lowering::runInitCalls(ProgramRun &run, Frame &top, Sink &action) {
   Sink calls;
-  std::function<void(Pou *, const std::string &, Frame &)> visit =
-      [&](Pou *owner, const std::string &prefix, Frame &in) {
-        for (VarDecl *v : owner->vars) {
-          Pou *fb = v->type && v->type->kind == PTypeKind::FunctionBlock
-                        ? v->type->fb
-                        : nullptr;
-          if (!fb || !fb->environment.empty() ||
-              v->section == VarSection::InOut ||
-              v->section == VarSection::External)
-            continue;
-          std::string path = prefix + sanitize(v->name);
-          Frame inner;
-          inner.pou = fb;
-          inner.prefix = path + ".";
-          visit(fb, inner.prefix, inner);
-          if (!v->initCall)
-            continue;
-          // A base's FB_init runs first, then each derived block's own
-          // (given the arguments it declares).
-          std::vector<Pou *> chain;
-          for (Pou *b = fb; b; b = b->base)
-            for (Pou *m : b->methods)
-              if (!m->property && sameName(m->name, "FB_init"))
-                chain.insert(chain.begin(), m);
-          for (Pou *impl : chain) {
-            Expr *call = v->initCall;
-            if (impl != call->callee) {
-              call = unit.make<Expr>(*v->initCall);
-              call->callee = impl;
-              call->args.clear();
-              for (CallArg &a : v->initCall->args)
-                if (impl->find(a.name))
-                  call->args.push_back(a);
-            }
-            MethodTarget target;
-            target.impl = impl;
-            target.selfType = fb;
-            target.prefixes.push_back(path + ".");
-            target.tests.push_back(nullptr);
-            inlineCall(call, impl, target, in, calls);
-          }
-        }
-      };
-  // Instances netlift would not initialise are refused, not left
-  // uninitialised.
-  auto hasInit = [](const PType *t) {
-    Pou *fb = t ? instanceBlock(t) : nullptr;
-    return fb && findMethod(fb, "FB_init");
-  };
-  for (VarDecl *g : globalsUsedBy(run.pou))
-    if (hasInit(g->type))
-      refuse(g->loc, "FB_init of the global instance '" + g->name +
-                         "' is not run by netlift (global instances with "
-                         "FB_init are refused)");
-  std::function<void(Pou *)> arrays = [&](Pou *owner) {
-    for (VarDecl *v : owner->vars)
-      if (v->type && v->type->kind == PTypeKind::Array && hasInit(v->type))
-        refuse(v->loc, "FB_init of the elements of '" + v->name +
-                           "' is not run by netlift (arrays of instances "
-                           "with FB_init are refused)");
-      else if (Pou *fb = v->type && v->type->kind == PTypeKind::FunctionBlock
-                             ? v->type->fb
-                             : nullptr)
-        arrays(fb);
-  };
-  arrays(run.pou);
-  visit(run.pou, run.prefix, top);
+  for (VarDecl *v : run.pou->vars)
+    if (v->section != VarSection::InOut && v->section != VarSection::External)
+      initCallsOf(v, v->type, run.prefix + sanitize(v->name), top, calls);
   if (calls.empty())
     return;
   SMLoc at = run.pou->loc;
@@ -393,6 +383,34 @@ void Lowering::runInitCalls(ProgramRun &run, Frame &top, Sink &action) {
   net::IfArm arm{b.unary(net::UnaryOp::Not, b.ref(done, at), at),
                  design.copy(llvm::ArrayRef<NStmt *>(calls))};
   action.push_back(b.ifStmt({arm}, false, {}, at));
+}
+
+Sink Lowering::globalInitCalls(std::vector<ProgramRun> &runs) {
+  std::set<VarDecl *> globals;
+  for (ProgramRun &run : runs)
+    for (VarDecl *g : globalsUsedBy(run.pou))
+      globals.insert(g);
+  // In declaration order (the set is ordered by address).
+  std::vector<VarDecl *> ordered(globals.begin(), globals.end());
+  std::stable_sort(ordered.begin(), ordered.end(), [](VarDecl *a, VarDecl *b) {
+    return a->loc.getPointer() < b->loc.getPointer();
+  });
+  Frame none;
+  none.pou = runs.front().pou;
+  none.prefix = runs.front().prefix;
+  Sink calls;
+  for (VarDecl *g : ordered)
+    initCallsOf(g, g->type, sanitize(g->name), none, calls);
+  if (calls.empty())
+    return calls;
+  SMLoc at = runs.front().pou->loc;
+  std::string done = unique("_globals_initialised");
+  b.addVar(done, design.types.getBool(), b.boolLit(false, at), at);
+  calls.push_back(b.assign(b.ref(done, at), b.boolLit(true, at), at));
+  net::IfArm arm{b.unary(net::UnaryOp::Not, b.ref(done, at), at),
+                 design.copy(llvm::ArrayRef<NStmt *>(calls))};
+  Sink out{b.ifStmt({arm}, false, {}, at)};
+  return out;
 }
 
 void Lowering::lowerProgramBody(ProgramRun &run) {
@@ -508,6 +526,8 @@ void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
     declareProgram(run);
   for (ProgramRun &run : runs)
     lowerProgramBody(run);
+  // Run by whichever task's scan comes first.
+  Sink globalInits = globalInitCalls(runs);
   capClocks();
   attachPragmas();
   for (ProgramRun &run : runs)
@@ -520,7 +540,7 @@ void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
       first &= runs[j].scan != runs[i].scan;
     if (!first)
       continue;
-    Sink action;
+    Sink action = globalInits;
     for (ProgramRun &run : runs) {
       if (run.scan != runs[i].scan)
         continue;

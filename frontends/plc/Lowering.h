@@ -447,6 +447,11 @@ private:
   void declareProgram(ProgramRun &run);
   void lowerProgramBody(ProgramRun &run);
   void runInitCalls(ProgramRun &run, Frame &top, Sink &action);
+  void initCallsOf(VarDecl *v, const PType *type, const std::string &path,
+                   Frame &in, Sink &calls);
+  /// FB_init of the global instances the programs use: one IF under a flag,
+  /// put at the start of every task's scan.
+  Sink globalInitCalls(std::vector<ProgramRun> &runs);
   void deadValueResets(ProgramRun &run);
   /// One module holding `runs`; runs with the same scan share it, in
   /// order.

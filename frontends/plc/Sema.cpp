@@ -700,6 +700,13 @@ bool Checker::run() {
     checkPou(p);
     p->checkFailed |= diag.numErrors() != errorsBefore;
   }
+  // A global instance's FB_init, with the arguments of its declaration,
+  // once its block is checked.
+  current = nullptr;
+  for (VarDecl *g : allGlobals)
+    if (Pou *fb = g->type ? instanceBlock(g->type) : nullptr;
+        g->typeSyntax && fb && isReached.count(fb))
+      initCall(g);
   for (Configuration *c : unit.configs) {
     current = nullptr;
     for (ProgramInstance &pi : c->programs) {

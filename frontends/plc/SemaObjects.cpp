@@ -253,6 +253,25 @@ void Checker::initCall(VarDecl *v) {
                                                     "block"));
     return;
   }
+  // Arguments in order (`fb : FB_T(1, 2)`) are FB_init's own inputs in
+  // order: TwinCAT passes bInitRetains and bInCopyCode itself.
+  size_t next = 0;
+  for (CallArg &a : args) {
+    if (!a.name.empty())
+      continue;
+    while (next < init->vars.size() &&
+           (init->vars[next]->section != VarSection::Input ||
+            sameName(init->vars[next]->name, "bInitRetains") ||
+            sameName(init->vars[next]->name, "bInCopyCode")))
+      ++next;
+    if (next == init->vars.size()) {
+      error(a.loc, "'" + v->name +
+                       "' is declared with more arguments than "
+                       "its FB_init takes");
+      return;
+    }
+    a.name = init->vars[next++]->name;
+  }
   Expr *call = unit.make<Expr>(ExprKind::Call, v->loc);
   call->name = init->name;
   call->method = true;

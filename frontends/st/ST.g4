@@ -207,6 +207,9 @@ typeSpec0
   | (POINTER TO | REFERENCE TO | REF_TO) typeSpec0                        # pointerType
   | base=IDENT? LPAREN enumValue (COMMA enumValue)* RPAREN after=IDENT?   # enumType
   | base=IDENT LPAREN subrange RPAREN                                     # subrangeType
+  // `fb : FB_Axis(1, 2)`: an instance and its FB_init's arguments in order
+  // (TwinCAT).
+  | base=IDENT LPAREN expression (COMMA expression)* RPAREN               # instanceArgsType
   | (STRING_KW | WSTRING_KW) ((LBRACKET | LPAREN) length=expression (RBRACKET | RPAREN))? # stringType
   | qualifiedName                                                         # namedType
   ;

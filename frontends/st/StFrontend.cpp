@@ -643,6 +643,17 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
                                 loc(v->name)});
     return t;
   }
+  if (auto *p = alt<P::InstanceArgsTypeContext>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(p));
+    t->name = p->base->getText();
+    for (auto *x : p->expression()) {
+      CallArg a;
+      a.value = expr(x);
+      a.loc = a.value ? a.value->loc : loc(p);
+      t->instanceArgs.push_back(a);
+    }
+    return t;
+  }
   if (auto *s = alt<P::SubrangeTypeContext>(c)) {
     auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, loc(s));
     t->name = s->base->getText();
