@@ -3,14 +3,16 @@
 #                 (examples/lifter/run.sh) and print where its reports are
 #   make test   - set up, build, and run the whole test suite (lit + GoogleTest)
 # Also: make build, make sanitize-test (ASan+UBSan build running the suite),
-#       make bench, make format.
+#       make bench, make format, make install PREFIX=/opt/netlift (the
+#       binary, the plant library and the docs: CMakeLists.txt says where).
 
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
+PREFIX ?= /usr/local
 CMAKE_GEN := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all setup build demo test sanitize-test bench format clean
+.PHONY: all setup build demo test install sanitize-test bench format clean
 
 all: build
 
@@ -30,6 +32,9 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 $(ASAN_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Debug \

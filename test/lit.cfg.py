@@ -20,6 +20,7 @@ config.substitutions.append(("%lit", config.lit_script))
 config.substitutions.append(("%examples",
                              os.path.join(config.netlift_src_root, "examples")))
 config.substitutions.append(("%srcroot", config.netlift_src_root))
+config.substitutions.append(("%builddir", config.netlift_obj_root))
 config.substitutions.append(("%show-exit", sys.executable + " " +
                              os.path.join(os.path.dirname(__file__), "utils",
                                           "show-exit.py")))

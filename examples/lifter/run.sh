@@ -7,7 +7,10 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 netlift=${1:-$here/../../build/bin/netlift}
 out=${2:-$here/../../build/lifter}
+# The plant library: lib/plant in the source tree, share/netlift/plant
+# where netlift is installed (this script in share/doc/netlift/examples).
 lib=$here/../../lib/plant
+[ -d "$lib" ] || lib=$here/../../../../netlift/plant
 mkdir -p "$out"
 attrs=(--attr B1=lt.occupied --attr B2=sl.occupied --attr B3=ut.occupied
        --attr S7=lift.retracted --attr S8=lift.extended --attr M1=lifter.M1

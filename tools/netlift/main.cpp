@@ -19,6 +19,9 @@ using namespace netlift::driver;
 #ifndef NETLIFT_VERSION
 #define NETLIFT_VERSION "0.0.0"
 #endif
+#ifndef NETLIFT_REVISION
+#define NETLIFT_REVISION "unknown"
+#endif
 
 static const char *const overview =
     "netlift: lift industrial control software into formal models\n\n"
@@ -68,7 +71,8 @@ int main(int argc, char **argv) {
     std::raise(SIGPIPE);
   });
   cl::SetVersionPrinter([](llvm::raw_ostream &os) {
-    os << "netlift " << NETLIFT_VERSION << "\n";
+    os << "netlift " << NETLIFT_VERSION << " (source revision "
+       << NETLIFT_REVISION << ")\n";
   });
   describeEmitFormats();
   cl::HideUnrelatedOptions({&category()});
