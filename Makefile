@@ -4,7 +4,8 @@
 #   make test   - set up, build, and run the whole test suite (lit + GoogleTest)
 # Also: make build, make sanitize-test (ASan+UBSan build running the suite),
 #       make bench, make format, make install PREFIX=/opt/netlift (the
-#       binary, the plant library and the docs: CMakeLists.txt says where).
+#       binary, the plant library and the docs: CMakeLists.txt says where),
+#       make package (a Debian package of the same tree, build/netlift_*.deb).
 
 BUILD ?= build
 ASAN_BUILD ?= build-asan
@@ -12,7 +13,7 @@ JOBS ?= $(shell nproc)
 PREFIX ?= /usr/local
 CMAKE_GEN := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all setup build demo test install sanitize-test bench format clean
+.PHONY: all setup build demo test install package sanitize-test bench format clean
 
 all: build
 
@@ -35,6 +36,9 @@ test: build
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 $(ASAN_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Debug \

@@ -12,6 +12,7 @@ packages=(
   libtcmalloc-minimal4                 # the tools' allocator (CMakeLists.txt says why)
   libgtest-dev googletest
   graphviz clang-format
+  dpkg-dev                             # dpkg-shlibdeps: the Debian package's dependencies (make package)
   spin                                 # cross-checks the Promela export (test/backends/checkers)
 )
 
