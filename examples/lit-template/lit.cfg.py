@@ -25,3 +25,17 @@ config.substitutions.append(("%models", config.test_source_root))
 llvm_bin = "/usr/lib/llvm-14/bin"
 config.environment["PATH"] = os.pathsep.join(
     [llvm_bin, os.environ.get("PATH", "")])
+
+# %plantlib: netlift's plant library (cylinder.net, conveyor.net, ...) for
+# closed-loop tests (`%netlift compose ctrl.st %plantlib/cylinder.net`):
+# --param plantlib=DIR, else where netlift is installed
+# (PREFIX/share/netlift/plant beside PREFIX/bin/netlift), else the source
+# tree of a build directory (build/bin/netlift -> lib/plant).
+bindir = os.path.dirname(os.path.abspath(netlift))
+plantlib = lit_config.params.get("plantlib")
+for candidate in (os.path.join(bindir, "..", "share", "netlift", "plant"),
+                  os.path.join(bindir, "..", "..", "lib", "plant")):
+    if not plantlib and os.path.isdir(candidate):
+        plantlib = os.path.normpath(candidate)
+if plantlib:
+    config.substitutions.append(("%plantlib", plantlib))
