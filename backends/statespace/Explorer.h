@@ -75,6 +75,7 @@ public:
     return edgeList;
   }
   const std::string &label(uint32_t id) const { return labels[id]; }
+  const ExploreOptions &options() const { return opts; }
   /// The path from the initial state to `s`: (label, state) pairs, the
   /// first being ("", 0).
   std::vector<std::pair<uint32_t, uint32_t>> pathTo(uint32_t s) const;

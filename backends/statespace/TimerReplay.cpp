@@ -207,7 +207,9 @@ void statespace::writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
   std::vector<const uint64_t *> states;
   for (const std::vector<uint64_t> &s : o.states)
     states.push_back(s.data());
-  writeStatePath(exact, o.labels, states, os);
+  std::vector<std::string> labels(o.labels.begin(), o.labels.end());
+  withInputClasses(exact, labels, states);
+  writeStatePath(exact, labels, states, os);
 }
 
 ReplayOutcome::Verdict

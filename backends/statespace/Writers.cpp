@@ -319,6 +319,47 @@ void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
   writePath(x, sem, x.pathTo(target), os);
 }
 
+/// The label the explorer gives a step: `{t}`, `{t,u}`, `tick`.
+static std::string stepLabel(const net::Module &m,
+                             llvm::ArrayRef<uint32_t> step) {
+  if (step.empty())
+    return "tick";
+  std::string l = "{";
+  for (size_t i = 0; i < step.size(); ++i)
+    l += (i ? "," : "") + m.transitions[step[i]].name.str();
+  return l + "}";
+}
+
+void netlift::statespace::withInputClasses(
+    sem::Semantics &sem, std::vector<std::string> &labels,
+    llvm::ArrayRef<const uint64_t *> states) {
+  if (!sem.hasFreeInputs())
+    return;
+  // The same successors, split with their conditions (whatever mode the
+  // exploration ran in: splitting gives exactly the enumerated successors).
+  sem::Options o = sem.options();
+  o.splitInputs = true;
+  o.inputConditions = true;
+  sem::Semantics replay(sem.module(), sem.layout(), o);
+  uint32_t words = sem.layout().numWords();
+  for (size_t i = 1; i < states.size() && i < labels.size(); ++i) {
+    if (labels[i] == "tick")
+      continue;
+    std::string classes;
+    sem::RuntimeError err;
+    replay.successors(
+        states[i - 1],
+        [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
+          if (classes.empty() && stepLabel(sem.module(), step) == labels[i] &&
+              std::equal(succ, succ + words, states[i]))
+            classes = replay.edgeCondition();
+        },
+        err);
+    if (!classes.empty())
+      labels[i] += " " + classes;
+  }
+}
+
 void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
@@ -329,6 +370,9 @@ void netlift::statespace::writePath(
     labels.push_back(label == Explorer::kNone ? "" : x.label(label));
     states.push_back(x.store().state(s));
   }
+  // Which inputs took each step (issue 40), unless the labels say it.
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
   writeStatePath(sem, labels, states, os);
   if (loopTo >= 0) {
     size_t width = 9;

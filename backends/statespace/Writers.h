@@ -60,6 +60,13 @@ void writePath(const Explorer &x, sem::Semantics &sem,
                llvm::raw_ostream &os, int64_t loopTo = -1,
                uint32_t loopLabel = Explorer::kNone);
 
+/// Adds to each step's label the classes of input valuations that take
+/// it, `{scan} [go=1, level=91..100]`, found by running the step again from
+/// the state before it (the input values a trace took, which the states
+/// do not hold).
+void withInputClasses(sem::Semantics &sem, std::vector<std::string> &labels,
+                      llvm::ArrayRef<const uint64_t *> states);
+
 /// The same table for states held anywhere: `labels[i]` is the step into
 /// `states[i]` (the first unused).
 void writeStatePath(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
