@@ -62,36 +62,33 @@ uint32_t Explorer::internConditionLabel(llvm::ArrayRef<uint32_t> step,
   return it->second;
 }
 
+std::string Explorer::stepText(const net::Module &m,
+                               llvm::ArrayRef<uint32_t> step) {
+  if (step.empty())
+    return "tick";
+  std::string l = "{";
+  for (size_t i = 0; i < step.size(); ++i)
+    l += (i ? "," : "") + m.transitions[step[i]].name.str();
+  return l + "}";
+}
+
 uint32_t Explorer::internNewLabel(llvm::ArrayRef<uint32_t> step) {
+  // One-transition steps and the tick are remembered in a table.
+  uint32_t *single = nullptr;
   if (step.size() <= 1) {
     uint32_t key = step.empty() ? 0 : step[0] + 1;
     if (key >= singleLabel.size())
       singleLabel.resize(sem.module().transitions.size() + 1, kNone);
     if (singleLabel[key] != kNone)
       return singleLabel[key];
-    std::string l =
-        step.empty() ? std::string("tick")
-                     : "{" + sem.module().transitions[step[0]].name.str() + "}";
-    auto [it, fresh] = labelIds.try_emplace(l, labels.size());
-    if (fresh)
-      labels.push_back(l);
-    return singleLabel[key] = it->second;
+    single = &singleLabel[key];
   }
-  std::string l;
-  if (step.empty()) {
-    l = "tick";
-  } else {
-    l = "{";
-    for (size_t i = 0; i < step.size(); ++i) {
-      if (i)
-        l += ",";
-      l += sem.module().transitions[step[i]].name.str();
-    }
-    l += "}";
-  }
+  std::string l = stepText(sem.module(), step);
   auto [it, fresh] = labelIds.try_emplace(l, labels.size());
   if (fresh)
     labels.push_back(l);
+  if (single)
+    *single = it->second;
   return it->second;
 }
 

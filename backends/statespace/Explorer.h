@@ -76,6 +76,10 @@ public:
   }
   const std::string &label(uint32_t id) const { return labels[id]; }
   const ExploreOptions &options() const { return opts; }
+  /// The label of a step: `{t}`, `{t,u}` (transitions in step order),
+  /// `tick` for the empty step.
+  static std::string stepText(const net::Module &m,
+                              llvm::ArrayRef<uint32_t> step);
   /// The path from the initial state to `s`: (label, state) pairs, the
   /// first being ("", 0).
   std::vector<std::pair<uint32_t, uint32_t>> pathTo(uint32_t s) const;

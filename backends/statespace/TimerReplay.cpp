@@ -70,15 +70,6 @@ struct Node {
   std::string label;
 };
 
-std::string stepLabel(const net::Module &m, llvm::ArrayRef<uint32_t> step) {
-  if (step.empty())
-    return "tick";
-  std::string l = "{";
-  for (size_t i = 0; i < step.size(); ++i)
-    l += (i ? "," : "") + m.transitions[step[i]].name.str();
-  return l + "}";
-}
-
 } // namespace
 
 ReplayOutcome statespace::replayInExactTime(
@@ -160,7 +151,8 @@ ReplayOutcome statespace::replayInExactTime(
           if (!seen.insert(key).second)
             return;
           nodes.push_back({std::vector<uint64_t>(succ, succ + words), t,
-                           int64_t(n), stepLabel(exact.module(), step)});
+                           int64_t(n),
+                           Explorer::stepText(exact.module(), step)});
           deepest = std::max(deepest, t);
           if (t + 1 == targets.size() && lastOk(succ))
             done = int64_t(nodes.size() - 1);

@@ -319,17 +319,6 @@ void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
   writePath(x, sem, x.pathTo(target), os);
 }
 
-/// The label the explorer gives a step: `{t}`, `{t,u}`, `tick`.
-static std::string stepLabel(const net::Module &m,
-                             llvm::ArrayRef<uint32_t> step) {
-  if (step.empty())
-    return "tick";
-  std::string l = "{";
-  for (size_t i = 0; i < step.size(); ++i)
-    l += (i ? "," : "") + m.transitions[step[i]].name.str();
-  return l + "}";
-}
-
 void netlift::statespace::withInputClasses(
     sem::Semantics &sem, std::vector<std::string> &labels,
     llvm::ArrayRef<const uint64_t *> states) {
@@ -350,7 +339,8 @@ void netlift::statespace::withInputClasses(
     replay.successors(
         states[i - 1],
         [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
-          if (classes.empty() && stepLabel(sem.module(), step) == labels[i] &&
+          if (classes.empty() &&
+              Explorer::stepText(sem.module(), step) == labels[i] &&
               std::equal(succ, succ + words, states[i]))
             classes = replay.edgeCondition();
         },
