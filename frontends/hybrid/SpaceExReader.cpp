@@ -214,38 +214,42 @@ struct SpaceExReader::ExprParser {
     }
     return cmpExpr();
   }
-  Expr *cmpExpr() {
-    Expr *a = addExpr();
-    if (!ok)
-      return nullptr;
+  /// The comparison operator at the current position, consumed.
+  std::optional<BinaryOp> comparison() {
     static const std::pair<StringRef, BinaryOp> ops[] = {
         {"==", BinaryOp::Eq}, {"!=", BinaryOp::Ne}, {"<=", BinaryOp::Le},
         {">=", BinaryOp::Ge}, {"<", BinaryOp::Lt},  {">", BinaryOp::Gt},
         {"=", BinaryOp::Eq}};
-    // A chain `a <= x <= b` is `a <= x & x <= b` (x read twice, so that
-    // each comparison has its own operand).
+    for (auto &[t, op] : ops)
+      if (eat(t))
+        return op;
+    return std::nullopt;
+  }
+  Expr *cmpExpr() {
+    Expr *a = addExpr();
+    // A chain `a <= x <= b` is `a <= x & x <= b`; x is read again for the
+    // second link, so that each comparison has its own operand.
     Expr *chain = nullptr;
-    for (bool more = true; more && ok;) {
-      more = false;
-      for (auto &[t, op] : ops) {
-        if (!eat(t))
-          continue;
-        skip();
-        size_t start = pos;
-        Expr *c = addExpr();
-        if (!ok)
-          return nullptr;
-        Expr *cmp = r.b.binary(op, a, c);
-        chain = chain ? r.b.binary(BinaryOp::And, chain, cmp) : cmp;
-        size_t end = pos;
-        pos = start;
-        a = addExpr(); // the right operand again, for the next link
-        pos = end;
-        more = true;
+    while (ok) {
+      std::optional<BinaryOp> op = comparison();
+      if (!op)
         break;
-      }
+      skip();
+      size_t start = pos;
+      Expr *c = addExpr();
+      if (!ok)
+        return nullptr;
+      Expr *cmp = r.b.binary(*op, a, c);
+      chain = chain ? r.b.binary(BinaryOp::And, chain, cmp) : cmp;
+      size_t end = pos;
+      bool more = comparison().has_value();
+      pos = more ? start : end;
+      if (!more)
+        break;
+      a = addExpr();
+      pos = end;
     }
-    return chain ? chain : a;
+    return ok ? (chain ? chain : a) : nullptr;
   }
   Expr *addExpr() {
     Expr *e = mulExpr();
