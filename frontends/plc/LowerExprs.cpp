@@ -300,6 +300,10 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   case ExprKind::Binary: {
     if (e->type && e->type->isReference())
       return pointerStep(e, f, pre);
+    if (e->operands[0]->type->isReference() &&
+        e->operands[1]->type->isReference() && e->op != Op::Eq &&
+        e->op != Op::Ne)
+      return pointerPairValue(e, f, pre);
     NExpr *l = expr(e->operands[0], f, pre);
     NExpr *r = expr(e->operands[1], f, pre);
     if (const PType *real = commonReal({e->operands[0], e->operands[1]})) {

@@ -1086,14 +1086,33 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   std::string why;
   int64_t size = memoryLayout(elem, why)->size;
   NExpr *k = expr(ptr, f, pre);
-  NExpr *n = expr(offset, f, pre);
-  // Whole elements (Sema checked the offset is written as a multiple).
-  NExpr *d =
-      size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
+  // Whole elements (Sema checked the offset is written as a multiple):
+  // `i * SIZEOF(T)` is i elements, without computing the bytes.
+  NExpr *d = nullptr, *n = nullptr;
+  if (offset->kind == ExprKind::Binary && offset->op == Op::Mul) {
+    NExpr *l = expr(offset->operands[0], f, pre);
+    NExpr *r = expr(offset->operands[1], f, pre);
+    auto isSize = [&](NExpr *x) {
+      auto *lit = llvm::dyn_cast<net::IntLit>(x);
+      return lit && lit->value == size;
+    };
+    if (isSize(r))
+      d = n = l;
+    else if (isSize(l))
+      d = n = r;
+    else
+      n = b.binary(net::BinaryOp::Mul, l, r, at);
+  } else {
+    n = expr(offset, f, pre);
+  }
+  if (!d)
+    d = size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
   if (e->op == Op::Sub)
     d = b.unary(net::UnaryOp::Neg, d, at);
-  if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(n); lit && d != n)
     d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
+  else if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
+    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value, at);
   auto table = refPlan.tables.find(referenceKey(elem));
   int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
   std::string stem = stemOf(ptr);
@@ -1152,6 +1171,85 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   }
   pre.push_back(b.ifStmt(arms, false, {}, at));
   return b.binary(net::BinaryOp::Add, b.ref(number, at), b.ref(step, at), at);
+}
+
+NExpr *Lowering::pointerPairValue(Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = e->loc;
+  const PType *elem = e->operands[0]->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(elem, why)->size;
+  auto table = refPlan.tables.find(referenceKey(elem));
+  int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
+  std::string stem = stemOf(e->operands[0]);
+  // Each number once, in a variable of the scan.
+  auto numberOf = [&](Expr *x) -> NExpr * {
+    NExpr *k = expr(x, f, pre);
+    if (llvm::isa<net::IntLit>(k) || llvm::isa<net::Ref>(k))
+      return k;
+    std::string name = scanVariable(
+        stem + "_pointer",
+        design.types.getRange(0, std::max<int64_t>(count, 1)), 0, at);
+    pre.push_back(b.assign(b.ref(name, at), k, at));
+    return b.ref(name, at);
+  };
+  NExpr *l = numberOf(e->operands[0]);
+  NExpr *r = numberOf(e->operands[1]);
+  // The first number of the contiguous block a number lies in (0 for
+  // NULL, which lies in none): equal for two pointers into one block.
+  auto blockStart = [&](NExpr *k) -> NExpr * {
+    NExpr *start = b.intLit(0, at);
+    if (count == 0)
+      return start;
+    const auto &families = table->second.families;
+    auto *lit = llvm::dyn_cast<net::IntLit>(k);
+    for (auto fam = families.rbegin(); fam != families.rend(); ++fam) {
+      int64_t block = contiguousBlock(*fam) + fam->hasEnd;
+      int64_t last = fam->offset + fam->size + fam->hasEnd - 1;
+      if (lit && lit->value >= fam->offset && lit->value <= last)
+        return b.intLit(
+            fam->offset + (lit->value - fam->offset) / block * block, at);
+      if (lit)
+        continue;
+      NExpr *in = b.binary(
+          net::BinaryOp::And,
+          b.binary(net::BinaryOp::Ge, k, b.intLit(fam->offset, at), at),
+          b.binary(net::BinaryOp::Le, k, b.intLit(last, at), at), at);
+      NExpr *first = b.intLit(fam->offset, at);
+      if (block < last - fam->offset + 1) {
+        // (k - offset) / block * block + offset
+        NExpr *pos = b.binary(net::BinaryOp::Sub, k, first, at);
+        first = b.binary(
+            net::BinaryOp::Add,
+            b.binary(net::BinaryOp::Mul,
+                     b.binary(net::BinaryOp::Div, pos, b.intLit(block, at), at),
+                     b.intLit(block, at), at),
+            b.intLit(fam->offset, at), at);
+      }
+      start = b.cond(in, first, start, at);
+    }
+    return start;
+  };
+  NExpr *ls = blockStart(l), *rs = blockStart(r);
+  auto *lLit = llvm::dyn_cast<net::IntLit>(ls);
+  auto *rLit = llvm::dyn_cast<net::IntLit>(rs);
+  if (lLit && rLit && (lLit->value != rLit->value || lLit->value == 0))
+    refuse(at, "the pointers are not into one array, string or variable: "
+               "their order is not defined");
+  if (!(lLit && rLit))
+    failWhenAny(
+        {b.binary(net::BinaryOp::Or, b.binary(net::BinaryOp::Ne, ls, rs, at),
+                  b.binary(net::BinaryOp::Eq, ls, b.intLit(0, at), at), at)},
+        stem + "_apart", pre, at);
+  if (e->op == Op::Sub) {
+    NExpr *d = b.binary(net::BinaryOp::Sub, l, r, at);
+    return size == 1 ? d
+                     : b.binary(net::BinaryOp::Mul, d, b.intLit(size, at), at);
+  }
+  net::BinaryOp op = e->op == Op::Lt   ? net::BinaryOp::Lt
+                     : e->op == Op::Le ? net::BinaryOp::Le
+                     : e->op == Op::Gt ? net::BinaryOp::Gt
+                                       : net::BinaryOp::Ge;
+  return b.binary(op, l, r, at);
 }
 
 //===----------------------------------------------------------------------===//

@@ -404,6 +404,11 @@ private:
   /// `p + n * SIZEOF(T)` and `p - ...`: the element n further in the array
   /// p points into; leaving it is a run-time error.
   NExpr *pointerStep(Expr *e, Frame &f, Sink &pre);
+  /// `p < q` (<=, >, >=) and `p - q` (their distance in bytes) on two
+  /// pointers into one array, string or variable: numbers compared, as
+  /// they follow the addresses there; into different ones (or NULL) a
+  /// run-time error, since their order is the linker's.
+  NExpr *pointerPairValue(Expr *e, Frame &f, Sink &pre);
   /// MEMCPY, MEMMOVE, MEMSET (statements around nothing) and MEMCMP.
   NExpr *memoryCall(Expr *call, Frame &f, Sink &pre);
   /// MEMSET(..., 0, ...) of one array or structure: each scalar of the

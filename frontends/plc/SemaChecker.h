@@ -92,6 +92,13 @@ private:
   /// `p + n`, `n + p`, `p - n` on a POINTER TO T, n a whole number of T's
   /// (a multiple of SIZEOF(T)): the pointer's type, or null after an error.
   const PType *pointerArithmetic(Expr *e, const PType *a, const PType *b);
+  /// `p < q` (and <=, >, >=) or `p - q` on two POINTER TOs of one element
+  /// type (ADR(arr) taken as its first element's): true when they are.
+  /// `what` says what is done with them, for the refusal.
+  bool pointerPair(Expr *e, StringRef what);
+  /// `p[i]` on a POINTER TO T (CODESYS): rewritten to (p + i * SIZEOF(T))^;
+  /// T's type, or null after an error.
+  const PType *pointerIndex(Expr *e, const PType *pointer);
   /// ADR(arr) where a pointer to arr's elements is wanted: ADR(arr[lo]),
   /// as CODESYS's address of an array is its first element's. False when
   /// `e` is no such ADR.

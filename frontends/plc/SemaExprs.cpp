@@ -304,6 +304,13 @@ const PType *Checker::expr(Expr *e) {
       t = elementaryType(baseOf(bt)->width == 16 ? "WORD" : "BYTE");
       break;
     }
+    // CODESYS indexes a POINTER TO T: p[i] is (p + i * SIZEOF(T))^.
+    if (bt->isReference() && bt->refKind == RefKind::Pointer) {
+      t = pointerIndex(e, bt);
+      if (!t)
+        return nullptr;
+      break;
+    }
     if (bt->kind != PTypeKind::Array) {
       error(e->loc, "indexing a value of type " + bt->str());
       return nullptr;
@@ -422,7 +429,11 @@ const PType *Checker::expr(Expr *e) {
       else if ((ab->isReference() || bb->isReference()) &&
                (e->op == Op::Eq || e->op == Op::Ne))
         ok = comparableReferences(ab, bb, e);
-      else if (ab->isChar() || bb->isChar())
+      else if (ab->isReference() && bb->isReference()) {
+        if (!pointerPair(e, "compare"))
+          return nullptr;
+        ok = true;
+      } else if (ab->isChar() || bb->isChar())
         ok = ab->isChar() ? charValue(ab, e->operands[1])
                           : charValue(bb, e->operands[0]);
       if (!ok) {

@@ -292,6 +292,12 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
                       a->str() + " and " + b->str() + "): " + why);
     return nullptr;
   };
+  if (e->op == Op::Sub && a->isReference() && b->isReference()) {
+    // The distance in bytes, as CODESYS's addresses differ.
+    if (!pointerPair(e, "subtract"))
+      return nullptr;
+    return elementaryType("DINT");
+  }
   if (!pt || (e->op != Op::Add && e->op != Op::Sub) || !ot->isInteger())
     return refuse("only a POINTER TO plus or minus an integer is supported");
   if (pt->refKind != RefKind::Pointer || !pt->elem)
@@ -322,6 +328,84 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
                   pt->elem->str() + " (n * SIZEOF(" + pt->elem->str() +
                   ") = n * " + Twine(layout->size) + ")");
   return pt;
+}
+
+bool Checker::pointerPair(Expr *e, StringRef what) {
+  Expr *l = e->operands[0], *r = e->operands[1];
+  auto refuse = [&](const Twine &why) {
+    error(e->loc, "cannot " + what + " " + l->type->str() + " and " +
+                      r->type->str() + ": " + why);
+    return false;
+  };
+  if (l->type->refKind != RefKind::Pointer ||
+      r->type->refKind != RefKind::Pointer)
+    return refuse("only POINTER TOs are ordered (into one array)");
+  // ADR(arr) next to a pointer to its elements is its first element's
+  // address; a STRING's next to a pointer to bytes, its first byte's.
+  auto alignTo = [&](Expr *x, Expr *other) {
+    const PType *want = other->type->elem;
+    if (want && x->type->elem &&
+        referenceKey(x->type->elem) != referenceKey(want))
+      decayToElement(x, want) || viewAsBytes(x, want) || viewAsScalar(x, want);
+  };
+  alignTo(l, r);
+  alignTo(r, l);
+  if (!l->type->elem || !r->type->elem ||
+      referenceKey(l->type->elem) != referenceKey(r->type->elem))
+    return refuse("they designate different types");
+  if (l->type->elem->kind == PTypeKind::Array)
+    return refuse("a pointer to a whole array is not stepped through; take "
+                  "ADR of its first element");
+  std::string why;
+  if (!memoryLayout(l->type->elem, why))
+    return refuse(why);
+  return true;
+}
+
+const PType *Checker::pointerIndex(Expr *e, const PType *pointer) {
+  if (e->operands.size() != 2) {
+    error(e->loc, "a pointer is indexed with one index, not " +
+                      Twine(e->operands.size() - 1));
+    return nullptr;
+  }
+  if (!pointer->elem || pointer->elem->kind == PTypeKind::Array) {
+    error(e->loc,
+          "indexing a " + pointer->str() +
+              " steps whole arrays (CODESYS: p[i] is (p + i * SIZEOF(...))^); "
+              "write p^[i] for an element");
+    return nullptr;
+  }
+  Expr *index = e->operands[1];
+  const PType *it = expr(index);
+  if (!it)
+    return nullptr;
+  if (!baseOf(it)->isInteger()) {
+    error(index->loc, "array index must be an integer");
+    return nullptr;
+  }
+  std::string why;
+  auto layout = memoryLayout(pointer->elem, why);
+  if (!layout) {
+    error(e->loc, "indexing a " + pointer->str() + ": " + why);
+    return nullptr;
+  }
+  // (p + i * SIZEOF(T))^, the offset computed in LINT.
+  Expr *size = unit.make<Expr>(ExprKind::IntLit, e->loc);
+  size->intValue = layout->size;
+  size->type = elementaryType("LINT");
+  Expr *offset = unit.make<Expr>(ExprKind::Binary, index->loc);
+  offset->op = Op::Mul;
+  offset->operands = {index, size};
+  offset->type = elementaryType("LINT");
+  Expr *moved = unit.make<Expr>(ExprKind::Binary, e->loc);
+  moved->op = Op::Add;
+  moved->operands = {e->operands[0], offset};
+  moved->type = pointerArithmetic(moved, pointer, offset->type);
+  if (!moved->type)
+    return nullptr;
+  e->kind = ExprKind::Deref;
+  e->operands = {moved};
+  return moved->type->elem;
 }
 
 bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
