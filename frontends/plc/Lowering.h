@@ -741,6 +741,13 @@ void collectWritten(StmtList &l, std::set<VarDecl *> &w);
 /// The variables a statement list binds to VAR_IN_OUT parameters (the
 /// callee may write them).
 void collectInOutWritten(StmtList &l, std::set<VarDecl *> &w);
+/// The name a reference's run-time checks are named after: its root
+/// variable's (`pointer` when it has none).
+std::string stemOf(Expr *reference);
+/// The elements of a family that lie next to each other in memory: those
+/// of its last index step (a string's or scalar's bytes when the family
+/// numbers bytes; 1 when it ends in a field or is one place).
+int64_t contiguousBlock(const RefFamily &fam);
 
 } // namespace netlift::plc::detail
 

@@ -1,0 +1,343 @@
+//===- LowerPointers.cpp - pointer arithmetic and memory functions --------===//
+//
+// What a program does with a pointer besides dereferencing it: steps it
+// through the block it points into (`p + n * SIZEOF(T)`, `p[i]`), orders
+// and subtracts two pointers into one block, calls an FB instance through
+// a reference, and copies, fills or compares memory (MEMCPY, MEMMOVE,
+// MEMSET, MEMCMP) element by element through the places a reference may
+// designate. A pointer is its number (LowerReferences.cpp); numbers follow
+// the addresses inside one contiguous block, which is what makes stepping
+// and ordering meaningful, and leaving the block is a run-time error
+// (docs/st.md, "References and pointers").
+//
+//===----------------------------------------------------------------------===//
+#include "frontends/plc/Lowering.h"
+
+using namespace netlift;
+using namespace netlift::plc;
+using namespace netlift::plc::detail;
+
+//===----------------------------------------------------------------------===//
+// Pointer arithmetic
+//===----------------------------------------------------------------------===//
+
+NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
+  Expr *ptr = e->operands[0], *offset = e->operands[1];
+  if (!ptr->type->isReference())
+    std::swap(ptr, offset);
+  SMLoc at = e->loc;
+  const PType *elem = e->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(elem, why)->size;
+  NExpr *k = expr(ptr, f, pre);
+  // Whole elements (Sema checked the offset is written as a multiple):
+  // `i * SIZEOF(T)` is i elements, without computing the bytes.
+  NExpr *d = nullptr, *n = nullptr;
+  if (offset->kind == ExprKind::Binary && offset->op == Op::Mul) {
+    NExpr *l = expr(offset->operands[0], f, pre);
+    NExpr *r = expr(offset->operands[1], f, pre);
+    auto isSize = [&](NExpr *x) {
+      auto *lit = llvm::dyn_cast<net::IntLit>(x);
+      return lit && lit->value == size;
+    };
+    if (isSize(r))
+      d = n = l;
+    else if (isSize(l))
+      d = n = r;
+    else
+      n = b.binary(net::BinaryOp::Mul, l, r, at);
+  } else {
+    n = expr(offset, f, pre);
+  }
+  if (!d)
+    d = size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
+  if (e->op == Op::Sub)
+    d = b.unary(net::UnaryOp::Neg, d, at);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(n); lit && d != n)
+    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
+  else if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
+    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value, at);
+  auto table = refPlan.tables.find(referenceKey(elem));
+  int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
+  std::string stem = stemOf(ptr);
+  auto *kLit = llvm::dyn_cast<net::IntLit>(k);
+  auto *dLit = llvm::dyn_cast<net::IntLit>(d);
+  if (kLit && dLit && kLit->value >= 1 && kLit->value <= count) {
+    // Known now: moved now, and checked now.
+    for (const RefFamily &fam : table->second.families) {
+      if (!fam.holds(kLit->value, /*withEnd=*/true))
+        continue;
+      int64_t block = contiguousBlock(fam);
+      int64_t pos =
+          (kLit->value - fam.offset) % (block + fam.hasEnd) + dLit->value;
+      if (pos < 0 || pos >= block + fam.hasEnd)
+        refuse(at, "the pointer moves " + Twine(dLit->value) +
+                       " element(s) out of the " + Twine(block) +
+                       " of its array");
+    }
+    return b.intLit(kLit->value + dLit->value, at);
+  }
+  // NULL moves nowhere: a run-time error, as a dereference.
+  std::string number = scanVariable(
+      stem + "_deref", design.types.getRange(1, std::max<int64_t>(count, 1)), 1,
+      at);
+  pre.push_back(b.assign(b.ref(number, at), k, at));
+  if (count == 0)
+    return b.intLit(0, at);
+  // A step longer than every place of the type leaves any array: the
+  // range check reports it (and the exports take a small range).
+  std::string step =
+      scanVariable(stem + "_step", design.types.getRange(-count, count), 0, at);
+  pre.push_back(b.assign(b.ref(step, at), d, at));
+  // The element moved to stays in the block of its family it started in
+  // (an array's elements are contiguous; a family's blocks are not, and a
+  // single place moves nowhere): checked per family.
+  std::vector<net::IfArm> arms;
+  for (const RefFamily &fam : table->second.families) {
+    // Its end is a place to stand on (one past the last element).
+    int64_t block = contiguousBlock(fam) + fam.hasEnd;
+    RefFamily withEnd = fam;
+    withEnd.size += fam.hasEnd;
+    DerefTargets t;
+    t.deref = e;
+    t.number = number;
+    std::string inBlock = scanVariable(
+        stem + "_element", design.types.getRange(0, block - 1), 0, at);
+    NExpr *pos = b.binary(net::BinaryOp::Sub, b.ref(number, at),
+                          b.intLit(fam.offset, at), at);
+    if (block > 1 && block < withEnd.size)
+      pos = b.binary(net::BinaryOp::Mod, pos, b.intLit(block, at), at);
+    Sink body{b.assign(b.ref(inBlock, at),
+                       b.binary(net::BinaryOp::Add, pos, b.ref(step, at), at),
+                       at)};
+    arms.push_back(
+        {familyTest(withEnd, t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+  }
+  pre.push_back(b.ifStmt(arms, false, {}, at));
+  return b.binary(net::BinaryOp::Add, b.ref(number, at), b.ref(step, at), at);
+}
+
+NExpr *Lowering::pointerPairValue(Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = e->loc;
+  const PType *elem = e->operands[0]->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(elem, why)->size;
+  auto table = refPlan.tables.find(referenceKey(elem));
+  int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
+  std::string stem = stemOf(e->operands[0]);
+  // Each number once, in a variable of the scan.
+  auto numberOf = [&](Expr *x) -> NExpr * {
+    NExpr *k = expr(x, f, pre);
+    if (llvm::isa<net::IntLit>(k) || llvm::isa<net::Ref>(k))
+      return k;
+    std::string name = scanVariable(
+        stem + "_pointer",
+        design.types.getRange(0, std::max<int64_t>(count, 1)), 0, at);
+    pre.push_back(b.assign(b.ref(name, at), k, at));
+    return b.ref(name, at);
+  };
+  NExpr *l = numberOf(e->operands[0]);
+  NExpr *r = numberOf(e->operands[1]);
+  // The first number of the contiguous block a number lies in (0 for
+  // NULL, which lies in none): equal for two pointers into one block.
+  auto blockStart = [&](NExpr *k) -> NExpr * {
+    NExpr *start = b.intLit(0, at);
+    if (count == 0)
+      return start;
+    const auto &families = table->second.families;
+    auto *lit = llvm::dyn_cast<net::IntLit>(k);
+    for (auto fam = families.rbegin(); fam != families.rend(); ++fam) {
+      int64_t block = contiguousBlock(*fam) + fam->hasEnd;
+      int64_t last = fam->offset + fam->size + fam->hasEnd - 1;
+      if (lit && lit->value >= fam->offset && lit->value <= last)
+        return b.intLit(
+            fam->offset + (lit->value - fam->offset) / block * block, at);
+      if (lit)
+        continue;
+      NExpr *in = b.binary(
+          net::BinaryOp::And,
+          b.binary(net::BinaryOp::Ge, k, b.intLit(fam->offset, at), at),
+          b.binary(net::BinaryOp::Le, k, b.intLit(last, at), at), at);
+      NExpr *first = b.intLit(fam->offset, at);
+      if (block < last - fam->offset + 1) {
+        // (k - offset) / block * block + offset
+        NExpr *pos = b.binary(net::BinaryOp::Sub, k, first, at);
+        first = b.binary(
+            net::BinaryOp::Add,
+            b.binary(net::BinaryOp::Mul,
+                     b.binary(net::BinaryOp::Div, pos, b.intLit(block, at), at),
+                     b.intLit(block, at), at),
+            b.intLit(fam->offset, at), at);
+      }
+      start = b.cond(in, first, start, at);
+    }
+    return start;
+  };
+  NExpr *ls = blockStart(l), *rs = blockStart(r);
+  auto *lLit = llvm::dyn_cast<net::IntLit>(ls);
+  auto *rLit = llvm::dyn_cast<net::IntLit>(rs);
+  if (lLit && rLit && (lLit->value != rLit->value || lLit->value == 0))
+    refuse(at, "the pointers are not into one array, string or variable: "
+               "their order is not defined");
+  if (!(lLit && rLit))
+    failWhenAny(
+        {b.binary(net::BinaryOp::Or, b.binary(net::BinaryOp::Ne, ls, rs, at),
+                  b.binary(net::BinaryOp::Eq, ls, b.intLit(0, at), at), at)},
+        stem + "_apart", pre, at);
+  if (e->op == Op::Sub) {
+    NExpr *d = b.binary(net::BinaryOp::Sub, l, r, at);
+    return size == 1 ? d
+                     : b.binary(net::BinaryOp::Mul, d, b.intLit(size, at), at);
+  }
+  net::BinaryOp op = e->op == Op::Lt   ? net::BinaryOp::Lt
+                     : e->op == Op::Le ? net::BinaryOp::Le
+                     : e->op == Op::Gt ? net::BinaryOp::Gt
+                                       : net::BinaryOp::Ge;
+  return b.binary(op, l, r, at);
+}
+
+//===----------------------------------------------------------------------===//
+// Calls through references
+//===----------------------------------------------------------------------===//
+
+void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
+  Expr *instance = call->operands[0];
+  Pou *fb = instance->type->fb;
+  DerefTargets t = derefTargets(instance, f, out);
+  if (t.live.empty())
+    return; // the reference is NULL whenever this runs: reported above
+  auto pathOf = [&](const RefFamily &fam) {
+    auto *ref = llvm::dyn_cast<net::Ref>(familyPlace(fam, t, instance, f, out));
+    if (!ref)
+      refuse(call->loc, "internal: a function block instance in an element");
+    return ref->name.str();
+  };
+  std::vector<InstanceChoice> choices;
+  for (const RefFamily *fam : t.live)
+    choices.push_back({familyTest(*fam, t), pathOf(*fam)});
+  callChosenInstance(call, fb, choices, f, out);
+}
+
+//===----------------------------------------------------------------------===//
+// MEMCPY, MEMMOVE, MEMSET, MEMCMP
+//===----------------------------------------------------------------------===//
+
+void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
+                                    SMLoc at) {
+  const PType *t = baseOf(place->type);
+  switch (t->kind) {
+  case PTypeKind::Array:
+    forEachIndex(t, [&](llvm::ArrayRef<int64_t> index) {
+      Expr *element = unit.make<Expr>(ExprKind::Index, at);
+      element->operands.push_back(place);
+      for (int64_t i : index) {
+        Expr *lit = unit.make<Expr>(ExprKind::IntLit, at);
+        lit->intValue = i;
+        lit->type = elementaryType("DINT");
+        element->operands.push_back(lit);
+      }
+      element->type = t->elem;
+      zeroThroughReference(element, f, pre, at);
+    });
+    return;
+  case PTypeKind::Struct:
+    if (t->isUnion)
+      break;
+    for (VarDecl *fld : t->fields) {
+      Expr *field = unit.make<Expr>(ExprKind::Field, at);
+      field->operands.push_back(place);
+      field->name = fld->name;
+      field->var = fld;
+      field->type = fld->type;
+      zeroThroughReference(field, f, pre, at);
+    }
+    return;
+  case PTypeKind::FunctionBlock:
+    refuse(at, "MEMSET over a function block instance (" + t->str() +
+                   ") is not modelled");
+  default:
+    break;
+  }
+  // All bits zero: 0, 0.0, FALSE, '', NULL, 1970-01-01; an enumeration
+  // its first value.
+  NExpr *zero =
+      t->kind == PTypeKind::Int ? b.intLit(0, at) : defaultValue(t, at);
+  writeThroughReference(place, zero, nullptr, f, pre, at);
+}
+
+NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
+  SMLoc at = call->loc;
+  Expr *dst = call->args[0].value, *src = call->args[1].value;
+  const PType *t = dst->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(t, why)->size;
+  // Element j of what `p` points to: (p + j * size)^.
+  auto element = [&](Expr *p, int64_t j) {
+    Expr *moved = p;
+    if (j) {
+      moved = unit.make<Expr>(ExprKind::Binary, at);
+      moved->op = Op::Add;
+      Expr *offset = unit.make<Expr>(ExprKind::IntLit, at);
+      offset->intValue = j * size;
+      offset->type = elementaryType("DINT");
+      moved->operands = {p, offset};
+      moved->type = p->type;
+    }
+    Expr *d = unit.make<Expr>(ExprKind::Deref, at);
+    d->operands.push_back(moved);
+    d->type = t;
+    return d;
+  };
+  int64_t k = call->intValue;
+  if (call->name == "MEMCMP") {
+    // The first element that differs decides, as unsigned bytes.
+    std::vector<std::pair<NExpr *, NExpr *>> pairs;
+    for (int64_t j = 0; j < k; ++j)
+      pairs.push_back({readThroughReference(element(dst, j), f, pre),
+                       readThroughReference(element(src, j), f, pre)});
+    NExpr *r = b.intLit(0, at);
+    for (size_t j = pairs.size(); j-- > 0;) {
+      auto [x, y] = pairs[j];
+      NExpr *sign = b.cond(b.binary(net::BinaryOp::Lt, x, y, at),
+                           b.intLit(-1, at), b.intLit(1, at), at);
+      r = b.cond(b.binary(net::BinaryOp::Ne, x, y, at), sign, r, at);
+    }
+    return r;
+  }
+  if (call->name == "MEMSET" &&
+      (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
+       t->isString()) &&
+      !(t->kind == PTypeKind::Struct && t->isUnion)) {
+    // Sema let only 0 through: every scalar of every element zeroed.
+    for (int64_t j = 0; j < k; ++j)
+      zeroThroughReference(element(dst, j), f, pre, at);
+    return b.intLit(0, at);
+  }
+  if (call->name == "MEMSET") {
+    NExpr *fill = expr(src, f, pre);
+    if (t->kind == PTypeKind::Bool)
+      fill = b.binary(net::BinaryOp::Ne, fill, b.intLit(0, at), at);
+    else if (auto *lit = llvm::dyn_cast<net::IntLit>(fill);
+             !lit && baseOf(t)->kind == PTypeKind::Int)
+      fill = maskTo(fill, baseOf(t), at); // the low byte
+    for (int64_t j = 0; j < k; ++j)
+      writeThroughReference(element(dst, j), fill, nullptr, f, pre, at);
+    return b.intLit(0, at);
+  }
+  // MEMCPY, MEMMOVE: every element read before any is written, so that
+  // overlapping places copy as MEMMOVE does.
+  std::vector<NExpr *> values;
+  for (int64_t j = 0; j < k; ++j) {
+    NExpr *v = readThroughReference(element(src, j), f, pre);
+    if (k > 1) {
+      std::string tmp = unique("_copy");
+      declareTemp(tmp, t, at);
+      pre.push_back(b.assign(b.ref(tmp, at), v, at));
+      v = b.ref(tmp, at);
+    }
+    values.push_back(v);
+  }
+  for (int64_t j = 0; j < k; ++j)
+    writeThroughReference(element(dst, j), values[j], nullptr, f, pre, at);
+  return b.intLit(0, at);
+}
