@@ -40,6 +40,8 @@ struct FrontendOptions {
   /// --opaque: blocks the runtime implements (IEC 61499 service interface
   /// FBs and the like) modelled as environment (the default) or refused.
   bool opaqueRefused = false;
+  /// --caller-elements (plc::LowerOptions::callerElements).
+  int64_t callerElements = 16;
   /// --channels=lossy: IEC 61499 publish/subscribe channels may lose
   /// messages.
   bool lossyChannels = false;

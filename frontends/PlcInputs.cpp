@@ -109,7 +109,8 @@ bool netlift::loadPlcOpen(FrontendContext &ctx, unsigned bufferID,
   return plcopen::readPlcOpen(bufferID, diag, unitFor(ctx, bufferID));
 }
 
-/// `--ranges FILE`: one `NAME LO..HI` per line; `#` or `//` start comments.
+/// `--ranges FILE`: one `NAME LO..HI` (or `NAME NOT NULL`, for a
+/// reference input) per line; `#` or `//` start comments.
 static bool readRanges(StringRef path, DiagEngine &diag,
                        plc::LowerOptions &opts) {
   unsigned id = addInputFile(diag.sourceMgr(), path);
@@ -125,12 +126,19 @@ static bool readRanges(StringRef path, DiagEngine &diag,
       continue;
     auto [name, range] = body.split(char(' '));
     range = range.trim();
+    auto [word, null] = range.split(char(' '));
+    if (!name.empty() && word.equals_insensitive("NOT") &&
+        null.trim().equals_insensitive("NULL")) {
+      opts.ranges[name.upper()] = {1, 1, name.str(),
+                                   SMLoc::getFromPointer(name.data()), true};
+      continue;
+    }
     auto [lo, hi] = range.split("..");
     int64_t l, h;
     if (name.empty() || lo.trim().getAsInteger(10, l) ||
         hi.trim().getAsInteger(10, h) || l > h) {
       diag.error(SMLoc::getFromPointer(line.data()),
-                 "expected 'NAME LO..HI' with LO <= HI");
+                 "expected 'NAME LO..HI' with LO <= HI, or 'NAME NOT NULL'");
       return false;
     }
     opts.ranges[name.upper()] = {l, h, name.str(),
@@ -148,6 +156,7 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   plc::LowerOptions opts;
   opts.top = fo.top;
   opts.opaqueRefused = fo.opaqueRefused;
+  opts.callerElements = fo.callerElements;
   opts.timescaleNs = fo.timescaleNs;
   opts.scanPeriodNs = fo.scanPeriodNs;
   opts.unitStart = SMLoc::getFromPointer(

@@ -307,6 +307,15 @@ std::optional<std::pair<int64_t, int64_t>> Lowering::inputRange(VarDecl *v) {
     auto it = opts.ranges.find(StringRef(key).upper());
     if (it != opts.ranges.end()) {
       rangesUsed.insert(it->first);
+      if (it->second.notNull != (v->type && v->type->isReference()))
+        refuse(it->second.loc,
+               it->second.notNull
+                   ? "--ranges: 'NOT NULL' is for a reference input, and '" +
+                         v->name + "' is " + v->type->str()
+                   : "--ranges: input '" + v->name + "' is a " +
+                         v->type->str() +
+                         ": give 'NOT NULL' (the caller never passes NULL), "
+                         "not a range");
       return std::make_pair(it->second.lo, it->second.hi);
     }
   }
@@ -344,7 +353,17 @@ void Lowering::declareProgramVar(VarDecl *v) {
       return;
     }
     const net::Type *nt = nullptr;
-    if (auto r = inputRange(v)) {
+    if (t->isReference()) {
+      nt = netType(t, v->loc, "input " + v->name);
+      // NOT NULL: one of the places, never 0.
+      if (inputRange(v)) {
+        if (nt->hi < 1)
+          refuse(v->loc, "input '" + v->name +
+                             "' is NOT NULL, but nothing of its type has "
+                             "its address taken");
+        nt = design.types.getRange(1, nt->hi);
+      }
+    } else if (auto r = inputRange(v)) {
       if (t->kind != PTypeKind::Int && t->kind != PTypeKind::Time)
         refuse(v->loc,
                "a range is given for non-integer input '" + v->name + "'");

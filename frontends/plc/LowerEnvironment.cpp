@@ -261,7 +261,7 @@ static size_t scalarCount(const PType *t, size_t cap) {
   return 1;
 }
 
-const PType *Lowering::callerTarget(VarDecl *v) const {
+const PType *Lowering::callerTarget(VarDecl *v) {
   if (!v->owner || !runAsProgram(v->owner) || !v->type ||
       v->section != VarSection::Input || !v->type->isReference() ||
       v->type->refKind == RefKind::Interface || !v->type->elem)
@@ -270,10 +270,25 @@ const PType *Lowering::callerTarget(VarDecl *v) const {
   const PType *base = baseOf(elem);
   if (base->kind == PTypeKind::FunctionBlock ||
       base->kind == PTypeKind::Reference ||
-      (base->kind == PTypeKind::Array && base->anyBounds) ||
-      scalarCount(elem, kMaxEnvironmentScalars) > kMaxEnvironmentScalars)
+      (base->kind == PTypeKind::Array && base->anyBounds))
     return nullptr;
-  return elem;
+  if (scalarCount(elem, kMaxEnvironmentScalars) <= kMaxEnvironmentScalars)
+    return elem;
+  // OSCAT's `POINTER TO ARRAY[0..32000] OF BYTE`: the first elements.
+  if (base->kind != PTypeKind::Array || base->dims.size() != 1 ||
+      scalarCount(base->elem, kMaxEnvironmentScalars) *
+              size_t(opts.callerElements) >
+          kMaxEnvironmentScalars)
+    return nullptr;
+  const PType *&prefix = callerPrefixes[base];
+  if (!prefix) {
+    PType *p = unit.make<PType>(*base);
+    p->name.clear();
+    p->dims = {
+        {base->dims[0].first, base->dims[0].first + opts.callerElements - 1}};
+    prefix = p;
+  }
+  return prefix;
 }
 
 void Lowering::declareCallerTarget(VarDecl *v, const std::string &name,
@@ -292,6 +307,18 @@ void Lowering::declareCallerTarget(VarDecl *v, const std::string &name,
       target, target + "_in", elem, "what input '" + v->name + "' designates",
       v->name + "^", v->loc);
   environmentSamples[v] = samplesOf(chosen);
+  if (elem != v->type->elem) {
+    diag.note(v->loc,
+              "input '" + v->name + "' may designate its caller's " +
+                  v->type->elem->str() + ": modelled as '" + target +
+                  "', its first " + Twine(opts.callerElements) +
+                  " elements (--caller-elements), chosen by the environment "
+                  "at every scan as an in-out is (or NULL, or what the "
+                  "design's own REF and ADR take); an element past them is "
+                  "the run-time error '" +
+                  name + "_deref_element'");
+    return;
+  }
   diag.note(v->loc, "input '" + v->name + "' may designate its caller's " +
                         elem->str() + ": modelled as '" + target +
                         "', chosen by the environment at every scan as an "

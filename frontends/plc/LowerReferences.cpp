@@ -324,9 +324,27 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
   // of its caller's (the environment's): one place each.
   for (const ProgramRun &run : runs)
     for (VarDecl *v : run.pou->vars)
-      if (const PType *elem = callerTarget(v))
-        addSinglePlace(plan.tables[referenceKey(elem)],
-                       run.prefix + sanitize(v->name) + "_target");
+      if (const PType *elem = callerTarget(v)) {
+        std::string base = run.prefix + sanitize(v->name) + "_target";
+        if (elem == v->type->elem) {
+          addSinglePlace(plan.tables[referenceKey(elem)], base);
+          continue;
+        }
+        // Its first elements, seen with the pointer's bounds.
+        RefTable &table = plan.tables[referenceKey(v->type->elem)];
+        RefFamily fam;
+        fam.view.kind = RefView::Elements;
+        fam.view.lo = fam.view.placeLo = elem->dims[0].first;
+        fam.view.bytes = elem->dims[0].second - elem->dims[0].first + 1;
+        fam.key = base + fam.view.suffix();
+        fam.base = base;
+        if (table.byKey.count(fam.key))
+          continue;
+        table.byKey[fam.key] = table.families.size();
+        fam.offset = table.count + 1;
+        table.count += 1;
+        table.families.push_back(std::move(fam));
+      }
   std::vector<Expr *> throughReferences;
   forEachAddressTaken(unit, [&](Expr *call) {
     Expr *place = call->args[0].value;

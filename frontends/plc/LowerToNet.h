@@ -34,6 +34,11 @@ struct LowerOptions {
   /// does not model (Pou::environment) is refused instead of modelled as
   /// environment.
   bool opaqueRefused = false;
+  /// --caller-elements: how many elements of a caller's array too large
+  /// to choose whole (a `POINTER TO ARRAY[0..32000] OF BYTE` input of the
+  /// block run as the top) are modelled; an element past them is a
+  /// run-time error.
+  int64_t callerElements = 16;
   /// Length of one tick; default: the greatest common divisor of every
   /// TIME literal and task interval the translated code uses.
   std::optional<int64_t> timescaleNs;
@@ -47,6 +52,8 @@ struct LowerOptions {
     int64_t lo, hi;
     std::string name;
     llvm::SMLoc loc;
+    /// `NAME NOT NULL`: a reference input the caller never passes NULL.
+    bool notNull = false;
   };
   std::map<std::string, RangeEntry> ranges;
   /// Durations used outside the PLC code (IEC 61499 parameters), counted

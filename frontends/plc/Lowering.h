@@ -265,8 +265,12 @@ private:
   std::map<VarDecl *, std::vector<NStmt *>> environmentSamples;
   /// The type of the caller's object a reference input of the POU run as a
   /// program may designate (null when none is modelled: an instance, an
-  /// interface, more scalars than the environment chooses).
-  const PType *callerTarget(VarDecl *v) const;
+  /// interface, more scalars than the environment chooses). A
+  /// one-dimensional array too large to choose whole is modelled by its
+  /// first --caller-elements elements: that shorter array's type, which
+  /// the reference sees as an array with other bounds (RefView::Elements).
+  const PType *callerTarget(VarDecl *v);
+  std::map<const PType *, const PType *> callerPrefixes;
   /// That object, `<name>_target`: an output port chosen by the
   /// environment at each scan, as a VAR_IN_OUT of the translated POU is.
   void declareCallerTarget(VarDecl *v, const std::string &name,

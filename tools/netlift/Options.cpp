@@ -107,7 +107,8 @@ static cl::opt<std::string>
 static cl::opt<std::string>
     ranges("ranges",
            cl::desc("PLC input: value ranges of integer inputs, one "
-                    "'NAME LO..HI' a line"),
+                    "'NAME LO..HI' a line ('NAME NOT NULL' for a reference "
+                    "input the caller never passes NULL)"),
            cl::value_desc("FILE"), NETLIFT_READING);
 static cl::opt<std::string> spaceexConfig(
     "cfg",
@@ -145,6 +146,13 @@ static cl::opt<std::string> fbSemantics(
              "model: blocks take turns in network order, each reacting to "
              "all its pending events at once)"),
     cl::value_desc("MODEL"), NETLIFT_READING);
+static cl::opt<unsigned> callerElements(
+    "caller-elements",
+    cl::desc("Elements modelled of a caller's array a pointer input of the "
+             "block run as the top designates, when the array is too large "
+             "to choose whole (OSCAT's POINTER TO ARRAY[0..32000] OF BYTE); "
+             "an element past them is a run-time error (default 16)"),
+    cl::init(16), cl::value_desc("N"), NETLIFT_READING);
 enum class OpaqueBlocks { Environment, Refuse };
 static cl::opt<OpaqueBlocks> opaqueBlocks(
     "opaque",
@@ -292,6 +300,13 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
   fo.fbSemantics = fbSemantics;
   fo.opaqueRefused = opaqueBlocks == OpaqueBlocks::Refuse;
+  fo.callerElements = callerElements;
+  if (callerElements == 0 || callerElements > 4096) {
+    diag.error(llvm::SMLoc(),
+               "--caller-elements=" + llvm::Twine(callerElements) +
+                   ": give 1 to 4096 elements");
+    return false;
+  }
   fo.lossyChannels = channels == Channels::Lossy;
   fo.sfcCodesys = sfcDialect == plc::SfcDialect::Codesys;
   fo.timeUnit = timeUnit;
