@@ -476,6 +476,8 @@ struct TypeDecl {
   TypeSyntax *type = nullptr;
   const PType *resolved = nullptr; // Sema
   bool isLibrary = false;          // netlift's own (st::addLibraryText)
+  /// Pragmas written before it (`{attribute 'pack_mode' := '1'}`).
+  std::vector<Attribute> attrs;
 };
 
 struct Task {

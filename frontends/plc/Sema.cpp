@@ -103,6 +103,29 @@ bool Checker::constInt(Expr *e, int64_t &v) {
   }
 }
 
+std::optional<unsigned> Checker::packMode(TypeDecl *td) {
+  for (const Attribute &a : td->attrs) {
+    StringRef text(a.text);
+    if (!text.consume_front("attribute"))
+      continue;
+    text = text.trim();
+    if (!text.consume_front("'pack_mode'"))
+      continue;
+    text = text.trim();
+    text.consume_front(":=");
+    StringRef value = text.trim().trim("'").trim();
+    unsigned n;
+    if (value.getAsInteger(10, n) ||
+        (n != 0 && n != 1 && n != 2 && n != 4 && n != 8)) {
+      error(a.loc, "pack_mode '" + value + "' of '" + td->name +
+                       "': CODESYS and TwinCAT pack to 0, 1, 2, 4 or 8 bytes");
+      return std::nullopt;
+    }
+    return n;
+  }
+  return std::nullopt;
+}
+
 const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
   if (const PType *t = elementaryType(name))
     return t;
@@ -128,6 +151,8 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
       PType *copy = make(t->kind);
       *copy = *t;
       copy->name = td->name;
+      if (auto pack = packMode(td); pack && t->kind == PTypeKind::Struct)
+        copy->pack = *pack;
       t = copy;
     }
     named[key] = t;

@@ -69,6 +69,10 @@ struct PType {
   // Struct (a UNION too: its members overlap, LowerUnions.cpp)
   std::vector<VarDecl *> fields;
   bool isUnion = false;
+  /// Struct: CODESYS's and TwinCAT's `{attribute 'pack_mode' := 'n'}`:
+  /// members aligned to at most n bytes (0 and 1: none); 8, x64's
+  /// natural alignment, when not given.
+  unsigned pack = 8;
   // FunctionBlock
   Pou *fb = nullptr;
   // Reference: `elem` is the type designated (null for NULL's own type)

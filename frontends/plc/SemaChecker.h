@@ -67,6 +67,9 @@ private:
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
   const PType *derefType(Expr *e);
+  /// A structure type's `{attribute 'pack_mode' := 'n'}`, if given (an
+  /// invalid one is reported).
+  std::optional<unsigned> packMode(TypeDecl *td);
   /// `REF(place)`, unchecked: how REF= and a REFERENCE TO input take
   /// their place.
   Expr *addressCall(Expr *place);

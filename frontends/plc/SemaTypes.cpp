@@ -206,10 +206,12 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
   }
   case PTypeKind::Struct: {
     int64_t size = 0, align = 1;
+    int64_t pack = std::max<int64_t>(t->pack, 1);
     for (VarDecl *f : t->fields) {
       auto l = memoryLayout(f->type, why);
       if (!l)
         return l;
+      l->align = std::min(l->align, pack);
       align = std::max(align, l->align);
       size = t->isUnion ? std::max(size, l->size)
                         : alignUp(size, l->align) + l->size;

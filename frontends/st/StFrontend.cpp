@@ -350,10 +350,16 @@ void AstBuilder::refusedElement(P::RefusedElementContext *r) {
 }
 
 void AstBuilder::typeDecl(P::TypeDeclContext *c) {
+  // Pragmas before TYPE belong to its first definition (TwinCAT writes one
+  // type per TYPE).
+  std::vector<Attribute> first = pragmasBefore(c->getStart());
   for (auto *d : c->typeDefinition()) {
     TypeDecl *td = unit.make<TypeDecl>();
     td->name = d->name->getText();
     td->loc = loc(d->name);
+    td->attrs = pragmasBefore(d->getStart());
+    td->attrs.insert(td->attrs.begin(), first.begin(), first.end());
+    first.clear();
     td->type = typeSpec(d->typeSpec());
     if (failed)
       return;
