@@ -477,6 +477,14 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     b.addVar(name, netType(m->type, m->loc, "member " + m->name),
              initialValue(m, mi, m->type), m->loc);
     instanceMembers.push_back(name);
+    if (m->sharedOutside) {
+      // An HMI_<T> member: the web HMI may write it between scans.
+      std::string port = name;
+      std::replace(port.begin(), port.end(), '.', '_');
+      hmiSamples[programPrefix].push_back(
+          chooseScalars(name, port + "_in", m->type,
+                        "HMI variable '" + name + "'", name, m->loc));
+    }
     if (m->edge) // what the caller passed last time
       b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
                m->loc);

@@ -446,6 +446,14 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   for (VarDecl *v : chosenByEnvironment)
     if (auto it = environmentSamples.find(v); it != environmentSamples.end())
       action.insert(action.end(), it->second.begin(), it->second.end());
+  std::vector<std::string> prefixes{""};
+  if (!run.prefix.empty())
+    prefixes.push_back(run.prefix);
+  for (const std::string &prefix : prefixes)
+    if (auto it = hmiSamples.find(prefix); it != hmiSamples.end())
+      for (const ChosenScalars &chosen : it->second)
+        for (NStmt *s : samplesOf(chosen))
+          action.push_back(s);
   // An input the program writes is read through a copy the scan samples
   // first; what the program writes stands until the next scan samples it.
   std::vector<VarDecl *> inputs(program->vars.begin(), program->vars.end());

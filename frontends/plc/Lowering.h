@@ -730,6 +730,10 @@ private:
   Pou *currentProgram = nullptr;
   /// The prefix of the current program's own names (see ProgramRun).
   std::string programPrefix;
+  /// What the web HMI writes into instances' HMI_<T> members before a
+  /// scan of the program whose prefix is the key ("": an instance among
+  /// the globals, before every program's scan).
+  std::map<std::string, std::vector<ChosenScalars>> hmiSamples;
   /// Lowering an event-driven block: inputs take their full types.
   bool eventDriven = false;
   /// --ranges entries some input took, and every name an input could have

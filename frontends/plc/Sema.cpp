@@ -720,6 +720,8 @@ bool Checker::run() {
   for (Pou *p : checked)
     for (VarDecl *v : p->vars)
       indexEnum(v->type);
+  for (VarDecl *g : allGlobals)
+    hmiVariable(g, nullptr);
   for (Pou *p : checked) {
     unsigned errorsBefore = diag.numErrors();
     checkPou(p);
@@ -755,6 +757,36 @@ bool Checker::run() {
   return !diag.hadError();
 }
 
+void Checker::hmiVariable(VarDecl *v, Pou *owner) {
+  TypeSyntax *ts = v->typeSyntax;
+  if (!ts || ts->kind != TypeSyntaxKind::Named ||
+      !StringRef(ts->name).startswith_insensitive("HMI_"))
+    return;
+  TypeDecl *td = unit.findType(ts->name);
+  if (!td || !td->isLibrary)
+    return; // the project's own HMI_ type
+  for (const char *node : {"HMI_NODE", "HMI_CLASS", "HMI_LABEL"})
+    if (sameName(ts->name, node))
+      return;
+  if (owner &&
+      (owner->kind == PouKind::Function || v->section == VarSection::InOut ||
+       v->section == VarSection::Temp)) {
+    error(v->loc,
+          "'" + v->name + "' of type " + ts->name +
+              " may be written by Beremiz's web HMI between scans; "
+              "netlift models that for variables that keep their "
+              "value between scans, not a " +
+              spelling(owner->kind).str() + "'s " +
+              (v->section == VarSection::InOut ? "VAR_IN_OUT" : "temporary"));
+    return;
+  }
+  v->sharedOutside = true;
+  diag.note(v->loc, "'" + v->name + "' is an " + ts->name +
+                        ": Beremiz's web HMI may write it between scans, so "
+                        "each scan starts from a value the environment "
+                        "chooses (what the program left there included)");
+}
+
 void Checker::checkPou(Pou *p) {
   current = p;
   for (VarDecl *v : p->vars) {
@@ -787,6 +819,7 @@ void Checker::checkPou(Pou *p) {
     }
     if (v->typeSyntax)
       checkInitializer(v->typeSyntax->init, v->type);
+    hmiVariable(v, p);
     if (v->edge &&
         (p->kind != PouKind::FunctionBlock || v->section != VarSection::Input ||
          (v->type && v->type->kind != PTypeKind::Bool)))

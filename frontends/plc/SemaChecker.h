@@ -67,6 +67,10 @@ private:
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
   const PType *derefType(Expr *e);
+  /// A variable of one of SVGHMI's HMI_<T> types, which Beremiz's web HMI
+  /// may write between scans: shared outside (a program's or a global),
+  /// else refused.
+  void hmiVariable(VarDecl *v, Pou *owner);
   /// A structure type's `{attribute 'pack_mode' := 'n'}`, if given (an
   /// invalid one is reported).
   std::optional<unsigned> packMode(TypeDecl *td);

@@ -239,8 +239,23 @@ bool Reader::variables(pugi::xml_node section, VarSection kind,
       // tc6_0200 files write string initial values without quotes.
       pugi::xml_node simple = child(init, "simpleValue");
       StringRef text = simple.attribute("value").value();
-      if (d->typeSyntax->kind == TypeSyntaxKind::String && simple &&
-          !text.startswith("'") && !text.startswith("\"")) {
+      // So do Beremiz's, for a type derived from STRING (SVGHMI's
+      // HMI_STRING, the project's own).
+      auto isString = [&](TypeSyntax *t) {
+        for (int depth = 0; t && depth < 8; ++depth) {
+          if (t->kind == TypeSyntaxKind::String)
+            return true;
+          if (t->kind != TypeSyntaxKind::Named)
+            return false;
+          if (StringRef(t->name).equals_insensitive("HMI_STRING"))
+            return true;
+          TypeDecl *td = unit.findType(t->name);
+          t = td ? td->type : nullptr;
+        }
+        return false;
+      };
+      if (isString(d->typeSyntax) && simple && !text.startswith("'") &&
+          !text.startswith("\"")) {
         auto *i = unit.make<Initializer>(Initializer::Value, src.locOf(simple));
         i->value = unit.make<Expr>(ExprKind::StringLit, i->loc);
         i->value->name = "'" + text.str() + "'";

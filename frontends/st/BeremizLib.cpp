@@ -4,9 +4,9 @@
 // run by its runtime: LOGGER, which writes the runtime's log
 // (NativeLib.xml), RTC, the real-time clock, and the Python extension's
 // python_eval, python_poll and python_gear, which run Python code
-// (py_ext/pous.xml); and OpenPLC's extension blocks, which drive its boards'
+// (py_ext/pous.xml) and its CSV readers; and OpenPLC's extension blocks, which drive its boards'
 // hardware and talk over CAN, TCP and MQTT (its editor's plcopen/*.xml).
-// Projects call them without declaring them. netlift declares their interfaces,
+// Projects call them without declaring them; SVGHMI's HMI_* types too. netlift declares their interfaces,
 // as Beremiz defines them, marked `{netlift environment '...'}`: a call changes
 // nothing the program sees but their outputs, which are free inputs of the
 // model, said in a note (--opaque=refuse refuses them). LOGGER has no
@@ -22,6 +22,19 @@ using namespace netlift;
 static const char kBeremizLibrary[] = R"ST(
 TYPE
   LOGLEVEL : (CRITICAL, WARNING, INFO, DEBUG) := INFO;
+END_TYPE
+
+(* SVGHMI's types (svghmi/svghmi.py): a variable of HMI_<T> is a <T> the
+   web HMI shows and may write between scans (Sema: shared outside); an
+   HMI_NODE (older: HMI_CLASS, HMI_LABEL) only names a node of the HMI
+   tree. *)
+TYPE
+  HMI_BOOL : BOOL; HMI_SINT : SINT; HMI_INT : INT; HMI_DINT : DINT;
+  HMI_LINT : LINT; HMI_USINT : USINT; HMI_UINT : UINT; HMI_UDINT : UDINT;
+  HMI_ULINT : ULINT; HMI_BYTE : BYTE; HMI_WORD : WORD; HMI_DWORD : DWORD;
+  HMI_LWORD : LWORD; HMI_REAL : REAL; HMI_LREAL : LREAL;
+  HMI_STRING : STRING; HMI_TIME : TIME;
+  HMI_NODE : BOOL; HMI_CLASS : BOOL; HMI_LABEL : BOOL;
 END_TYPE
 
 {netlift environment 'writes the runtime log'}
@@ -52,6 +65,26 @@ END_FUNCTION_BLOCK
 {netlift environment 'runs Python code in the runtime'}
 FUNCTION_BLOCK python_gear
   VAR_INPUT N : UINT; TRIG : BOOL; CODE : STRING; END_VAR
+  VAR_OUTPUT ACK : BOOL; RESULT : STRING; END_VAR
+END_FUNCTION_BLOCK
+
+(* Beremiz's CSV blocks (py_ext): they read a cell through the Python
+   extension, which the runtime runs. *)
+{netlift environment 'reads CSV files through the Python extension'}
+FUNCTION_BLOCK csv_read_by_string
+  VAR_INPUT FILE_NAME : STRING; ROW : STRING; COLUMN : STRING; END_VAR
+  VAR_OUTPUT ACK : BOOL; RESULT : STRING; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reads CSV files through the Python extension'}
+FUNCTION_BLOCK csv_read_by_int
+  VAR_INPUT FILE_NAME : STRING; ROW : INT; COLUMN : INT; END_VAR
+  VAR_OUTPUT ACK : BOOL; RESULT : STRING; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reloads CSV files through the Python extension'}
+FUNCTION_BLOCK csv_reload
+  VAR_INPUT TRIG : BOOL; END_VAR
   VAR_OUTPUT ACK : BOOL; RESULT : STRING; END_VAR
 END_FUNCTION_BLOCK
 
