@@ -265,8 +265,91 @@ void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
   writeThroughReference(place, zero, nullptr, f, pre, at);
 }
 
+NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
+  SMLoc at = call->loc;
+  Expr *dstAdr = call->args[0].value, *srcAdr = call->args[1].value;
+  std::vector<MemoryLeaf> dl, sl;
+  std::string why;
+  memoryLeaves(dstAdr->type->elem, dl, why);
+  memoryLeaves(srcAdr->type->elem, sl, why);
+  int64_t n = call->intValue;
+  // A fresh expression for the place each time it is used (its selectors
+  // are constants: nothing to evaluate once).
+  auto placeOf = [&](Expr *adr) {
+    size_t before = pre.size();
+    NExpr *x = lvalue(adr->args[0].value, f, pre);
+    if (pre.size() != before)
+      refuse(adr->loc, call->name + " between places of different types: "
+                                    "the places must be variables and their "
+                                    "fields and elements, not reached "
+                                    "through a reference");
+    return x;
+  };
+  auto leafOf = [&](Expr *adr, const MemoryLeaf &l) {
+    NExpr *x = placeOf(adr);
+    for (const MemoryLeaf::Step &s : l.path) {
+      if (!s.field.empty()) {
+        x = b.field(x, sanitize(s.field), at);
+        continue;
+      }
+      for (int64_t i : s.index)
+        x = b.index(x, b.intLit(i, at), at);
+    }
+    return x;
+  };
+  // Byte k of the source: of the leaf that holds it, little-endian (a
+  // STRING's characters, 0 past its end); padding reads 0.
+  auto sourceByte = [&](int64_t k) -> NExpr * {
+    for (const MemoryLeaf &l : sl) {
+      if (k < l.offset || k >= l.offset + l.size)
+        continue;
+      if (l.type->kind == PTypeKind::String)
+        return b.call(net::Builtin::Code,
+                      {leafOf(srcAdr, l), b.intLit(k - l.offset + 1, at)}, at);
+      NExpr *bits = unionBits(l.type, leafOf(srcAdr, l), at);
+      if (k > l.offset)
+        bits = b.binary(net::BinaryOp::Shr, bits,
+                        b.intLit(8 * (k - l.offset), at), at);
+      return b.binary(net::BinaryOp::BitAnd, bits, b.intLit(255, at), at);
+    }
+    return b.intLit(0, at);
+  };
+  // Every target leaf the bytes reach, computed before any is written (the
+  // source may share bytes with the target, as MEMMOVE allows).
+  std::vector<std::pair<const MemoryLeaf *, std::string>> written;
+  for (const MemoryLeaf &l : dl) {
+    if (l.offset >= n)
+      break;
+    NExpr *raw = nullptr;
+    if (l.offset + l.size <= n) {
+      for (int64_t j = 0; j < l.size; ++j) {
+        NExpr *byte = sourceByte(l.offset + j);
+        if (j)
+          byte = b.binary(net::BinaryOp::Shl, byte, b.intLit(8 * j, at), at);
+        raw = raw ? b.binary(net::BinaryOp::BitOr, raw, byte, at) : byte;
+      }
+    } else {
+      // The leading bytes only; the others kept.
+      raw = unionBits(l.type, leafOf(dstAdr, l), at);
+      for (int64_t j = 0; l.offset + j < n; ++j)
+        raw = insertBits(raw, sourceByte(l.offset + j), 8, b.intLit(8 * j, at),
+                         at);
+    }
+    std::string tmp = unique("_memcpy");
+    declareTemp(tmp, l.type, at);
+    pre.push_back(
+        b.assign(b.ref(tmp, at), fromBits(l.type, raw, 8 * l.size, at), at));
+    written.push_back({&l, tmp});
+  }
+  for (auto &[l, tmp] : written)
+    pre.push_back(b.assign(leafOf(dstAdr, *l), b.ref(tmp, at), at));
+  return b.intLit(0, at);
+}
+
 NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
   SMLoc at = call->loc;
+  if (call->typeName == "IMAGE")
+    return imageCopy(call, f, pre);
   Expr *dst = call->args[0].value, *src = call->args[1].value;
   const PType *t = dst->type->elem;
   std::string why;

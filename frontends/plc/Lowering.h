@@ -415,6 +415,10 @@ private:
   NExpr *pointerPairValue(Expr *e, Frame &f, Sink &pre);
   /// MEMCPY, MEMMOVE, MEMSET (statements around nothing) and MEMCMP.
   NExpr *memoryCall(Expr *call, Frame &f, Sink &pre);
+  /// MEMCPY/MEMMOVE between places of different types (Sema's "IMAGE"):
+  /// each target scalar the bytes reach is rebuilt from the source's bytes
+  /// in the x64 layout (memoryLeaves), little-endian.
+  NExpr *imageCopy(Expr *call, Frame &f, Sink &pre);
   /// MEMSET(..., 0, ...) of one array or structure: each scalar of the
   /// place `place` designates (a dereference, perhaps selected) set to 0.
   void zeroThroughReference(Expr *place, Frame &f, Sink &pre, SMLoc at);

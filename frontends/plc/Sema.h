@@ -162,6 +162,24 @@ struct MemoryLayout {
 };
 std::optional<MemoryLayout> memoryLayout(const PType *t, std::string &why);
 
+/// One scalar of a value in that layout: the fields and indices that reach
+/// it, where its bytes start, and its type (BOOL, an integer or bit
+/// string, a REAL or a STRING). The bytes no leaf covers are padding.
+struct MemoryLeaf {
+  struct Step {
+    std::string field;          // else an element
+    std::vector<int64_t> index; // one per dimension
+  };
+  std::vector<Step> path;
+  int64_t offset = 0, size = 0;
+  const PType *type = nullptr;
+};
+/// The leaves of `t` in offset order; false, with `why`, when a scalar has
+/// no byte encoding netlift models (an enumeration, TIME, a date, a
+/// reference, an instance, a UNION).
+bool memoryLeaves(const PType *t, std::vector<MemoryLeaf> &out,
+                  std::string &why);
+
 struct CheckOptions {
   /// The program, program instance or function block translated (--top);
   /// empty: the configuration's programs, else every program.

@@ -66,6 +66,12 @@ private:
   /// MEMCPY, MEMMOVE, MEMSET, MEMCMP over places of one type, a constant
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
+  /// MEMCPY/MEMMOVE(ADR(x), ADR(y), n) between places of different types:
+  /// n bytes of y's layout copied into x's, leaf by leaf (marked "IMAGE",
+  /// n in `intValue`). Nullopt when it is no such copy (then memoryCall
+  /// goes on); null after an error.
+  std::optional<const PType *> imageCopy(Expr *e, Expr *dst, Expr *src,
+                                         Expr *count, bool asStatement);
   const PType *derefType(Expr *e);
   /// A variable of one of SVGHMI's HMI_<T> types, which Beremiz's web HMI
   /// may write between scans: shared outside (a program's or a global),

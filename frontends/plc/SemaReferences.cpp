@@ -497,6 +497,59 @@ void Checker::referenceAssign(Stmt *s) {
     s->assignKind = AssignKind::Value;
 }
 
+std::optional<const PType *> Checker::imageCopy(Expr *e, Expr *dst, Expr *src,
+                                                Expr *count, bool asStatement) {
+  auto adrPlace = [](Expr *p) -> Expr * {
+    return p->kind == ExprKind::Call && sameName(p->name, "ADR") &&
+                   p->args.size() == 1 && p->type && p->type->elem
+               ? p->args[0].value
+               : nullptr;
+  };
+  // What the element-wise copy copies: an array of scalars' elements.
+  auto elementKey = [](Expr *p) {
+    const PType *t = p->type->elem;
+    if (t && t->kind == PTypeKind::Array && t->elem->kind != PTypeKind::Array &&
+        t->elem->kind != PTypeKind::Struct)
+      t = t->elem;
+    return referenceKey(t);
+  };
+  Expr *dp = adrPlace(dst), *sp = adrPlace(src);
+  if (!dp || !sp || elementKey(dst) == elementKey(src))
+    return std::nullopt;
+  const PType *dt = dst->type->elem, *st = src->type->elem;
+  std::string what = e->name + " from " + st->str() + " to " + dt->str();
+  std::vector<MemoryLeaf> dl, sl;
+  std::string why;
+  if (!memoryLeaves(dt, dl, why) || !memoryLeaves(st, sl, why)) {
+    error(e->loc, what + ": " + why);
+    return nullptr;
+  }
+  std::string dummy;
+  int64_t dsize = memoryLayout(dt, dummy)->size,
+          ssize = memoryLayout(st, dummy)->size, n;
+  if (!constInt(count, n) || n <= 0 || n > std::min(dsize, ssize)) {
+    error(count->loc, what +
+                          ": the size must be a constant number of bytes "
+                          "from 1 to " +
+                          Twine(std::min(dsize, ssize)) +
+                          " (both are that long at least)");
+    return nullptr;
+  }
+  for (const MemoryLeaf &l : dl)
+    if (l.type->kind == PTypeKind::String && l.offset < n) {
+      error(e->loc, what + ": bytes copied into a STRING are not modelled");
+      return nullptr;
+    }
+  e->typeName = "IMAGE";
+  e->intValue = n;
+  if (!asStatement) {
+    error(e->loc, "the result of " + e->name +
+                      " (an address) is not modelled; call it as a statement");
+    return nullptr;
+  }
+  return voidType();
+}
+
 const PType *Checker::memoryCall(Expr *e, bool asStatement) {
   bool set = e->name == "MEMSET", compare = e->name == "MEMCMP";
   if (e->args.size() != 3 ||
@@ -509,6 +562,10 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
       return nullptr;
   Expr *dst = e->args[0].value, *src = e->args[1].value,
        *count = e->args[2].value;
+  if (!set && !compare)
+    if (std::optional<const PType *> r =
+            imageCopy(e, dst, src, count, asStatement))
+      return *r;
   auto designated = [&](Expr *p) -> const PType * {
     if (!p->type->isReference() || !p->type->elem) {
       error(p->loc, e->name + " takes addresses (ADR), not " + p->type->str());
@@ -531,7 +588,8 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
       return nullptr;
     if (referenceKey(ts) != referenceKey(t)) {
       error(e->loc, e->name + " between " + t->str() + " and " + ts->str() +
-                        " reinterprets memory, which netlift does not model");
+                        " reinterprets memory, which netlift models between "
+                        "ADR(x) and ADR(y) only (the bytes of two places)");
       return nullptr;
     }
   } else if (!baseOf(src->type)->isInteger()) {

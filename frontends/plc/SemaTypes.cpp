@@ -2,6 +2,8 @@
 //----------===//
 #include "frontends/plc/SemaChecker.h"
 
+#include <functional>
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -224,6 +226,76 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
           "decides it)";
     return std::nullopt;
   }
+}
+
+bool plc::memoryLeaves(const PType *t, std::vector<MemoryLeaf> &out,
+                       std::string &why) {
+  auto alignUp = [](int64_t n, int64_t a) { return (n + a - 1) / a * a; };
+  std::function<bool(const PType *, MemoryLeaf)> walk = [&](const PType *pt,
+                                                            MemoryLeaf at) {
+    const PType *base = baseOf(pt);
+    auto layout = memoryLayout(base, why);
+    if (!layout)
+      return false;
+    switch (base->kind) {
+    case PTypeKind::Bool:
+    case PTypeKind::Int:
+    case PTypeKind::Real:
+    case PTypeKind::String:
+      if (base->kind == PTypeKind::String && base->width != 8) {
+        why = "a " + base->str() + "'s bytes are not modelled";
+        return false;
+      }
+      at.size = layout->size;
+      at.type = base;
+      out.push_back(std::move(at));
+      return true;
+    case PTypeKind::Array: {
+      auto elem = memoryLayout(base->elem, why);
+      // Row-major, the last index fastest.
+      std::vector<int64_t> index;
+      for (auto &[lo, hi] : base->dims)
+        index.push_back(lo);
+      for (int64_t k = 0;; ++k) {
+        MemoryLeaf inner = at;
+        inner.path.push_back({"", index});
+        inner.offset += k * elem->size;
+        if (!walk(base->elem, inner))
+          return false;
+        size_t d = index.size();
+        while (d > 0 && index[d - 1] == base->dims[d - 1].second) {
+          index[d - 1] = base->dims[d - 1].first;
+          --d;
+        }
+        if (d == 0)
+          return true;
+        ++index[d - 1];
+      }
+    }
+    case PTypeKind::Struct: {
+      if (base->isUnion) {
+        why = "the bytes of a UNION (" + base->str() + ") are not modelled";
+        return false;
+      }
+      int64_t offset = 0, pack = std::max<int64_t>(base->pack, 1);
+      for (VarDecl *f : base->fields) {
+        auto l = memoryLayout(f->type, why);
+        offset = alignUp(offset, std::min(l->align, pack));
+        MemoryLeaf inner = at;
+        inner.path.push_back({f->name, {}});
+        inner.offset += offset;
+        if (!walk(f->type, inner))
+          return false;
+        offset += l->size;
+      }
+      return true;
+    }
+    default:
+      why = "the bytes of a " + base->str() + " are not modelled";
+      return false;
+    }
+  };
+  return walk(t, MemoryLeaf{});
 }
 
 std::string plc::referenceKey(const PType *t) {
