@@ -457,13 +457,10 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
                        : ": modelled as environment, its outputs " + outputs +
                              " are free inputs of the model"));
   }
-  if (auto it = environmentOutputs.find(path); it != environmentOutputs.end())
-    for (const ChosenScalars &chosen : it->second)
-      for (NStmt *s : samplesOf(chosen))
-        out.push_back(s);
   for (CallArg &a : call->args) {
     if (a.isOutput) {
-      NExpr *v = b.ref(path + "." + sanitize(a.name), a.loc);
+      NExpr *v =
+          environmentValueOr(b.ref(path + "." + sanitize(a.name), a.loc), out);
       if (a.negated)
         v = b.unary(net::UnaryOp::Not, v, a.loc);
       out.push_back(b.assign(lvalue(a.value, f, out), v, a.loc));

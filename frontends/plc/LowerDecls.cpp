@@ -330,6 +330,7 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return; // the global is declared once
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   declaringPrefix = programPrefix;
+  declaringLoc = v->loc;
   // The caller's variable, or one shared with code outside the design: the
   // environment's (LowerEnvironment.cpp).
   if (v->section == VarSection::InOut || v->sharedOutside) {
@@ -434,6 +435,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       continue; // a global's; the block type's (staticVar)
     std::string name = path + "." + sanitize(m->name);
     declaringPrefix = path + ".";
+    declaringLoc = m->loc;
     if (!fb->isLibrary)
       keepPragmas(name, m->attrs);
     Initializer *mi = m->typeSyntax ? m->typeSyntax->init : nullptr;
@@ -481,7 +483,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       // An HMI_<T> member: the web HMI may write it between scans.
       std::string port = name;
       std::replace(port.begin(), port.end(), '.', '_');
-      hmiSamples[programPrefix].push_back(
+      scanSamples[programPrefix].push_back(
           chooseScalars(name, port + "_in", m->type,
                         "HMI variable '" + name + "'", name, m->loc));
     }
@@ -496,6 +498,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
 /// unranged input is), its inputs are not stored. Refused by
 /// --opaque=refuse where it is called.
 void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
+  std::string sampled;
   for (VarDecl *m : fb->vars) {
     if (m->section != VarSection::Output)
       continue;
@@ -508,12 +511,26 @@ void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
     const net::Type *nt = netType(m->type, m->loc, "output " + m->name);
     if (!nt->isScalar() && !nt->isString()) {
       // A structure or array: the block's variable, its scalars chosen at
-      // every call (LowerEnvironment.cpp).
-      b.addVar(name, nt, nullptr, m->loc);
+      // every call and where it is read whole (LowerEnvironment.cpp), so
+      // what is left at the end of a scan is never read: reset there.
+      declareTemp(name, m->type, m->loc);
       ChosenScalars chosen = chooseScalars(
           name, name, m->type, "output '" + m->name + "' of " + fb->name, name,
           m->loc);
-      environmentOutputs[path].push_back(chosen);
+      // Updated by the environment whether or not the program calls the
+      // block: a scalar of it read is its free input, read there; a part
+      // read whole is chosen where it is read (environmentRead).
+      for (const ChosenScalars::Scalar &c : chosen.scalars) {
+        std::string key = name;
+        for (auto &[field, index] : c.path)
+          key +=
+              field.empty() ? "[" + std::to_string(index) + "]" : "." + field;
+        environmentScalarPorts[key] = c.port;
+      }
+      environmentValues.push_back(chosen);
+      environmentOwners[name] =
+          "'" + path + "' (" + fb->name + ") " + fb->environment;
+      sampled += (sampled.empty() ? "" : ", ") + m->name;
       continue;
     }
     b.addPort(name, net::PortKind::Data, net::PortDir::In, nt, m->loc);
@@ -521,6 +538,16 @@ void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
       b.addAttribute(name, net::kNeedsRangeAttribute,
                      design.save(name + " : " + m->type->str()), m->loc);
   }
+  if (sampled.empty())
+    return;
+  // Read whether or not the program calls it (an axis's status): said
+  // where it is declared (refused where it is read, with --opaque=refuse).
+  if (!opts.opaqueRefused && notedEnvironment.insert(path).second)
+    diag.note(declaringLoc,
+              "'" + path + "' (" + fb->name + ") " + fb->environment +
+                  ": modelled as environment, its outputs are free inputs "
+                  "of the model (" +
+                  sampled + " too, where they are read)");
 }
 
 /// VAR_STAT of a function block or function: one variable for every

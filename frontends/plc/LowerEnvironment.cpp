@@ -261,6 +261,73 @@ static size_t scalarCount(const PType *t, size_t cap) {
   return 1;
 }
 
+NExpr *Lowering::environmentRead(NExpr *place, Sink &pre) {
+  if (environmentValues.empty())
+    return nullptr;
+  // The place as a name: fields and constant indices.
+  std::function<std::optional<std::string>(NExpr *)> key =
+      [&](NExpr *x) -> std::optional<std::string> {
+    if (auto *r = llvm::dyn_cast<net::Ref>(x))
+      return r->name.str();
+    if (auto *fx = llvm::dyn_cast<net::FieldExpr>(x)) {
+      auto k = key(fx->base);
+      return k ? std::optional<std::string>(*k + "." + fx->field.str()) : k;
+    }
+    if (auto *ix = llvm::dyn_cast<net::IndexExpr>(x)) {
+      auto *lit = llvm::dyn_cast<net::IntLit>(ix->index);
+      auto k = lit ? key(ix->base) : std::nullopt;
+      return k ? std::optional<std::string>(*k + "[" +
+                                            std::to_string(lit->value) + "]")
+               : std::nullopt;
+    }
+    return std::nullopt;
+  };
+  auto refused = [&](const std::string &name) {
+    if (opts.opaqueRefused)
+      refuse(place->loc, environmentOwners[name] +
+                             ", which netlift does not model (--opaque=refuse; "
+                             "the default models it as environment)");
+  };
+  std::optional<std::string> k = key(place);
+  if (k)
+    if (auto it = environmentScalarPorts.find(*k);
+        it != environmentScalarPorts.end()) {
+      for (const ChosenScalars &chosen : environmentValues)
+        if (StringRef(*k).startswith(chosen.name))
+          refused(chosen.name);
+      return b.ref(it->second, place->loc);
+    }
+  // Read whole, or at a run-time index: chosen here.
+  std::string root = k ? *k : "";
+  if (!k) {
+    NExpr *x = place;
+    while (true) {
+      if (auto *fx = llvm::dyn_cast<net::FieldExpr>(x))
+        x = fx->base;
+      else if (auto *ix = llvm::dyn_cast<net::IndexExpr>(x))
+        x = ix->base;
+      else
+        break;
+    }
+    auto *r = llvm::dyn_cast<net::Ref>(x);
+    if (!r)
+      return nullptr;
+    root = r->name.str();
+  }
+  for (const ChosenScalars &chosen : environmentValues) {
+    StringRef n = chosen.name;
+    if (!(StringRef(root).startswith(n) &&
+          (root.size() == n.size() || root[n.size()] == '.' ||
+           root[n.size()] == '[')))
+      continue;
+    refused(chosen.name);
+    for (NStmt *s : samplesOf(chosen))
+      pre.push_back(s);
+    return place;
+  }
+  return nullptr;
+}
+
 const PType *Lowering::callerTarget(VarDecl *v) {
   if (!v->owner || !runAsProgram(v->owner) || !v->type ||
       v->section != VarSection::Input || !v->type->isReference() ||

@@ -263,7 +263,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     if (e->var && e->var->type &&
         e->var->type->kind == PTypeKind::FunctionBlock)
       refuse(e->loc, "a function block instance is not a value");
-    return lvalue(e, f, pre);
+    return environmentValueOr(lvalue(e, f, pre), pre);
   case ExprKind::Field:
   case ExprKind::Index:
     if (isStringIndex(e))
@@ -274,7 +274,7 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       return chosenMemberRead(e, f, pre);
     if (auto part = unionPart(e, f, pre))
       return unionRead(*part, f, pre, e->loc);
-    return lvalue(e, f, pre);
+    return environmentValueOr(lvalue(e, f, pre), pre);
   case ExprKind::BitAccess:
     return partRead(e, f, pre);
   case ExprKind::Deref:

@@ -450,7 +450,7 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   if (!run.prefix.empty())
     prefixes.push_back(run.prefix);
   for (const std::string &prefix : prefixes)
-    if (auto it = hmiSamples.find(prefix); it != hmiSamples.end())
+    if (auto it = scanSamples.find(prefix); it != scanSamples.end())
       for (const ChosenScalars &chosen : it->second)
         for (NStmt *s : samplesOf(chosen))
           action.push_back(s);

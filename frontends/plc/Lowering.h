@@ -299,8 +299,6 @@ private:
   /// A call of a function marked `{netlift environment '...'}`: its result
   /// a free input (LowerEnvironment.cpp).
   NExpr *environmentFunction(Expr *call, Frame &f, Sink &pre);
-  /// An environment block's structured outputs, chosen at each call.
-  std::map<std::string, std::vector<ChosenScalars>> environmentOutputs;
   std::string staticVar(VarDecl *v, SMLoc at);
   uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
@@ -426,6 +424,9 @@ private:
   /// The prefix of the instance whose variables are being declared (a
   /// reference's initial value REF(x) is numbered in it).
   std::string declaringPrefix;
+  /// Where the variable being declared is (an instance's notes point
+  /// there).
+  SMLoc declaringLoc;
   std::map<std::string, int64_t> refDomain; // by referenceKey, all modules
 
   // Bodies.
@@ -737,7 +738,21 @@ private:
   /// What the web HMI writes into instances' HMI_<T> members before a
   /// scan of the program whose prefix is the key ("": an instance among
   /// the globals, before every program's scan).
-  std::map<std::string, std::vector<ChosenScalars>> hmiSamples;
+  std::map<std::string, std::vector<ChosenScalars>> scanSamples;
+  /// An environment block's structured outputs: each scalar's free input
+  /// by its place (`Axis1.NcToPlc.ActPos`), and the outputs themselves.
+  std::map<std::string, std::string> environmentScalarPorts;
+  std::vector<ChosenScalars> environmentValues;
+  /// Each one's block, as notes name it.
+  std::map<std::string, std::string> environmentOwners;
+  /// `place` read: a scalar of an environment block's structured output
+  /// is its free input; a part of one read whole is chosen first (into
+  /// `pre`). Null when `place` is none of these.
+  NExpr *environmentRead(NExpr *place, Sink &pre);
+  NExpr *environmentValueOr(NExpr *place, Sink &pre) {
+    NExpr *x = environmentRead(place, pre);
+    return x ? x : place;
+  }
   /// Lowering an event-driven block: inputs take their full types.
   bool eventDriven = false;
   /// --ranges entries some input took, and every name an input could have

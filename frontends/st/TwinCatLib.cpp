@@ -14,7 +14,8 @@
 // behaviour is what Beckhoff documents (MODABS(-400.56, 360) = 319.44,
 // LTRUNC(-2.8) = -2, FLOOR and CEIL of negative values); twincat-lib.test
 // checks those values. Tc2_Standard's timers, triggers and counters are the
-// standard ones.
+// standard ones. Tc2_MC2's axis (AXIS_REF) and motion blocks are
+// environment too: the NC task, not the program, moves the axis.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StdLib.h"
@@ -174,6 +175,225 @@ FUNCTION MODABS : LREAL
   VAR_INPUT lr_val, lr_mod : LREAL; END_VAR
   MODABS := lr_val - lr_mod * FLOOR(lr_val / lr_mod);
 END_FUNCTION
+
+(* Tc2_MC2, PLCopen motion control on the NC: an axis (AXIS_REF) and the
+   blocks that command it. The NC task moves the axis; netlift has no model
+   of it, so an AXIS_REF's cyclic data (NcToPlc) and status are the
+   environment's, chosen at every scan, and an MC block's outputs are free
+   inputs: every answer the interface allows, in any order (a Done without
+   a Busy before it included). Interfaces as Beckhoff documents them; the
+   members a program may read are those listed here. *)
+TYPE
+  MC_AxisStates : (MC_AXISSTATE_UNDEFINED, MC_AXISSTATE_DISABLED,
+    MC_AXISSTATE_STANDSTILL, MC_AXISSTATE_ERRORSTOP, MC_AXISSTATE_STOPPING,
+    MC_AXISSTATE_HOMING, MC_AXISSTATE_DISCRETEMOTION,
+    MC_AXISSTATE_CONTINOUSMOTION, MC_AXISSTATE_SYNCHRONIZEDMOTION);
+  MC_BufferMode : (MC_Aborting, MC_Buffered, MC_BlendingLow,
+    MC_BlendingPrevious, MC_BlendingNext, MC_BlendingHigh);
+  MC_Direction : (MC_Positive_Direction := 1, MC_Shortest_Way,
+    MC_Negative_Direction, MC_Current_Direction);
+  MC_HomingMode : (MC_DefaultHoming, MC_ForceCalibration,
+    MC_ResetCalibration);
+  E_JogMode : (MC_JOGMODE_STANDARD_SLOW, MC_JOGMODE_STANDARD_FAST,
+    MC_JOGMODE_CONTINOUS, MC_JOGMODE_INCHING, MC_JOGMODE_INCHING_MODULO);
+  NCTOPLC_AXIS_REF : STRUCT
+    StateDWord : DWORD; ErrorCode : UDINT; AxisState : UDINT;
+    AxisModeConfirmation : UDINT; HomingState : UDINT; CoupleState : UDINT;
+    SvbEntries : UDINT; SafEntries : UDINT; AxisId : UDINT;
+    OpModeDWord : DWORD; ActPos : LREAL; ModuloActPos : LREAL;
+    ModuloActTurns : DINT; ActVelo : LREAL; PosDiff : LREAL; SetPos : LREAL;
+    SetVelo : LREAL; SetAcc : LREAL; TargetPos : LREAL;
+    ModuloSetPos : LREAL; ModuloSetTurns : DINT; CmdNo : UINT;
+    CmdState : UINT; SetJerk : LREAL; SetTorque : LREAL; ActTorque : LREAL;
+  END_STRUCT;
+  PLCTONC_AXIS_REF : STRUCT
+    ControlDWord : DWORD; Override : UDINT; AxisModeRequest : UDINT;
+    AxisModeDWord : UDINT; AxisModeLReal : LREAL; PositionCorrection : LREAL;
+    ExtSetPos : LREAL; ExtSetVelo : LREAL; ExtSetAcc : LREAL;
+    ExtSetDirection : DINT; ExtControllerOutput : LREAL;
+    GearRatio1 : LREAL; GearRatio2 : LREAL; GearRatio3 : LREAL;
+    GearRatio4 : LREAL;
+  END_STRUCT;
+  ST_AxisStatus : STRUCT
+    UpdateTaskIndex : BYTE; UpdateCycleTime : LREAL; CycleCounter : UDINT;
+    NcCycleCounter : UDINT; MotionState : MC_AxisStates; Error : BOOL;
+    ErrorId : UDINT; ErrorStop : BOOL; Disabled : BOOL; Stopping : BOOL;
+    StandStill : BOOL; DiscreteMotion : BOOL; ContinuousMotion : BOOL;
+    SynchronizedMotion : BOOL; Homing : BOOL; ConstantVelocity : BOOL;
+    Accelerating : BOOL; Decelerating : BOOL; Operational : BOOL;
+    ControlLoopClosed : BOOL; HasJob : BOOL; HasBeenStopped : BOOL;
+    NewTargetPosition : BOOL; InPositionArea : BOOL;
+    InTargetPosition : BOOL; ProtectedMode : BOOL; Homed : BOOL;
+    HomingBusy : BOOL; MotionCommandsLocked : BOOL;
+    SoftLimitMinExceeded : BOOL; SoftLimitMaxExceeded : BOOL; Moving : BOOL;
+    PositiveDirection : BOOL; NegativeDirection : BOOL; NotMoving : BOOL;
+    Compensating : BOOL; ExtSetPointGenEnabled : BOOL; PhasingActive : BOOL;
+    ExternalLatchValid : BOOL; CamDataQueued : BOOL; CamTableQueued : BOOL;
+    CamScalingPending : BOOL; CmdBuffered : BOOL; PTPmode : BOOL;
+    DriveDeviceError : BOOL; IoDataInvalid : BOOL;
+    ErrorPropagationDelayed : BOOL;
+  END_STRUCT;
+END_TYPE
+
+{netlift environment 'is an axis the NC task moves'}
+FUNCTION_BLOCK AXIS_REF
+  VAR_INPUT PlcToNc : PLCTONC_AXIS_REF; END_VAR
+  VAR_OUTPUT NcToPlc : NCTOPLC_AXIS_REF; Status : ST_AxisStatus; END_VAR
+ACTION ReadStatus:
+END_ACTION
+END_FUNCTION_BLOCK
+
+{netlift environment 'enables an axis on the NC'}
+FUNCTION_BLOCK MC_Power
+  VAR_INPUT
+    Enable, Enable_Positive, Enable_Negative : BOOL; Override : LREAL := 100.0;
+    BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT Status, Busy, Active, Error : BOOL; ErrorID : UDINT; END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'resets an axis on the NC'}
+FUNCTION_BLOCK MC_Reset
+  VAR_INPUT Execute : BOOL; END_VAR
+  VAR_OUTPUT Done, Busy, Error : BOOL; ErrorID : UDINT; END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'stops an axis on the NC'}
+FUNCTION_BLOCK MC_Stop
+  VAR_INPUT Execute : BOOL; Deceleration, Jerk : LREAL; END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'halts an axis on the NC'}
+FUNCTION_BLOCK MC_Halt
+  VAR_INPUT
+    Execute : BOOL; Deceleration, Jerk : LREAL; BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'homes an axis on the NC'}
+FUNCTION_BLOCK MC_Home
+  VAR_INPUT
+    Execute : BOOL; Position : LREAL := 1E308; HomingMode : MC_HomingMode;
+    BufferMode : MC_BufferMode; bCalibrationCam : BOOL;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'moves an axis on the NC'}
+FUNCTION_BLOCK MC_MoveAbsolute
+  VAR_INPUT
+    Execute : BOOL; Position, Velocity, Acceleration, Deceleration,
+    Jerk : LREAL; BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'moves an axis on the NC'}
+FUNCTION_BLOCK MC_MoveRelative
+  VAR_INPUT
+    Execute : BOOL; Distance, Velocity, Acceleration, Deceleration,
+    Jerk : LREAL; BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'moves an axis on the NC'}
+FUNCTION_BLOCK MC_MoveModulo
+  VAR_INPUT
+    Execute : BOOL; Position, Velocity, Acceleration, Deceleration,
+    Jerk : LREAL; Direction : MC_Direction; BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'moves an axis on the NC'}
+FUNCTION_BLOCK MC_MoveVelocity
+  VAR_INPUT
+    Execute : BOOL; Velocity, Acceleration, Deceleration, Jerk : LREAL;
+    Direction : MC_Direction := MC_Positive_Direction;
+    BufferMode : MC_BufferMode;
+  END_VAR
+  VAR_OUTPUT
+    InVelocity, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'jogs an axis on the NC'}
+FUNCTION_BLOCK MC_Jog
+  VAR_INPUT
+    JogForward, JogBackwards : BOOL; Mode : E_JogMode; Position, Velocity,
+    Acceleration, Deceleration, Jerk : LREAL;
+  END_VAR
+  VAR_OUTPUT
+    Done, Busy, Active, CommandAborted, Error : BOOL; ErrorID : UDINT;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'sets the position of an axis on the NC'}
+FUNCTION_BLOCK MC_SetPosition
+  VAR_INPUT Execute : BOOL; Position : LREAL; Mode : BOOL; END_VAR
+  VAR_OUTPUT Done, Busy, Error : BOOL; ErrorID : UDINT; END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reads an axis on the NC'}
+FUNCTION_BLOCK MC_ReadActualPosition
+  VAR_INPUT Enable : BOOL; END_VAR
+  VAR_OUTPUT Valid, Busy, Error : BOOL; ErrorID : UDINT; Position : LREAL; END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reads an axis on the NC'}
+FUNCTION_BLOCK MC_ReadActualVelocity
+  VAR_INPUT Enable : BOOL; END_VAR
+  VAR_OUTPUT
+    Valid, Busy, Error : BOOL; ErrorID : UDINT; ActualVelocity : LREAL;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reads an axis on the NC'}
+FUNCTION_BLOCK MC_ReadAxisError
+  VAR_INPUT Enable : BOOL; END_VAR
+  VAR_OUTPUT Valid, Busy, Error : BOOL; ErrorID, AxisErrorID : UDINT; END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'reads an axis on the NC'}
+FUNCTION_BLOCK MC_ReadStatus
+  VAR_INPUT Enable : BOOL; END_VAR
+  VAR_OUTPUT
+    Valid, Busy, Error : BOOL; ErrorID : UDINT;
+    ErrorStop, Disabled, Stopping, StandStill, DiscreteMotion,
+    ContinuousMotion, SynchronizedMotion, Homing, ConstantVelocity,
+    Accelerating, Decelerating : BOOL; Status : ST_AxisStatus;
+  END_VAR
+  VAR_IN_OUT Axis : AXIS_REF; END_VAR
+END_FUNCTION_BLOCK
 )ST";
 
 bool st::addTwinCatLibrary(DiagEngine &diag, plc::Unit &unit) {
