@@ -233,6 +233,14 @@ NExpr *Lowering::environmentFunction(Expr *call, Frame &f, Sink &pre) {
                             "modelled");
   for (CallArg &a : call->args)
     runArgumentCalls(a.value, f, pre);
+  // Called as a statement (ADSLOGSTR(...);): its result is not read.
+  if (!call->type || call->type->kind == PTypeKind::Void) {
+    diag.note(call->loc, "'" + fn->name + "' " + fn->environment +
+                             ": modelled as environment; its result is not "
+                             "used, so the call changes nothing the program "
+                             "sees");
+    return b.intLit(0, call->loc);
+  }
   // One free result per call site, read once per scan.
   std::string port = unique(sanitize(fn->name) + "_result");
   addFreeInputPort(port, call->type, fn->name + "()", call->loc);

@@ -106,6 +106,33 @@ FUNCTION_BLOCK GETCURTASKINDEX
   VAR_OUTPUT index : BYTE; END_VAR
 END_FUNCTION_BLOCK
 
+(* Tc2_System: messages to the event log (and a message box); the result
+   is the call's error code, 0 on success. *)
+VAR_GLOBAL CONSTANT
+  ADSLOG_MSGTYPE_HINT : DWORD := 16#01;
+  ADSLOG_MSGTYPE_WARN : DWORD := 16#02;
+  ADSLOG_MSGTYPE_ERROR : DWORD := 16#04;
+  ADSLOG_MSGTYPE_LOG : DWORD := 16#10;
+  ADSLOG_MSGTYPE_MSGBOX : DWORD := 16#20;
+  ADSLOG_MSGTYPE_RESOURCE : DWORD := 16#40;
+  ADSLOG_MSGTYPE_STRING : DWORD := 16#80;
+END_VAR
+
+{netlift environment 'writes the TwinCAT event log'}
+FUNCTION ADSLOGSTR : DINT
+  VAR_INPUT msgCtrlMask : DWORD; msgFmtStr, strArg : T_MaxString; END_VAR
+END_FUNCTION
+
+{netlift environment 'writes the TwinCAT event log'}
+FUNCTION ADSLOGDINT : DINT
+  VAR_INPUT msgCtrlMask : DWORD; msgFmtStr : T_MaxString; dintArg : DINT; END_VAR
+END_FUNCTION
+
+{netlift environment 'writes the TwinCAT event log'}
+FUNCTION ADSLOGLREAL : DINT
+  VAR_INPUT msgCtrlMask : DWORD; msgFmtStr : T_MaxString; lrealArg : LREAL; END_VAR
+END_FUNCTION
+
 (* Tc2_System: the system time, in 100 ns since 1601-01-01. *)
 {netlift environment 'reads the system clock'}
 FUNCTION F_GetSystemTime : ULINT
