@@ -55,9 +55,12 @@ private:
   void name(StringRef n) {
     if (Pou *p = unit.findPou(n))
       pou(p);
-    else if (TypeDecl *td = unit.findType(n))
+    else if (TypeDecl *td = unit.findType(n)) {
       if (typesSeen.insert(td).second)
         type(td->type);
+    } else if (n.contains('.')) {
+      name(n.split('.').second); // `Tc2_Standard.TON`: the library's
+    }
   }
   void type(TypeSyntax *ts) {
     if (!ts)

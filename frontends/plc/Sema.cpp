@@ -180,8 +180,31 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
     error(at, "'" + name + "' is a " + spelling(p->kind) + ", not a type");
     return nullptr;
   }
+  // `Tc2_System.T_MaxString`, `Standard.TON`: a name qualified by the
+  // library netlift models it from.
+  if (auto [lib, rest] = name.split('.');
+      !rest.empty() && libraryNamespace(lib)) {
+    TypeDecl *td = unit.findType(rest);
+    Pou *p = td ? nullptr : unit.findPou(rest);
+    if ((td && !td->isLibrary) || (p && !p->isLibrary)) {
+      error(at, "'" + name + "' names " + lib + "'s " + rest +
+                    ", but the project declares its own '" + rest +
+                    "', which replaces netlift's model of the library's");
+      return nullptr;
+    }
+    if (td || p)
+      return resolveNamed(rest, at);
+  }
   error(at, "unknown type '" + name + "'" + suggestType(name));
   return nullptr;
+}
+
+bool Checker::libraryNamespace(StringRef name) {
+  for (const char *lib : {"Standard", "Tc2_Standard", "Tc2_System",
+                          "Tc2_Utilities", "Tc2_Math", "Tc2_MC2"})
+    if (name.equals_insensitive(lib))
+      return !lookupVar(name) && !unit.findType(name) && !unit.findPou(name);
+  return false;
 }
 
 const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {

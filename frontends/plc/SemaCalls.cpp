@@ -288,6 +288,21 @@ bool Checker::drawnAsDeclared(Expr *e, Pou *type) {
 }
 
 const PType *Checker::call(Expr *e, bool asStatement) {
+  // `Tc2_Math.LTRUNC(x)`: the library's function, called by its name.
+  if (e->method && e->operands.size() == 1 &&
+      e->operands[0]->kind == ExprKind::Name &&
+      libraryNamespace(e->operands[0]->name)) {
+    StringRef lib = e->operands[0]->name;
+    if (Pou *p = unit.findPou(e->name); p && !p->isLibrary) {
+      error(e->loc, "'" + lib + "." + e->name + "' names " + lib + "'s " +
+                        e->name + ", but the project declares its own '" +
+                        e->name +
+                        "', which replaces netlift's model of the library's");
+      return nullptr;
+    }
+    e->method = false;
+    e->operands.clear();
+  }
   if (e->method)
     return methodCall(e, asStatement);
   // `r^(...)`, or `r(...)` for a REFERENCE TO: the instance r designates.

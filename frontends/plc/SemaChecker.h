@@ -73,6 +73,10 @@ private:
   std::optional<const PType *> imageCopy(Expr *e, Expr *dst, Expr *src,
                                          Expr *count, bool asStatement);
   const PType *derefType(Expr *e);
+  /// Is `name` a library netlift models (Standard, Tc2_Standard,
+  /// Tc2_System, Tc2_Utilities, Tc2_Math, Tc2_MC2) used as a namespace
+  /// (`Tc2_Math.LTRUNC`), not a name the program declares?
+  bool libraryNamespace(StringRef name);
   /// A variable of one of SVGHMI's HMI_<T> types, which Beremiz's web HMI
   /// may write between scans: shared outside (a program's or a global),
   /// else refused.
