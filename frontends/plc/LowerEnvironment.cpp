@@ -290,22 +290,9 @@ NExpr *Lowering::environmentRead(NExpr *place, Sink &pre) {
     }
     return std::nullopt;
   };
-  auto refused = [&](const std::string &name) {
-    if (opts.opaqueRefused)
-      refuse(place->loc, environmentOwners[name] +
-                             ", which netlift does not model (--opaque=refuse; "
-                             "the default models it as environment)");
-  };
+  // The output the place lies in: its name is the place's root, whole or
+  // followed by a selector.
   std::optional<std::string> k = key(place);
-  if (k)
-    if (auto it = environmentScalarPorts.find(*k);
-        it != environmentScalarPorts.end()) {
-      for (const ChosenScalars &chosen : environmentValues)
-        if (StringRef(*k).startswith(chosen.name))
-          refused(chosen.name);
-      return b.ref(it->second, place->loc);
-    }
-  // Read whole, or at a run-time index: chosen here.
   std::string root = k ? *k : "";
   if (!k) {
     NExpr *x = place;
@@ -322,18 +309,29 @@ NExpr *Lowering::environmentRead(NExpr *place, Sink &pre) {
       return nullptr;
     root = r->name.str();
   }
+  const ChosenScalars *owner = nullptr;
   for (const ChosenScalars &chosen : environmentValues) {
     StringRef n = chosen.name;
-    if (!(StringRef(root).startswith(n) &&
-          (root.size() == n.size() || root[n.size()] == '.' ||
-           root[n.size()] == '[')))
-      continue;
-    refused(chosen.name);
-    for (NStmt *s : samplesOf(chosen))
-      pre.push_back(s);
-    return place;
+    if (StringRef(root).startswith(n) &&
+        (root.size() == n.size() || root[n.size()] == '.' ||
+         root[n.size()] == '['))
+      owner = &chosen;
   }
-  return nullptr;
+  if (!owner)
+    return nullptr;
+  if (opts.opaqueRefused)
+    refuse(place->loc, environmentOwners[owner->name] +
+                           ", which netlift does not model (--opaque=refuse; "
+                           "the default models it as environment)");
+  // A scalar: its free input. Read whole, or at a run-time index: chosen
+  // here.
+  if (k)
+    if (auto it = environmentScalarPorts.find(*k);
+        it != environmentScalarPorts.end())
+      return b.ref(it->second, place->loc);
+  for (NStmt *s : samplesOf(*owner))
+    pre.push_back(s);
+  return place;
 }
 
 const PType *Lowering::callerTarget(VarDecl *v) {
@@ -382,21 +380,21 @@ void Lowering::declareCallerTarget(VarDecl *v, const std::string &name,
       target, target + "_in", elem, "what input '" + v->name + "' designates",
       v->name + "^", v->loc);
   environmentSamples[v] = samplesOf(chosen);
-  if (elem != v->type->elem) {
-    diag.note(v->loc,
-              "input '" + v->name + "' may designate its caller's " +
-                  v->type->elem->str() + ": modelled as '" + target +
-                  "', its first " + Twine(opts.callerElements) +
-                  " elements (--caller-elements), chosen by the environment "
-                  "at every scan as an in-out is (or NULL, or what the "
-                  "design's own REF and ADR take); an element past them is "
-                  "the run-time error '" +
-                  name + "_deref_element'");
-    return;
-  }
+  // A prefix of a larger array (callerTarget): said with its limit.
+  std::string prefix = elem == v->type->elem
+                           ? ""
+                           : ", its first " +
+                                 std::to_string(opts.callerElements) +
+                                 " elements (--caller-elements)";
+  std::string past = elem == v->type->elem
+                         ? ""
+                         : "; an element past them is the run-time error '" +
+                               name + "_deref_element'";
   diag.note(v->loc, "input '" + v->name + "' may designate its caller's " +
-                        elem->str() + ": modelled as '" + target +
-                        "', chosen by the environment at every scan as an "
+                        v->type->elem->str() + ": modelled as '" + target +
+                        "'" + prefix +
+                        ", chosen by the environment at every scan as an "
                         "in-out is (or NULL, or what the design's own REF "
-                        "and ADR take)");
+                        "and ADR take)" +
+                        past);
 }
