@@ -193,13 +193,13 @@ NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
       continue;
     }
     std::string name = prefix + sanitize(v->name);
-    declareTemp(name, v->type, v->loc);
+    declareTemp(name, v->type, v->loc, nullptr, true);
     NExpr *init;
     if (given != byName.end() && !given->second->isOutput)
       init = expr(given->second->value, f, pre);
     else
       init = initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr,
-                          v->type);
+                          v->type, v->loc); // arrays and structures too
     if (init)
       assign(b.ref(name, v->loc), init, v->type,
              given != byName.end() && !given->second->isOutput
@@ -606,11 +606,14 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
         out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
                                b.boolLit(false, v->loc), v->loc));
     }
+  // VAR_TEMP starts from its declared initial value at every call.
   for (VarDecl *v : fb->vars)
     if (v->section == VarSection::Temp && !instanceBlock(v->type))
-      if (NExpr *init = defaultValue(v->type, v->loc))
-        out.push_back(b.assign(b.ref(path + "." + sanitize(v->name), v->loc),
-                               init, v->loc));
+      if (NExpr *init =
+              initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr,
+                           v->type, v->loc))
+        assignParts(b.ref(path + "." + sanitize(v->name), v->loc), init,
+                    v->type, 0, out, v->loc);
   enabledBody(fb, path + ".", call, nf, out);
   knownConstants.resize(knownBefore);
   for (CallArg &a : call->args)

@@ -401,7 +401,11 @@ void Lowering::declareProgramVar(VarDecl *v) {
     return;
   }
   if (v->section == VarSection::Temp) {
-    declareTemp(name, t, v->loc);
+    // Back at its declared initial value for the next scan or call.
+    declareTemp(
+        name, t, v->loc,
+        initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr, t),
+        true);
     return;
   }
   NExpr *init =
@@ -473,7 +477,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       continue;
     }
     if (m->section == VarSection::Temp) {
-      declareTemp(name, m->type, m->loc);
+      declareTemp(name, m->type, m->loc, nullptr, true);
       continue;
     }
     b.addVar(name, netType(m->type, m->loc, "member " + m->name),
@@ -567,11 +571,18 @@ std::string Lowering::staticVar(VarDecl *v, SMLoc at) {
 }
 
 uint32_t Lowering::declareTemp(const std::string &name, const PType *t,
-                               SMLoc at) {
+                               SMLoc at, NExpr *initial, bool local) {
   varTypes[name] = t;
-  NExpr *init = defaultValue(t, at);
+  NExpr *init = initial ? initial : defaultValue(t, at);
   uint32_t x = b.addVar(name, netType(t, at, "variable " + name), init, at);
-  if (resetNames.insert(name).second && init)
-    resets.push_back({name, init});
+  // An array or structure is reset to its type's initial value too: a
+  // function's local buffer must not make states differ after the scan.
+  NExpr *reset = init;
+  if (!reset && local &&
+      (t->kind == PTypeKind::Array ||
+       (t->kind == PTypeKind::Struct && !t->isUnion)))
+    reset = aggregateValue(nullptr, nullptr, t, 0, at);
+  if (resetNames.insert(name).second && reset)
+    resets.push_back({name, reset});
   return x;
 }

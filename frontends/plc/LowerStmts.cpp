@@ -2,6 +2,8 @@
 //-------------------===//
 #include "frontends/plc/Lowering.h"
 
+#include <cstring>
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -55,7 +57,87 @@ void Lowering::assign(NExpr *target, NExpr *value, const PType *targetType,
     value = b.boolLit(valueExpr->intValue != 0, at);
   if (valueExpr)
     value = coerce(value, valueExpr->type, targetType, at);
-  out.push_back(b.assign(target, value, at));
+  assignParts(target, value, targetType, 0, out, at);
+}
+
+/// Do `a` and `b` denote the same constant (literals, enumerators and
+/// aggregates of them)?
+static bool sameConstant(NExpr *a, NExpr *b) {
+  if (a->getKind() != b->getKind())
+    return false;
+  if (auto *x = llvm::dyn_cast<net::IntLit>(a))
+    return x->value == llvm::cast<net::IntLit>(b)->value;
+  if (auto *x = llvm::dyn_cast<net::BoolLit>(a))
+    return x->value == llvm::cast<net::BoolLit>(b)->value;
+  if (auto *x = llvm::dyn_cast<net::RealLit>(a))
+    return std::memcmp(&x->value, &llvm::cast<net::RealLit>(b)->value,
+                       sizeof(double)) == 0;
+  if (auto *x = llvm::dyn_cast<net::Ref>(a))
+    return x->name == llvm::cast<net::Ref>(b)->name && x->fields.empty() &&
+           llvm::cast<net::Ref>(b)->fields.empty();
+  if (auto *x = llvm::dyn_cast<net::StringLit>(a))
+    return x->chars == llvm::cast<net::StringLit>(b)->chars;
+  if (auto *x = llvm::dyn_cast<net::AggregateLit>(a)) {
+    auto *y = llvm::cast<net::AggregateLit>(b);
+    if (x->elems.size() != y->elems.size() || x->fieldNames != y->fieldNames)
+      return false;
+    for (size_t i = 0; i < x->elems.size(); ++i)
+      if (!sameConstant(x->elems[i], y->elems[i]))
+        return false;
+    return true;
+  }
+  return false;
+}
+
+void Lowering::assignParts(NExpr *target, NExpr *value, const PType *t,
+                           size_t dim, Sink &out, SMLoc at) {
+  // NetIR takes an aggregate only as an initial value: a function's local
+  // array or structure, set again at each call, and a VAR_TEMP one, reset
+  // at the end of the scan, are set element by element (indexed from the
+  // array's own bounds); an array whose elements are all one value by a
+  // loop, so that a 256-byte buffer is not 256 statements.
+  auto *agg = llvm::dyn_cast<net::AggregateLit>(value);
+  if (!agg || !t) {
+    out.push_back(b.assign(target, value, at));
+    return;
+  }
+  auto part = [&](NExpr *element, NExpr *v, Sink &into) {
+    if (dim + 1 < t->dims.size())
+      assignParts(element, v, t, dim + 1, into, at);
+    else
+      assignParts(element, v, t->elem, 0, into, at);
+  };
+  if (!agg->isRecord() && agg->elems.size() > 4 &&
+      llvm::all_of(agg->elems,
+                   [&](NExpr *e) { return sameConstant(e, agg->elems[0]); })) {
+    std::string k = "_k" + std::to_string(++loopVars);
+    int64_t lo = t->dims[dim].first;
+    Sink each;
+    part(b.index(target, b.ref(k, at), at), agg->elems[0], each);
+    out.push_back(b.forStmt(k, b.intLit(lo, at),
+                            b.intLit(lo + int64_t(agg->elems.size()) - 1, at),
+                            each, at));
+    return;
+  }
+  for (size_t i = 0; i < agg->elems.size(); ++i) {
+    if (agg->isRecord())
+      assignParts(b.field(target, agg->fieldNames[i], at), agg->elems[i],
+                  i < t->fields.size() ? t->fields[i]->type : nullptr, 0, out,
+                  at);
+    else
+      part(b.index(target, b.intLit(t->dims[dim].first + int64_t(i), at), at),
+           agg->elems[i], out);
+  }
+}
+
+void Lowering::appendResets(
+    const std::vector<std::pair<std::string, NExpr *>> &list, Sink &out) {
+  for (auto &[name, init] : list) {
+    auto type = varTypes.find(name);
+    assignParts(b.ref(name, init->loc), init,
+                type == varTypes.end() ? nullptr : type->second, 0, out,
+                init->loc);
+  }
 }
 
 void Lowering::body(StmtList &list, Frame &f, Sink &out,

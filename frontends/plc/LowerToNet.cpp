@@ -553,8 +553,7 @@ void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
       if (run.scan != runs[i].scan)
         continue;
       action.insert(action.end(), run.action.begin(), run.action.end());
-      for (auto &[var, init] : run.resets)
-        action.push_back(b.assign(b.ref(var, init->loc), init, init->loc));
+      appendResets(run.resets, action);
     }
     SMLoc at = runs[i].pou->loc;
     uint32_t period = uint32_t(runs[i].period);
@@ -880,8 +879,7 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
     body(h.body, top, action, {});
     // Temporaries are back at their initial values after every reaction.
     if (!h.latch)
-      for (auto &[name, init] : resets)
-        action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
+      appendResets(resets, action);
     uint32_t t = h.latch ? b.addTransition("recv_" + h.event, {}, {}, h.loc)
                          : b.addTransition("recv_" + h.event,
                                            {net::PreArc{ready, 1, {}}},
@@ -898,8 +896,7 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
     if (!pre.empty())
       refuse(send.loc, "internal: a send guard needs statements");
     body(send.body, top, action, {});
-    for (auto &[name, init] : resets)
-      action.push_back(b.assign(b.ref(name, init->loc), init, init->loc));
+    appendResets(resets, action);
     uint32_t t =
         b.addTransition("send_" + send.event, {net::PreArc{ready, 1, {}}},
                         {net::PostArc{ready, 1}}, send.loc);

@@ -300,7 +300,12 @@ private:
   /// a free input (LowerEnvironment.cpp).
   NExpr *environmentFunction(Expr *call, Frame &f, Sink &pre);
   std::string staticVar(VarDecl *v, SMLoc at);
-  uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at);
+  /// A variable of the scan, back at `initial` (the type's initial value
+  /// when null) at the end of every scan; an array or structure only with
+  /// `local` (a VAR_TEMP or a function's local: the environment's
+  /// structures are reset scalar by scalar where they are chosen).
+  uint32_t declareTemp(const std::string &name, const PType *t, SMLoc at,
+                       NExpr *initial = nullptr, bool local = false);
   std::optional<std::pair<int64_t, int64_t>> inputRange(VarDecl *v);
 
   /// Picks the tick from the durations `ns` (and the options, or a model
@@ -687,6 +692,13 @@ private:
   Stmt *previous = nullptr; // the statement before the one being lowered
   void assign(NExpr *target, NExpr *value, const PType *targetType,
               Expr *valueExpr, Sink &out, SMLoc at);
+  /// `target := value`, an aggregate value split into one assignment per
+  /// element or field of `t` (from dimension `dim` of an array).
+  void assignParts(NExpr *target, NExpr *value, const PType *t, size_t dim,
+                   Sink &out, SMLoc at);
+  /// `name := init` for each end-of-scan reset of `list`.
+  void appendResets(const std::vector<std::pair<std::string, NExpr *>> &list,
+                    Sink &out);
 
   Unit &unit;
   const LowerOptions &opts;
