@@ -331,6 +331,7 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
       f->type = resolve(f->typeSyntax, f->name);
       if (!f->type)
         return nullptr;
+      reshapeMember(f->typeSyntax ? f->typeSyntax->init : nullptr, f->type);
       // A structure is a value netlift copies whole; an instance is not.
       if (Pou *fb = instanceBlock(f->type)) {
         error(f->loc, "structure member '" + f->name +
@@ -451,6 +452,26 @@ void Checker::reshapeRowMajor(Initializer *init, const PType *t, size_t dim) {
     rows.push_back({1, row});
   }
   init->elems = std::move(rows);
+}
+
+void Checker::reshapeMember(Initializer *init, const PType *t) {
+  if (!init || !t)
+    return;
+  if (init->kind == Initializer::Array && t->kind == PTypeKind::Array) {
+    reshapeRowMajor(init, t, 0);
+    for (auto &[count, inner] : init->elems)
+      if (inner && inner->kind != Initializer::Value)
+        reshapeMember(inner,
+                      inner->kind == Initializer::Array && t->dims.size() > 1
+                          ? nullptr // a row: reshaped above
+                          : t->elem);
+  } else if (init->kind == Initializer::Struct &&
+             t->kind == PTypeKind::Struct) {
+    for (auto &[name, inner] : init->fields)
+      for (VarDecl *f : t->fields)
+        if (sameName(f->name, name))
+          reshapeMember(inner, f->type);
+  }
 }
 
 void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {

@@ -54,6 +54,9 @@ private:
   std::map<std::pair<uint32_t, bool>, const PType *> stringTypes;
   void checkInitializer(Initializer *init, const PType *t);
   void reshapeRowMajor(Initializer *init, const PType *t, size_t dim);
+  /// The flat lists inside a structure member's initial value cut into
+  /// rows (its values are checked where the structure is used).
+  void reshapeMember(Initializer *init, const PType *t);
 
   // References (SemaReferences.cpp).
   const PType *resolveReference(TypeSyntax *ts, StringRef ownerName);
