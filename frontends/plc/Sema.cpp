@@ -764,6 +764,17 @@ bool Checker::run() {
   for (Pou *p : checked)
     for (VarDecl *v : p->vars)
       indexEnum(v->type);
+  // A structure member's initial value, once every enumerator is known
+  // (a member initialised to a bare enumerator of another type).
+  // (A member a structure inherits is checked once, with its base.)
+  current = nullptr;
+  std::set<VarDecl *> membersChecked;
+  for (auto &[k, t] : named)
+    if (t && t->kind == PTypeKind::Struct)
+      for (VarDecl *f : t->fields)
+        if (f->typeSyntax && f->typeSyntax->init && !f->owner &&
+            membersChecked.insert(f).second)
+          checkInitializer(f->typeSyntax->init, f->type);
   for (VarDecl *g : allGlobals)
     hmiVariable(g, nullptr);
   for (Pou *p : checked) {

@@ -73,6 +73,11 @@ const Elementary kElementary[] = {
     {"WORD", PTypeKind::Int, 16, false, true},
     {"DWORD", PTypeKind::Int, 32, false, true},
     {"LWORD", PTypeKind::Int, 64, false, true},
+    // CODESYS's integers of the size of an address: 64 bits, the x64
+    // target the memory layout assumes (SIZEOF).
+    {"__XWORD", PTypeKind::Int, 64, false, true},
+    {"__UXINT", PTypeKind::Int, 64, false, false},
+    {"__XINT", PTypeKind::Int, 64, true, false},
     {"TIME", PTypeKind::Time, 64, true, false},
     {"LTIME", PTypeKind::Time, 64, true, false},
     {"REAL", PTypeKind::Real, 32, true, false},

@@ -16,6 +16,9 @@
 // checks those values. Tc2_Standard's timers, triggers and counters are the
 // standard ones. Tc2_MC2's axis (AXIS_REF) and motion blocks are
 // environment too: the NC task, not the program, moves the axis.
+// Tc2_Utilities' FB_FormatString is environment; its T_Arg arguments (F_INT,
+// F_STRING, ...) carry their type and size, their address 0 in the model.
+// PVOID, XWORD, UXINT and XINT are the 64-bit integers of an x64 target.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/st/StdLib.h"
@@ -133,6 +136,16 @@ FUNCTION ADSLOGLREAL : DINT
   VAR_INPUT msgCtrlMask : DWORD; msgFmtStr : T_MaxString; lrealArg : LREAL; END_VAR
 END_FUNCTION
 
+(* TwinCAT 3's names of the address-sized integers (64 bits on x64); a
+   PVOID holds an address, which netlift does not model as a number: an
+   ADR assigned to one is refused by name where it happens. *)
+TYPE
+  XWORD : __XWORD;
+  UXINT : __UXINT;
+  XINT : __XINT;
+  PVOID : __UXINT;
+END_TYPE
+
 (* Tc2_System: the system time, in 100 ns since 1601-01-01. *)
 {netlift environment 'reads the system clock'}
 FUNCTION F_GetSystemTime : ULINT
@@ -155,6 +168,125 @@ END_FUNCTION_BLOCK
 FUNCTION LREAL_TO_FMTSTR : STRING(510)
   VAR_INPUT in : LREAL; iPrecision : INT; bRound : BOOL; END_VAR
 END_FUNCTION
+
+(* FB_FormatString's arguments: each names its type and size; pData, the
+   argument's address, is 0 in the model (only the formatting, which is
+   environment, would read it). *)
+TYPE
+  E_ArgType : (ARGTYPE_UNKNOWN := 0, ARGTYPE_BYTE, ARGTYPE_WORD, ARGTYPE_DWORD,
+               ARGTYPE_REAL, ARGTYPE_LREAL, ARGTYPE_SINT, ARGTYPE_INT,
+               ARGTYPE_DINT, ARGTYPE_USINT, ARGTYPE_UINT, ARGTYPE_UDINT,
+               ARGTYPE_STRING, ARGTYPE_BOOL, ARGTYPE_BIGTYPE, ARGTYPE_ULARGE,
+               ARGTYPE_UHUGE, ARGTYPE_LARGE, ARGTYPE_HUGE, ARGTYPE_LWORD);
+  T_Arg : STRUCT
+    eType : E_ArgType := ARGTYPE_UNKNOWN;
+    cbLen : UDINT := 0;
+    pData : PVOID := 0;
+  END_STRUCT;
+END_TYPE
+
+FUNCTION F_BYTE : T_Arg
+  VAR_INPUT in : BYTE; END_VAR
+  F_BYTE.eType := ARGTYPE_BYTE; F_BYTE.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_WORD : T_Arg
+  VAR_INPUT in : WORD; END_VAR
+  F_WORD.eType := ARGTYPE_WORD; F_WORD.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_DWORD : T_Arg
+  VAR_INPUT in : DWORD; END_VAR
+  F_DWORD.eType := ARGTYPE_DWORD; F_DWORD.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_LWORD : T_Arg
+  VAR_INPUT in : LWORD; END_VAR
+  F_LWORD.eType := ARGTYPE_LWORD; F_LWORD.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_REAL : T_Arg
+  VAR_INPUT in : REAL; END_VAR
+  F_REAL.eType := ARGTYPE_REAL; F_REAL.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_LREAL : T_Arg
+  VAR_INPUT in : LREAL; END_VAR
+  F_LREAL.eType := ARGTYPE_LREAL; F_LREAL.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_SINT : T_Arg
+  VAR_INPUT in : SINT; END_VAR
+  F_SINT.eType := ARGTYPE_SINT; F_SINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_INT : T_Arg
+  VAR_INPUT in : INT; END_VAR
+  F_INT.eType := ARGTYPE_INT; F_INT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_DINT : T_Arg
+  VAR_INPUT in : DINT; END_VAR
+  F_DINT.eType := ARGTYPE_DINT; F_DINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_USINT : T_Arg
+  VAR_INPUT in : USINT; END_VAR
+  F_USINT.eType := ARGTYPE_USINT; F_USINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_UINT : T_Arg
+  VAR_INPUT in : UINT; END_VAR
+  F_UINT.eType := ARGTYPE_UINT; F_UINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_UDINT : T_Arg
+  VAR_INPUT in : UDINT; END_VAR
+  F_UDINT.eType := ARGTYPE_UDINT; F_UDINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_BOOL : T_Arg
+  VAR_INPUT in : BOOL; END_VAR
+  F_BOOL.eType := ARGTYPE_BOOL; F_BOOL.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_LINT : T_Arg
+  VAR_INPUT in : LINT; END_VAR
+  F_LINT.eType := ARGTYPE_LARGE; F_LINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_ULINT : T_Arg
+  VAR_INPUT in : ULINT; END_VAR
+  F_ULINT.eType := ARGTYPE_ULARGE; F_ULINT.cbLen := SIZEOF(in);
+END_FUNCTION
+FUNCTION F_STRING : T_Arg
+  VAR_INPUT in : T_MaxString; END_VAR
+  F_STRING.eType := ARGTYPE_STRING; F_STRING.cbLen := INT_TO_UDINT(LEN(in)) + 1;
+END_FUNCTION
+
+{netlift environment 'formats text'}
+FUNCTION_BLOCK FB_FormatString
+  VAR_INPUT
+    sFormat : T_MaxString;
+    arg1, arg2, arg3, arg4, arg5, arg6, arg7, arg8, arg9, arg10 : T_Arg;
+  END_VAR
+  VAR_OUTPUT bError : BOOL; nErrId : UDINT; sOut : T_MaxString; END_VAR
+END_FUNCTION_BLOCK
+
+(* A string's first character code, and the string of one code. *)
+FUNCTION F_ToASC : BYTE
+  VAR_INPUT str : T_MaxString; END_VAR
+  IF LEN(str) > 0 THEN F_ToASC := str[0]; END_IF
+END_FUNCTION
+
+FUNCTION F_ToCHR : T_MaxString
+  VAR_INPUT c : BYTE; END_VAR
+  IF c <> 0 THEN F_ToCHR := ' '; F_ToCHR[0] := c; END_IF
+END_FUNCTION
+
+{netlift environment 'reads the system clock'}
+FUNCTION_BLOCK GETSYSTEMTIME
+  VAR_OUTPUT timeLoDW, timeHiDW : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+TYPE E_TimeZoneID : (eTimeZoneID_Invalid := -1, eTimeZoneID_Unknown := 0,
+                     eTimeZoneID_Standard := 1, eTimeZoneID_Daylight := 2) DINT;
+END_TYPE
+
+{netlift environment 'reads the local time of the system'}
+FUNCTION_BLOCK FB_LocalSystemTime
+  VAR_INPUT
+    sNetID : T_AmsNetId; bEnable : BOOL; dwCycle : DWORD := 5;
+    dwOpt : DWORD := 1; tTimeout : TIME := DEFAULT_ADS_TIMEOUT;
+  END_VAR
+  VAR_OUTPUT bValid : BOOL; systemTime : TIMESTRUCT; tzID : E_TimeZoneID; END_VAR
+END_FUNCTION_BLOCK
 
 (* The integer part of a float as an LREAL, whatever its size: from 2^52 up
    every LREAL is whole; below, rounding half away from zero of |x| - 0.5
