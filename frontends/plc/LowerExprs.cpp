@@ -327,6 +327,26 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     }
     const PType *lt = e->operands[0]->type;
     const PType *rt = e->operands[1]->type;
+    {
+      // An enumerator next to a number, or in arithmetic, is its value
+      // (Sema took it as its base type); two of one enumeration are
+      // ordered by their values (NetIR's enumerations are only equal or
+      // not).
+      const PType *le = baseOf(lt), *re = baseOf(rt);
+      bool lEnum = le->kind == PTypeKind::Enum && le->enumBase;
+      bool rEnum = re->kind == PTypeKind::Enum && re->enumBase;
+      if (lEnum != rEnum || (lEnum && le != re) ||
+          (lEnum && e->op != Op::Eq && e->op != Op::Ne)) {
+        if (lEnum) {
+          l = enumToInteger(l, le, e->loc);
+          lt = le->enumBase;
+        }
+        if (rEnum) {
+          r = enumToInteger(r, re, e->loc);
+          rt = re->enumBase;
+        }
+      }
+    }
     if ((e->op == Op::Add || e->op == Op::Sub) &&
         (baseOf(lt)->kind == PTypeKind::Date ||
          baseOf(rt)->kind == PTypeKind::Date))
@@ -409,8 +429,56 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
   refuse(e->loc, "unsupported expression");
 }
 
+NExpr *Lowering::enumToInteger(NExpr *v, const PType *t, SMLoc at) {
+  t = baseOf(t);
+  auto literal = [&](size_t i) {
+    return sanitize(t->name) + "#" + sanitize(t->enumerators[i]);
+  };
+  if (auto *r = llvm::dyn_cast<net::Ref>(v))
+    for (size_t i = 0; i < t->enumerators.size(); ++i)
+      if (r->name == literal(i))
+        return b.intLit(t->enumValues[i], at);
+  NExpr *x = b.intLit(t->enumValues.back(), at);
+  for (size_t i = t->enumerators.size() - 1; i-- > 0;)
+    x = b.cond(b.binary(net::BinaryOp::Eq, v, b.ref(literal(i), at), at),
+               b.intLit(t->enumValues[i], at), x, at);
+  return x;
+}
+
+NExpr *Lowering::integerToEnum(NExpr *v, const PType *t, Sink &pre, SMLoc at) {
+  t = baseOf(t);
+  auto literal = [&](size_t i) {
+    return b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[i]), at);
+  };
+  size_t n = t->enumerators.size();
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(v)) {
+    for (size_t i = 0; i < n; ++i)
+      if (t->enumValues[i] == lit->value)
+        return literal(i);
+    refuse(at, "value " + Twine(lit->value) + " is none of the values of " +
+                   t->str() + "'s enumerators");
+  }
+  // The enumerator's position, -1 for no enumerator's value: a run-time
+  // error (the variable of its range cannot take it).
+  NExpr *position = b.intLit(-1, at);
+  for (size_t i = n; i-- > 0;)
+    position = b.cond(
+        b.binary(net::BinaryOp::Eq, v, b.intLit(t->enumValues[i], at), at),
+        b.intLit(int64_t(i), at), position, at);
+  NExpr *k = checkedRange(position, 0, int64_t(n) - 1,
+                          sanitize(t->name) + "_value", pre, at);
+  NExpr *x = literal(n - 1);
+  for (size_t i = n - 1; i-- > 0;)
+    x = b.cond(b.binary(net::BinaryOp::Eq, k, b.intLit(int64_t(i), at), at),
+               literal(i), x, at);
+  return x;
+}
+
 NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
                          SMLoc at) {
+  if (from && baseOf(from)->kind == PTypeKind::Enum && baseOf(from)->enumBase &&
+      to && baseOf(to)->kind != PTypeKind::Enum)
+    return convert(enumToInteger(v, from, at), baseOf(from)->enumBase, to, at);
   from = from && from->isSubrange ? from->base : from;
   to = to && to->isSubrange ? to->base : to;
   if (!from || from->kind == PTypeKind::AnyInt)
@@ -695,13 +763,19 @@ NExpr *Lowering::stdValue(Expr *e, Frame &f, Sink &pre) {
     // An untyped literal is of the type the name converts from
     // (DINT_TO_TIME(3) is 3 DINT units, not 3 ticks).
     const PType *from = src[0]->type;
+    NExpr *value = a[0];
+    if (info.from && baseOf(from)->kind == PTypeKind::Enum) {
+      // The enumerator's value, as the type the name converts from.
+      value = convert(value, from, info.from, at);
+      from = info.from;
+    }
     if (info.from && (info.from->kind == PTypeKind::Time ||
                       info.from->kind == PTypeKind::Date ||
                       baseOf(from)->kind == PTypeKind::AnyInt))
       from = info.from;
     if (info.unitNs)
-      return timeInUnit(a[0], info.unitNs, info.to, at);
-    return convert(a[0], from, info.to, at);
+      return timeInUnit(value, info.unitNs, info.to, at);
+    return convert(value, from, info.to, at);
   }
   case StdFn::RealMath:
     return realMath(e, a, at);

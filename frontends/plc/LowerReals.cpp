@@ -93,6 +93,9 @@ NExpr *Lowering::coerce(NExpr *v, const PType *from, const PType *to,
                         SMLoc at) {
   from = from ? baseOf(from) : nullptr;
   to = to ? baseOf(to) : nullptr;
+  if (from && to && from->kind == PTypeKind::Enum && from->enumBase &&
+      to->kind != PTypeKind::Enum)
+    return coerce(enumToInteger(v, from, at), from->enumBase, to, at);
   if (isUnsigned64(to) && from &&
       (from->kind == PTypeKind::Int || from->kind == PTypeKind::AnyInt) &&
       !isUnsigned64(from))

@@ -55,7 +55,10 @@ void Lowering::assign(NExpr *target, NExpr *value, const PType *targetType,
   if (targetType && targetType->kind == PTypeKind::Bool && valueExpr &&
       valueExpr->type && valueExpr->type->kind == PTypeKind::AnyInt)
     value = b.boolLit(valueExpr->intValue != 0, at);
-  if (valueExpr)
+  if (valueExpr && targetType && baseOf(targetType)->kind == PTypeKind::Enum &&
+      valueExpr->type && baseOf(valueExpr->type)->isInteger())
+    value = integerToEnum(value, targetType, out, at);
+  else if (valueExpr)
     value = coerce(value, valueExpr->type, targetType, at);
   assignParts(target, value, targetType, 0, out, at);
 }
@@ -367,11 +370,23 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   }
   case StmtKind::Case: {
     NExpr *sel = expr(s->value, f, out);
+    // Values are compared where an integer meets an enumerator (an
+    // enumeration's selector with an integer label, or the reverse).
+    const PType *selType = baseOf(s->value->type);
+    bool byValue = selType->kind != PTypeKind::Enum;
+    for (auto &arm : s->caseArms)
+      for (auto &l : arm.labels)
+        for (Expr *x : {l.lo, l.hi})
+          byValue |= x && x->enumValue < 0;
+    if (byValue && selType->kind == PTypeKind::Enum)
+      sel = enumToInteger(sel, selType, s->loc);
     std::vector<net::CaseArm> arms;
     for (auto &arm : s->caseArms) {
       std::vector<net::CaseLabel> labels;
       for (auto &l : arm.labels) {
         auto label = [&](Expr *e) -> NExpr * {
+          if (e->enumValue >= 0 && byValue)
+            return b.intLit(baseOf(e->type)->enumValues[e->enumValue], e->loc);
           if (e->enumValue >= 0)
             return b.ref(sanitize(e->type->name) + "#" +
                              sanitize(e->type->enumerators[e->enumValue]),

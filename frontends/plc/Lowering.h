@@ -592,6 +592,12 @@ private:
   /// `v` of PLC type `from` where IEC converts it implicitly to `to`: a
   /// NetIR conversion when a float is involved, else `v`.
   NExpr *coerce(NExpr *v, const PType *from, const PType *to, SMLoc at);
+  /// An enumerator's integer value (CODESYS, TwinCAT: an enumeration next
+  /// to a number), and back: an integer stored in an enumeration is the
+  /// enumerator of that value, another value a run-time error
+  /// (LowerExprs.cpp).
+  NExpr *enumToInteger(NExpr *v, const PType *t, SMLoc at);
+  NExpr *integerToEnum(NExpr *v, const PType *t, Sink &pre, SMLoc at);
   /// The REAL type operands are computed in (the widest typed REAL among
   /// them; anyRealType() for literals only), or null when none is REAL.
   const PType *commonReal(llvm::ArrayRef<Expr *> operands);

@@ -297,6 +297,7 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
   }
   case TypeSyntaxKind::Enum: {
     PType *t = make(PTypeKind::Enum);
+    bool valued = true; // every value a constant: the type has numbers
     for (auto &ev : ts->enumerators) {
       for (auto &prev : t->enumerators)
         if (sameName(prev, ev.name)) {
@@ -304,7 +305,17 @@ const PType *Checker::resolve(TypeSyntax *ts, StringRef ownerName) {
           return nullptr;
         }
       t->enumerators.push_back(ev.name);
+      int64_t v = t->enumValues.empty() ? 0 : t->enumValues.back() + 1;
+      valued &= !ev.value || constInt(ev.value, v);
+      t->enumValues.push_back(v);
     }
+    // Without numbers (a value computed by a call), an enumerator is never
+    // an integer: conversions are refused where they are written.
+    const PType *base = elementaryType(ts->name.empty() ? "INT" : ts->name);
+    if (valued && base && base->kind == PTypeKind::Int)
+      t->enumBase = base;
+    else
+      t->enumValues.clear();
     t->hi = int64_t(t->enumerators.size()) - 1;
     // Anonymous enumerations are named after the variable or type that
     // declares them.

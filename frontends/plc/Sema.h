@@ -55,6 +55,12 @@ struct PType {
   const PType *base = nullptr; // Subrange: the elementary type
   // Enum
   std::vector<std::string> enumerators;
+  /// Enum: each enumerator's integer value (declared, or one more than the
+  /// one before, from 0), and the integer type they are (INT unless the
+  /// declaration names one): what CODESYS and TwinCAT read an enumerator
+  /// as next to a number.
+  std::vector<int64_t> enumValues;
+  const PType *enumBase = nullptr;
   // Array: elem and one (lo, hi) per dimension
   const PType *elem = nullptr;
   std::vector<std::pair<int64_t, int64_t>> dims;

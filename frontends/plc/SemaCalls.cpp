@@ -596,6 +596,10 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     if (!arity(1, 1))
       return nullptr;
     const PType *src = baseOf(types[0]);
+    // An enumerator is its value (CODESYS, TwinCAT): DINT_TO_INT(eState).
+    if (info.from && info.from->kind == PTypeKind::Int &&
+        src->kind == PTypeKind::Enum && src->enumBase)
+      return info.to;
     if (info.from && src->kind != PTypeKind::AnyInt && src != info.from &&
         !(src->kind == info.from->kind && src->kind != PTypeKind::Int &&
           src->dateKind == info.from->dateKind)) {

@@ -382,6 +382,22 @@ const PType *Checker::expr(Expr *e) {
     if (!a || !b)
       return nullptr;
     const PType *ab = baseOf(a), *bb = baseOf(b);
+    // CODESYS and TwinCAT: next to a number, or in arithmetic, an
+    // enumerator is its integer value (of its base type); the lowering
+    // converts it (Lowering::enumToInteger).
+    auto numeric = [](const PType *t) {
+      return t->isInteger() || t->kind == PTypeKind::Real;
+    };
+    bool arithmetic = e->op == Op::Add || e->op == Op::Sub ||
+                      e->op == Op::Mul || e->op == Op::Div ||
+                      e->op == Op::Mod || e->op == Op::And || e->op == Op::Or ||
+                      e->op == Op::Xor;
+    if (ab->kind == PTypeKind::Enum && ab->enumBase &&
+        (numeric(bb) || arithmetic))
+      a = ab = ab->enumBase;
+    if (bb->kind == PTypeKind::Enum && bb->enumBase &&
+        (numeric(ab) || arithmetic))
+      b = bb = bb->enumBase;
     switch (e->op) {
     case Op::And:
     case Op::Or:

@@ -67,11 +67,19 @@ void Checker::stmt(Stmt *s) {
           const PType *lt = expr(b);
           expectedEnum = nullptr;
           int64_t v;
+          // CODESYS and TwinCAT: an enumerator labels an integer selector
+          // with its value, an integer labels an enumeration's (the
+          // lowering compares values then).
+          bool enumLabel = lt && baseOf(lt)->kind == PTypeKind::Enum;
           if (lt && sel && sel->kind == PTypeKind::Enum) {
-            if (lt != sel && baseOf(lt) != sel)
+            if (lt != sel && baseOf(lt) != sel &&
+                !(baseOf(lt)->isInteger() && baseOf(sel)->enumBase &&
+                  constInt(b, v)))
               error(b->loc, "CASE label of type " + lt->str() +
                                 " for a selector of type " + sel->str());
-          } else if (lt && !constInt(b, v)) {
+          } else if (lt && !constInt(b, v) &&
+                     !(enumLabel && b->enumValue >= 0 &&
+                       baseOf(lt)->enumBase)) {
             error(b->loc, "CASE label must be a constant");
           }
         }
@@ -170,6 +178,10 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
       }
       return true;
     }
+    // An enumerator is its value (CODESYS, TwinCAT), converted where
+    // stored (Lowering::coerce).
+    if (fb->kind == PTypeKind::Enum && fb->enumBase)
+      fb = fb->enumBase;
     if (fb->kind != PTypeKind::Int)
       return mismatch();
     if (fb == tb || to->isSubrange)
@@ -202,7 +214,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     return true;
   }
   case PTypeKind::Real:
-    if (fb->kind == PTypeKind::Real || fb->isInteger())
+    if (fb->kind == PTypeKind::Real || fb->isInteger() ||
+        (fb->kind == PTypeKind::Enum && fb->enumBase))
       return true;
     return mismatch();
   case PTypeKind::String:
@@ -222,6 +235,21 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
     if (fb->kind == PTypeKind::Date && fb->dateKind == tb->dateKind)
       return true;
     return mismatch();
+  case PTypeKind::Enum:
+    // CODESYS and TwinCAT (without {attribute 'strict'}): an integer is
+    // stored as the enumerator of that value; netlift's enumerations hold
+    // only their enumerators, so another value is refused (a constant) or
+    // a run-time error (Lowering::integerToEnum).
+    if (fb->isInteger() && tb->enumBase) {
+      int64_t v;
+      if (constInt(from, v) && !llvm::is_contained(tb->enumValues, v)) {
+        error(at, "value " + Twine(v) + " is none of the values of " +
+                      to->str() + "'s enumerators");
+        return false;
+      }
+      return true;
+    }
+    [[fallthrough]];
   default:
     if (tb->kind == fb->kind &&
         (tb == fb ||
