@@ -235,13 +235,15 @@ bool Checker::viewAsBytes(Expr *e, const PType *elem) {
   if (!plainAddress(e))
     return false;
   const PType *text = baseOf(e->type->elem);
-  auto oneByte = [](const PType *t) {
+  // A STRING's characters are BYTEs; a WSTRING's are WORDs (UTF-16 code
+  // units), as CODESYS and TwinCAT hold them.
+  auto oneChar = [&](const PType *t) {
     t = baseOf(t);
-    return t->kind == PTypeKind::Int && t->width == 8;
+    return t->kind == PTypeKind::Int && t->width == text->width;
   };
-  if (!text->isString() || text->width != 8 ||
-      !(oneByte(elem) || (elem->kind == PTypeKind::Array &&
-                          elem->dims.size() == 1 && oneByte(elem->elem))))
+  if (!text->isString() ||
+      !(oneChar(elem) || (elem->kind == PTypeKind::Array &&
+                          elem->dims.size() == 1 && oneChar(elem->elem))))
     return false;
   return markView(e, "BYTES", elem);
 }
