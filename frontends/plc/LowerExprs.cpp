@@ -476,6 +476,25 @@ NExpr *Lowering::integerToEnum(NExpr *v, const PType *t, Sink &pre, SMLoc at) {
 
 NExpr *Lowering::convert(NExpr *v, const PType *from, const PType *to,
                          SMLoc at) {
+  if (from && to && baseOf(from)->kind == PTypeKind::Enum &&
+      baseOf(from)->enumNamesAsText && baseOf(to)->isString()) {
+    // {attribute 'to_string'}: the enumerator's name.
+    const PType *t = baseOf(from);
+    auto name = [&](size_t i) {
+      std::u16string chars(t->enumerators[i].begin(), t->enumerators[i].end());
+      return b.stringLit(llvm::ArrayRef<char16_t>(chars.data(), chars.size()),
+                         at);
+    };
+    NExpr *x = name(t->enumerators.size() - 1);
+    for (size_t i = t->enumerators.size() - 1; i-- > 0;)
+      x = b.cond(
+          b.binary(
+              net::BinaryOp::Eq, v,
+              b.ref(sanitize(t->name) + "#" + sanitize(t->enumerators[i]), at),
+              at),
+          name(i), x, at);
+    return x;
+  }
   if (from && baseOf(from)->kind == PTypeKind::Enum && baseOf(from)->enumBase &&
       to && baseOf(to)->kind != PTypeKind::Enum)
     return convert(enumToInteger(v, from, at), baseOf(from)->enumBase, to, at);

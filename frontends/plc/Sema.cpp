@@ -153,6 +153,10 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
       copy->name = td->name;
       if (auto pack = packMode(td); pack && t->kind == PTypeKind::Struct)
         copy->pack = *pack;
+      for (const Attribute &a : td->attrs)
+        if (t->kind == PTypeKind::Enum &&
+            StringRef(a.text).contains("'to_string'"))
+          copy->enumNamesAsText = true;
       t = copy;
     }
     named[key] = t;

@@ -61,6 +61,9 @@ struct PType {
   /// as next to a number.
   std::vector<int64_t> enumValues;
   const PType *enumBase = nullptr;
+  /// Enum: `{attribute 'to_string'}` on its declaration: TO_STRING gives
+  /// the enumerator's name, not its value.
+  bool enumNamesAsText = false;
   // Array: elem and one (lo, hi) per dimension
   const PType *elem = nullptr;
   std::vector<std::pair<int64_t, int64_t>> dims;
