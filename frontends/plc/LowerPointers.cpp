@@ -222,8 +222,23 @@ void Lowering::callThroughReference(Expr *call, Frame &f, Sink &out) {
 // MEMCPY, MEMMOVE, MEMSET, MEMCMP
 //===----------------------------------------------------------------------===//
 
-void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
-                                    SMLoc at) {
+NExpr *Lowering::filledScalar(const PType *t, NExpr *byte, SMLoc at) {
+  t = baseOf(t);
+  if (t->kind == PTypeKind::Bool)
+    return b.binary(net::BinaryOp::Ne, byte, b.intLit(0, at), at);
+  // Sema let through only BOOL, integers and REAL of at most 32 bits.
+  int64_t bits = t->kind == PTypeKind::Real ? 32 : t->width;
+  int64_t repeat = 0;
+  for (int64_t k = 0; k < bits / 8; ++k)
+    repeat = (repeat << 8) | 1;
+  NExpr *raw = repeat == 1 ? byte
+                           : b.binary(net::BinaryOp::Mul, byte,
+                                      b.intLit(repeat, at), at);
+  return fromBits(t, raw, bits, at);
+}
+
+void Lowering::fillThroughReference(Expr *place, NExpr *byte, Frame &f,
+                                    Sink &pre, SMLoc at) {
   const PType *t = baseOf(place->type);
   switch (t->kind) {
   case PTypeKind::Array:
@@ -237,7 +252,7 @@ void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
         element->operands.push_back(lit);
       }
       element->type = t->elem;
-      zeroThroughReference(element, f, pre, at);
+      fillThroughReference(element, byte, f, pre, at);
     });
     return;
   case PTypeKind::Struct:
@@ -249,7 +264,7 @@ void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
       field->name = fld->name;
       field->var = fld;
       field->type = fld->type;
-      zeroThroughReference(field, f, pre, at);
+      fillThroughReference(field, byte, f, pre, at);
     }
     return;
   case PTypeKind::FunctionBlock:
@@ -257,6 +272,11 @@ void Lowering::zeroThroughReference(Expr *place, Frame &f, Sink &pre,
                    ") is not modelled");
   default:
     break;
+  }
+  if (byte) {
+    writeThroughReference(place, filledScalar(t, byte, at), nullptr, f, pre,
+                          at);
+    return;
   }
   // All bits zero: 0, 0.0, FALSE, '', NULL, 1970-01-01; an enumeration
   // its first value.
@@ -387,24 +407,31 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
     }
     return r;
   }
-  if (call->name == "MEMSET" &&
-      (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
-       t->isString()) &&
-      !(t->kind == PTypeKind::Struct && t->isUnion)) {
-    // Sema let only 0 through: every scalar of every element zeroed.
-    for (int64_t j = 0; j < k; ++j)
-      zeroThroughReference(element(dst, j), f, pre, at);
-    return b.intLit(0, at);
-  }
   if (call->name == "MEMSET") {
+    // The fill's low byte in every byte: every scalar of every element
+    // built from it (Sema let through only 0, or scalars that take any
+    // byte pattern).
     NExpr *fill = expr(src, f, pre);
-    if (t->kind == PTypeKind::Bool)
-      fill = b.binary(net::BinaryOp::Ne, fill, b.intLit(0, at), at);
-    else if (auto *lit = llvm::dyn_cast<net::IntLit>(fill);
-             !lit && baseOf(t)->kind == PTypeKind::Int)
-      fill = maskTo(fill, baseOf(t), at); // the low byte
-    for (int64_t j = 0; j < k; ++j)
-      writeThroughReference(element(dst, j), fill, nullptr, f, pre, at);
+    if (auto *lit = llvm::dyn_cast<net::IntLit>(fill))
+      fill = b.intLit(lit->value & 0xff, at);
+    else
+      fill = maskTo(fill, elementaryType("BYTE"), at);
+    auto *lit = llvm::dyn_cast<net::IntLit>(fill);
+    NExpr *byte = lit && lit->value == 0 ? nullptr : fill;
+    bool whole = (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
+                  t->isString()) &&
+                 !(t->kind == PTypeKind::Struct && t->isUnion);
+    std::string why;
+    bool oneByte = !whole && memoryLayout(t, why)->size == 1;
+    for (int64_t j = 0; j < k; ++j) {
+      if (whole || !byte)
+        fillThroughReference(element(dst, j), byte, f, pre, at);
+      else if (oneByte && t->kind != PTypeKind::Bool)
+        writeThroughReference(element(dst, j), fill, nullptr, f, pre, at);
+      else
+        writeThroughReference(element(dst, j), filledScalar(t, byte, at),
+                              nullptr, f, pre, at);
+    }
     return b.intLit(0, at);
   }
   // MEMCPY, MEMMOVE: every element read before any is written, so that

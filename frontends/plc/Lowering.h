@@ -424,7 +424,11 @@ private:
   NExpr *imageCopy(Expr *call, Frame &f, Sink &pre);
   /// MEMSET(..., 0, ...) of one array or structure: each scalar of the
   /// place `place` designates (a dereference, perhaps selected) set to 0.
-  void zeroThroughReference(Expr *place, Frame &f, Sink &pre, SMLoc at);
+  /// MEMSET of a place: every scalar's bytes set to `byte` (0 when null).
+  void fillThroughReference(Expr *place, NExpr *byte, Frame &f, Sink &pre,
+                            SMLoc at);
+  /// A BOOL, integer or REAL of at most 32 bits whose every byte is `byte`.
+  NExpr *filledScalar(const PType *t, NExpr *byte, SMLoc at);
   ReferencePlan refPlan;
   /// The prefix of the instance whose variables are being declared (a
   /// reference's initial value REF(x) is numbered in it).

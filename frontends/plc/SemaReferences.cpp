@@ -620,13 +620,42 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
   bool scalar = t->kind != PTypeKind::Array && t->kind != PTypeKind::Struct &&
                 !t->isString();
   // Zero bytes are every value's zero (MEMSET(ADR(s), 0, SIZEOF(s)) of a
-  // structure or array); other fills only bytes take.
+  // structure or array); other fills are taken by BOOLs, integers and
+  // REALs of at most 32 bits (each byte the fill: 16#FF makes an INT -1),
+  // not by the scalars whose byte patterns netlift does not hold.
   int64_t fill;
-  if (set && (!scalar || layout->size != 1) &&
-      !(constInt(src, fill) && fill == 0)) {
-    error(e->loc, "MEMSET of " + t->str() +
-                      ": only bytes take any value, and everything else 0");
-    return nullptr;
+  if (set && !(constInt(src, fill) && (fill & 0xff) == 0)) {
+    std::function<const PType *(const PType *)> unfillable =
+        [&](const PType *x) -> const PType * {
+      x = baseOf(x);
+      switch (x->kind) {
+      case PTypeKind::Array:
+        return unfillable(x->elem);
+      case PTypeKind::Struct:
+        if (x->isUnion)
+          return x;
+        for (VarDecl *fld : x->fields)
+          if (const PType *bad = unfillable(fld->type))
+            return bad;
+        return nullptr;
+      case PTypeKind::Bool:
+        return nullptr;
+      case PTypeKind::Int:
+      case PTypeKind::Real:
+        return x->width <= 32 ? nullptr : x;
+      default:
+        return x;
+      }
+    };
+    if (const PType *bad = unfillable(t)) {
+      error(e->loc,
+            "MEMSET of " + t->str() + " with a byte other than 0: " +
+                (bad == baseOf(t) ? std::string("a ") : std::string("its ")) +
+                bad->str() +
+                " takes only 0 (BOOLs, integers and REALs of at "
+                "most 32 bits take any byte)");
+      return nullptr;
+    }
   }
   if (compare && (!scalar || layout->size != 1)) {
     error(e->loc, "MEMCMP of " + t->str() +
