@@ -306,6 +306,18 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       return pointerPairValue(e, f, pre);
     NExpr *l = expr(e->operands[0], f, pre);
     NExpr *r = expr(e->operands[1], f, pre);
+    if (e->operands[0]->type->isReference() && e->operands[0]->type->elem) {
+      // Two pointers far outside one block on one side have one number
+      // but maybe two addresses: their equality is not known.
+      auto table =
+          refPlan.tables.find(referenceKey(e->operands[0]->type->elem));
+      if (table != refPlan.tables.end())
+        if (NExpr *far = farFromBlock(table->second, l, e->loc))
+          failWhenAny(
+              {b.binary(net::BinaryOp::And, far,
+                        b.binary(net::BinaryOp::Eq, l, r, e->loc), e->loc)},
+              stemOf(e->operands[0]) + "_far", pre, e->loc);
+    }
     if (const PType *real = commonReal({e->operands[0], e->operands[1]})) {
       // Both operands in the REAL the operation is computed in.
       l = coerce(l, e->operands[0]->type, real, e->loc);

@@ -6,9 +6,9 @@
 // a reference, and copies, fills or compares memory (MEMCPY, MEMMOVE,
 // MEMSET, MEMCMP) element by element through the places a reference may
 // designate. A pointer is its number (LowerReferences.cpp); numbers follow
-// the addresses inside one contiguous block, which is what makes stepping
-// and ordering meaningful, and leaving the block is a run-time error
-// (docs/st.md, "References and pointers").
+// the addresses inside one contiguous block and just around it, which is
+// what makes stepping and ordering meaningful; far outside only the side
+// is kept (RefFamily::hasOutside, docs/st.md "References and pointers").
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
@@ -21,15 +21,24 @@ using namespace netlift::plc::detail;
 // Pointer arithmetic
 //===----------------------------------------------------------------------===//
 
-NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
+NExpr *Lowering::stepElements(Expr *e, Frame &f, Sink &pre, Expr *&start) {
   Expr *ptr = e->operands[0], *offset = e->operands[1];
   if (!ptr->type->isReference())
     std::swap(ptr, offset);
   SMLoc at = e->loc;
-  const PType *elem = e->type->elem;
   std::string why;
-  int64_t size = memoryLayout(elem, why)->size;
-  NExpr *k = expr(ptr, f, pre);
+  int64_t size = memoryLayout(e->type->elem, why)->size;
+  // `p + a - b` is `(p + a) - b`: one move by a - b, so that a pointer
+  // passing far outside its block on the way (ADR(s) + pos - 1 with a large
+  // pos) comes back exactly.
+  NExpr *inner = nullptr;
+  if (ptr->kind == ExprKind::Binary &&
+      (ptr->op == Op::Add || ptr->op == Op::Sub) && ptr->type &&
+      ptr->type->isReference() &&
+      referenceKey(ptr->type->elem) == referenceKey(e->type->elem))
+    inner = stepElements(ptr, f, pre, start);
+  else
+    start = ptr;
   // Whole elements (Sema checked the offset is written as a multiple):
   // `i * SIZEOF(T)` is i elements, without computing the bytes.
   NExpr *d = nullptr, *n = nullptr;
@@ -57,6 +66,21 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
     d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
   else if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
     d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value, at);
+  if (!inner)
+    return d;
+  auto *innerLit = llvm::dyn_cast<net::IntLit>(inner);
+  auto *dLit = llvm::dyn_cast<net::IntLit>(d);
+  if (innerLit && dLit)
+    return b.intLit(innerLit->value + dLit->value, at);
+  return b.binary(net::BinaryOp::Add, inner, d, at);
+}
+
+NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
+  SMLoc at = e->loc;
+  const PType *elem = e->type->elem;
+  Expr *ptr = nullptr;
+  NExpr *d = stepElements(e, f, pre, ptr);
+  NExpr *k = expr(ptr, f, pre);
   auto table = refPlan.tables.find(referenceKey(elem));
   int64_t count = table == refPlan.tables.end() ? 0 : table->second.count;
   std::string stem = stemOf(ptr);
@@ -65,17 +89,26 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   if (kLit && dLit && kLit->value >= 1 && kLit->value <= count) {
     // Known now: moved now, and checked now.
     for (const RefFamily &fam : table->second.families) {
-      if (!fam.holds(kLit->value, /*withEnd=*/true))
+      if (!fam.holds(kLit->value, /*withOutside=*/true))
         continue;
+      int64_t from = kLit->value - fam.offset, by = dLit->value;
+      if (fam.hasOutside) {
+        if ((kLit->value == fam.farBelow() && by > 0) ||
+            (kLit->value == fam.farAbove() && by < 0))
+          refuse(at, "the pointer comes back from far outside '" + fam.key +
+                         "', where netlift does not keep its distance");
+        int64_t to = std::clamp(from + by, fam.farBelow() - fam.offset,
+                                fam.farAbove() - fam.offset);
+        return b.intLit(fam.offset + to, at);
+      }
       int64_t block = contiguousBlock(fam);
-      int64_t pos =
-          (kLit->value - fam.offset) % (block + fam.hasEnd) + dLit->value;
-      if (pos < 0 || pos >= block + fam.hasEnd)
-        refuse(at, "the pointer moves " + Twine(dLit->value) +
+      int64_t pos = from % block + by;
+      if (pos < 0 || pos >= block)
+        refuse(at, "the pointer moves " + Twine(by) +
                        " element(s) out of the " + Twine(block) +
                        " of its array");
+      return b.intLit(kLit->value + by, at);
     }
-    return b.intLit(kLit->value + dLit->value, at);
   }
   // NULL moves nowhere: a run-time error, as a dereference.
   std::string number = scanVariable(
@@ -84,37 +117,101 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   pre.push_back(b.assign(b.ref(number, at), k, at));
   if (count == 0)
     return b.intLit(0, at);
-  // A step longer than every place of the type leaves any array: the
-  // range check reports it (and the exports take a small range).
-  std::string step =
-      scanVariable(stem + "_step", design.types.getRange(-count, count), 0, at);
+  // A step longer than every place of the type leaves any block: its
+  // length beyond that is not needed.
+  std::string step = scanVariable(
+      stem + "_step", design.types.getRange(-count - 1, count + 1), 0, at);
+  if (!llvm::isa<net::IntLit>(d)) {
+    std::string raw = unique(stem + "_offset");
+    b.addVar(raw, design.types.getInt(64, true, net::Overflow::Error),
+             b.intLit(0, at), at);
+    if (resetNames.insert(raw).second)
+      resets.push_back({raw, b.intLit(0, at)});
+    pre.push_back(b.assign(b.ref(raw, at), d, at));
+    NExpr *r = b.ref(raw, at);
+    d = b.cond(
+        b.binary(net::BinaryOp::Lt, r, b.intLit(-count - 1, at), at),
+        b.intLit(-count - 1, at),
+        b.cond(b.binary(net::BinaryOp::Gt, r, b.intLit(count + 1, at), at),
+               b.intLit(count + 1, at), r, at),
+        at);
+  }
   pre.push_back(b.assign(b.ref(step, at), d, at));
-  // The element moved to stays in the block of its family it started in
-  // (an array's elements are contiguous; a family's blocks are not, and a
-  // single place moves nowhere): checked per family.
+  NExpr *num = b.ref(number, at), *by = b.ref(step, at);
+  auto lit = [&](int64_t v) { return b.intLit(v, at); };
+  // Far outside a block only the side is kept: moving back towards it
+  // would need the distance.
+  std::vector<NExpr *> back;
+  for (const RefFamily &fam : table->second.families)
+    if (fam.hasOutside) {
+      back.push_back(
+          b.binary(net::BinaryOp::And,
+                   b.binary(net::BinaryOp::Eq, num, lit(fam.farBelow()), at),
+                   b.binary(net::BinaryOp::Gt, by, lit(0), at), at));
+      back.push_back(
+          b.binary(net::BinaryOp::And,
+                   b.binary(net::BinaryOp::Eq, num, lit(fam.farAbove()), at),
+                   b.binary(net::BinaryOp::Lt, by, lit(0), at), at));
+    }
+  failWhenAny(back, stem + "_from_far", pre, at);
+  std::string moved =
+      scanVariable(stem + "_moved", design.types.getRange(1, count), 1, at);
   std::vector<net::IfArm> arms;
   for (const RefFamily &fam : table->second.families) {
-    // Its end is a place to stand on (one past the last element).
-    int64_t block = contiguousBlock(fam) + fam.hasEnd;
-    RefFamily withEnd = fam;
-    withEnd.size += fam.hasEnd;
-    DerefTargets t;
-    t.deref = e;
-    t.number = number;
-    std::string inBlock = scanVariable(
-        stem + "_element", design.types.getRange(0, block - 1), 0, at);
-    NExpr *pos = b.binary(net::BinaryOp::Sub, b.ref(number, at),
-                          b.intLit(fam.offset, at), at);
-    if (block > 1 && block < withEnd.size)
-      pos = b.binary(net::BinaryOp::Mod, pos, b.intLit(block, at), at);
-    Sink body{b.assign(b.ref(inBlock, at),
-                       b.binary(net::BinaryOp::Add, pos, b.ref(step, at), at),
-                       at)};
-    arms.push_back(
-        {familyTest(withEnd, t), design.copy(llvm::ArrayRef<NStmt *>(body))});
+    NExpr *inFamily =
+        b.binary(net::BinaryOp::And,
+                 b.binary(net::BinaryOp::Ge, num, lit(fam.first()), at),
+                 b.binary(net::BinaryOp::Le, num, lit(fam.last()), at), at);
+    NExpr *pos = b.binary(net::BinaryOp::Sub, num, lit(fam.offset), at);
+    Sink body;
+    if (fam.hasOutside) {
+      // Exact from one before the first element to the end; beyond, on
+      // either side, the number for every address there.
+      int64_t lo = fam.farBelow() - fam.offset,
+              hi = fam.farAbove() - fam.offset;
+      std::string to = scanVariable(
+          stem + "_to", design.types.getRange(lo - count, hi + count), 0, at);
+      body.push_back(b.assign(b.ref(to, at),
+                              b.binary(net::BinaryOp::Add, pos, by, at), at));
+      NExpr *clamped =
+          b.cond(b.binary(net::BinaryOp::Lt, b.ref(to, at), lit(lo), at),
+                 lit(fam.farBelow()),
+                 b.cond(b.binary(net::BinaryOp::Gt, b.ref(to, at), lit(hi), at),
+                        lit(fam.farAbove()),
+                        b.binary(net::BinaryOp::Add, b.ref(to, at),
+                                 lit(fam.offset), at),
+                        at),
+                 at);
+      body.push_back(b.assign(b.ref(moved, at), clamped, at));
+    } else {
+      // The element moved to stays in the block of its family it started
+      // in (a family's blocks are not contiguous, and a single place
+      // moves nowhere): leaving it is the range check's run-time error.
+      int64_t block = contiguousBlock(fam);
+      std::string inBlock = scanVariable(
+          stem + "_element", design.types.getRange(0, block - 1), 0, at);
+      if (block > 1 && block < fam.size)
+        pos = b.binary(net::BinaryOp::Mod, pos, lit(block), at);
+      body.push_back(b.assign(b.ref(inBlock, at),
+                              b.binary(net::BinaryOp::Add, pos, by, at), at));
+      body.push_back(b.assign(b.ref(moved, at),
+                              b.binary(net::BinaryOp::Add, num, by, at), at));
+    }
+    arms.push_back({inFamily, design.copy(llvm::ArrayRef<NStmt *>(body))});
   }
   pre.push_back(b.ifStmt(arms, false, {}, at));
-  return b.binary(net::BinaryOp::Add, b.ref(number, at), b.ref(step, at), at);
+  return b.ref(moved, at);
+}
+
+NExpr *Lowering::farFromBlock(const RefTable &table, NExpr *k, SMLoc at) {
+  NExpr *any = nullptr;
+  for (const RefFamily &fam : table.families)
+    if (fam.hasOutside)
+      for (int64_t far : {fam.farBelow(), fam.farAbove()}) {
+        NExpr *is = b.binary(net::BinaryOp::Eq, k, b.intLit(far, at), at);
+        any = any ? b.binary(net::BinaryOp::Or, any, is, at) : is;
+      }
+  return any;
 }
 
 NExpr *Lowering::pointerPairValue(Expr *e, Frame &f, Sink &pre) {
@@ -147,19 +244,20 @@ NExpr *Lowering::pointerPairValue(Expr *e, Frame &f, Sink &pre) {
     const auto &families = table->second.families;
     auto *lit = llvm::dyn_cast<net::IntLit>(k);
     for (auto fam = families.rbegin(); fam != families.rend(); ++fam) {
-      int64_t block = contiguousBlock(*fam) + fam->hasEnd;
-      int64_t last = fam->offset + fam->size + fam->hasEnd - 1;
-      if (lit && lit->value >= fam->offset && lit->value <= last)
+      int64_t block = fam->hasOutside ? fam->last() - fam->first() + 1
+                                      : contiguousBlock(*fam);
+      int64_t last = fam->last();
+      if (lit && fam->holds(lit->value, /*withOutside=*/true))
         return b.intLit(
-            fam->offset + (lit->value - fam->offset) / block * block, at);
+            fam->first() + (lit->value - fam->first()) / block * block, at);
       if (lit)
         continue;
       NExpr *in = b.binary(
           net::BinaryOp::And,
-          b.binary(net::BinaryOp::Ge, k, b.intLit(fam->offset, at), at),
+          b.binary(net::BinaryOp::Ge, k, b.intLit(fam->first(), at), at),
           b.binary(net::BinaryOp::Le, k, b.intLit(last, at), at), at);
-      NExpr *first = b.intLit(fam->offset, at);
-      if (block < last - fam->offset + 1) {
+      NExpr *first = b.intLit(fam->first(), at);
+      if (block < last - fam->first() + 1) {
         // (k - offset) / block * block + offset
         NExpr *pos = b.binary(net::BinaryOp::Sub, k, first, at);
         first = b.binary(
@@ -184,6 +282,16 @@ NExpr *Lowering::pointerPairValue(Expr *e, Frame &f, Sink &pre) {
         {b.binary(net::BinaryOp::Or, b.binary(net::BinaryOp::Ne, ls, rs, at),
                   b.binary(net::BinaryOp::Eq, ls, b.intLit(0, at), at), at)},
         stem + "_apart", pre, at);
+  // Far outside a block only the side is known: no distance to it, and
+  // two such pointers on one side have no order.
+  if (NExpr *lFar = count ? farFromBlock(table->second, l, at) : nullptr) {
+    NExpr *rFar = farFromBlock(table->second, r, at);
+    NExpr *unknown = e->op == Op::Sub
+                         ? b.binary(net::BinaryOp::Or, lFar, rFar, at)
+                         : b.binary(net::BinaryOp::And, lFar,
+                                    b.binary(net::BinaryOp::Eq, l, r, at), at);
+    failWhenAny({unknown}, stem + "_far", pre, at);
+  }
   if (e->op == Op::Sub) {
     NExpr *d = b.binary(net::BinaryOp::Sub, l, r, at);
     return size == 1 ? d

@@ -410,7 +410,7 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
       }
     }
   }
-  giveEndSlots(plan);
+  giveOutsideNumbers(plan);
   return plan;
 }
 
@@ -480,7 +480,7 @@ int64_t netlift::plc::detail::contiguousBlock(const RefFamily &fam) {
   return 1;
 }
 
-void Lowering::giveEndSlots(ReferencePlan &plan) {
+void Lowering::giveOutsideNumbers(ReferencePlan &plan) {
   // The types a program steps pointers through (Sema typed each step as
   // its pointer).
   std::set<std::string> stepped;
@@ -500,9 +500,10 @@ void Lowering::giveEndSlots(ReferencePlan &plan) {
       continue;
     table.count = 0;
     for (RefFamily &fam : table.families) {
-      fam.hasEnd = contiguousBlock(fam) == fam.size;
-      fam.offset = table.count + 1;
-      table.count += fam.size + (fam.hasEnd ? 1 : 0);
+      fam.hasOutside = contiguousBlock(fam) == fam.size;
+      int64_t margin = fam.hasOutside ? 2 : 0;
+      fam.offset = table.count + 1 + margin;
+      table.count += fam.size + 2 * margin;
     }
   }
 }
@@ -720,9 +721,11 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
     t.constant = lit->value;
     t.number = what;
     for (const RefFamily &fam : t.table->families) {
-      if (fam.hasEnd && lit->value == fam.offset + fam.size)
+      if (fam.hasOutside && lit->value == fam.end())
         refuse(d->loc, "the pointer is dereferenced one past the end of '" +
                            fam.key + "'");
+      if (fam.holds(lit->value, /*withOutside=*/true) && !fam.holds(lit->value))
+        refuse(d->loc, "the pointer is dereferenced outside '" + fam.key + "'");
       if (fam.holds(lit->value)) {
         if (fam.function && !activeCalls.count(fam.function))
           refuse(d->loc, "a reference to a variable of function '" +
@@ -740,21 +743,28 @@ Lowering::DerefTargets Lowering::derefTargets(Expr *e, Frame &f, Sink &pre) {
   t.number = name;
   if (!t.table)
     return t;
-  // One past the end of an array designates nothing, and a function's
-  // variables exist only while a call of it runs (a reference to them
-  // dereferenced elsewhere dangles): run-time errors, each named.
-  std::vector<NExpr *> pastEnd, dangling;
+  // One past the end of an array, or another address outside it,
+  // designates nothing, and a function's variables exist only while a call
+  // of it runs (a reference to them dereferenced elsewhere dangles):
+  // run-time errors, each named.
+  std::vector<NExpr *> pastEnd, outside, dangling;
   for (const RefFamily &fam : t.table->families) {
-    if (fam.hasEnd)
-      pastEnd.push_back(b.binary(net::BinaryOp::Eq, b.ref(name, d->loc),
-                                 b.intLit(fam.offset + fam.size, d->loc),
-                                 d->loc));
+    auto is = [&](int64_t k) {
+      return b.binary(net::BinaryOp::Eq, b.ref(name, d->loc),
+                      b.intLit(k, d->loc), d->loc);
+    };
+    if (fam.hasOutside) {
+      pastEnd.push_back(is(fam.end()));
+      for (int64_t k : {fam.farBelow(), fam.before(), fam.farAbove()})
+        outside.push_back(is(k));
+    }
     if (!fam.function || activeCalls.count(fam.function))
       t.live.push_back(&fam);
     else
       dangling.push_back(familyTest(fam, t));
   }
   failWhenAny(pastEnd, stemOf(d->base()) + "_past_end", pre, d->loc);
+  failWhenAny(outside, stemOf(d->base()) + "_outside", pre, d->loc);
   failWhenAny(dangling, stemOf(d->base()) + "_dangling", pre, d->loc);
   return t;
 }

@@ -162,14 +162,30 @@ struct RefFamily {
   Pou *function = nullptr;
   std::vector<RefStep> steps;
   int64_t offset = 1, size = 1;
-  /// A pointer stepped through the family may stand one past its last
-  /// element (C's rule, and every PLC's loop `pt := pt + 1` after the
-  /// last): the number offset + size, which designates nothing. Given to
-  /// a family of one contiguous block whose type a program steps through.
-  bool hasEnd = false;
-  /// Is `k` one of its elements, or (`withEnd`) its end?
-  bool holds(int64_t k, bool withEnd = false) const {
-    return k >= offset && k < offset + size + (withEnd && hasEnd ? 1 : 0);
+  /// A pointer stepped through the family may stand outside its elements
+  /// without being dereferenced (C's one past the end, every PLC's loop
+  /// `pt := pt + 1` after the last element, `pt - 1` before the first,
+  /// `ADR(s) + pos - 1` with pos 0): a family of one contiguous block whose
+  /// type a program steps through has four more numbers, none designating
+  /// anything: one before its first element and its end (one past the
+  /// last), exact, and beyond them one for every address further below
+  /// and one for every address further above (see farBelow, farAbove).
+  bool hasOutside = false;
+  int64_t farBelow() const { return offset - 2; }
+  int64_t before() const { return offset - 1; }
+  int64_t end() const { return offset + size; }
+  int64_t farAbove() const { return offset + size + 1; }
+  /// The numbers of its elements and (`withOutside`) of the addresses
+  /// outside them.
+  int64_t first(bool withOutside = true) const {
+    return withOutside && hasOutside ? farBelow() : offset;
+  }
+  int64_t last(bool withOutside = true) const {
+    return withOutside && hasOutside ? farAbove() : offset + size - 1;
+  }
+  /// Is `k` one of its elements, or (`withOutside`) outside them?
+  bool holds(int64_t k, bool withOutside = false) const {
+    return k >= first(withOutside) && k <= last(withOutside);
   }
 };
 
@@ -333,9 +349,13 @@ private:
   bool runAsProgram(Pou *p) const {
     return p && (p->kind == PouKind::Program || runPous.count(p));
   }
-  /// Numbers one past the end of each family a pointer steps through
-  /// (RefFamily::hasEnd), renumbering those tables.
-  void giveEndSlots(ReferencePlan &plan);
+  /// Numbers outside each family a pointer steps through
+  /// (RefFamily::hasOutside), renumbering those tables.
+  void giveOutsideNumbers(ReferencePlan &plan);
+  /// Is the number `k` of a pointer to a type of `table` one of the
+  /// numbers for every address beyond a block (RefFamily::farBelow,
+  /// farAbove)? Null when the table has none.
+  NExpr *farFromBlock(const RefTable &table, NExpr *k, SMLoc at);
   void adoptReferencePlan(ReferencePlan plan);
   /// Variables whose address is taken count as written everywhere.
   void markAddressTaken();
@@ -409,8 +429,12 @@ private:
   void writeThroughReference(Expr *target, NExpr *value, Expr *valueExpr,
                              Frame &f, Sink &out, SMLoc at);
   /// `p + n * SIZEOF(T)` and `p - ...`: the element n further in the array
-  /// p points into; leaving it is a run-time error.
+  /// p points into, or outside it (RefFamily::hasOutside); coming back from
+  /// far outside, where its distance is not kept, is a run-time error.
   NExpr *pointerStep(Expr *e, Frame &f, Sink &pre);
+  /// How many elements the steps `e` (`p + a - b`, nested) move from the
+  /// pointer they start from (`start`, the first that is not a step).
+  NExpr *stepElements(Expr *e, Frame &f, Sink &pre, Expr *&start);
   /// `p < q` (<=, >, >=) and `p - q` (their distance in bytes) on two
   /// pointers into one array, string or variable: numbers compared, as
   /// they follow the addresses there; into different ones (or NULL) a
