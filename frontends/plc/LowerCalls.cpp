@@ -154,6 +154,36 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
 
 NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
                             Frame &f, Sink &pre) {
+  // A VAR_IN_OUT bound to a dereference that may designate several
+  // places: the call once per place, chosen by the reference, the result
+  // through one temporary.
+  for (CallArg &a : call->args) {
+    VarDecl *p = a.isOutput ? nullptr : fn->find(a.name);
+    if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
+        inOutPlaces.count(a.value))
+      continue;
+    DerefTargets t = derefTargets(a.value, f, pre);
+    if (t.live.size() < 2)
+      continue;
+    std::string result;
+    if (fn->resultVar) {
+      result = unique(sanitize(fn->name) + "_result");
+      declareTemp(result, fn->resultVar->type, call->loc);
+    }
+    std::vector<NExpr *> tests;
+    std::vector<Sink> bodies(t.live.size());
+    for (size_t i = 0; i < t.live.size(); ++i) {
+      inOutPlaces[a.value] = familyPlace(*t.live[i], t, a.value, f, bodies[i]);
+      tests.push_back(familyTest(*t.live[i], t));
+      NExpr *value = inlineCall(call, fn, target, f, bodies[i]);
+      if (!result.empty())
+        bodies[i].push_back(
+            b.assign(b.ref(result, call->loc), value, call->loc));
+      inOutPlaces.erase(a.value);
+    }
+    emitChoice(tests, bodies, pre, call->loc);
+    return result.empty() ? nullptr : b.ref(result, call->loc);
+  }
   std::string prefix =
       unique(sanitize(call->method ? fn->methodOf->name + "_" + fn->name
                                    : fn->name) +
@@ -188,7 +218,10 @@ NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
       continue; // a global's; kept across calls (staticVar)
     auto given = byName.find(StringRef(v->name).upper());
     if (v->section == VarSection::InOut) {
-      nf.aliases[v] = lvalue(given->second->value, f, pre);
+      auto chosen = inOutPlaces.find(given->second->value);
+      nf.aliases[v] = chosen != inOutPlaces.end()
+                          ? chosen->second
+                          : lvalue(given->second->value, f, pre);
       nf.aliasSources[v] = {given->second->value, &f};
       continue;
     }
