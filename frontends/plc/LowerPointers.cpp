@@ -39,33 +39,11 @@ NExpr *Lowering::stepElements(Expr *e, Frame &f, Sink &pre, Expr *&start) {
     inner = stepElements(ptr, f, pre, start);
   else
     start = ptr;
-  // Whole elements (Sema checked the offset is written as a multiple):
-  // `i * SIZEOF(T)` is i elements, without computing the bytes.
-  NExpr *d = nullptr, *n = nullptr;
-  if (offset->kind == ExprKind::Binary && offset->op == Op::Mul) {
-    NExpr *l = expr(offset->operands[0], f, pre);
-    NExpr *r = expr(offset->operands[1], f, pre);
-    auto isSize = [&](NExpr *x) {
-      auto *lit = llvm::dyn_cast<net::IntLit>(x);
-      return lit && lit->value == size;
-    };
-    if (isSize(r))
-      d = n = l;
-    else if (isSize(l))
-      d = n = r;
-    else
-      n = b.binary(net::BinaryOp::Mul, l, r, at);
-  } else {
-    n = expr(offset, f, pre);
-  }
-  if (!d)
-    d = size == 1 ? n : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
+  NExpr *d = elementsIn(offset, size, f, pre);
   if (e->op == Op::Sub)
-    d = b.unary(net::UnaryOp::Neg, d, at);
-  if (auto *lit = llvm::dyn_cast<net::IntLit>(n); lit && d != n)
-    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value / size, at);
-  else if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
-    d = b.intLit((e->op == Op::Sub ? -1 : 1) * lit->value, at);
+    d = llvm::isa<net::IntLit>(d)
+            ? b.intLit(-llvm::cast<net::IntLit>(d)->value, at)
+            : b.unary(net::UnaryOp::Neg, d, at);
   if (!inner)
     return d;
   auto *innerLit = llvm::dyn_cast<net::IntLit>(inner);
@@ -73,6 +51,36 @@ NExpr *Lowering::stepElements(Expr *e, Frame &f, Sink &pre, Expr *&start) {
   if (innerLit && dLit)
     return b.intLit(innerLit->value + dLit->value, at);
   return b.binary(net::BinaryOp::Add, inner, d, at);
+}
+
+NExpr *Lowering::elementsIn(Expr *bytes, int64_t size, Frame &f, Sink &pre) {
+  SMLoc at = bytes->loc;
+  // Whole elements (Sema checked the bytes are written as a multiple):
+  // `i * SIZEOF(T)` is i elements, without computing the bytes.
+  if (bytes->kind == ExprKind::Binary && bytes->op == Op::Mul) {
+    NExpr *l = expr(bytes->operands[0], f, pre);
+    NExpr *r = expr(bytes->operands[1], f, pre);
+    auto isSize = [&](NExpr *x) {
+      auto *lit = llvm::dyn_cast<net::IntLit>(x);
+      return lit && lit->value == size;
+    };
+    if (isSize(r))
+      return l;
+    if (isSize(l))
+      return r;
+    auto *lLit = llvm::dyn_cast<net::IntLit>(l);
+    auto *rLit = llvm::dyn_cast<net::IntLit>(r);
+    if (lLit && rLit)
+      return b.intLit(lLit->value * rLit->value / size, at);
+    NExpr *n = b.binary(net::BinaryOp::Mul, l, r, at);
+    return size == 1 ? n
+                     : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
+  }
+  NExpr *n = expr(bytes, f, pre);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(n))
+    return b.intLit(lit->value / size, at);
+  return size == 1 ? n
+                   : b.binary(net::BinaryOp::Div, n, b.intLit(size, at), at);
 }
 
 NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
@@ -401,6 +409,18 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
   memoryLeaves(dstAdr->type->elem, dl, why);
   memoryLeaves(srcAdr->type->elem, sl, why);
   int64_t n = call->intValue;
+  // A count known only at run time (Sema: -1): up to the smaller size,
+  // each byte copied when it lies below the count.
+  std::string count;
+  if (n < 0) {
+    std::string dummy;
+    n = std::min(memoryLayout(dstAdr->type->elem, dummy)->size,
+                 memoryLayout(srcAdr->type->elem, dummy)->size);
+    count = scanVariable(sanitize(call->name) + "_bytes",
+                         design.types.getRange(0, n), 0, at);
+    pre.push_back(
+        b.assign(b.ref(count, at), expr(call->args[2].value, f, pre), at));
+  }
   // A fresh expression for the place each time it is used (its selectors
   // are constants: nothing to evaluate once).
   auto placeOf = [&](Expr *adr) {
@@ -449,7 +469,24 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
     if (l.offset >= n)
       break;
     NExpr *raw = nullptr;
-    if (l.offset + l.size <= n) {
+    if (!count.empty()) {
+      // Each byte the source's below the count, the target's own above.
+      NExpr *old = unionBits(l.type, leafOf(dstAdr, l), at);
+      for (int64_t j = 0; j < l.size && l.offset + j < n; ++j) {
+        NExpr *kept = old;
+        if (j)
+          kept = b.binary(net::BinaryOp::Shr, kept, b.intLit(8 * j, at), at);
+        kept = b.binary(net::BinaryOp::BitAnd, kept, b.intLit(255, at), at);
+        NExpr *below = b.binary(net::BinaryOp::Lt, b.intLit(l.offset + j, at),
+                                b.ref(count, at), at);
+        NExpr *byte = b.cond(below, sourceByte(l.offset + j), kept, at);
+        if (j)
+          byte = b.binary(net::BinaryOp::Shl, byte, b.intLit(8 * j, at), at);
+        raw = raw ? b.binary(net::BinaryOp::BitOr, raw, byte, at) : byte;
+      }
+      if (l.offset + l.size > n) // the bytes past the smaller size kept
+        raw = insertBits(old, raw, 8 * (n - l.offset), b.intLit(0, at), at);
+    } else if (l.offset + l.size <= n) {
       for (int64_t j = 0; j < l.size; ++j) {
         NExpr *byte = sourceByte(l.offset + j);
         if (j)
@@ -484,22 +521,17 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
   int64_t size = memoryLayout(t, why)->size;
   // Element j of what `p` points to: (p + j * size)^.
   auto element = [&](Expr *p, int64_t j) {
-    Expr *moved = p;
+    Expr *offset = nullptr;
     if (j) {
-      moved = unit.make<Expr>(ExprKind::Binary, at);
-      moved->op = Op::Add;
-      Expr *offset = unit.make<Expr>(ExprKind::IntLit, at);
+      offset = unit.make<Expr>(ExprKind::IntLit, at);
       offset->intValue = j * size;
       offset->type = elementaryType("DINT");
-      moved->operands = {p, offset};
-      moved->type = p->type;
     }
-    Expr *d = unit.make<Expr>(ExprKind::Deref, at);
-    d->operands.push_back(moved);
-    d->type = t;
-    return d;
+    return elementAt(p, offset, t, at);
   };
   int64_t k = call->intValue;
+  if (k < 0)
+    return memoryLoop(call, f, pre);
   if (call->name == "MEMCMP") {
     // The first element that differs decides, as unsigned bytes.
     std::vector<std::pair<NExpr *, NExpr *>> pairs;
@@ -557,5 +589,156 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
   }
   for (int64_t j = 0; j < k; ++j)
     writeThroughReference(element(dst, j), values[j], nullptr, f, pre, at);
+  return b.intLit(0, at);
+}
+
+Expr *Lowering::elementAt(Expr *p, Expr *offset, const PType *t, SMLoc at) {
+  Expr *moved = p;
+  if (offset) {
+    moved = unit.make<Expr>(ExprKind::Binary, at);
+    moved->op = Op::Add;
+    moved->operands = {p, offset};
+    moved->type = p->type;
+  }
+  Expr *d = unit.make<Expr>(ExprKind::Deref, at);
+  d->operands.push_back(moved);
+  d->type = t;
+  return d;
+}
+
+NExpr *Lowering::memoryLoop(Expr *call, Frame &f, Sink &pre) {
+  SMLoc at = call->loc;
+  Expr *dst = call->args[0].value, *src = call->args[1].value;
+  const PType *t = dst->type->elem;
+  std::string why;
+  int64_t size = memoryLayout(t, why)->size;
+  // At most the longest block a pointer of the type may stand in: more
+  // elements would leave any (the range of the count reports it).
+  int64_t most = 0;
+  if (auto table = refPlan.tables.find(referenceKey(t));
+      table != refPlan.tables.end())
+    for (const RefFamily &fam : table->second.families)
+      most = std::max(most, contiguousBlock(fam));
+  most = std::min<int64_t>(most, 4096);
+  std::string count = scanVariable(sanitize(call->name) + "_elements",
+                                   design.types.getRange(0, most), 0, at);
+  pre.push_back(b.assign(b.ref(count, at),
+                         elementsIn(call->args[2].value, size, f, pre), at));
+  if (most == 0)
+    return b.intLit(0, at);
+  // Element `index` of what p points to, `index` a NetIR value: a
+  // variable standing for it (as a VAR_IN_OUT stands for its argument).
+  auto *indexVar = unit.make<VarDecl>();
+  indexVar->name = "_memory_index";
+  indexVar->section = VarSection::InOut;
+  indexVar->type = elementaryType("DINT");
+  auto at_ = [&](Expr *p) {
+    Expr *index = unit.make<Expr>(ExprKind::Name, at);
+    index->name = indexVar->name;
+    index->var = indexVar;
+    index->type = indexVar->type;
+    Expr *bytes = index;
+    if (size != 1) {
+      Expr *sz = unit.make<Expr>(ExprKind::IntLit, at);
+      sz->intValue = size;
+      sz->type = elementaryType("DINT");
+      bytes = unit.make<Expr>(ExprKind::Binary, at);
+      bytes->op = Op::Mul;
+      bytes->operands = {index, sz};
+      bytes->type = index->type;
+    }
+    return elementAt(p, bytes, t, at);
+  };
+  // for k in 0..most-1 { if index(k) in 0..count-1 { each } }
+  auto loop = [&](auto indexOf, auto each, Sink &out) {
+    std::string k = "_k" + std::to_string(++loopVars);
+    NExpr *index = indexOf(b.ref(k, at));
+    f.aliases[indexVar] = index;
+    Sink body;
+    each(body);
+    f.aliases.erase(indexVar);
+    NExpr *inside =
+        b.binary(net::BinaryOp::And,
+                 b.binary(net::BinaryOp::Ge, index, b.intLit(0, at), at),
+                 b.binary(net::BinaryOp::Lt, index, b.ref(count, at), at), at);
+    Sink guarded{b.ifStmt(
+        {{inside, design.copy(llvm::ArrayRef<NStmt *>(body))}}, false, {}, at)};
+    out.push_back(
+        b.forStmt(k, b.intLit(0, at), b.intLit(most - 1, at), guarded, at));
+  };
+  auto forward = [](NExpr *k) { return k; };
+  if (call->name == "MEMCMP") {
+    // The first element that differs decides, as unsigned bytes.
+    std::string result =
+        scanVariable("MEMCMP_result", design.types.getRange(-1, 1), 0, at);
+    pre.push_back(b.assign(b.ref(result, at), b.intLit(0, at), at));
+    loop(
+        forward,
+        [&](Sink &body) {
+          NExpr *x = readThroughReference(at_(dst), f, body);
+          NExpr *y = readThroughReference(at_(src), f, body);
+          NExpr *sign =
+              b.cond(b.binary(net::BinaryOp::Lt, x, y, at), b.intLit(-1, at),
+                     b.cond(b.binary(net::BinaryOp::Gt, x, y, at),
+                            b.intLit(1, at), b.intLit(0, at), at),
+                     at);
+          Sink set{b.assign(b.ref(result, at), sign, at)};
+          body.push_back(
+              b.ifStmt({{b.binary(net::BinaryOp::Eq, b.ref(result, at),
+                                  b.intLit(0, at), at),
+                         design.copy(llvm::ArrayRef<NStmt *>(set))}},
+                       false, {}, at));
+        },
+        pre);
+    return b.ref(result, at);
+  }
+  if (call->name == "MEMSET") {
+    NExpr *fill = expr(src, f, pre);
+    if (auto *lit = llvm::dyn_cast<net::IntLit>(fill))
+      fill = b.intLit(lit->value & 0xff, at);
+    else
+      fill = maskTo(fill, elementaryType("BYTE"), at);
+    auto *lit = llvm::dyn_cast<net::IntLit>(fill);
+    NExpr *byte = lit && lit->value == 0 ? nullptr : fill;
+    bool whole = (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
+                  t->isString()) &&
+                 !(t->kind == PTypeKind::Struct && t->isUnion);
+    bool oneByte = !whole && size == 1;
+    loop(
+        forward,
+        [&](Sink &body) {
+          if (whole || !byte)
+            fillThroughReference(at_(dst), byte, f, body, at);
+          else if (oneByte && t->kind != PTypeKind::Bool)
+            writeThroughReference(at_(dst), fill, nullptr, f, body, at);
+          else
+            writeThroughReference(at_(dst), filledScalar(t, byte, at), nullptr,
+                                  f, body, at);
+        },
+        pre);
+    return b.intLit(0, at);
+  }
+  // MEMCPY, MEMMOVE: forwards when the target stands before the source
+  // (or in another block), backwards otherwise, so that overlapping
+  // elements copy as MEMMOVE does.
+  auto copy = [&](Sink &body) {
+    writeThroughReference(at_(dst), readThroughReference(at_(src), f, body),
+                          nullptr, f, body, at);
+  };
+  Sink forwards, backwards;
+  loop(forward, copy, forwards);
+  loop(
+      [&](NExpr *k) {
+        return b.binary(
+            net::BinaryOp::Sub,
+            b.binary(net::BinaryOp::Sub, b.ref(count, at), b.intLit(1, at), at),
+            k, at);
+      },
+      copy, backwards);
+  NExpr *before =
+      b.binary(net::BinaryOp::Le, expr(dst, f, pre), expr(src, f, pre), at);
+  pre.push_back(
+      b.ifStmt({{before, design.copy(llvm::ArrayRef<NStmt *>(forwards))}}, true,
+               design.copy(llvm::ArrayRef<NStmt *>(backwards)), at));
   return b.intLit(0, at);
 }

@@ -435,6 +435,9 @@ private:
   /// How many elements the steps `e` (`p + a - b`, nested) move from the
   /// pointer they start from (`start`, the first that is not a step).
   NExpr *stepElements(Expr *e, Frame &f, Sink &pre, Expr *&start);
+  /// `bytes` (Sema checked: a whole number of elements of `size` bytes) as
+  /// a number of elements.
+  NExpr *elementsIn(Expr *bytes, int64_t size, Frame &f, Sink &pre);
   /// `p < q` (<=, >, >=) and `p - q` (their distance in bytes) on two
   /// pointers into one array, string or variable: numbers compared, as
   /// they follow the addresses there; into different ones (or NULL) a
@@ -442,6 +445,11 @@ private:
   NExpr *pointerPairValue(Expr *e, Frame &f, Sink &pre);
   /// MEMCPY, MEMMOVE, MEMSET (statements around nothing) and MEMCMP.
   NExpr *memoryCall(Expr *call, Frame &f, Sink &pre);
+  /// MEMCPY, MEMMOVE, MEMSET and MEMCMP of a number of elements known at
+  /// run time: a loop over as many as the longest block of the type holds.
+  NExpr *memoryLoop(Expr *call, Frame &f, Sink &pre);
+  /// `(p + offset)^` of type `t` (`p^` without an offset), as Sema types it.
+  Expr *elementAt(Expr *p, Expr *offset, const PType *t, SMLoc at);
   /// MEMCPY/MEMMOVE between places of different types (Sema's "IMAGE"):
   /// each target scalar the bytes reach is rebuilt from the source's bytes
   /// in the x64 layout (memoryLeaves), little-endian.

@@ -69,6 +69,9 @@ private:
   /// MEMCPY, MEMMOVE, MEMSET, MEMCMP over places of one type, a constant
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
+  /// Is `bytes` written as a whole number of elements of `size` bytes (a
+  /// constant multiple, or a product with one)?
+  bool wholeElements(Expr *bytes, int64_t size);
   /// MEMCPY/MEMMOVE(ADR(x), ADR(y), n) between places of different types:
   /// n bytes of y's layout copied into x's, leaf by leaf (marked "IMAGE",
   /// n in `intValue`). Nullopt when it is no such copy (then memoryCall

@@ -315,21 +315,22 @@ const PType *Checker::pointerArithmetic(Expr *e, const PType *a,
   auto layout = memoryLayout(pt->elem, why);
   if (!layout)
     return refuse(why);
-  // A whole number of elements: a constant multiple of the size, or a
-  // product with one.
-  auto multiple = [&](Expr *x) {
-    int64_t v;
-    return constInt(x, v) && v % layout->size == 0;
-  };
-  bool whole =
-      layout->size == 1 || multiple(offset) ||
-      (offset->kind == ExprKind::Binary && offset->op == Op::Mul &&
-       (multiple(offset->operands[0]) || multiple(offset->operands[1])));
-  if (!whole)
+  if (!wholeElements(offset, layout->size))
     return refuse("the offset is not written as a whole number of " +
                   pt->elem->str() + " (n * SIZEOF(" + pt->elem->str() +
                   ") = n * " + Twine(layout->size) + ")");
   return pt;
+}
+
+bool Checker::wholeElements(Expr *bytes, int64_t size) {
+  // A constant multiple of the size, or a product with one.
+  auto multiple = [&](Expr *x) {
+    int64_t v;
+    return constInt(x, v) && v % size == 0;
+  };
+  return size == 1 || multiple(bytes) ||
+         (bytes->kind == ExprKind::Binary && bytes->op == Op::Mul &&
+          (multiple(bytes->operands[0]) || multiple(bytes->operands[1])));
 }
 
 bool Checker::pointerPair(Expr *e, StringRef what) {
@@ -515,8 +516,21 @@ std::optional<const PType *> Checker::imageCopy(Expr *e, Expr *dst, Expr *src,
       t = t->elem;
     return referenceKey(t);
   };
+  // Places of one type are copied element by element, unless the count
+  // cuts an element (two bytes of a DWORD): then byte by byte, as two
+  // types are.
+  auto wholeElementsOf = [&](Expr *p) {
+    const PType *t = p->type->elem;
+    if (t->kind == PTypeKind::Array && t->elem->kind != PTypeKind::Array &&
+        t->elem->kind != PTypeKind::Struct)
+      t = t->elem;
+    std::string why;
+    auto layout = memoryLayout(t, why);
+    return !layout || wholeElements(count, layout->size);
+  };
   Expr *dp = adrPlace(dst), *sp = adrPlace(src);
-  if (!dp || !sp || elementKey(dst) == elementKey(src))
+  if (!dp || !sp ||
+      (elementKey(dst) == elementKey(src) && wholeElementsOf(dst)))
     return std::nullopt;
   const PType *dt = dst->type->elem, *st = src->type->elem;
   std::string what = e->name + " from " + st->str() + " to " + dt->str();
@@ -529,16 +543,19 @@ std::optional<const PType *> Checker::imageCopy(Expr *e, Expr *dst, Expr *src,
   std::string dummy;
   int64_t dsize = memoryLayout(dt, dummy)->size,
           ssize = memoryLayout(st, dummy)->size, n;
-  if (!constInt(count, n) || n <= 0 || n > std::min(dsize, ssize)) {
-    error(count->loc, what +
-                          ": the size must be a constant number of bytes "
-                          "from 1 to " +
+  // A count known only at run time is checked then (Lowering::imageCopy).
+  if (!baseOf(count->type)->isInteger() ||
+      (constInt(count, n) && (n <= 0 || n > std::min(dsize, ssize)))) {
+    error(count->loc, what + ": the size must be a number of bytes from 1 to " +
                           Twine(std::min(dsize, ssize)) +
                           " (both are that long at least)");
     return nullptr;
   }
+  if (!constInt(count, n))
+    n = -1;
   for (const MemoryLeaf &l : dl)
-    if (l.type->kind == PTypeKind::String && l.offset < n) {
+    if (l.type->kind == PTypeKind::String &&
+        l.offset < (n < 0 ? std::min(dsize, ssize) : n)) {
       error(e->loc, what + ": bytes copied into a STRING are not modelled");
       return nullptr;
     }
@@ -605,13 +622,17 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
     return nullptr;
   }
   int64_t n;
-  if (!constInt(count, n) || n < 0 || n % layout->size != 0) {
+  if (!baseOf(count->type)->isInteger() ||
+      (constInt(count, n) ? n < 0 || n % layout->size != 0
+                          : !wholeElements(count, layout->size))) {
     error(count->loc, e->name + " of " + t->str() +
-                          ": the size must be a constant number of whole " +
-                          t->str() + " (n * " + Twine(layout->size) + ")");
+                          ": the size must be a whole number of " + t->str() +
+                          " (n * " + Twine(layout->size) + ")");
     return nullptr;
   }
-  e->intValue = n / layout->size;
+  // Known only at run time: as many elements as the block holds at most
+  // (Lowering::memoryCall).
+  e->intValue = constInt(count, n) ? n / layout->size : -1;
   if (e->intValue > 4096) {
     error(count->loc, e->name + " of " + Twine(e->intValue) + " " + t->str() +
                           ": netlift copies at most 4096 elements");
