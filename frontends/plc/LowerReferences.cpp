@@ -127,12 +127,14 @@ static RefView viewOf(Expr *call) {
   if (call->typeName == "SCALAR") {
     view.kind = RefView::Scalar;
     view.seen = baseOf(call->args[0].value->type);
+    std::string why;
+    int64_t size = memoryLayout(view.seen, why)->size;
     if (call->type->elem->kind == PTypeKind::Array) { // its bytes
       view.lo = call->type->elem->dims[0].first;
-      view.bytes = view.seen->width / 8;
-    } else if (baseOf(call->type->elem)->width == 8 && view.seen->width > 8) {
+      view.bytes = size;
+    } else if (baseOf(call->type->elem)->width == 8 && size > 1) {
       view.byteSteps = true; // its bytes, one place each
-      view.bytes = view.seen->width / 8;
+      view.bytes = size;
     }
     return view;
   }
@@ -926,6 +928,16 @@ NExpr *Lowering::viewedPosition(const RefFamily &fam, const DerefTargets &t,
 
 NExpr *Lowering::scalarByteShift(const RefFamily &fam, const DerefTargets &t,
                                  Expr *e, Frame &f, Sink &pre) {
+  NExpr *pos = scalarBytePosition(fam, t, e, f, pre);
+  if (!pos)
+    return nullptr;
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(pos))
+    return b.intLit(lit->value * 8, e->loc);
+  return b.binary(net::BinaryOp::Mul, pos, b.intLit(8, e->loc), e->loc);
+}
+
+NExpr *Lowering::scalarBytePosition(const RefFamily &fam, const DerefTargets &t,
+                                    Expr *e, Frame &f, Sink &pre) {
   if (e == t.deref && fam.view.bytes == 0)
     return nullptr; // the whole scalar, as another of its size
   if (fam.view.byteSteps) {
@@ -934,12 +946,12 @@ NExpr *Lowering::scalarByteShift(const RefFamily &fam, const DerefTargets &t,
       refuse(e->loc, "internal: a selection in a byte");
     SMLoc at = e->loc;
     if (t.constant)
-      return b.intLit((*t.constant - fam.offset) % fam.view.bytes * 8, at);
+      return b.intLit((*t.constant - fam.offset) % fam.view.bytes, at);
     NExpr *rel = b.binary(net::BinaryOp::Sub, numberOf(t, at),
                           b.intLit(fam.offset, at), at);
     if (fam.size > fam.view.bytes)
       rel = b.binary(net::BinaryOp::Mod, rel, b.intLit(fam.view.bytes, at), at);
-    return b.binary(net::BinaryOp::Mul, rel, b.intLit(8, at), at);
+    return rel;
   }
   if (fam.view.bytes == 0 || e->kind != ExprKind::Index ||
       e->base() != t.deref || e->operands.size() != 2)
@@ -947,14 +959,23 @@ NExpr *Lowering::scalarByteShift(const RefFamily &fam, const DerefTargets &t,
                        " seen as an array are read and written one element "
                        "at a time (pt^[i])");
   // Little-endian, as the x64 layout SIZEOF assumes: byte 0 is the lowest.
-  NExpr *pos = viewedPosition(fam, t, e->operands[1], 0, "_byte", f, pre);
-  return b.binary(net::BinaryOp::Mul, pos, b.intLit(8, e->loc), e->loc);
+  return viewedPosition(fam, t, e->operands[1], 0, "_byte", f, pre);
 }
 
 NExpr *Lowering::familyValue(const RefFamily &fam, const DerefTargets &t,
                              Expr *e, Frame &f, Sink &pre) {
   if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements)
     return familyPlace(fam, t, e, f, pre);
+  if (seesRecordBytes(fam.view)) {
+    NExpr *pos = scalarBytePosition(fam, t, e, f, pre);
+    FreshPlace at = positionValue(pos, 0, fam.view.bytes - 1, pre, e->loc);
+    std::string name;
+    FreshPlace place = [&] {
+      NExpr *x = familyRoot(fam, t, name);
+      return x ? x : b.ref(name, e->loc);
+    };
+    return recordByte(fam.view.seen, place, at, e->loc);
+  }
   if (fam.view.kind == RefView::Scalar) {
     // The place's bits, read as the pointer's type (or one byte of them).
     std::string name;
@@ -979,6 +1000,21 @@ void Lowering::familyStore(const RefFamily &fam, const DerefTargets &t,
   if (fam.view.kind == RefView::Plain || fam.view.kind == RefView::Elements) {
     assign(familyPlace(fam, t, target, f, pre), value, target->type, valueExpr,
            out, at);
+    return;
+  }
+  if (seesRecordBytes(fam.view)) {
+    NExpr *pos = scalarBytePosition(fam, t, target, f, pre);
+    FreshPlace where = positionValue(pos, 0, fam.view.bytes - 1, pre, at);
+    const PType *as = baseOf(target->type);
+    FreshPlace byte =
+        positionValue(coerce(value, valueExpr ? valueExpr->type : as, as, at),
+                      as->lo, as->hi, pre, at);
+    std::string name;
+    FreshPlace place = [&] {
+      NExpr *x = familyRoot(fam, t, name);
+      return x ? x : b.ref(name, at);
+    };
+    storeRecordByte(fam.view.seen, place, where, byte, out, at);
     return;
   }
   if (fam.view.kind == RefView::Scalar) {

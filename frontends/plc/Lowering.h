@@ -49,6 +49,8 @@ using llvm::Twine;
 using NExpr = net::Expr;
 using NStmt = net::Stmt;
 using Sink = std::vector<NStmt *>;
+/// A place or value made afresh at each use.
+using FreshPlace = std::function<NExpr *()>;
 
 /// Thrown to abandon the translation after the first refusal; caught in
 /// lowerToNet. (One refusal per run: later ones would mostly be echoes.)
@@ -412,6 +414,26 @@ private:
   /// `e` (pt^[i]) designates, checked; null for a whole scalar view.
   NExpr *scalarByteShift(const RefFamily &fam, const DerefTargets &t, Expr *e,
                          Frame &f, Sink &pre);
+  /// Is the family a structure or an array seen as its bytes
+  /// (LowerRecordBytes.cpp)?
+  static bool seesRecordBytes(const RefView &view);
+  /// The byte a scalar or record view designates, counted from 0, checked
+  /// to lie in it; null for a whole scalar view.
+  NExpr *scalarBytePosition(const RefFamily &fam, const DerefTargets &t,
+                            Expr *e, Frame &f, Sink &pre);
+  /// `v`, known to lie in lo..hi, for use several times: itself when a
+  /// literal, else a variable of the scan it is copied into first.
+  FreshPlace positionValue(NExpr *v, int64_t lo, int64_t hi, Sink &pre,
+                           SMLoc at);
+  /// Byte `pos` (from 0) of the value of type `t` at `place`, in SIZEOF's
+  /// layout: of the scalar holding it, little-endian; padding reads 0.
+  NExpr *recordByte(const PType *t, const FreshPlace &place,
+                    const FreshPlace &pos, SMLoc at);
+  /// Writes `byte` as byte `pos` of the value at `place`, the scalar
+  /// holding it keeping its other bytes (padding keeps nothing).
+  void storeRecordByte(const PType *t, const FreshPlace &place,
+                       const FreshPlace &pos, const FreshPlace &byte, Sink &out,
+                       SMLoc at);
   NExpr *bytePosition(const RefFamily &fam, const DerefTargets &t, Expr *e,
                       Frame &f, Sink &pre);
   /// What `e` reads in a family's place (a byte of a string: code()).

@@ -170,6 +170,8 @@ struct MemoryLayout {
   int64_t size, align;
 };
 std::optional<MemoryLayout> memoryLayout(const PType *t, std::string &why);
+/// Where each field of a structure (not a UNION) with a layout starts.
+std::vector<int64_t> fieldOffsets(const PType *t);
 
 /// One scalar of a value in that layout: the fields and indices that reach
 /// it, where its bytes start, and its type (BOOL, an integer or bit

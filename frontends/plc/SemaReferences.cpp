@@ -274,6 +274,18 @@ bool Checker::viewAsScalar(Expr *e, const PType *elem) {
   };
   // A POINTER TO BYTE over a wider scalar steps through its bytes.
   bool oneByte = as->kind == PTypeKind::Int && as->width == 8;
+  // A structure or an array of BOOLs, integers and REALs seen as its bytes
+  // (a checksum over a record, a telegram built in place).
+  if (seen->kind == PTypeKind::Struct || seen->kind == PTypeKind::Array) {
+    std::vector<MemoryLeaf> leaves;
+    std::string why;
+    if (!(oneByte || oneByteArray(as)) || !memoryLeaves(seen, leaves, why) ||
+        llvm::any_of(leaves, [](const MemoryLeaf &l) {
+          return l.type->kind == PTypeKind::String;
+        }))
+      return false;
+    return markView(e, "SCALAR", elem);
+  }
   if (!numeric(seen) ||
       !(oneByteArray(as) || (numeric(as) && seen->width == as->width) ||
         (oneByte && seen->width > 8)))

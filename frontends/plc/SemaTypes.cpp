@@ -233,9 +233,22 @@ std::optional<MemoryLayout> plc::memoryLayout(const PType *t,
   }
 }
 
+std::vector<int64_t> plc::fieldOffsets(const PType *t) {
+  std::vector<int64_t> offsets;
+  int64_t offset = 0, pack = std::max<int64_t>(t->pack, 1);
+  std::string why;
+  for (VarDecl *f : t->fields) {
+    auto l = memoryLayout(f->type, why);
+    int64_t align = std::min(l->align, pack);
+    offset = (offset + align - 1) / align * align;
+    offsets.push_back(offset);
+    offset += l->size;
+  }
+  return offsets;
+}
+
 bool plc::memoryLeaves(const PType *t, std::vector<MemoryLeaf> &out,
                        std::string &why) {
-  auto alignUp = [](int64_t n, int64_t a) { return (n + a - 1) / a * a; };
   std::function<bool(const PType *, MemoryLeaf)> walk = [&](const PType *pt,
                                                             MemoryLeaf at) {
     const PType *base = baseOf(pt);
@@ -282,16 +295,13 @@ bool plc::memoryLeaves(const PType *t, std::vector<MemoryLeaf> &out,
         why = "the bytes of a UNION (" + base->str() + ") are not modelled";
         return false;
       }
-      int64_t offset = 0, pack = std::max<int64_t>(base->pack, 1);
-      for (VarDecl *f : base->fields) {
-        auto l = memoryLayout(f->type, why);
-        offset = alignUp(offset, std::min(l->align, pack));
+      std::vector<int64_t> offsets = fieldOffsets(base);
+      for (size_t i = 0; i < base->fields.size(); ++i) {
         MemoryLeaf inner = at;
-        inner.path.push_back({f->name, {}});
-        inner.offset += offset;
-        if (!walk(f->type, inner))
+        inner.path.push_back({base->fields[i]->name, {}});
+        inner.offset += offsets[i];
+        if (!walk(base->fields[i]->type, inner))
           return false;
-        offset += l->size;
       }
       return true;
     }
