@@ -533,11 +533,15 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
   if (k < 0)
     return memoryLoop(call, f, pre);
   if (call->name == "MEMCMP") {
-    // The first element that differs decides, as unsigned bytes.
+    // The first byte that differs decides, as unsigned bytes, in memory
+    // order (each element's bytes little-endian).
     std::vector<std::pair<NExpr *, NExpr *>> pairs;
-    for (int64_t j = 0; j < k; ++j)
-      pairs.push_back({readThroughReference(element(dst, j), f, pre),
-                       readThroughReference(element(src, j), f, pre)});
+    for (int64_t j = 0; j < k; ++j) {
+      FreshPlace x = comparedValue(element(dst, j), f, pre);
+      FreshPlace y = comparedValue(element(src, j), f, pre);
+      for (int64_t byte = 0; byte < size; ++byte)
+        pairs.push_back({valueByte(t, x, byte, at), valueByte(t, y, byte, at)});
+    }
     NExpr *r = b.intLit(0, at);
     for (size_t j = pairs.size(); j-- > 0;) {
       auto [x, y] = pairs[j];
@@ -675,19 +679,23 @@ NExpr *Lowering::memoryLoop(Expr *call, Frame &f, Sink &pre) {
     loop(
         forward,
         [&](Sink &body) {
-          NExpr *x = readThroughReference(at_(dst), f, body);
-          NExpr *y = readThroughReference(at_(src), f, body);
-          NExpr *sign =
-              b.cond(b.binary(net::BinaryOp::Lt, x, y, at), b.intLit(-1, at),
-                     b.cond(b.binary(net::BinaryOp::Gt, x, y, at),
-                            b.intLit(1, at), b.intLit(0, at), at),
-                     at);
-          Sink set{b.assign(b.ref(result, at), sign, at)};
-          body.push_back(
-              b.ifStmt({{b.binary(net::BinaryOp::Eq, b.ref(result, at),
-                                  b.intLit(0, at), at),
-                         design.copy(llvm::ArrayRef<NStmt *>(set))}},
-                       false, {}, at));
+          FreshPlace x = comparedValue(at_(dst), f, body);
+          FreshPlace y = comparedValue(at_(src), f, body);
+          for (int64_t byte = 0; byte < size; ++byte) {
+            NExpr *xb = valueByte(t, x, byte, at);
+            NExpr *yb = valueByte(t, y, byte, at);
+            NExpr *sign = b.cond(b.binary(net::BinaryOp::Lt, xb, yb, at),
+                                 b.intLit(-1, at),
+                                 b.cond(b.binary(net::BinaryOp::Gt, xb, yb, at),
+                                        b.intLit(1, at), b.intLit(0, at), at),
+                                 at);
+            Sink set{b.assign(b.ref(result, at), sign, at)};
+            body.push_back(
+                b.ifStmt({{b.binary(net::BinaryOp::Eq, b.ref(result, at),
+                                    b.intLit(0, at), at),
+                           design.copy(llvm::ArrayRef<NStmt *>(set))}},
+                         false, {}, at));
+          }
         },
         pre);
     return b.ref(result, at);
@@ -741,4 +749,37 @@ NExpr *Lowering::memoryLoop(Expr *call, Frame &f, Sink &pre) {
       b.ifStmt({{before, design.copy(llvm::ArrayRef<NStmt *>(forwards))}}, true,
                design.copy(llvm::ArrayRef<NStmt *>(backwards)), at));
   return b.intLit(0, at);
+}
+
+FreshPlace Lowering::comparedValue(Expr *element, Frame &f, Sink &pre) {
+  SMLoc at = element->loc;
+  NExpr *v = readThroughReference(element, f, pre);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(v)) {
+    int64_t k = lit->value;
+    return [this, k, at] { return b.intLit(k, at); };
+  }
+  // A one-byte scalar is read once, where it is compared.
+  std::string why;
+  const PType *t = baseOf(element->type);
+  if (t->kind != PTypeKind::Array && t->kind != PTypeKind::Struct &&
+      memoryLayout(t, why)->size == 1)
+    return [v] { return v; };
+  // An array or structure is read into a temporary (a Ref); a wider
+  // scalar's selection over places is read once into one.
+  std::string name;
+  if (auto *r = llvm::dyn_cast<net::Ref>(v)) {
+    name = r->name.str();
+  } else {
+    name = unique("_compared");
+    declareTemp(name, element->type, at);
+    pre.push_back(b.assign(b.ref(name, at), v, at));
+  }
+  return [this, name, at] { return b.ref(name, at); };
+}
+
+NExpr *Lowering::valueByte(const PType *t, const FreshPlace &value,
+                           int64_t byte, SMLoc at) {
+  int64_t k = byte;
+  return recordByte(
+      t, value, [this, k, at] { return b.intLit(k, at); }, at);
 }

@@ -110,6 +110,8 @@ NExpr *Lowering::recordByte(const PType *t, const FreshPlace &place,
   }
   default: {
     // Little-endian: byte k is bits 8k..8k+7.
+    if (t->kind == PTypeKind::Int && t->width == 8 && !t->isSigned)
+      return place(); // a BYTE is its byte
     NExpr *bits = unionBits(t, place(), at);
     if (!lit || lit->value)
       bits = b.binary(net::BinaryOp::Shr, bits,

@@ -470,6 +470,11 @@ private:
   /// MEMCPY, MEMMOVE, MEMSET and MEMCMP of a number of elements known at
   /// run time: a loop over as many as the longest block of the type holds.
   NExpr *memoryLoop(Expr *call, Frame &f, Sink &pre);
+  /// An element MEMCMP compares, read through its reference once.
+  FreshPlace comparedValue(Expr *element, Frame &f, Sink &pre);
+  /// Byte `byte` of the value of type `t`, in memory order.
+  NExpr *valueByte(const PType *t, const FreshPlace &value, int64_t byte,
+                   SMLoc at);
   /// `(p + offset)^` of type `t` (`p^` without an offset), as Sema types it.
   Expr *elementAt(Expr *p, Expr *offset, const PType *t, SMLoc at);
   /// MEMCPY/MEMMOVE between places of different types (Sema's "IMAGE"):

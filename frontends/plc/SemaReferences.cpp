@@ -690,11 +690,20 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
       return nullptr;
     }
   }
-  if (compare && (!scalar || layout->size != 1)) {
-    error(e->loc, "MEMCMP of " + t->str() +
-                      ": the sign of its result depends on the byte order; "
-                      "only one-byte elements are compared");
-    return nullptr;
+  // MEMCMP compares bytes in memory order (x64: little-endian), so every
+  // byte of the elements must be one netlift holds.
+  if (compare && !(scalar && layout->size == 1)) {
+    std::vector<MemoryLeaf> leaves;
+    if (!memoryLeaves(t, leaves, why) ||
+        llvm::any_of(leaves, [](const MemoryLeaf &l) {
+          return l.type->kind == PTypeKind::String;
+        })) {
+      error(e->loc, "MEMCMP of " + t->str() + ": " +
+                        (why.empty() ? "the bytes of a STRING among them "
+                                       "are not compared"
+                                     : why));
+      return nullptr;
+    }
   }
   if (compare)
     return elementaryType("DINT");
