@@ -404,6 +404,15 @@ void Lowering::fillThroughReference(Expr *place, NExpr *byte, Frame &f,
 NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
   SMLoc at = call->loc;
   Expr *dstAdr = call->args[0].value, *srcAdr = call->args[1].value;
+  // From or into an array element, more bytes than the element's (or a
+  // count known at run time): the bytes up to the array's end.
+  for (Expr *adr : {dstAdr, srcAdr}) {
+    std::string why;
+    if (arrayElementPlace(adr->args[0].value) &&
+        (call->intValue < 0 ||
+         call->intValue > memoryLayout(adr->type->elem, why)->size))
+      return imageCopyAtElement(call, f, pre);
+  }
   std::vector<MemoryLeaf> dl, sl;
   std::string why;
   memoryLeaves(dstAdr->type->elem, dl, why);
@@ -434,16 +443,7 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
     return x;
   };
   auto leafOf = [&](Expr *adr, const MemoryLeaf &l) {
-    NExpr *x = placeOf(adr);
-    for (const MemoryLeaf::Step &s : l.path) {
-      if (!s.field.empty()) {
-        x = b.field(x, sanitize(s.field), at);
-        continue;
-      }
-      for (int64_t i : s.index)
-        x = b.index(x, b.intLit(i, at), at);
-    }
-    return x;
+    return leafPlace(placeOf(adr), l, at);
   };
   // Byte k of the source: of the leaf that holds it, little-endian (a
   // STRING's characters, 0 past its end); padding reads 0.

@@ -63,25 +63,45 @@ static NExpr *elementNumber(net::Builder &b, const PType *t, NExpr *place,
   return x;
 }
 
+/// The element of the array `t` at `place` holding byte `pos`, and the
+/// byte within it.
+static std::pair<FreshPlace, FreshPlace>
+arrayByte(net::Builder &b, const PType *t, const FreshPlace &place,
+          const FreshPlace &pos, SMLoc at) {
+  int64_t es = sizeOf(t->elem);
+  auto *lit = llvm::dyn_cast<net::IntLit>(pos());
+  std::optional<int64_t> known;
+  if (lit)
+    known = lit->value;
+  FreshPlace element = [&b, t, &place, &pos, at, es, known] {
+    NExpr *k = known ? b.intLit(*known / es, at)
+               : es == 1
+                   ? pos()
+                   : b.binary(net::BinaryOp::Div, pos(), b.intLit(es, at), at);
+    return elementNumber(b, t, place(), k, at);
+  };
+  FreshPlace within = [&b, &pos, at, es, known] {
+    return known || es == 1
+               ? b.intLit(known ? *known % es : 0, at)
+               : b.binary(net::BinaryOp::Mod, pos(), b.intLit(es, at), at);
+  };
+  return {element, within};
+}
+
 NExpr *Lowering::recordByte(const PType *t, const FreshPlace &place,
                             const FreshPlace &pos, SMLoc at) {
   t = baseOf(t);
   auto *lit = llvm::dyn_cast<net::IntLit>(pos());
   switch (t->kind) {
   case PTypeKind::Array: {
-    int64_t es = sizeOf(t->elem);
-    FreshPlace element = [&, t] {
-      NExpr *k =
-          lit ? b.intLit(lit->value / es, at)
-              : b.binary(net::BinaryOp::Div, pos(), b.intLit(es, at), at);
-      return elementNumber(b, t, place(), k, at);
-    };
-    FreshPlace within = [&] {
-      return lit ? b.intLit(lit->value % es, at)
-                 : b.binary(net::BinaryOp::Mod, pos(), b.intLit(es, at), at);
-    };
+    auto [element, within] = arrayByte(b, t, place, pos, at);
     return recordByte(t->elem, element, within, at);
   }
+  case PTypeKind::String: // its characters, 0 at and past the end
+    return b.call(
+        net::Builtin::Code,
+        {place(), b.binary(net::BinaryOp::Add, pos(), b.intLit(1, at), at)},
+        at);
   case PTypeKind::Struct: {
     std::vector<int64_t> offsets = fieldOffsets(t);
     NExpr *r = b.intLit(0, at); // padding
@@ -129,17 +149,7 @@ void Lowering::storeRecordByte(const PType *t, const FreshPlace &place,
   auto *lit = llvm::dyn_cast<net::IntLit>(pos());
   switch (t->kind) {
   case PTypeKind::Array: {
-    int64_t es = sizeOf(t->elem);
-    FreshPlace element = [&, t] {
-      NExpr *k =
-          lit ? b.intLit(lit->value / es, at)
-              : b.binary(net::BinaryOp::Div, pos(), b.intLit(es, at), at);
-      return elementNumber(b, t, place(), k, at);
-    };
-    FreshPlace within = [&] {
-      return lit ? b.intLit(lit->value % es, at)
-                 : b.binary(net::BinaryOp::Mod, pos(), b.intLit(es, at), at);
-    };
+    auto [element, within] = arrayByte(b, t, place, pos, at);
     storeRecordByte(t->elem, element, within, byte, out, at);
     return;
   }
@@ -198,4 +208,170 @@ FreshPlace Lowering::positionValue(NExpr *v, int64_t lo, int64_t hi, Sink &pre,
     resets.push_back({name, b.intLit(lo, at)});
   pre.push_back(b.assign(b.ref(name, at), v, at));
   return [this, name, at] { return b.ref(name, at); };
+}
+
+/// The place `l` reaches from `root` (its fields and constant indices).
+NExpr *Lowering::leafPlace(NExpr *root, const MemoryLeaf &l, SMLoc at) {
+  for (const MemoryLeaf::Step &s : l.path) {
+    if (!s.field.empty()) {
+      root = b.field(root, sanitize(s.field), at);
+      continue;
+    }
+    for (int64_t i : s.index)
+      root = b.index(root, b.intLit(i, at), at);
+  }
+  return root;
+}
+
+NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
+  SMLoc at = call->loc;
+  // One side of the copy: the bytes of a variable (or field), or of a
+  // one-dimensional array from element i on (base: i's first byte).
+  struct Span {
+    Expr *place;
+    const PType *type;
+    FreshPlace base;
+    int64_t size;
+  };
+  auto placeOf = [&](Expr *place) {
+    size_t before = pre.size();
+    NExpr *x = lvalue(place, f, pre);
+    if (pre.size() != before)
+      refuse(place->loc, call->name + " between places of different types: "
+                                      "the places must be variables and "
+                                      "their fields and elements, not "
+                                      "reached through a reference");
+    return x;
+  };
+  auto spanOf = [&](Expr *adr) {
+    Expr *x = adr->args[0].value;
+    Span s{x, baseOf(x->type), nullptr, sizeOf(x->type)};
+    if (!arrayElementPlace(x)) {
+      s.base = [this, at] { return b.intLit(0, at); };
+      return s;
+    }
+    s.place = x->base();
+    s.type = baseOf(x->base()->type);
+    auto [lo, hi] = s.type->dims[0];
+    int64_t es = sizeOf(s.type->elem);
+    s.size = (hi - lo + 1) * es;
+    NExpr *i = checkedRange(expr(x->operands[1], f, pre), lo, hi,
+                            sanitize(call->name) + "_index", pre, at);
+    NExpr *first = b.binary(net::BinaryOp::Sub, i, b.intLit(lo, at), at);
+    if (auto *lit = llvm::dyn_cast<net::IntLit>(i))
+      first = b.intLit(lit->value - lo, at);
+    if (es != 1)
+      first = llvm::isa<net::IntLit>(first)
+                  ? b.intLit(llvm::cast<net::IntLit>(first)->value * es, at)
+                  : b.binary(net::BinaryOp::Mul, first, b.intLit(es, at), at);
+    s.base = positionValue(first, 0, s.size - es, pre, at);
+    return s;
+  };
+  Span dst = spanOf(call->args[0].value), src = spanOf(call->args[1].value);
+  auto rootVar = [](Expr *e) -> VarDecl * {
+    while (e && e->kind != ExprKind::Name)
+      e = e->base();
+    return e ? e->var : nullptr;
+  };
+  if (rootVar(dst.place) && rootVar(dst.place) == rootVar(src.place))
+    refuse(at, call->name + " between places of different types within one "
+                            "variable is not modelled");
+  int64_t most = std::min(dst.size, src.size);
+  FreshPlace count;
+  if (call->intValue >= 0) {
+    int64_t n = call->intValue;
+    count = [this, n, at] { return b.intLit(n, at); };
+  } else {
+    count = positionValue(expr(call->args[2].value, f, pre), 0, most, pre, at);
+  }
+  // Both sides must hold the bytes from their base on.
+  std::vector<NExpr *> over;
+  for (const Span *s : {&dst, &src}) {
+    NExpr *end = b.binary(net::BinaryOp::Add, s->base(), count(), at);
+    auto *base = llvm::dyn_cast<net::IntLit>(s->base());
+    auto *n = llvm::dyn_cast<net::IntLit>(count());
+    if (base && n) {
+      if (base->value + n->value > s->size)
+        refuse(at, call->name + " of " + Twine(n->value) + " bytes from byte " +
+                       Twine(base->value) + " of " + s->type->str() + " (" +
+                       Twine(s->size) + " bytes) overflows it");
+      continue;
+    }
+    over.push_back(b.binary(net::BinaryOp::Gt, end, b.intLit(s->size, at), at));
+  }
+  failWhenAny(over, sanitize(call->name) + "_overflow", pre, at);
+  FreshPlace srcPlace = [&] { return placeOf(src.place); };
+  // The source's byte `rel` bytes after its base.
+  auto sourceByte = [&](NExpr *rel) {
+    FreshPlace pos = [&, rel] {
+      return b.binary(net::BinaryOp::Add, src.base(), rel, at);
+    };
+    if (auto *base = llvm::dyn_cast<net::IntLit>(src.base()))
+      if (auto *r = llvm::dyn_cast<net::IntLit>(rel)) {
+        int64_t k = base->value + r->value;
+        pos = [this, k, at] { return b.intLit(k, at); };
+      }
+    return recordByte(src.type, srcPlace, pos, at);
+  };
+  const PType *elem =
+      dst.type->kind == PTypeKind::Array ? baseOf(dst.type->elem) : nullptr;
+  if (elem && sizeOf(elem) == 1 && elem->kind != PTypeKind::Struct) {
+    // A buffer of bytes: one element per byte copied, in a loop over as
+    // many as the smaller side holds.
+    std::string k = "_k" + std::to_string(++loopVars);
+    int64_t lo = dst.type->dims[0].first;
+    NExpr *target = b.index(
+        placeOf(dst.place),
+        b.binary(net::BinaryOp::Add,
+                 b.binary(net::BinaryOp::Add, dst.base(), b.ref(k, at), at),
+                 b.intLit(lo, at), at),
+        at);
+    Sink body{
+        b.assign(target, fromBits(elem, sourceByte(b.ref(k, at)), 8, at), at)};
+    Sink guarded{
+        b.ifStmt({{b.binary(net::BinaryOp::Lt, b.ref(k, at), count(), at),
+                   design.copy(llvm::ArrayRef<NStmt *>(body))}},
+                 false, {}, at)};
+    pre.push_back(
+        b.forStmt(k, b.intLit(0, at), b.intLit(most - 1, at), guarded, at));
+    return b.intLit(0, at);
+  }
+  // Otherwise every scalar of the target, each of its bytes the source's
+  // where it lies among the bytes copied, all computed before any is
+  // written.
+  std::vector<MemoryLeaf> leaves;
+  std::string why;
+  memoryLeaves(dst.type, leaves, why);
+  std::vector<std::pair<const MemoryLeaf *, std::string>> written;
+  for (const MemoryLeaf &l : leaves) {
+    NExpr *old = unionBits(l.type, leafPlace(placeOf(dst.place), l, at), at);
+    NExpr *raw = nullptr;
+    for (int64_t j = 0; j < l.size; ++j) {
+      NExpr *rel = b.binary(net::BinaryOp::Sub, b.intLit(l.offset + j, at),
+                            dst.base(), at);
+      if (auto *base = llvm::dyn_cast<net::IntLit>(dst.base()))
+        rel = b.intLit(l.offset + j - base->value, at);
+      NExpr *copied =
+          b.binary(net::BinaryOp::And,
+                   b.binary(net::BinaryOp::Ge, rel, b.intLit(0, at), at),
+                   b.binary(net::BinaryOp::Lt, rel, count(), at), at);
+      NExpr *kept = old;
+      if (j)
+        kept = b.binary(net::BinaryOp::Shr, kept, b.intLit(8 * j, at), at);
+      kept = b.binary(net::BinaryOp::BitAnd, kept, b.intLit(255, at), at);
+      NExpr *byte = b.cond(copied, sourceByte(rel), kept, at);
+      if (j)
+        byte = b.binary(net::BinaryOp::Shl, byte, b.intLit(8 * j, at), at);
+      raw = raw ? b.binary(net::BinaryOp::BitOr, raw, byte, at) : byte;
+    }
+    std::string tmp = unique("_memcpy");
+    declareTemp(tmp, l.type, at);
+    pre.push_back(
+        b.assign(b.ref(tmp, at), fromBits(l.type, raw, 8 * l.size, at), at));
+    written.push_back({&l, tmp});
+  }
+  for (auto &[l, tmp] : written)
+    pre.push_back(
+        b.assign(leafPlace(placeOf(dst.place), *l, at), b.ref(tmp, at), at));
+  return b.intLit(0, at);
 }

@@ -481,6 +481,12 @@ private:
   /// each target scalar the bytes reach is rebuilt from the source's bytes
   /// in the x64 layout (memoryLeaves), little-endian.
   NExpr *imageCopy(Expr *call, Frame &f, Sink &pre);
+  /// The same from or into `ADR(a[i])` of a one-dimensional array: the
+  /// bytes from element i on (a structure serialised into a buffer at an
+  /// offset); both sides must hold them, a run-time error otherwise.
+  NExpr *imageCopyAtElement(Expr *call, Frame &f, Sink &pre);
+  /// The place `l` reaches from `root`.
+  NExpr *leafPlace(NExpr *root, const MemoryLeaf &l, SMLoc at);
   /// MEMSET(..., 0, ...) of one array or structure: each scalar of the
   /// place `place` designates (a dereference, perhaps selected) set to 0.
   /// MEMSET of a place: every scalar's bytes set to `byte` (0 when null).

@@ -170,6 +170,9 @@ struct MemoryLayout {
   int64_t size, align;
 };
 std::optional<MemoryLayout> memoryLayout(const PType *t, std::string &why);
+/// Is `place` an element `a[i]` of a one-dimensional array (whose address
+/// starts the bytes up to the array's end, for MEMCPY)?
+bool arrayElementPlace(Expr *place);
 /// Where each field of a structure (not a UNION) with a layout starts.
 std::vector<int64_t> fieldOffsets(const PType *t);
 

@@ -512,6 +512,14 @@ void Checker::referenceAssign(Stmt *s) {
     s->assignKind = AssignKind::Value;
 }
 
+bool plc::arrayElementPlace(Expr *place) {
+  if (place->kind != ExprKind::Index || place->operands.size() != 2 ||
+      !place->base()->type)
+    return false;
+  const PType *array = baseOf(place->base()->type);
+  return array->kind == PTypeKind::Array && array->dims.size() == 1;
+}
+
 std::optional<const PType *> Checker::imageCopy(Expr *e, Expr *dst, Expr *src,
                                                 Expr *count, bool asStatement) {
   auto adrPlace = [](Expr *p) -> Expr * {
@@ -553,8 +561,21 @@ std::optional<const PType *> Checker::imageCopy(Expr *e, Expr *dst, Expr *src,
     return nullptr;
   }
   std::string dummy;
-  int64_t dsize = memoryLayout(dt, dummy)->size,
-          ssize = memoryLayout(st, dummy)->size, n;
+  // ADR(a[i]) of a one-dimensional array: the bytes from element i to the
+  // array's end (TwinCAT's `MEMCPY(ADR(buf[nOffset]), ADR(st), SIZEOF(st))`),
+  // as many as a constant index leaves, at most the whole array's.
+  auto spanBytes = [&](Expr *place, const PType *t) {
+    int64_t size = memoryLayout(t, dummy)->size;
+    if (!arrayElementPlace(place))
+      return size;
+    const PType *array = baseOf(place->base()->type);
+    auto [lo, hi] = array->dims[0];
+    int64_t i;
+    return constInt(place->operands[1], i) && i >= lo && i <= hi
+               ? (hi - i + 1) * size
+               : (hi - lo + 1) * size;
+  };
+  int64_t dsize = spanBytes(dp, dt), ssize = spanBytes(sp, st), n;
   // A count known only at run time is checked then (Lowering::imageCopy).
   if (!baseOf(count->type)->isInteger() ||
       (constInt(count, n) && (n <= 0 || n > std::min(dsize, ssize)))) {
