@@ -314,13 +314,17 @@ void Lowering::attachPragmas() {
 
 /// The FB_init calls of instance `v` at `path` (its members' first, then a
 /// base's before each derived block's own), or of every element of an
-/// array of instances (without arguments: a declaration gives an array
-/// none), appended to `calls`.
+/// array of instances (with the declaration's arguments for each, or
+/// without), appended to `calls`.
 void Lowering::initCallsOf(VarDecl *v, const PType *type,
-                           const std::string &path, Frame &in, Sink &calls) {
+                           const std::string &path, Frame &in, Sink &calls,
+                           Expr *given) {
   if (type && type->kind == PTypeKind::Array) {
+    size_t k = 0;
+    bool own = type == v->type && !v->elementInitCalls.empty();
     forEachIndex(type, [&](llvm::ArrayRef<int64_t> index) {
-      initCallsOf(v, type->elem, elementPath(path, index), in, calls);
+      initCallsOf(v, type->elem, elementPath(path, index), in, calls,
+                  own ? v->elementInitCalls[k++] : nullptr);
     });
     return;
   }
@@ -341,8 +345,9 @@ void Lowering::initCallsOf(VarDecl *v, const PType *type,
   if (chain.empty())
     return;
   // A declared instance has its call (with the declaration's arguments);
-  // an element of an array one without arguments.
-  Expr *given = type == v->type ? v->initCall : nullptr;
+  // an element of an array its own, or one without arguments.
+  if (type == v->type)
+    given = v->initCall;
   for (Pou *impl : chain) {
     Expr *call = unit.make<Expr>(ExprKind::Call, v->loc);
     if (given) {

@@ -536,7 +536,7 @@ private:
   void lowerProgramBody(ProgramRun &run);
   void runInitCalls(ProgramRun &run, Frame &top, Sink &action);
   void initCallsOf(VarDecl *v, const PType *type, const std::string &path,
-                   Frame &in, Sink &calls);
+                   Frame &in, Sink &calls, Expr *given = nullptr);
   /// FB_init of the global instances the programs use: one IF under a flag,
   /// put at the start of every task's scan.
   Sink globalInitCalls(std::vector<ProgramRun> &runs);

@@ -194,6 +194,9 @@ struct TypeSyntax {
   /// Named: `fb : FB_Axis(nId := 1)`, the arguments of the instance's
   /// FB_init.
   std::vector<CallArg> instanceArgs;
+  /// Array: `ARRAY[1..2] OF FB_Axis[(nId := 1), (nId := 2)]`, each
+  /// element's FB_init arguments in row-major order.
+  std::vector<std::vector<CallArg>> elementArgs;
   bool isUnion = false;        // Struct: UNION ... END_UNION (members overlap)
   Initializer *init = nullptr; // `:= init` after the type
   TypeSyntax(TypeSyntaxKind k, llvm::SMLoc l) : kind(k), loc(l) {}
@@ -285,6 +288,9 @@ struct VarDecl {
   /// An instance whose block has an FB_init: its call before the first
   /// scan, with the declaration's arguments (Sema builds and checks it).
   Expr *initCall = nullptr;
+  /// An array of such instances declared with each element's arguments:
+  /// their calls, in row-major order.
+  std::vector<Expr *> elementInitCalls;
   /// A global of a TwinCAT global variable list: the list's name, by
   /// which the program may qualify it (`GVL_IO.bStart`).
   std::string globalList;

@@ -182,6 +182,9 @@ private:
   /// scan, with the declaration's arguments (`fb : FB_X(n := 1)`), checked
   /// and kept on the declaration (SemaObjects.cpp).
   void initCall(VarDecl *v);
+  /// The FB_init call of an instance of `t` declared as `v` with `args`
+  /// (null when its block has none, or the arguments are wrong).
+  Expr *initCallWith(VarDecl *v, const PType *t, std::vector<CallArg> &args);
   /// A block that IMPLEMENTS interfaces has every method and property they
   /// declare (SemaObjects.cpp).
   void checkImplements(Pou *block);

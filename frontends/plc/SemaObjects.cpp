@@ -240,8 +240,29 @@ bool Checker::instanceAsInterface(const PType *to, Expr *from, SMLoc at) {
 }
 
 void Checker::initCall(VarDecl *v) {
-  std::vector<CallArg> &args = v->typeSyntax->instanceArgs;
-  Pou *fb = v->type->kind == PTypeKind::FunctionBlock ? v->type->fb : nullptr;
+  const PType *t = v->type;
+  std::vector<std::vector<CallArg>> &each = v->typeSyntax->elementArgs;
+  if (!each.empty()) {
+    // An array of instances, each element with its own arguments.
+    int64_t elements = 1;
+    for (auto &[lo, hi] : t->dims)
+      elements *= hi - lo + 1;
+    if (int64_t(each.size()) != elements) {
+      error(v->loc, "'" + v->name + "' has " + Twine(elements) +
+                        " elements but arguments for " + Twine(each.size()));
+      return;
+    }
+    for (std::vector<CallArg> &args : each)
+      if (Expr *call = initCallWith(v, t->elem, args))
+        v->elementInitCalls.push_back(call);
+    return;
+  }
+  v->initCall = initCallWith(v, t, v->typeSyntax->instanceArgs);
+}
+
+Expr *Checker::initCallWith(VarDecl *v, const PType *t,
+                            std::vector<CallArg> &args) {
+  Pou *fb = t->kind == PTypeKind::FunctionBlock ? t->fb : nullptr;
   Pou *init = fb ? findMethod(fb, "FB_init") : nullptr;
   if (!init) {
     if (!args.empty())
@@ -249,9 +270,9 @@ void Checker::initCall(VarDecl *v) {
                              "' is declared with arguments, which are for an "
                              "FB_init, but " +
                              (fb ? "'" + fb->name + "' has none"
-                                 : v->type->str() + " is no function "
-                                                    "block"));
-    return;
+                                 : t->str() + " is no function "
+                                              "block"));
+    return nullptr;
   }
   // Arguments in order (`fb : FB_T(1, 2)`) are FB_init's own inputs in
   // order: TwinCAT passes bInitRetains and bInCopyCode itself.
@@ -268,7 +289,7 @@ void Checker::initCall(VarDecl *v) {
       error(a.loc, "'" + v->name +
                        "' is declared with more arguments than "
                        "its FB_init takes");
-      return;
+      return nullptr;
     }
     a.name = init->vars[next++]->name;
   }
@@ -278,5 +299,5 @@ void Checker::initCall(VarDecl *v) {
   call->callee = init;
   call->args = args;
   functionArgs(call, init);
-  v->initCall = call;
+  return call;
 }

@@ -202,6 +202,10 @@ bareArrayInit : arrayInitElem (COMMA arrayInitElem)+ ;
 
 typeSpec0
   : ARRAY LBRACKET arrayDim (COMMA arrayDim)* RBRACKET OF elem=typeSpec0   # arrayType
+  // `ARRAY[1..2] OF FB_Axis[(nId := 1), (nId := 2)]`: each element's
+  // FB_init arguments, in order (TwinCAT).
+  | ARRAY LBRACKET arrayDim (COMMA arrayDim)* RBRACKET OF base=IDENT
+    LBRACKET elementArgs (COMMA elementArgs)* RBRACKET                    # instanceArrayType
   | STRUCT (structField)* END_STRUCT                                      # structType
   | UNION (structField)* END_UNION                                        # unionType
   | (POINTER TO | REFERENCE TO | REF_TO) typeSpec0                        # pointerType
@@ -215,6 +219,9 @@ typeSpec0
   ;
 
 enumValue : name=ident (ASSIGN value=expression)? ;
+
+elementArgs : LPAREN elementArg (COMMA elementArg)* RPAREN ;
+elementArg : (name=ident ASSIGN)? value=expression ;
 
 subrange : lo=expression DOTDOT hi=expression ;
 

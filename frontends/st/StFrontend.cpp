@@ -586,6 +586,29 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     t->elem = typeSpec0(a->elem);
     return t;
   }
+  if (auto *a = alt<P::InstanceArrayTypeContext>(c)) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
+    for (auto *d : a->arrayDim())
+      if (auto *s = d->subrange())
+        t->dims.push_back({expr(s->lo), expr(s->hi)});
+      else
+        t->dims.push_back({nullptr, nullptr});
+    t->elem = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(a->base));
+    t->elem->name = a->base->getText();
+    for (auto *each : a->elementArgs()) {
+      std::vector<CallArg> args;
+      for (auto *x : each->elementArg()) {
+        CallArg arg;
+        if (x->name)
+          arg.name = x->name->getText();
+        arg.value = expr(x->value);
+        arg.loc = x->name ? loc(x->name) : arg.value ? arg.value->loc : loc(x);
+        args.push_back(arg);
+      }
+      t->elementArgs.push_back(std::move(args));
+    }
+    return t;
+  }
   auto *st = alt<P::StructTypeContext>(c);
   auto *un = alt<P::UnionTypeContext>(c);
   if (st || un) {
