@@ -406,41 +406,21 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
   Expr *dstAdr = call->args[0].value, *srcAdr = call->args[1].value;
   // From or into an array element, more bytes than the element's (or a
   // count known at run time): the bytes up to the array's end.
+  if (call->intValue < 0)
+    return imageCopySpans(call, f, pre);
   for (Expr *adr : {dstAdr, srcAdr}) {
     std::string why;
     if (arrayElementPlace(adr->args[0].value) &&
-        (call->intValue < 0 ||
-         call->intValue > memoryLayout(adr->type->elem, why)->size))
-      return imageCopyAtElement(call, f, pre);
+        call->intValue > memoryLayout(adr->type->elem, why)->size)
+      return imageCopySpans(call, f, pre);
   }
   std::vector<MemoryLeaf> dl, sl;
   std::string why;
   memoryLeaves(dstAdr->type->elem, dl, why);
   memoryLeaves(srcAdr->type->elem, sl, why);
   int64_t n = call->intValue;
-  // A count known only at run time (Sema: -1): up to the smaller size,
-  // each byte copied when it lies below the count.
-  std::string count;
-  if (n < 0) {
-    std::string dummy;
-    n = std::min(memoryLayout(dstAdr->type->elem, dummy)->size,
-                 memoryLayout(srcAdr->type->elem, dummy)->size);
-    count = scanVariable(sanitize(call->name) + "_bytes",
-                         design.types.getRange(0, n), 0, at);
-    pre.push_back(
-        b.assign(b.ref(count, at), expr(call->args[2].value, f, pre), at));
-  }
-  // A fresh expression for the place each time it is used (its selectors
-  // are constants: nothing to evaluate once).
   auto placeOf = [&](Expr *adr) {
-    size_t before = pre.size();
-    NExpr *x = lvalue(adr->args[0].value, f, pre);
-    if (pre.size() != before)
-      refuse(adr->loc, call->name + " between places of different types: "
-                                    "the places must be variables and their "
-                                    "fields and elements, not reached "
-                                    "through a reference");
-    return x;
+    return directPlace(adr->args[0].value, call->name, f, pre);
   };
   auto leafOf = [&](Expr *adr, const MemoryLeaf &l) {
     return leafPlace(placeOf(adr), l, at);
@@ -464,29 +444,12 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
   };
   // Every target leaf the bytes reach, computed before any is written (the
   // source may share bytes with the target, as MEMMOVE allows).
-  std::vector<std::pair<const MemoryLeaf *, std::string>> written;
+  std::vector<std::pair<const MemoryLeaf *, NExpr *>> written;
   for (const MemoryLeaf &l : dl) {
     if (l.offset >= n)
       break;
     NExpr *raw = nullptr;
-    if (!count.empty()) {
-      // Each byte the source's below the count, the target's own above.
-      NExpr *old = unionBits(l.type, leafOf(dstAdr, l), at);
-      for (int64_t j = 0; j < l.size && l.offset + j < n; ++j) {
-        NExpr *kept = old;
-        if (j)
-          kept = b.binary(net::BinaryOp::Shr, kept, b.intLit(8 * j, at), at);
-        kept = b.binary(net::BinaryOp::BitAnd, kept, b.intLit(255, at), at);
-        NExpr *below = b.binary(net::BinaryOp::Lt, b.intLit(l.offset + j, at),
-                                b.ref(count, at), at);
-        NExpr *byte = b.cond(below, sourceByte(l.offset + j), kept, at);
-        if (j)
-          byte = b.binary(net::BinaryOp::Shl, byte, b.intLit(8 * j, at), at);
-        raw = raw ? b.binary(net::BinaryOp::BitOr, raw, byte, at) : byte;
-      }
-      if (l.offset + l.size > n) // the bytes past the smaller size kept
-        raw = insertBits(old, raw, 8 * (n - l.offset), b.intLit(0, at), at);
-    } else if (l.offset + l.size <= n) {
+    if (l.offset + l.size <= n) {
       for (int64_t j = 0; j < l.size; ++j) {
         NExpr *byte = sourceByte(l.offset + j);
         if (j)
@@ -500,14 +463,10 @@ NExpr *Lowering::imageCopy(Expr *call, Frame &f, Sink &pre) {
         raw = insertBits(raw, sourceByte(l.offset + j), 8, b.intLit(8 * j, at),
                          at);
     }
-    std::string tmp = unique("_memcpy");
-    declareTemp(tmp, l.type, at);
-    pre.push_back(
-        b.assign(b.ref(tmp, at), fromBits(l.type, raw, 8 * l.size, at), at));
-    written.push_back({&l, tmp});
+    written.push_back({&l, raw});
   }
-  for (auto &[l, tmp] : written)
-    pre.push_back(b.assign(leafOf(dstAdr, *l), b.ref(tmp, at), at));
+  storeLeavesTogether(
+      written, [&](const MemoryLeaf &l) { return leafOf(dstAdr, l); }, pre, at);
   return b.intLit(0, at);
 }
 
@@ -552,30 +511,9 @@ NExpr *Lowering::memoryCall(Expr *call, Frame &f, Sink &pre) {
     return r;
   }
   if (call->name == "MEMSET") {
-    // The fill's low byte in every byte: every scalar of every element
-    // built from it (Sema let through only 0, or scalars that take any
-    // byte pattern).
-    NExpr *fill = expr(src, f, pre);
-    if (auto *lit = llvm::dyn_cast<net::IntLit>(fill))
-      fill = b.intLit(lit->value & 0xff, at);
-    else
-      fill = maskTo(fill, elementaryType("BYTE"), at);
-    auto *lit = llvm::dyn_cast<net::IntLit>(fill);
-    NExpr *byte = lit && lit->value == 0 ? nullptr : fill;
-    bool whole = (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
-                  t->isString()) &&
-                 !(t->kind == PTypeKind::Struct && t->isUnion);
-    std::string why;
-    bool oneByte = !whole && memoryLayout(t, why)->size == 1;
-    for (int64_t j = 0; j < k; ++j) {
-      if (whole || !byte)
-        fillThroughReference(element(dst, j), byte, f, pre, at);
-      else if (oneByte && t->kind != PTypeKind::Bool)
-        writeThroughReference(element(dst, j), fill, nullptr, f, pre, at);
-      else
-        writeThroughReference(element(dst, j), filledScalar(t, byte, at),
-                              nullptr, f, pre, at);
-    }
+    NExpr *fill = fillByte(src, f, pre);
+    for (int64_t j = 0; j < k; ++j)
+      fillElement(element(dst, j), fill, f, pre);
     return b.intLit(0, at);
   }
   // MEMCPY, MEMMOVE: every element read before any is written, so that
@@ -701,28 +639,9 @@ NExpr *Lowering::memoryLoop(Expr *call, Frame &f, Sink &pre) {
     return b.ref(result, at);
   }
   if (call->name == "MEMSET") {
-    NExpr *fill = expr(src, f, pre);
-    if (auto *lit = llvm::dyn_cast<net::IntLit>(fill))
-      fill = b.intLit(lit->value & 0xff, at);
-    else
-      fill = maskTo(fill, elementaryType("BYTE"), at);
-    auto *lit = llvm::dyn_cast<net::IntLit>(fill);
-    NExpr *byte = lit && lit->value == 0 ? nullptr : fill;
-    bool whole = (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
-                  t->isString()) &&
-                 !(t->kind == PTypeKind::Struct && t->isUnion);
-    bool oneByte = !whole && size == 1;
+    NExpr *fill = fillByte(src, f, pre);
     loop(
-        forward,
-        [&](Sink &body) {
-          if (whole || !byte)
-            fillThroughReference(at_(dst), byte, f, body, at);
-          else if (oneByte && t->kind != PTypeKind::Bool)
-            writeThroughReference(at_(dst), fill, nullptr, f, body, at);
-          else
-            writeThroughReference(at_(dst), filledScalar(t, byte, at), nullptr,
-                                  f, body, at);
-        },
+        forward, [&](Sink &body) { fillElement(at_(dst), fill, f, body); },
         pre);
     return b.intLit(0, at);
   }
@@ -782,4 +701,32 @@ NExpr *Lowering::valueByte(const PType *t, const FreshPlace &value,
   int64_t k = byte;
   return recordByte(
       t, value, [this, k, at] { return b.intLit(k, at); }, at);
+}
+
+NExpr *Lowering::fillByte(Expr *fill, Frame &f, Sink &pre) {
+  NExpr *v = expr(fill, f, pre);
+  if (auto *lit = llvm::dyn_cast<net::IntLit>(v))
+    return b.intLit(lit->value & 0xff, fill->loc);
+  return maskTo(v, elementaryType("BYTE"), fill->loc);
+}
+
+void Lowering::fillElement(Expr *element, NExpr *fill, Frame &f, Sink &out) {
+  // The fill's low byte in every byte: every scalar of the element built
+  // from it (Sema let through only 0, or scalars that take any byte
+  // pattern).
+  SMLoc at = element->loc;
+  const PType *t = element->type;
+  auto *lit = llvm::dyn_cast<net::IntLit>(fill);
+  NExpr *byte = lit && lit->value == 0 ? nullptr : fill;
+  bool whole = (t->kind == PTypeKind::Array || t->kind == PTypeKind::Struct ||
+                t->isString()) &&
+               !(t->kind == PTypeKind::Struct && t->isUnion);
+  std::string why;
+  if (whole || !byte)
+    fillThroughReference(element, byte, f, out, at);
+  else if (memoryLayout(t, why)->size == 1 && t->kind != PTypeKind::Bool)
+    writeThroughReference(element, fill, nullptr, f, out, at);
+  else
+    writeThroughReference(element, filledScalar(t, byte, at), nullptr, f, out,
+                          at);
 }

@@ -88,6 +88,40 @@ arrayByte(net::Builder &b, const PType *t, const FreshPlace &place,
   return {element, within};
 }
 
+std::vector<Lowering::FieldBytes>
+Lowering::fieldsHolding(const PType *t, const FreshPlace &place,
+                        const FreshPlace &pos, SMLoc at) {
+  auto *lit = llvm::dyn_cast<net::IntLit>(pos());
+  std::optional<int64_t> known;
+  if (lit)
+    known = lit->value;
+  std::vector<int64_t> offsets = fieldOffsets(t);
+  std::vector<FieldBytes> fields;
+  for (size_t i = 0; i < t->fields.size(); ++i) {
+    VarDecl *fld = t->fields[i];
+    int64_t off = offsets[i], size = sizeOf(fld->type);
+    if (known && (*known < off || *known >= off + size))
+      continue;
+    FieldBytes fb;
+    fb.field = fld;
+    fb.member = [this, &place, fld, at] {
+      return b.field(place(), sanitize(fld->name), at);
+    };
+    fb.inside = [this, &pos, known, off, at] {
+      return known ? b.intLit(*known - off, at)
+                   : b.binary(net::BinaryOp::Sub, pos(), b.intLit(off, at), at);
+    };
+    fb.holds = [this, &pos, off, size, at] {
+      return b.binary(
+          net::BinaryOp::And,
+          b.binary(net::BinaryOp::Ge, pos(), b.intLit(off, at), at),
+          b.binary(net::BinaryOp::Lt, pos(), b.intLit(off + size, at), at), at);
+    };
+    fields.push_back(std::move(fb));
+  }
+  return fields;
+}
+
 NExpr *Lowering::recordByte(const PType *t, const FreshPlace &place,
                             const FreshPlace &pos, SMLoc at) {
   t = baseOf(t);
@@ -103,28 +137,13 @@ NExpr *Lowering::recordByte(const PType *t, const FreshPlace &place,
         {place(), b.binary(net::BinaryOp::Add, pos(), b.intLit(1, at), at)},
         at);
   case PTypeKind::Struct: {
-    std::vector<int64_t> offsets = fieldOffsets(t);
+    std::vector<FieldBytes> fields = fieldsHolding(t, place, pos, at);
     NExpr *r = b.intLit(0, at); // padding
-    for (size_t i = t->fields.size(); i-- > 0;) {
-      VarDecl *fld = t->fields[i];
-      int64_t off = offsets[i], size = sizeOf(fld->type);
-      if (lit && (lit->value < off || lit->value >= off + size))
-        continue;
-      FreshPlace member = [&, fld] {
-        return b.field(place(), sanitize(fld->name), at);
-      };
-      FreshPlace inside = [&, off] {
-        return lit ? b.intLit(lit->value - off, at)
-                   : b.binary(net::BinaryOp::Sub, pos(), b.intLit(off, at), at);
-      };
-      NExpr *byte = recordByte(fld->type, member, inside, at);
+    for (auto fb = fields.rbegin(); fb != fields.rend(); ++fb) {
+      NExpr *byte = recordByte(fb->field->type, fb->member, fb->inside, at);
       if (lit)
         return byte;
-      NExpr *in = b.binary(
-          net::BinaryOp::And,
-          b.binary(net::BinaryOp::Ge, pos(), b.intLit(off, at), at),
-          b.binary(net::BinaryOp::Lt, pos(), b.intLit(off + size, at), at), at);
-      r = b.cond(in, byte, r, at);
+      r = b.cond(fb->holds(), byte, r, at);
     }
     return r;
   }
@@ -154,31 +173,15 @@ void Lowering::storeRecordByte(const PType *t, const FreshPlace &place,
     return;
   }
   case PTypeKind::Struct: {
-    std::vector<int64_t> offsets = fieldOffsets(t);
     std::vector<net::IfArm> arms;
-    for (size_t i = 0; i < t->fields.size(); ++i) {
-      VarDecl *fld = t->fields[i];
-      int64_t off = offsets[i], size = sizeOf(fld->type);
-      if (lit && (lit->value < off || lit->value >= off + size))
-        continue;
-      FreshPlace member = [&, fld] {
-        return b.field(place(), sanitize(fld->name), at);
-      };
-      FreshPlace inside = [&, off] {
-        return lit ? b.intLit(lit->value - off, at)
-                   : b.binary(net::BinaryOp::Sub, pos(), b.intLit(off, at), at);
-      };
+    for (FieldBytes &fb : fieldsHolding(t, place, pos, at)) {
       if (lit) {
-        storeRecordByte(fld->type, member, inside, byte, out, at);
+        storeRecordByte(fb.field->type, fb.member, fb.inside, byte, out, at);
         return;
       }
       Sink body;
-      storeRecordByte(fld->type, member, inside, byte, body, at);
-      NExpr *in = b.binary(
-          net::BinaryOp::And,
-          b.binary(net::BinaryOp::Ge, pos(), b.intLit(off, at), at),
-          b.binary(net::BinaryOp::Lt, pos(), b.intLit(off + size, at), at), at);
-      arms.push_back({in, design.copy(llvm::ArrayRef<NStmt *>(body))});
+      storeRecordByte(fb.field->type, fb.member, fb.inside, byte, body, at);
+      arms.push_back({fb.holds(), design.copy(llvm::ArrayRef<NStmt *>(body))});
     }
     if (!arms.empty()) // a byte in padding is not kept
       out.push_back(b.ifStmt(arms, false, {}, at));
@@ -223,7 +226,7 @@ NExpr *Lowering::leafPlace(NExpr *root, const MemoryLeaf &l, SMLoc at) {
   return root;
 }
 
-NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
+NExpr *Lowering::imageCopySpans(Expr *call, Frame &f, Sink &pre) {
   SMLoc at = call->loc;
   // One side of the copy: the bytes of a variable (or field), or of a
   // one-dimensional array from element i on (base: i's first byte).
@@ -234,14 +237,7 @@ NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
     int64_t size;
   };
   auto placeOf = [&](Expr *place) {
-    size_t before = pre.size();
-    NExpr *x = lvalue(place, f, pre);
-    if (pre.size() != before)
-      refuse(place->loc, call->name + " between places of different types: "
-                                      "the places must be variables and "
-                                      "their fields and elements, not "
-                                      "reached through a reference");
-    return x;
+    return directPlace(place, call->name, f, pre);
   };
   auto spanOf = [&](Expr *adr) {
     Expr *x = adr->args[0].value;
@@ -282,7 +278,13 @@ NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
     int64_t n = call->intValue;
     count = [this, n, at] { return b.intLit(n, at); };
   } else {
-    count = positionValue(expr(call->args[2].value, f, pre), 0, most, pre, at);
+    // More than the smaller side holds is the range error of this
+    // variable.
+    std::string name = scanVariable(sanitize(call->name) + "_bytes",
+                                    design.types.getRange(0, most), 0, at);
+    pre.push_back(
+        b.assign(b.ref(name, at), expr(call->args[2].value, f, pre), at));
+    count = [this, name, at] { return b.ref(name, at); };
   }
   // Both sides must hold the bytes from their base on.
   std::vector<NExpr *> over;
@@ -342,7 +344,7 @@ NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
   std::vector<MemoryLeaf> leaves;
   std::string why;
   memoryLeaves(dst.type, leaves, why);
-  std::vector<std::pair<const MemoryLeaf *, std::string>> written;
+  std::vector<std::pair<const MemoryLeaf *, NExpr *>> written;
   for (const MemoryLeaf &l : leaves) {
     NExpr *old = unionBits(l.type, leafPlace(placeOf(dst.place), l, at), at);
     NExpr *raw = nullptr;
@@ -364,14 +366,42 @@ NExpr *Lowering::imageCopyAtElement(Expr *call, Frame &f, Sink &pre) {
         byte = b.binary(net::BinaryOp::Shl, byte, b.intLit(8 * j, at), at);
       raw = raw ? b.binary(net::BinaryOp::BitOr, raw, byte, at) : byte;
     }
-    std::string tmp = unique("_memcpy");
-    declareTemp(tmp, l.type, at);
-    pre.push_back(
-        b.assign(b.ref(tmp, at), fromBits(l.type, raw, 8 * l.size, at), at));
-    written.push_back({&l, tmp});
+    written.push_back({&l, raw});
   }
-  for (auto &[l, tmp] : written)
-    pre.push_back(
-        b.assign(leafPlace(placeOf(dst.place), *l, at), b.ref(tmp, at), at));
+  storeLeavesTogether(
+      written,
+      [&](const MemoryLeaf &l) { return leafPlace(placeOf(dst.place), l, at); },
+      pre, at);
   return b.intLit(0, at);
+}
+
+void Lowering::storeLeavesTogether(
+    llvm::ArrayRef<std::pair<const MemoryLeaf *, NExpr *>> leaves,
+    llvm::function_ref<NExpr *(const MemoryLeaf &)> placeOf, Sink &pre,
+    SMLoc at) {
+  // Every value computed before any is written: the source may share
+  // bytes with the target, as MEMMOVE allows.
+  std::vector<std::string> temps;
+  for (auto &[l, raw] : leaves) {
+    std::string tmp = unique("_memcpy");
+    declareTemp(tmp, l->type, at);
+    pre.push_back(
+        b.assign(b.ref(tmp, at), fromBits(l->type, raw, 8 * l->size, at), at));
+    temps.push_back(tmp);
+  }
+  for (size_t i = 0; i < leaves.size(); ++i)
+    pre.push_back(b.assign(placeOf(*leaves[i].first), b.ref(temps[i], at), at));
+}
+
+NExpr *Lowering::directPlace(Expr *place, StringRef what, Frame &f, Sink &pre) {
+  // Made afresh at each use: its selectors are constants or computed
+  // before, nothing to evaluate again.
+  size_t before = pre.size();
+  NExpr *x = lvalue(place, f, pre);
+  if (pre.size() != before)
+    refuse(place->loc, what + " between places of different types: the "
+                              "places must be variables and their fields "
+                              "and elements, not reached through a "
+                              "reference");
+  return x;
 }

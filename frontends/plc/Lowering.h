@@ -481,10 +481,31 @@ private:
   /// each target scalar the bytes reach is rebuilt from the source's bytes
   /// in the x64 layout (memoryLeaves), little-endian.
   NExpr *imageCopy(Expr *call, Frame &f, Sink &pre);
-  /// The same from or into `ADR(a[i])` of a one-dimensional array: the
-  /// bytes from element i on (a structure serialised into a buffer at an
-  /// offset); both sides must hold them, a run-time error otherwise.
-  NExpr *imageCopyAtElement(Expr *call, Frame &f, Sink &pre);
+  /// The same with a count known only at run time, or from or into
+  /// `ADR(a[i])` of a one-dimensional array (the bytes from element i on: a
+  /// structure serialised into a buffer at an offset); both sides must
+  /// hold the bytes, a run-time error otherwise.
+  NExpr *imageCopySpans(Expr *call, Frame &f, Sink &pre);
+  /// The place MEMCPY between types reads or writes (`what`), made afresh
+  /// at each use; one reached through a reference is refused.
+  NExpr *directPlace(Expr *place, StringRef what, Frame &f, Sink &pre);
+  /// MEMSET's fill: the low byte of its value.
+  NExpr *fillByte(Expr *fill, Frame &f, Sink &pre);
+  /// MEMSET of one element (through its reference) with `fill`.
+  void fillElement(Expr *element, NExpr *fill, Frame &f, Sink &out);
+  /// Each leaf written from its bits, all computed before any is written.
+  void storeLeavesTogether(
+      llvm::ArrayRef<std::pair<const MemoryLeaf *, NExpr *>> leaves,
+      llvm::function_ref<NExpr *(const MemoryLeaf &)> placeOf, Sink &pre,
+      SMLoc at);
+  /// A field of a structure that may hold byte `pos`: its place, the
+  /// position within it, and the test that it holds the byte.
+  struct FieldBytes {
+    VarDecl *field;
+    FreshPlace member, inside, holds;
+  };
+  std::vector<FieldBytes> fieldsHolding(const PType *t, const FreshPlace &place,
+                                        const FreshPlace &pos, SMLoc at);
   /// The place `l` reaches from `root`.
   NExpr *leafPlace(NExpr *root, const MemoryLeaf &l, SMLoc at);
   /// MEMSET(..., 0, ...) of one array or structure: each scalar of the

@@ -576,23 +576,24 @@ TypeSyntax *AstBuilder::typeSpec0(P::TypeSpec0Context *c) {
     t->name = n->qualifiedName()->getText();
     return t;
   }
-  if (auto *a = alt<P::ArrayTypeContext>(c)) {
-    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
-    for (auto *d : a->arrayDim())
-      if (auto *s = d->subrange())
-        t->dims.push_back({expr(s->lo), expr(s->hi)});
-      else
-        t->dims.push_back({nullptr, nullptr}); // ARRAY[*]
-    t->elem = typeSpec0(a->elem);
-    return t;
-  }
-  if (auto *a = alt<P::InstanceArrayTypeContext>(c)) {
-    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(a));
-    for (auto *d : a->arrayDim())
+  // The bounds of each dimension (none for ARRAY[*]).
+  auto arrayOf = [&](antlr4::ParserRuleContext *at,
+                     const std::vector<P::ArrayDimContext *> &dims) {
+    auto *t = unit.make<TypeSyntax>(TypeSyntaxKind::Array, loc(at));
+    for (auto *d : dims)
       if (auto *s = d->subrange())
         t->dims.push_back({expr(s->lo), expr(s->hi)});
       else
         t->dims.push_back({nullptr, nullptr});
+    return t;
+  };
+  if (auto *a = alt<P::ArrayTypeContext>(c)) {
+    TypeSyntax *t = arrayOf(a, a->arrayDim());
+    t->elem = typeSpec0(a->elem);
+    return t;
+  }
+  if (auto *a = alt<P::InstanceArrayTypeContext>(c)) {
+    TypeSyntax *t = arrayOf(a, a->arrayDim());
     t->elem = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc(a->base));
     t->elem->name = a->base->getText();
     for (auto *each : a->elementArgs()) {
