@@ -139,6 +139,9 @@ private:
   /// of these of the same size is wanted (`pt : POINTER TO DWORD; pt :=
   /// ADR(aReal)`): x's bits read as that type. Marks the call "SCALAR".
   bool viewAsScalar(Expr *e, const PType *elem);
+  /// Why viewAsScalar did not see a structure or array as its bytes, said
+  /// with the type mismatch that follows.
+  std::string bytesUnseen;
   /// Marks ADR(x) as one of the views above (`kind`) through a POINTER TO
   /// `elem`; true.
   bool markView(Expr *e, const char *kind, const PType *elem);

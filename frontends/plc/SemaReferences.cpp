@@ -279,11 +279,20 @@ bool Checker::viewAsScalar(Expr *e, const PType *elem) {
   if (seen->kind == PTypeKind::Struct || seen->kind == PTypeKind::Array) {
     std::vector<MemoryLeaf> leaves;
     std::string why;
-    if (!(oneByte || oneByteArray(as)) || !memoryLeaves(seen, leaves, why) ||
-        llvm::any_of(leaves, [](const MemoryLeaf &l) {
-          return l.type->kind == PTypeKind::String;
-        }))
+    if (!(oneByte || oneByteArray(as)))
       return false;
+    // Why its bytes are not seen, for the mismatch reported then.
+    if (!memoryLeaves(seen, leaves, why)) {
+      bytesUnseen = " (as bytes: " + why + ")";
+      return false;
+    }
+    if (llvm::any_of(leaves, [](const MemoryLeaf &l) {
+          return l.type->kind == PTypeKind::String;
+        })) {
+      bytesUnseen = " (as bytes: a STRING among them is not seen through a "
+                    "pointer; MEMCPY copies it)";
+      return false;
+    }
     return markView(e, "SCALAR", elem);
   }
   if (!numeric(seen) ||
@@ -425,6 +434,7 @@ const PType *Checker::pointerIndex(Expr *e, const PType *pointer) {
 
 bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
                                   const Twine &what) {
+  bytesUnseen.clear();
   if (to->elem &&
       (decayToElement(from, to->elem) || viewAsBytes(from, to->elem)))
     return true;
@@ -443,7 +453,8 @@ bool Checker::referenceAssignable(const PType *to, Expr *from, SMLoc at,
   if (addressAsNumber(to, ft, at))
     return false;
   error(at, "type mismatch in " + what + ": cannot assign " + ft->str() +
-                " to " + to->str());
+                " to " + to->str() + bytesUnseen);
+  bytesUnseen.clear();
   return false;
 }
 
