@@ -130,11 +130,9 @@ NExpr *Lowering::pointerStep(Expr *e, Frame &f, Sink &pre) {
   std::string step = scanVariable(
       stem + "_step", design.types.getRange(-count - 1, count + 1), 0, at);
   if (!llvm::isa<net::IntLit>(d)) {
-    std::string raw = unique(stem + "_offset");
-    b.addVar(raw, design.types.getInt(64, true, net::Overflow::Error),
-             b.intLit(0, at), at);
-    if (resetNames.insert(raw).second)
-      resets.push_back({raw, b.intLit(0, at)});
+    std::string raw = scanVariable(
+        stem + "_offset", design.types.getInt(64, true, net::Overflow::Error),
+        0, at);
     pre.push_back(b.assign(b.ref(raw, at), d, at));
     NExpr *r = b.ref(raw, at);
     d = b.cond(

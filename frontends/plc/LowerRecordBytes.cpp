@@ -205,10 +205,8 @@ FreshPlace Lowering::positionValue(NExpr *v, int64_t lo, int64_t hi, Sink &pre,
     int64_t k = lit->value;
     return [this, k, at] { return b.intLit(k, at); };
   }
-  std::string name = unique("_byte_at");
-  b.addVar(name, design.types.getRange(lo, hi), b.intLit(lo, at), at);
-  if (resetNames.insert(name).second)
-    resets.push_back({name, b.intLit(lo, at)});
+  std::string name =
+      scanVariable("_byte_at", design.types.getRange(lo, hi), lo, at);
   pre.push_back(b.assign(b.ref(name, at), v, at));
   return [this, name, at] { return b.ref(name, at); };
 }
