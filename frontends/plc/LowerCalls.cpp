@@ -154,36 +154,11 @@ NExpr *Lowering::functionCall(Expr *call, Frame &f, Sink &pre) {
 
 NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
                             Frame &f, Sink &pre) {
-  // A VAR_IN_OUT bound to a dereference that may designate several
-  // places: the call once per place, chosen by the reference, the result
-  // through one temporary.
-  for (CallArg &a : call->args) {
-    VarDecl *p = a.isOutput ? nullptr : fn->find(a.name);
-    if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
-        inOutPlaces.count(a.value))
-      continue;
-    DerefTargets t = derefTargets(a.value, f, pre);
-    if (t.live.size() < 2)
-      continue;
-    std::string result;
-    if (fn->resultVar) {
-      result = unique(sanitize(fn->name) + "_result");
-      declareTemp(result, fn->resultVar->type, call->loc);
-    }
-    std::vector<NExpr *> tests;
-    std::vector<Sink> bodies(t.live.size());
-    for (size_t i = 0; i < t.live.size(); ++i) {
-      inOutPlaces[a.value] = familyPlace(*t.live[i], t, a.value, f, bodies[i]);
-      tests.push_back(familyTest(*t.live[i], t));
-      NExpr *value = inlineCall(call, fn, target, f, bodies[i]);
-      if (!result.empty())
-        bodies[i].push_back(
-            b.assign(b.ref(result, call->loc), value, call->loc));
-      inOutPlaces.erase(a.value);
-    }
-    emitChoice(tests, bodies, pre, call->loc);
-    return result.empty() ? nullptr : b.ref(result, call->loc);
-  }
+  if (NExpr * value; callPerBinding(
+          call, fn, f, pre,
+          [&](Sink &body) { return inlineCall(call, fn, target, f, body); },
+          value))
+    return value;
   std::string prefix =
       unique(sanitize(call->method ? fn->methodOf->name + "_" + fn->name
                                    : fn->name) +
@@ -217,6 +192,11 @@ NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
     if (v->section == VarSection::External || v->section == VarSection::Stat)
       continue; // a global's; kept across calls (staticVar)
     auto given = byName.find(StringRef(v->name).upper());
+    if (v->section == VarSection::InOut && instanceBlock(v->type)) {
+      // The caller's instance itself, as for a block's in-out instance.
+      nf.instanceAliases[v] = boundInstance(given->second->value, f);
+      continue;
+    }
     if (v->section == VarSection::InOut) {
       auto chosen = inOutPlaces.find(given->second->value);
       nf.aliases[v] = chosen != inOutPlaces.end()
@@ -515,6 +495,65 @@ void Lowering::runArgumentCalls(Expr *value, Frame &f, Sink &out) {
   out.insert(out.end(), pre.begin(), pre.end());
 }
 
+bool Lowering::callPerBinding(Expr *call, Pou *callee, Frame &f, Sink &out,
+                              llvm::function_ref<NExpr *(Sink &)> lowerOnce,
+                              NExpr *&value) {
+  value = nullptr;
+  for (CallArg &a : call->args) {
+    VarDecl *p = a.isOutput ? nullptr : callee->find(a.name);
+    if (!p || p->section != VarSection::InOut || inOutPlaces.count(a.value) ||
+        inOutInstances.count(a.value))
+      continue;
+    // Each place the argument may be, how to bind it, and its test.
+    std::vector<NExpr *> tests;
+    std::vector<std::function<void(Sink &)>> binds;
+    if (instanceBlock(p->type) && !throughReference(a.value)) {
+      // An instance passed in-out that is an element chosen at run time.
+      if (!chosenAtRunTime(a.value, f))
+        continue;
+      for (InstanceChoice &c : instanceChoices(a.value, f, out)) {
+        tests.push_back(c.test);
+        binds.push_back([this, &a, path = c.path](Sink &) {
+          inOutInstances[a.value] = path;
+        });
+      }
+    } else if (throughReference(a.value)) {
+      DerefTargets t = derefTargets(a.value, f, out);
+      for (const RefFamily *fam : t.live) {
+        tests.push_back(familyTest(*fam, t));
+        binds.push_back([this, &a, &f, t, fam](Sink &body) {
+          inOutPlaces[a.value] = familyPlace(*fam, t, a.value, f, body);
+        });
+      }
+      if (binds.empty()) // only NULL: the checks made have reported it
+        binds.push_back([](Sink &) {});
+    } else {
+      continue;
+    }
+    std::string result;
+    if (callee->resultVar && binds.size() > 1) {
+      result = unique(sanitize(callee->name) + "_result");
+      declareTemp(result, callee->resultVar->type, call->loc);
+    }
+    std::vector<Sink> bodies(binds.size());
+    for (size_t i = 0; i < binds.size(); ++i) {
+      binds[i](bodies[i]);
+      NExpr *v = lowerOnce(bodies[i]);
+      inOutPlaces.erase(a.value);
+      inOutInstances.erase(a.value);
+      if (binds.size() == 1)
+        value = v;
+      else if (!result.empty())
+        bodies[i].push_back(b.assign(b.ref(result, call->loc), v, call->loc));
+    }
+    emitChoice(tests, bodies, out, call->loc);
+    if (!result.empty())
+      value = b.ref(result, call->loc);
+    return true;
+  }
+  return false;
+}
+
 void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                             Frame &f, Sink &out) {
   if (!fb->environment.empty()) {
@@ -528,49 +567,14 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                           "' (of " + fb->name +
                           ") through a reference: netlift inlines every call "
                           "and does not model recursion");
-  // A VAR_IN_OUT bound to a dereference that may designate several
-  // places: the call once per place, chosen by the reference.
-  for (CallArg &a : call->args) {
-    VarDecl *p = a.isOutput ? nullptr : fb->find(a.name);
-    // An instance passed in-out that is an element chosen at run time:
-    // the call once per element.
-    if (p && p->section == VarSection::InOut && instanceBlock(p->type) &&
-        !throughReference(a.value) && !inOutInstances.count(a.value) &&
-        chosenAtRunTime(a.value, f)) {
-      std::vector<InstanceChoice> choices = instanceChoices(a.value, f, out);
-      std::vector<NExpr *> tests;
-      std::vector<Sink> bodies(choices.size());
-      for (size_t i = 0; i < choices.size(); ++i) {
-        inOutInstances[a.value] = choices[i].path;
-        tests.push_back(choices[i].test);
-        instanceCall(call, fb, path, f, bodies[i]);
-      }
-      inOutInstances.erase(a.value);
-      emitChoice(tests, bodies, out, call->loc);
-      return;
-    }
-    if (!p || p->section != VarSection::InOut || !throughReference(a.value) ||
-        inOutPlaces.count(a.value))
-      continue;
-    DerefTargets t = derefTargets(a.value, f, out);
-    if (t.live.size() < 2) {
-      if (!t.live.empty())
-        inOutPlaces[a.value] = familyPlace(*t.live[0], t, a.value, f, out);
-      instanceCall(call, fb, path, f, out);
-      inOutPlaces.erase(a.value);
-      return;
-    }
-    std::vector<NExpr *> tests;
-    std::vector<Sink> bodies(t.live.size());
-    for (size_t i = 0; i < t.live.size(); ++i) {
-      inOutPlaces[a.value] = familyPlace(*t.live[i], t, a.value, f, bodies[i]);
-      tests.push_back(familyTest(*t.live[i], t));
-      instanceCall(call, fb, path, f, bodies[i]);
-      inOutPlaces.erase(a.value);
-    }
-    emitChoice(tests, bodies, out, call->loc);
+  if (NExpr * none; callPerBinding(
+          call, fb, f, out,
+          [&](Sink &body) {
+            instanceCall(call, fb, path, f, body);
+            return nullptr;
+          },
+          none))
     return;
-  }
   instancesLowering.push_back(path);
   size_t knownBefore = knownConstants.size();
   InstanceUse &use = instanceUses[path];

@@ -105,6 +105,7 @@ static std::vector<RefStep> familySteps(llvm::ArrayRef<Expr *> selectors) {
     } else {
       s.kind = RefStep::Index;
       s.dims = bt->dims;
+      s.ofInstances = instanceBlock(bt) != nullptr;
     }
     steps.push_back(std::move(s));
   }
@@ -175,6 +176,47 @@ static std::string familyKey(const std::string &base,
   for (const RefStep &s : steps)
     key += s.kind == RefStep::Index ? "[*]" : "." + s.name;
   return key;
+}
+
+/// The instances an element of an array of instances may be, when `steps`
+/// index one: every element's path under `base` (row-major, as
+/// Lowering::elementPath spells it, members on the way appended), with the
+/// steps below the last such index left in `rest`. Empty otherwise.
+std::vector<std::string>
+Lowering::instanceElementBases(const std::string &base,
+                               llvm::ArrayRef<RefStep> steps,
+                               std::vector<RefStep> &rest) {
+  size_t last = steps.size();
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (steps[i].kind == RefStep::Index && steps[i].ofInstances)
+      last = i;
+  if (last == steps.size())
+    return {};
+  std::vector<std::string> bases = {base};
+  for (size_t i = 0; i <= last; ++i) {
+    const RefStep &s = steps[i];
+    std::vector<std::string> next;
+    for (const std::string &b : bases) {
+      if (s.kind != RefStep::Index) {
+        next.push_back(b + "." + sanitize(s.name));
+        continue;
+      }
+      std::vector<int64_t> index;
+      for (auto &[lo, hi] : s.dims)
+        index.push_back(lo);
+      for (;;) {
+        next.push_back(elementPath(b, index));
+        size_t d = index.size();
+        while (d-- > 0 && ++index[d] > s.dims[d].second)
+          index[d] = s.dims[d].first;
+        if (d == size_t(-1))
+          break;
+      }
+    }
+    bases = std::move(next);
+  }
+  rest.assign(steps.begin() + last + 1, steps.end());
+  return bases;
 }
 
 std::vector<std::string>
@@ -294,6 +336,33 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
           std::string key = familyKey(base, steps) + view.suffix();
           if (table.byKey.count(key))
             continue;
+          // The elements of an array of instances are instances of their
+          // own: a family each, numbered one after the other in row-major
+          // order, so that the array's key (the first's number) and the
+          // index give an element's number as for any array.
+          std::vector<RefStep> rest;
+          std::vector<std::string> elements =
+              instanceElementBases(base, steps, rest);
+          if (!elements.empty()) {
+            table.byKey[key] = table.families.size();
+            int64_t each = size / int64_t(elements.size());
+            for (const std::string &element : elements) {
+              RefFamily fam;
+              fam.key = familyKey(element, rest) + view.suffix();
+              if (!table.byKey.emplace(fam.key, table.families.size()).second)
+                refuse(v->loc, "internal: an element of an array of "
+                               "instances numbered twice ('" +
+                                   fam.key + "')");
+              fam.base = element;
+              fam.view = view;
+              fam.steps = rest;
+              fam.size = each;
+              fam.offset = table.count + 1;
+              table.count += each;
+              table.families.push_back(std::move(fam));
+            }
+            continue;
+          }
           table.byKey[key] = table.families.size();
           RefFamily fam;
           fam.key = key;
@@ -347,23 +416,11 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         table.count += 1;
         table.families.push_back(std::move(fam));
       }
-  std::vector<Expr *> throughReferences;
+  std::vector<Expr *> throughReferences, selfInstances;
   forEachAddressTaken(unit, [&](Expr *call) {
     Expr *place = call->args[0].value;
     if (place->selfInstance) {
-      // THIS^ as an interface: every instance that runs the block's code
-      // (its own type's and those derived from it).
-      RefTable &table =
-          plan.tables[referenceKey(designatedType(call, viewOf(call)))];
-      for (Pou *p : unit.pous) {
-        bool runs = false;
-        for (Pou *b = p; b && !runs; b = b->base)
-          runs = b == place->callee;
-        if (!runs)
-          continue;
-        for (const std::string &path : instances[p])
-          addSinglePlace(table, path);
-      }
+      selfInstances.push_back(call);
       return;
     }
     bool throughDeref;
@@ -380,6 +437,23 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
     addPlace(root->var, familySteps(placeSelectors(place)),
              plan.tables[referenceKey(designatedType(call, view))], view, 0);
   });
+  // THIS^ as an interface: every instance that runs the block's code (its
+  // own type's and those derived from it), after the arrays of instances
+  // have numbered their elements in order.
+  for (Expr *call : selfInstances) {
+    Pou *block = call->args[0].value->callee;
+    RefTable &table =
+        plan.tables[referenceKey(designatedType(call, viewOf(call)))];
+    for (Pou *p : unit.pous) {
+      bool runs = false;
+      for (Pou *b = p; b && !runs; b = b->base)
+        runs = b == block;
+      if (!runs)
+        continue;
+      for (const std::string &path : instances[p])
+        addSinglePlace(table, path);
+    }
+  }
   // REF(r^.f): the field f of every place r may designate, itself
   // perhaps designated through another such REF: to a fixpoint.
   for (bool grew = true; grew;) {

@@ -118,6 +118,9 @@ struct RefStep {
   enum Kind : uint8_t { Member, Field, Index } kind = Field;
   std::string name;                              // Member, Field
   std::vector<std::pair<int64_t, int64_t>> dims; // Index
+  /// An index into an array of function block instances, whose elements
+  /// are instances of their own (flattened under their element paths).
+  bool ofInstances = false;
 };
 
 /// How a family's places are seen: as themselves, or (the address of a
@@ -587,6 +590,11 @@ private:
   /// The prefix of the element `index` of the instances at `path`.
   static std::string elementPath(const std::string &path,
                                  llvm::ArrayRef<int64_t> index);
+  /// The instances a family's place may be when its steps index an array
+  /// of instances (LowerReferences.cpp); empty when they do not.
+  std::vector<std::string> instanceElementBases(const std::string &base,
+                                                llvm::ArrayRef<RefStep> steps,
+                                                std::vector<RefStep> &rest);
   /// The instance, or every element of the array of instances, at `path`.
   void declareInstances(const std::string &path, const PType *t,
                         Initializer *init);
@@ -640,6 +648,17 @@ private:
   std::map<Expr *, std::string> inOutInstances;
   /// The prefix of the instance an in-out argument designates.
   std::string boundInstance(Expr *argument, Frame &f);
+  /// A call of `callee` one of whose VAR_IN_OUT arguments may be bound to
+  /// one of several places (an element of an array of instances chosen at
+  /// run time, a dereference designating several places): `lowerOnce`
+  /// lowers the call into the sink given, with that argument bound
+  /// (inOutInstances, inOutPlaces), once per place, chosen at run time;
+  /// its value (a function's result, null for a block) goes through one
+  /// temporary, returned in `value`. False, with nothing lowered, when no
+  /// argument needs a choice.
+  bool callPerBinding(Expr *call, Pou *callee, Frame &f, Sink &out,
+                      llvm::function_ref<NExpr *(Sink &)> lowerOnce,
+                      NExpr *&value);
   /// The instances whose bodies are being lowered, outermost first.
   std::vector<std::string> instancesLowering;
   /// `r^(...)`: the call of the instance r designates.

@@ -904,7 +904,8 @@ void Checker::checkPou(Pou *p) {
       error(v->loc, "'" + fb->name +
                         "' is ABSTRACT: only blocks that EXTEND it have "
                         "instances");
-    if (p->kind == PouKind::Function && v->type && instanceBlock(v->type))
+    if (p->kind == PouKind::Function && v->type && instanceBlock(v->type) &&
+        v->section != VarSection::InOut)
       error(v->loc, "a function cannot hold a function block instance "
                     "(functions have no memory)");
   }

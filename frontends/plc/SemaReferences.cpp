@@ -128,11 +128,6 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
         x->var->writtenInput = true;
     } else if (x->kind == ExprKind::Deref) {
       break;
-    } else if (x->kind == ExprKind::Index && x->type &&
-               x->type->kind == PTypeKind::FunctionBlock) {
-      error(arg->loc, e->name + " of an element of an array of function "
-                                "block instances is not supported");
-      return nullptr;
     }
   PType *r = make(PTypeKind::Reference);
   r->refKind = isAdr ? RefKind::Pointer : RefKind::RefTo;
