@@ -61,11 +61,16 @@ Lowering::MethodTarget Lowering::methodTarget(Expr *call, Frame &f, Sink &pre) {
                             "reference that is only NULL)");
   } else {
     t.selfType = instanceBlock(call->operands[0]->type);
-    t.impl = findCallee(t.selfType, call);
     for (InstanceChoice &c : instanceChoices(call->operands[0], f, pre)) {
       t.prefixes.push_back(c.path + ".");
       t.tests.push_back(c.test);
+      // An in-out instance may be of a block derived from the parameter's:
+      // its own type's implementation runs.
+      if (auto it = instanceTypes.find(c.path);
+          it != instanceTypes.end() && it->second)
+        t.selfType = it->second;
     }
+    t.impl = findCallee(t.selfType, call);
   }
   if (!t.impl)
     refuse(call->loc, "internal: no implementation of '" + call->name + "'");

@@ -433,6 +433,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
     if (e->name == "MEMCPY" || e->name == "MEMMOVE" || e->name == "MEMSET" ||
         e->name == "MEMCMP")
       return memoryCall(e, f, pre);
+    if (e->name == "__QUERYINTERFACE")
+      return queryInterfaceCall(e, f, pre);
     if (e->name == "__ISVALIDREF")
       return b.binary(net::BinaryOp::Ne, expr(e->args[0].value, f, pre),
                       b.intLit(0, e->loc), e->loc);

@@ -178,6 +178,10 @@ std::string Lowering::instancePath(Expr *e, Frame &f) {
 }
 
 std::string Lowering::boundInstance(Expr *argument, Frame &f) {
+  if (argument->selfInstance) { // THIS^: the running instance
+    std::string path = f.running().second;
+    return path.empty() ? path : path.substr(0, path.size() - 1);
+  }
   if (auto chosen = inOutInstances.find(argument);
       chosen != inOutInstances.end())
     return chosen->second;

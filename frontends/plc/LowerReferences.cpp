@@ -156,7 +156,8 @@ static RefView viewOf(Expr *call) {
 /// place's own, or what it is seen as (a view; an interface the instance's
 /// block implements).
 static const PType *designatedType(Expr *call, const RefView &view) {
-  if (view.kind != RefView::Plain || call->typeName == "INTERFACE")
+  if (view.kind != RefView::Plain || call->typeName == "INTERFACE" ||
+      call->typeName == "BASE")
     return call->type->elem;
   return call->args[0].value->type;
 }
@@ -1206,4 +1207,40 @@ void Lowering::writeThroughReference(Expr *target, NExpr *value,
                 at);
   }
   emitChoice(tests, bodies, out, at);
+}
+
+//===----------------------------------------------------------------------===//
+// Interfaces queried
+//===----------------------------------------------------------------------===//
+
+NExpr *Lowering::interfaceQuery(NExpr *source, const PType *wanted, Sink &pre,
+                                SMLoc at) {
+  auto table = refPlan.tables.find(referenceKey(wanted->elem));
+  if (table == refPlan.tables.end())
+    return b.intLit(0, at); // no instance is ever seen through an interface
+  source = valueOnce(source, wanted, "query", pre, at);
+  NExpr *yes = nullptr;
+  for (const RefFamily &fam : table->second.families) {
+    auto type = instanceTypes.find(fam.base);
+    if (type == instanceTypes.end() || !type->second)
+      refuse(at, "the interface may designate '" + fam.key +
+                     "', an instance whose block netlift does not know, so "
+                     "it cannot ask it for another interface");
+    if (!implementsInterface(unit, type->second, wanted->elem->fb))
+      continue;
+    NExpr *is =
+        b.binary(net::BinaryOp::Eq, source, b.intLit(fam.offset, at), at);
+    yes = yes ? b.binary(net::BinaryOp::Or, yes, is, at) : is;
+  }
+  return yes ? b.cond(yes, source, b.intLit(0, at), at) : b.intLit(0, at);
+}
+
+NExpr *Lowering::queryInterfaceCall(Expr *call, Frame &f, Sink &pre) {
+  Expr *to = call->args[1].value;
+  NExpr *value = interfaceQuery(expr(call->args[0].value, f, pre), to->type,
+                                pre, call->loc);
+  NExpr *target = lvalue(to, f, pre);
+  pre.push_back(b.assign(target, value, call->loc));
+  return b.binary(net::BinaryOp::Ne, lvalue(to, f, pre), b.intLit(0, call->loc),
+                  call->loc);
 }

@@ -279,10 +279,15 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
   case StmtKind::Assign: {
     NExpr *value = expr(s->value, f, out);
     if (s->assignKind == AssignKind::Attempt) {
-      // `?=` between references to different types: never designates
-      // one of the target's, so NULL (SemaReferences.cpp).
-      out.push_back(
-          b.assign(lvalue(s->target, f, out), b.intLit(0, s->loc), s->loc));
+      // `?=` between interfaces: the instance's if its block implements
+      // the target's; between references to different types: never one
+      // of the target's, so NULL (SemaReferences.cpp).
+      const PType *t = s->target->type;
+      if (t && t->isReference() && t->refKind == RefKind::Interface)
+        value = interfaceQuery(value, t, out, s->loc);
+      else
+        value = b.intLit(0, s->loc);
+      out.push_back(b.assign(lvalue(s->target, f, out), value, s->loc));
       return;
     }
     if (isStringIndex(s->target)) {

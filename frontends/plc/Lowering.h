@@ -646,6 +646,12 @@ private:
   std::map<Expr *, NExpr *> inOutPlaces;
   /// The same for an instance passed in-out that is chosen at run time.
   std::map<Expr *, std::string> inOutInstances;
+  /// `source` (an interface's number) when the instance it designates is
+  /// of a block that implements `wanted` (an interface type), else NULL
+  /// (`?=` and __QUERYINTERFACE between interfaces).
+  NExpr *interfaceQuery(NExpr *source, const PType *wanted, Sink &pre,
+                        SMLoc at);
+  NExpr *queryInterfaceCall(Expr *call, Frame &f, Sink &pre);
   /// The prefix of the instance an in-out argument designates.
   std::string boundInstance(Expr *argument, Frame &f);
   /// A call of `callee` one of whose VAR_IN_OUT arguments may be bound to

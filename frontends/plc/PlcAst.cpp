@@ -170,6 +170,13 @@ void netlift::plc::forEachInitialValue(Initializer *init,
     forEachInitialValue(e, fn);
 }
 
+bool netlift::plc::derivedFrom(const Pou *block, const Pou *base) {
+  for (int depth = 0; block && depth < 64; block = block->base, ++depth)
+    if (block == base)
+      return true;
+  return false;
+}
+
 bool netlift::plc::implementsInterface(const Unit &unit, const Pou *block,
                                        const Pou *itf) {
   std::set<const Pou *> seen;
@@ -210,6 +217,10 @@ void netlift::plc::resolveInheritance(Unit &unit) {
       // nothing the block does: nothing can be assigned to it here.
       Pou *itf = unit.findPou(n);
       if (!itf && !p->isInterface)
+        continue;
+      // CODESYS's root of queryable interfaces declares nothing: every
+      // interface can be queried here (__QUERYINTERFACE, `?=`).
+      if (!itf && StringRef(n).equals_insensitive("__SYSTEM.IQueryInterface"))
         continue;
       if (!itf || !itf->isInterface) {
         refuse(p, p->loc,

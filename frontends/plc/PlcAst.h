@@ -593,6 +593,9 @@ Pou *findProperty(const Pou *block, llvm::StringRef name, bool set);
 /// method, action or property accessor it names.
 Pou *findCallee(const Pou *block, const Expr *call);
 
+/// Is `block` `base`, or derived from it through EXTENDS?
+bool derivedFrom(const Pou *block, const Pou *base);
+
 /// Does `block` (or a base) IMPLEMENT `itf`, or an interface that EXTENDS
 /// it?
 bool implementsInterface(const Unit &unit, const Pou *block, const Pou *itf);

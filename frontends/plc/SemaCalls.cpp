@@ -53,7 +53,19 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
       continue;
     }
     if (a.isOutput || p->section == VarSection::InOut) {
-      const PType *t = lvalue(a.value);
+      // THIS^ passed in-out: the running instance itself.
+      const PType *t = !a.isOutput && a.value->selfInstance ? expr(a.value)
+                                                            : lvalue(a.value);
+      // An instance in-out: of the parameter's block or one derived from
+      // it (which has every member and method the block uses).
+      if (t && p->type && !a.isOutput && t->kind == PTypeKind::FunctionBlock &&
+          p->type->kind == PTypeKind::FunctionBlock &&
+          !p->type->fb->isInterface && !derivedFrom(t->fb, p->type->fb)) {
+        error(a.loc, "VAR_IN_OUT '" + p->name + "' of type " + p->type->str() +
+                         " bound to a " + t->str() +
+                         ", which does not EXTEND it");
+        return;
+      }
       // ARRAY[*]: any array of its element type and dimensions.
       if (t && p->type && p->section == VarSection::InOut &&
           p->type->kind == PTypeKind::Array && p->type->anyBounds &&

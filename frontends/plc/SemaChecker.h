@@ -66,6 +66,10 @@ private:
   /// REF, ADR, __ISVALIDREF (and __NEW, refused): the result's type, null
   /// after an error; nullopt when `e` calls none of them.
   std::optional<const PType *> referenceCall(Expr *e, bool asStatement);
+  /// `__QUERYINTERFACE(itf, other)` (CODESYS, TwinCAT): BOOL; sets
+  /// `other` to the instance `itf` designates when its block implements
+  /// `other`'s interface, to NULL otherwise.
+  const PType *queryInterface(Expr *e);
   /// MEMCPY, MEMMOVE, MEMSET, MEMCMP over places of one type, a constant
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);
@@ -198,6 +202,9 @@ private:
   /// where an interface is wanted becomes the reference to it; false when
   /// `from` is no such instance.
   bool instanceAsInterface(const PType *to, Expr *from, SMLoc at);
+  /// `REF(d)`/`ADR(d)` (or THIS) of an instance of a block derived from
+  /// the block `to` designates: a reference to the base (CODESYS, TwinCAT).
+  bool addressAsBase(const PType *to, Expr *from);
   /// The function block or program whose instance runs `current`.
   Pou *runningBlock() const {
     return current && current->methodOf ? current->methodOf : current;

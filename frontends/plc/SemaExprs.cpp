@@ -215,6 +215,20 @@ const PType *Checker::expr(Expr *e) {
       t = et;
       break;
     }
+    if (sameName(e->name, "THIS")) {
+      // TwinCAT's and CODESYS's THIS: a POINTER TO the running instance,
+      // ADR(THIS^).
+      Expr *self = unit.make<Expr>(*e);
+      self->name = "THIS^";
+      self->selfInstance = true;
+      e->kind = ExprKind::Call;
+      e->name = "ADR";
+      CallArg arg;
+      arg.value = self;
+      arg.loc = e->loc;
+      e->args = {arg};
+      return expr(e);
+    }
     error(e->loc, "unknown variable '" + e->name + "'" + suggestVar(e->name));
     return nullptr;
   }

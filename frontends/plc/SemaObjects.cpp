@@ -202,6 +202,23 @@ Expr *Checker::throughInterface(Expr *x) {
   return d;
 }
 
+bool Checker::addressAsBase(const PType *to, Expr *from) {
+  const PType *ft = from->type;
+  if (!to->isReference() || to->refKind == RefKind::Interface || !to->elem ||
+      to->elem->kind != PTypeKind::FunctionBlock || to->elem->fb->isInterface ||
+      from->kind != ExprKind::Call || !from->typeName.empty() ||
+      (from->name != "REF" && from->name != "ADR") || !ft->isReference() ||
+      !ft->elem || ft->elem->kind != PTypeKind::FunctionBlock ||
+      ft->elem->fb == to->elem->fb || !derivedFrom(ft->elem->fb, to->elem->fb))
+    return false;
+  // Numbered among the base's places (LowerReferences.cpp's
+  // designatedType); a call through it runs the instance's own type's
+  // implementation.
+  from->typeName = "BASE";
+  from->type = to;
+  return true;
+}
+
 bool Checker::instanceAsInterface(const PType *to, Expr *from, SMLoc at) {
   const PType *ft = from->type;
   if (!to->isReference() || to->refKind != RefKind::Interface || !ft)

@@ -42,7 +42,7 @@ static bool designatesStorage(Expr *e) {
   for (; e; e = e->base()) {
     switch (e->kind) {
     case ExprKind::Name:
-      return e->var != nullptr;
+      return e->var != nullptr || e->selfInstance;
     case ExprKind::Field:
     case ExprKind::Index:
       continue;
@@ -61,6 +61,10 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
       e->name = mem;
       return memoryCall(e, asStatement);
     }
+  if (sameName(e->name, "__QUERYINTERFACE")) {
+    e->name = "__QUERYINTERFACE";
+    return queryInterface(e);
+  }
   bool isRef = sameName(e->name, "REF"), isAdr = sameName(e->name, "ADR");
   bool isValid = sameName(e->name, "__ISVALIDREF");
   if (sameName(e->name, "__NEW") || sameName(e->name, "__DELETE")) {
@@ -511,11 +515,49 @@ void Checker::referenceAssign(Stmt *s) {
           "the value of '?=' must be a reference, not " + vt->str());
     return;
   }
+  // Between interfaces the attempt asks the instance designated whether
+  // its block implements the target's interface (the lowering's
+  // interfaceQuery); an interface it extends always does.
+  if (t->refKind == RefKind::Interface && vt->refKind == RefKind::Interface) {
+    if (implementsInterface(unit, vt->elem->fb, t->elem->fb))
+      s->assignKind = AssignKind::Value;
+    return;
+  }
+  if (t->refKind == RefKind::Interface || vt->refKind == RefKind::Interface) {
+    error(s->loc, "'?=' between an interface and a " +
+                      (t->refKind == RefKind::Interface ? vt : t)->str() +
+                      ": netlift takes it between interfaces or between "
+                      "references");
+    return;
+  }
   // Without EXTENDS and interfaces every type is only itself: the attempt
   // succeeds exactly when both designate the same type, and stores NULL
   // otherwise (the lowering reads assignKind).
   if (!vt->elem || referenceKey(vt->elem) == referenceKey(t->elem))
     s->assignKind = AssignKind::Value;
+}
+
+const PType *Checker::queryInterface(Expr *e) {
+  if (e->args.size() != 2 || e->args[0].isOutput || e->args[1].isOutput) {
+    error(e->loc, "__QUERYINTERFACE takes two interfaces: the one asked "
+                  "and the one it sets");
+    return nullptr;
+  }
+  const PType *from = referenceItself(e->args[0].value, /*asTarget=*/false);
+  const PType *to = referenceItself(e->args[1].value, /*asTarget=*/true);
+  if (!from || !to)
+    return nullptr;
+  for (const PType *t : {from, to})
+    if (!t->isReference() || t->refKind != RefKind::Interface) {
+      error(e->loc, "__QUERYINTERFACE takes interfaces, not " + t->str());
+      return nullptr;
+    }
+  if (!designatesStorage(e->args[1].value)) {
+    error(e->args[1].value->loc,
+          "__QUERYINTERFACE sets its second argument: it must be a variable");
+    return nullptr;
+  }
+  return boolType();
 }
 
 bool plc::arrayElementPlace(Expr *place) {
