@@ -162,7 +162,7 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
                          net::Design &design) {
   FrontendOptions withProject = options;
   std::optional<std::vector<std::string>> expanded =
-      expandProjectInputs(given, diag, withProject.defines);
+      expandProjectInputs(given, diag, withProject);
   if (!expanded)
     return false;
   llvm::ArrayRef<std::string> paths = *expanded;

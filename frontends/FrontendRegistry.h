@@ -53,6 +53,9 @@ struct FrontendOptions {
   /// -D NAME[=VALUE]: names defined for PLC conditional compilation
   /// (`{IF defined(NAME)}`), with a project's compiler defines.
   std::vector<std::string> defines;
+  /// The PLC project the inputs are (a `.plcproj`'s `<Name>`, else its
+  /// file name without extension); empty when none was given.
+  std::string projectName;
   /// -Wunused-refused: warn about refused constructs in PLC POUs the
   /// translation does not use.
   bool warnUnusedRefused = false;
@@ -131,10 +134,10 @@ bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
 /// it or else every PLC source under it (PlcProject.cpp); other paths stand
 /// for themselves. None after reporting an error.
 /// A project's compiler defines (`<CompilerDefines>`) are added to
-/// `defines`.
+/// `options.defines`, its name set as `options.projectName`.
 std::optional<std::vector<std::string>>
 expandProjectInputs(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
-                    std::vector<std::string> &defines);
+                    FrontendOptions &options);
 
 /// Frontend implementations (one per line of FrontendRegistry.def).
 bool loadNetIR(FrontendContext &ctx, unsigned bufferID, DiagEngine &diag,

@@ -42,6 +42,7 @@ plc::Unit &FrontendContext::plcUnit() {
       auto [name, value] = StringRef(d).split('=');
       plc->defines[name.trim().upper()] = value.trim().str();
     }
+    plc->projectName = options.projectName;
     if (options.timeUnit == "s")
       plc->inferTimeNumbers(plc::TimeNumbers::Seconds,
                             "seconds (--time-unit s)");

@@ -56,7 +56,7 @@ static std::vector<std::string> filesUnder(StringRef dir,
 /// out and named in a note.
 static bool readPlcProject(StringRef path, DiagEngine &diag,
                            std::vector<std::string> &out,
-                           std::vector<std::string> &defines) {
+                           FrontendOptions &options) {
   unsigned id = addInputFile(diag.sourceMgr(), path);
   if (!id)
     return false;
@@ -70,6 +70,15 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
                                "element)");
     return false;
   }
+  // The project's name (the root of `{attribute 'instance-path'}`): the
+  // first project read names the design.
+  if (options.projectName.empty()) {
+    options.projectName = llvm::sys::path::stem(path).str();
+    for (pugi::xml_node group : project.children("PropertyGroup"))
+      if (StringRef name = StringRef(group.child("Name").text().get()).trim();
+          !name.empty())
+        options.projectName = name.str();
+  }
   // Compiler defines, for `{IF defined(NAME)}`: NAME or NAME:=VALUE,
   // separated by commas.
   for (pugi::xml_node group : project.children("PropertyGroup"))
@@ -79,9 +88,9 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
       for (StringRef n : names)
         if (!n.trim().empty()) {
           auto [name, value] = n.split(":=");
-          defines.push_back((name.trim() + (value.empty() ? "" : "=") +
-                             value.trim().trim('\'').trim('"'))
-                                .str());
+          options.defines.push_back((name.trim() + (value.empty() ? "" : "=") +
+                                     value.trim().trim('\'').trim('"'))
+                                        .str());
         }
     }
   StringRef dir = llvm::sys::path::parent_path(path);
@@ -112,12 +121,11 @@ static bool readPlcProject(StringRef path, DiagEngine &diag,
 
 std::optional<std::vector<std::string>>
 netlift::expandProjectInputs(llvm::ArrayRef<std::string> paths,
-                             DiagEngine &diag,
-                             std::vector<std::string> &defines) {
+                             DiagEngine &diag, FrontendOptions &options) {
   std::vector<std::string> out;
   for (const std::string &path : paths) {
     if (StringRef(path).endswith_insensitive(".plcproj")) {
-      if (!readPlcProject(path, diag, out, defines))
+      if (!readPlcProject(path, diag, out, options))
         return std::nullopt;
       continue;
     }
@@ -130,7 +138,7 @@ netlift::expandProjectInputs(llvm::ArrayRef<std::string> paths,
     });
     if (!projects.empty()) {
       for (const std::string &p : projects)
-        if (!readPlcProject(p, diag, out, defines))
+        if (!readPlcProject(p, diag, out, options))
           return std::nullopt;
       continue;
     }

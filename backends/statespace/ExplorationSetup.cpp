@@ -140,6 +140,16 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
       return nullptr;
     }
   if (!options.abstractTimers)
+    for (const net::Attribute &a : top->attributes)
+      if (a.key == net::kUnboundedClockAttribute) {
+        diag.error(a.loc, a.value + " has no bound but its type's: " + command +
+                              " would count its clock tick by tick up to "
+                              "it; give the input it comes from a range "
+                              "(--ranges FILE, {range LO..HI}) or explore "
+                              "with --timers=abstract");
+        return nullptr;
+      }
+  if (!options.abstractTimers)
     return std::unique_ptr<ExplorationSetup>(
         new ExplorationSetup(*top, options));
   // The exact model stays beside the abstract one, for the replay.

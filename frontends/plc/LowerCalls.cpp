@@ -197,6 +197,10 @@ NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
     if (v->section == VarSection::External || v->section == VarSection::Stat)
       continue; // a global's; kept across calls (staticVar)
     auto given = byName.find(StringRef(v->name).upper());
+    if (given != byName.end() && given->second->anyClass) {
+      anyInput(prefix + sanitize(v->name), v, *given->second, f, pre);
+      continue;
+    }
     if (v->section == VarSection::InOut && instanceBlock(v->type)) {
       // The caller's instance itself, as for a block's in-out instance.
       nf.instanceAliases[v] = boundInstance(given->second->value, f);
@@ -258,6 +262,20 @@ NExpr *Lowering::inlineCall(Expr *call, Pou *fn, const MethodTarget &target,
   if (!fn->resultVar)
     return nullptr; // called as a statement (Sema)
   return b.ref(prefix + sanitize(fn->name), call->loc);
+}
+
+void Lowering::anyInput(const std::string &name, VarDecl *v, CallArg &a,
+                        Frame &f, Sink &pre) {
+  SMLoc at = a.loc;
+  declareTemp(name, v->type, v->loc, nullptr, true);
+  if (a.anyTemp)
+    assign(lvalue(a.anyTemp, f, pre), expr(a.anyValue, f, pre), a.anyTemp->type,
+           a.anyValue, pre, at);
+  for (auto [field, value] :
+       {std::pair{"pValue", a.value}, std::pair{"diSize", a.anySize},
+        std::pair{"TypeClass", a.anyClass}})
+    pre.push_back(
+        b.assign(b.field(b.ref(name, at), field, at), expr(value, f, pre), at));
 }
 
 /// A standard function's body (CONCAT_DATE checking its fields) stops with
@@ -355,8 +373,9 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
       return std::nullopt;
     return r;
   }
-  // An element of an array written only by its initial value
-  // (`PT := presets[i]`): the largest element (or 0, a default one's).
+  // An element of an array (`PT := presets[i]`): the largest of its
+  // elements' initial values (0, a default one's) and of what is assigned
+  // to its elements.
   if (e->kind == ExprKind::Index) {
     Expr *root = e;
     while (root->kind == ExprKind::Index)
@@ -364,9 +383,16 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
     VarDecl *a = root->kind == ExprKind::Name ? root->var : nullptr;
     if (!a || a->area() == 'I' || a->section == VarSection::Input ||
         a->section == VarSection::InOut || writtenOtherwise.count(a) ||
-        !assignedValues[a].empty())
+        !visiting.insert(a).second)
       return std::nullopt;
+    auto leave = llvm::make_scope_exit([&] { visiting.erase(a); });
     int64_t best = 0;
+    for (Expr *value : assignedValues[a]) {
+      auto b = upperBound(value, f, visiting);
+      if (!b)
+        return std::nullopt;
+      best = std::max(best, *b);
+    }
     std::function<bool(Initializer *)> elements = [&](Initializer *init) {
       if (!init)
         return true;
@@ -391,10 +417,13 @@ std::optional<int64_t> Lowering::variableBound(Expr *e, Frame &f,
                                                std::set<VarDecl *> &visiting) {
   // A function block's input takes what its calls pass (any instance's:
   // an upper bound is all the clock needs); a program's input is free.
+  // (A block translated as the top is run as a program: its inputs are
+  // free, whatever their declared initial values.)
   VarDecl *v = e->kind == ExprKind::Name ? e->var : nullptr;
   if (!v || v->area() == 'I' || v->section == VarSection::InOut ||
       (v->section == VarSection::Input &&
-       (!v->owner || v->owner->kind != PouKind::FunctionBlock)) ||
+       (!v->owner || v->owner->kind != PouKind::FunctionBlock ||
+        runAsProgram(v->owner))) ||
       writtenOtherwise.count(v) || !visiting.insert(v).second)
     return std::nullopt; // (a cycle through v: no bound from it)
   // The variables being bounded form a path, not a set of visited ones: v
@@ -441,6 +470,26 @@ void Lowering::noteClockBound(const std::string &member, Expr *value, Frame &f,
   ClockUse &cu = clocks[it->second];
   std::set<VarDecl *> visiting;
   std::optional<int64_t> c = upperBound(value, f, visiting);
+  const PType *t = value->type ? baseOf(value->type) : nullptr;
+  if (!c && t && t->kind == PTypeKind::Time) {
+    // Its type bounds it: the clock counts up to the largest TIME (49
+    // days) or LTIME. Exact, but a timer counting that far cannot be
+    // explored tick by tick: the free input it comes from asks for a
+    // range when explored, and --timers=abstract does not count ticks.
+    bool ltime = t->name == "LTIME";
+    c = (ltime ? INT64_MAX / 2 : int64_t(UINT32_MAX) * 1000000) / tickNs;
+    diag.note(at, cu.member + " of timer '" + cu.path +
+                      "' has no bound netlift can find: its clock counts up "
+                      "to the largest " +
+                      (ltime ? "LTIME" : "TIME") +
+                      " (give the input it comes from a range, or explore "
+                      "with --timers=abstract)");
+    if (!cu.unbounded)
+      b.addAttribute(cu.var, net::kUnboundedClockAttribute,
+                     design.save(cu.member + " of timer '" + cu.path + "'"),
+                     at);
+    cu.unbounded = true;
+  }
   if (!c)
     refuse(at, cu.member + " of timer '" + cu.path +
                    "' has no bound netlift can find (it bounds the timer's "

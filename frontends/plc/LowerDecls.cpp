@@ -339,6 +339,10 @@ void Lowering::declareProgramVar(VarDecl *v) {
   }
   if (instanceBlock(t)) {
     keepPragmas(name, v->attrs);
+    sourcePaths[name] = (v->owner                ? v->owner->name + "."
+                         : v->globalList.empty() ? std::string()
+                                                 : v->globalList + ".") +
+                        v->name;
     declareInstances(name, t, v->typeSyntax ? v->typeSyntax->init : nullptr);
     return;
   }
@@ -410,6 +414,9 @@ void Lowering::declareProgramVar(VarDecl *v) {
   }
   NExpr *init =
       initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr, t);
+  if (v->owner)
+    if (NExpr *p = instancePathValue(v, v->owner->name))
+      init = p;
   if (isOutput) {
     const net::Type *nt = netType(t, v->loc, "output " + v->name);
     uint32_t p = t->kind == PTypeKind::Bool
@@ -450,6 +457,7 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
     if (m->section == VarSection::InOut)
       continue; // an alias of the caller's variable (or instance) per call
     if (instanceBlock(m->type)) {
+      sourcePaths[name] = sourcePaths[path] + "." + m->name;
       declareInstances(name, m->type, mi);
       continue;
     }
@@ -480,8 +488,10 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       declareTemp(name, m->type, m->loc, nullptr, true);
       continue;
     }
-    b.addVar(name, netType(m->type, m->loc, "member " + m->name),
-             initialValue(m, mi, m->type), m->loc);
+    NExpr *init = initialValue(m, mi, m->type);
+    if (NExpr *p = instancePathValue(m, sourcePaths[path]))
+      init = p;
+    b.addVar(name, netType(m->type, m->loc, "member " + m->name), init, m->loc);
     instanceMembers.push_back(name);
     if (m->sharedOutside) {
       // An HMI_<T> member: the web HMI may write it between scans.
@@ -585,4 +595,29 @@ uint32_t Lowering::declareTemp(const std::string &name, const PType *t,
   if (resetNames.insert(name).second && reset)
     resets.push_back({name, reset});
   return x;
+}
+
+NExpr *Lowering::instancePathValue(VarDecl *v, const std::string &source) {
+  bool wanted = false;
+  for (const Attribute &a : v->attrs)
+    wanted |= StringRef(a.text).contains_insensitive("'instance-path'");
+  const PType *t = v->type ? baseOf(v->type) : nullptr;
+  if (!wanted || !t || !t->isString())
+    return nullptr;
+  // The device tree's path, as TwinCAT gives it: the project, then the
+  // program and the instances down to this one, cut to the string's length.
+  std::string root = unit.projectName.empty() ? "PLC" : unit.projectName;
+  std::string text = root + "." + source;
+  if (text.size() > t->strLen)
+    text.resize(t->strLen);
+  if (instancePathsNoted.insert(v).second)
+    diag.note(v->loc, "'" + v->name + "' holds its instance's path, as '" +
+                          text + "'" +
+                          (unit.projectName.empty()
+                               ? " (the project's name is not known without "
+                                 "a .plcproj: 'PLC' stands for it)"
+                               : ""));
+  std::u16string chars(text.begin(), text.end());
+  return b.stringLit(llvm::ArrayRef<char16_t>(chars.data(), chars.size()),
+                     v->loc);
 }

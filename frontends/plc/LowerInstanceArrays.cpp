@@ -68,8 +68,12 @@ void Lowering::declareInstances(const std::string &path, const PType *t,
     return;
   }
   forEachIndex(t, [&](llvm::ArrayRef<int64_t> index) {
-    declareInstances(elementPath(path, index), t->elem,
-                     elementInitializer(init, t, index));
+    std::string element = elementPath(path, index);
+    std::string source = sourcePaths[path] + "[";
+    for (size_t d = 0; d < index.size(); ++d)
+      source += (d ? "," : "") + std::to_string(index[d]);
+    sourcePaths[element] = source + "]";
+    declareInstances(element, t->elem, elementInitializer(init, t, index));
   });
 }
 

@@ -23,6 +23,8 @@
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
 
+#include "ir/net/Walk.h"
+
 using namespace netlift;
 using namespace netlift::plc;
 using namespace netlift::plc::detail;
@@ -112,69 +114,45 @@ int64_t Lowering::ticks(int64_t ns, SMLoc at) {
 // Modules
 //===----------------------------------------------------------------------===//
 
-static void readNames(NExpr *e, llvm::StringSet<> &out) {
-  if (!e)
-    return;
-  switch (e->getKind()) {
-  case net::ExprKind::Ref:
-    out.insert(llvm::cast<net::Ref>(e)->name);
-    return;
-  case net::ExprKind::Index: {
-    auto *x = llvm::cast<net::IndexExpr>(e);
-    readNames(x->base, out);
-    readNames(x->index, out);
-    return;
-  }
-  case net::ExprKind::Field:
-    readNames(llvm::cast<net::FieldExpr>(e)->base, out);
-    return;
-  case net::ExprKind::Unary:
-    readNames(llvm::cast<net::UnaryExpr>(e)->operand, out);
-    return;
-  case net::ExprKind::Binary:
-    readNames(llvm::cast<net::BinaryExpr>(e)->lhs, out);
-    readNames(llvm::cast<net::BinaryExpr>(e)->rhs, out);
-    return;
-  case net::ExprKind::Cond: {
-    auto *c = llvm::cast<net::CondExpr>(e);
-    readNames(c->cond, out);
-    readNames(c->thenExpr, out);
-    readNames(c->elseExpr, out);
-    return;
-  }
-  case net::ExprKind::Call:
-    for (NExpr *a : llvm::cast<net::CallExpr>(e)->args)
-      readNames(a, out);
-    return;
-  default:
-    return;
-  }
+/// Every name `body` reads: what it evaluates anywhere (conditions, loop
+/// bounds and conditions, values, indices), and the variables of targets
+/// written in part (`x.f := v`, `a[i] := v` keep the rest of x and a).
+static void readNames(net::Block body, llvm::StringSet<> &out) {
+  auto names = [&](const NExpr *e) {
+    net::walkExpr(e, [&](const NExpr *x) {
+      if (auto *r = llvm::dyn_cast<net::Ref>(x))
+        out.insert(r->name);
+    });
+  };
+  net::forEachRead(body, names);
+  net::forEachAssign(body, [&](const net::AssignStmt *a) {
+    if (!llvm::isa<net::Ref>(a->target))
+      names(a->target);
+  });
 }
 
-static void readNames(llvm::ArrayRef<NStmt *> body, llvm::StringSet<> &out) {
-  for (NStmt *s : body) {
-    if (auto *a = llvm::dyn_cast<net::AssignStmt>(s)) {
-      readNames(a->value, out);
-      if (!llvm::isa<net::Ref>(a->target))
-        readNames(a->target, out);
-    } else if (auto *i = llvm::dyn_cast<net::IfStmt>(s)) {
-      for (const net::IfArm &arm : i->arms) {
-        readNames(arm.cond, out);
-        readNames(arm.body, out);
-      }
-      readNames(i->elseBody, out);
-    } else if (auto *c = llvm::dyn_cast<net::CaseStmt>(s)) {
-      readNames(c->selector, out);
-      for (const net::CaseArm &arm : c->arms)
-        readNames(arm.body, out);
-      readNames(c->elseBody, out);
-    } else if (auto *f = llvm::dyn_cast<net::ForStmt>(s)) {
-      readNames(f->body, out);
-    }
-  }
+std::vector<VarDecl *>
+Lowering::inDeclarationOrder(const std::set<VarDecl *> &globals) {
+  // Not by address (a set of pointers): the output must not depend on
+  // where the allocator put each declaration.
+  std::map<const VarDecl *, size_t> position;
+  for (VarDecl *g : unit.globals)
+    position.emplace(g, position.size());
+  for (Configuration *c : unit.configs)
+    for (VarDecl *g : c->globals)
+      position.emplace(g, position.size());
+  auto key = [&](const VarDecl *g) {
+    auto it = position.find(g);
+    return std::make_pair(it == position.end() ? SIZE_MAX : it->second,
+                          g->name);
+  };
+  std::vector<VarDecl *> ordered(globals.begin(), globals.end());
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [&](VarDecl *a, VarDecl *b) { return key(a) < key(b); });
+  return ordered;
 }
 
-std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
+std::vector<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
   std::set<VarDecl *> globalsUsed;
   std::function<void(Expr *)> scanExpr = [&](Expr *e) {
     if (!e)
@@ -228,7 +206,7 @@ std::set<VarDecl *> Lowering::globalsUsedBy(Pou *program) {
   if (auto it = argumentsOf.find(program); it != argumentsOf.end())
     for (CallArg &a : it->second->args)
       globalsUsed.insert(a.value->var);
-  return globalsUsed;
+  return inDeclarationOrder(globalsUsed);
 }
 
 void Lowering::startModule(const std::string &name, SMLoc loc) {
@@ -395,11 +373,7 @@ Sink Lowering::globalInitCalls(std::vector<ProgramRun> &runs) {
   for (ProgramRun &run : runs)
     for (VarDecl *g : globalsUsedBy(run.pou))
       globals.insert(g);
-  // In declaration order (the set is ordered by address).
-  std::vector<VarDecl *> ordered(globals.begin(), globals.end());
-  std::stable_sort(ordered.begin(), ordered.end(), [](VarDecl *a, VarDecl *b) {
-    return a->loc.getPointer() < b->loc.getPointer();
-  });
+  std::vector<VarDecl *> ordered = inDeclarationOrder(globals);
   Frame none;
   none.pou = runs.front().pou;
   none.prefix = runs.front().prefix;
@@ -443,10 +417,8 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   // shares with the program outside the design).
   std::vector<VarDecl *> chosenByEnvironment(program->vars.begin(),
                                              program->vars.end());
-  // In declaration order (globalsUsedBy is ordered by address).
-  std::set<VarDecl *> used = globalsUsedBy(program);
-  for (VarDecl *g : unit.globals)
-    if (g->sharedOutside && used.count(g))
+  for (VarDecl *g : globalsUsedBy(program))
+    if (g->sharedOutside)
       chosenByEnvironment.push_back(g);
   for (VarDecl *v : chosenByEnvironment)
     if (auto it = environmentSamples.find(v); it != environmentSamples.end())

@@ -206,6 +206,7 @@ struct ClockUse {
   std::string member; // the FB input bounding it (PT)
   std::string path;   // the instance path
   int64_t cap = 0;
+  bool unbounded = false; // capped by its type only (kUnboundedClockAttribute)
   std::vector<std::string> timeMembers; // TIME members retyped 0..cap
 };
 
@@ -541,8 +542,9 @@ private:
     size_t membersBegin = 0, membersEnd = 0;             // its FB members
   };
   /// The globals `program` reads or writes (its body, the FBs and
-  /// functions it calls, its instance's arguments).
-  std::set<VarDecl *> globalsUsedBy(Pou *program);
+  /// functions it calls, its instance's arguments), in declaration order.
+  std::vector<VarDecl *> globalsUsedBy(Pou *program);
+  std::vector<VarDecl *> inDeclarationOrder(const std::set<VarDecl *> &globals);
   /// While one program's declarations or body are lowered: its names'
   /// prefix is in force and end-of-scan resets go to it.
   struct InProgram {
@@ -586,6 +588,14 @@ private:
   NExpr *expr(Expr *e, Frame &f, Sink &pre);
   NExpr *lvalue(Expr *e, Frame &f, Sink &pre);
   NExpr *varRef(VarDecl *v, Frame &f, SMLoc at);
+  /// Each instance's path as the program names it (`MAIN.suites[2].log`),
+  /// by its NetIR prefix.
+  std::map<std::string, std::string> sourcePaths;
+  /// The initial value of `v` when it is a STRING marked
+  /// `{attribute 'instance-path'}` (CODESYS, TwinCAT): the path of the
+  /// instance it belongs to, `source` under the project; else null.
+  NExpr *instancePathValue(VarDecl *v, const std::string &source);
+  std::set<VarDecl *> instancePathsNoted;
   // Arrays of function block instances (LowerInstanceArrays.cpp).
   /// The prefix of the element `index` of the instances at `path`.
   static std::string elementPath(const std::string &path,
@@ -691,6 +701,10 @@ private:
   /// on the instances of `target`.
   NExpr *inlineCall(Expr *call, Pou *fn, const MethodTarget &target, Frame &f,
                     Sink &pre);
+  /// The ANY input `v` of a call, in the call site's variable `name`: the
+  /// address, size and type class of what `a` passes.
+  void anyInput(const std::string &name, VarDecl *v, CallArg &a, Frame &f,
+                Sink &pre);
   /// `SUPER^()`: the base's body on the running instance.
   void baseBody(Expr *call, Frame &f, Sink &out);
   void atCallSite(llvm::ArrayRef<NStmt *> lowered, SMLoc at);

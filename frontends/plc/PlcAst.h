@@ -103,6 +103,13 @@ struct CallArg {
   bool negated = false;
   Expr *value = nullptr; // the input expression or the output target
   llvm::SMLoc loc;
+  /// Set by Sema for an argument of an ANY input (an __SYSTEM.AnyType):
+  /// `value` is then the address of what was passed, `anyClass` its type
+  /// class and `anySize` its size in bytes; a value that is no variable
+  /// (`anyValue`) is first stored into the caller's temporary `anyTemp`,
+  /// whose address `value` takes.
+  Expr *anyClass = nullptr, *anySize = nullptr;
+  Expr *anyValue = nullptr, *anyTemp = nullptr;
 };
 
 struct Expr {
@@ -291,6 +298,10 @@ struct VarDecl {
   /// An array of such instances declared with each element's arguments:
   /// their calls, in row-major order.
   std::vector<Expr *> elementInitCalls;
+  /// An input of a function or method of a generic type (`ANY`,
+  /// `ANY_NUM`, ...; CODESYS, TwinCAT): the generic's name; the input is
+  /// an __SYSTEM.AnyType describing what each call passes.
+  std::string anyGeneric;
   /// A global of a TwinCAT global variable list: the list's name, by
   /// which the program may qualify it (`GVL_IO.bStart`).
   std::string globalList;
@@ -551,6 +562,8 @@ public:
   /// Names defined for conditional compilation (-D, a project's compiler
   /// defines), upper-case, with their values (st/StConditionals.h).
   std::map<std::string, std::string> defines;
+  /// The PLC project read (FrontendOptions::projectName), or empty.
+  std::string projectName;
   std::vector<Pou *> pous;
   std::vector<TypeDecl *> types;
   std::vector<Configuration *> configs;

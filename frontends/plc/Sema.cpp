@@ -204,7 +204,7 @@ const PType *Checker::resolveNamed(StringRef name, SMLoc at) {
 }
 
 bool Checker::libraryNamespace(StringRef name) {
-  for (const char *lib : {"Standard", "Tc2_Standard", "Tc2_System",
+  for (const char *lib : {"Standard", "__SYSTEM", "Tc2_Standard", "Tc2_System",
                           "Tc2_Utilities", "Tc2_Math", "Tc2_MC2"})
     if (name.equals_insensitive(lib))
       return !lookupVar(name) && !unit.findType(name) && !unit.findPou(name);
@@ -489,6 +489,18 @@ void Checker::reshapeMember(Initializer *init, const PType *t) {
   }
 }
 
+std::string Checker::genericTypeName(const TypeSyntax *ts) {
+  if (!ts || ts->kind != TypeSyntaxKind::Named || unit.findType(ts->name))
+    return "";
+  for (const char *g :
+       {"ANY", "ANY_DERIVED", "ANY_ELEMENTARY", "ANY_MAGNITUDE", "ANY_NUM",
+        "ANY_REAL", "ANY_INT", "ANY_SIGNED", "ANY_UNSIGNED", "ANY_DURATION",
+        "ANY_BIT", "ANY_CHARS", "ANY_STRING", "ANY_CHAR", "ANY_DATE"})
+    if (StringRef(ts->name).equals_insensitive(g))
+      return g;
+  return "";
+}
+
 void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
   llvm::StringMap<VarDecl *> seen;
   for (size_t i = 0; i < vars.size(); ++i) {
@@ -498,6 +510,17 @@ void Checker::declareVars(std::vector<VarDecl *> &vars, Pou *owner) {
     if (!fresh) {
       error(v->loc, "'" + v->name + "' is declared twice");
       diag.note(it->second->loc, "first declared here");
+    }
+    if (std::string generic = genericTypeName(v->typeSyntax);
+        !generic.empty()) {
+      v->anyGeneric = generic;
+      if (!owner || owner->kind != PouKind::Function ||
+          v->section != VarSection::Input)
+        error(v->loc, "'" + v->name + "' is " + generic +
+                          ": a generic type is the type of an input of a "
+                          "function or method");
+      v->type = resolveNamed("AnyType", v->loc);
+      continue;
     }
     // A variable sharing its type syntax with the ones before it (`a, b :
     // INT`) shares the resolved type too.

@@ -90,6 +90,8 @@ void Checker::functionArgs(Expr *e, Pou *fn) {
         probe.type = p->type;
         assignable(t, &probe, a.loc, "output '" + p->name + "'");
       }
+    } else if (!p->anyGeneric.empty()) {
+      anyArgument(a, p);
     } else if (p->type && p->type->isReference() &&
                p->type->refKind == RefKind::Reference) {
       // `fb(r := x)` binds the REFERENCE TO input r to x.
@@ -213,8 +215,19 @@ bool Checker::orderStdArgs(Expr *e, StdFn fn) {
       return up == "IN" ? 0 : up == "N" ? 1 : -1;
     case StdFn::StringOp: {
       // LEFT(IN, L), MID(IN, L, P), INSERT(IN1, IN2, P),
-      // REPLACE(IN1, IN2, L, P), ...: L and P follow the strings.
+      // REPLACE(IN1, IN2, L, P), ...: L and P follow the strings. CODESYS
+      // and TwinCAT name them STR, STR1, STR2, SIZE (LEFT, RIGHT), LEN
+      // (MID, DELETE) and POS.
       StringRef shape = stringOperandShape(e->name);
+      std::string codesys;
+      if (up.startswith("STR"))
+        codesys = "IN" + up.drop_front(3).str();
+      else if (up == "SIZE" || up == "LEN")
+        codesys = "L";
+      else if (up == "POS")
+        codesys = "P";
+      if (!codesys.empty())
+        up = codesys;
       if (up == "L" || up == "P") {
         size_t at = shape.find(up == "L" ? 'L' : 'P');
         return at == StringRef::npos ? -1 : int(at);

@@ -70,6 +70,13 @@ private:
   /// `other` to the instance `itf` designates when its block implements
   /// `other`'s interface, to NULL otherwise.
   const PType *queryInterface(Expr *e);
+  /// `ANY`, `ANY_NUM`, ... when `ts` names a generic type (and the
+  /// program declares no type of that name), else empty.
+  std::string genericTypeName(const TypeSyntax *ts);
+  /// The argument `a` of the ANY input `p`: checked against the generic,
+  /// and made the address of its value (SemaReferences.cpp).
+  void anyArgument(CallArg &a, VarDecl *p);
+  unsigned anyTemps = 0;
   /// MEMCPY, MEMMOVE, MEMSET, MEMCMP over places of one type, a constant
   /// number of whole elements (stored in `e->intValue`).
   const PType *memoryCall(Expr *e, bool asStatement);

@@ -575,6 +575,14 @@ const PType *Checker::dateArithmetic(Op op, const PType *a, const PType *b) {
 /// (`GVL_IO.bStart`): `e` becomes the enumerator or the global.
 bool Checker::qualifiedName(Expr *e) {
   Expr *q = e->base();
+  // A library's enumeration named with its library
+  // (`__SYSTEM.TYPE_CLASS.TYPE_INT`).
+  if (q->kind == ExprKind::Field && q->base()->kind == ExprKind::Name &&
+      !lookupVar(q->base()->name) && libraryNamespace(q->base()->name))
+    if (TypeDecl *td = unit.findType(q->name); td && td->isLibrary) {
+      q->kind = ExprKind::Name;
+      q->operands.clear();
+    }
   if (q->kind != ExprKind::Name || q->ofThis || q->ofSuper ||
       lookupVar(q->name))
     return false;

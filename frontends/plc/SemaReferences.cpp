@@ -783,3 +783,144 @@ const PType *Checker::memoryCall(Expr *e, bool asStatement) {
   }
   return voidType();
 }
+
+/// The __SYSTEM.TYPE_CLASS enumerator CODESYS gives a value of type `t`.
+static const char *typeClassOf(const PType *t) {
+  switch (t->kind) {
+  case PTypeKind::Bool:
+    return "TYPE_BOOL";
+  case PTypeKind::Int: {
+    static const char *bits[] = {"TYPE_BYTE", "TYPE_WORD", "TYPE_DWORD",
+                                 "TYPE_LWORD"};
+    static const char *sig[] = {"TYPE_SINT", "TYPE_INT", "TYPE_DINT",
+                                "TYPE_LINT"};
+    static const char *uns[] = {"TYPE_USINT", "TYPE_UINT", "TYPE_UDINT",
+                                "TYPE_ULINT"};
+    if (t->isSubrange)
+      return "TYPE_SUBRANGE";
+    unsigned i = t->width <= 8    ? 0
+                 : t->width <= 16 ? 1
+                 : t->width <= 32 ? 2
+                                  : 3;
+    return t->isBits ? bits[i] : t->isSigned ? sig[i] : uns[i];
+  }
+  case PTypeKind::Real:
+    return t->width == 32 ? "TYPE_REAL" : "TYPE_LREAL";
+  case PTypeKind::String:
+    return t->width == 16 ? "TYPE_WSTRING" : "TYPE_STRING";
+  case PTypeKind::Time:
+    return t->width == 64 ? "TYPE_LTIME" : "TYPE_TIME";
+  case PTypeKind::Date:
+    switch (t->dateKind) {
+    case DateKind::Date:
+      return t->width == 64 ? "TYPE_LDATE" : "TYPE_DATE";
+    case DateKind::TimeOfDay:
+      return t->width == 64 ? "TYPE_LTIMEOFDAY" : "TYPE_TIMEOFDAY";
+    default:
+      return t->width == 64 ? "TYPE_LDATEANDTIME" : "TYPE_DATEANDTIME";
+    }
+  case PTypeKind::Enum:
+    return "TYPE_ENUM";
+  case PTypeKind::Array:
+    return "TYPE_ARRAY";
+  case PTypeKind::Reference:
+    return t->refKind == RefKind::Pointer ? "TYPE_POINTER" : "TYPE_REFERENCE";
+  default:
+    return "TYPE_USERDEF";
+  }
+}
+
+/// Does a value of type `t` belong to the generic type `generic`?
+static bool inGeneric(const PType *t, llvm::StringRef generic) {
+  bool integer = t->kind == PTypeKind::Int && !t->isBits;
+  bool real = t->kind == PTypeKind::Real;
+  bool elementary = t->kind != PTypeKind::Struct &&
+                    t->kind != PTypeKind::Array &&
+                    t->kind != PTypeKind::Reference;
+  return llvm::StringSwitch<bool>(generic)
+      .Case("ANY_ELEMENTARY", elementary)
+      .Case("ANY_MAGNITUDE", integer || real || t->kind == PTypeKind::Time)
+      .Case("ANY_NUM", integer || real)
+      .Case("ANY_REAL", real)
+      .Case("ANY_INT", integer)
+      .Case("ANY_SIGNED", integer && t->isSigned)
+      .Case("ANY_UNSIGNED", integer && !t->isSigned)
+      .Case("ANY_DURATION", t->kind == PTypeKind::Time)
+      .Case("ANY_BIT", t->isAnyBit())
+      .Cases("ANY_CHARS", "ANY_STRING", t->kind == PTypeKind::String)
+      .Case("ANY_CHAR", t->isChar())
+      .Case("ANY_DATE", t->kind == PTypeKind::Date)
+      .Default(true); // ANY, ANY_DERIVED
+}
+
+void Checker::anyArgument(CallArg &a, VarDecl *p) {
+  const PType *t = expr(a.value);
+  if (!t || t == p->type)
+    return; // reported, or an ANY input passed on whole
+  // An untyped literal takes the smallest type holding it, as CODESYS
+  // gives constants (the signed one; LREAL for a real).
+  if (t->kind == PTypeKind::AnyInt) {
+    int64_t v = 0;
+    constInt(a.value, v);
+    t = elementaryType(v >= -128 && v <= 127              ? "SINT"
+                       : v >= -32768 && v <= 32767        ? "INT"
+                       : v >= INT32_MIN && v <= INT32_MAX ? "DINT"
+                                                          : "LINT");
+  } else if (t == anyRealType()) {
+    t = elementaryType("LREAL");
+  }
+  const PType *bt = baseOf(t);
+  if (bt->kind == PTypeKind::FunctionBlock || bt->kind == PTypeKind::Void ||
+      !inGeneric(bt, p->anyGeneric)) {
+    error(a.value->loc, "'" + p->name + "' is " + p->anyGeneric +
+                            ": it cannot take a " + t->str());
+    return;
+  }
+  std::string why;
+  auto layout = memoryLayout(t, why);
+  if (!layout) {
+    error(a.value->loc, "'" + p->name + "' is " + p->anyGeneric +
+                            ": netlift does not know the bytes of a " +
+                            t->str() + " (" + why + ")");
+    return;
+  }
+  // Its address: of the variable passed, or of a temporary of the caller's
+  // holding the value (a constant, an expression).
+  Expr *place = a.value;
+  bool constant = false;
+  for (Expr *x = place; x && x->kind != ExprKind::Deref; x = x->base())
+    constant |= x->kind == ExprKind::Name && x->var && x->var->constant;
+  if (!designatesStorage(place) || constant) {
+    VarDecl *tmp = unit.make<VarDecl>();
+    tmp->name = "__any" + std::to_string(++anyTemps);
+    tmp->loc = a.loc;
+    tmp->section = VarSection::Temp;
+    tmp->owner = current;
+    tmp->type = t;
+    current->vars.push_back(tmp);
+    Expr *n = unit.make<Expr>(ExprKind::Name, a.loc);
+    n->name = tmp->name;
+    n->var = tmp;
+    n->type = t;
+    a.anyValue = a.value;
+    a.anyTemp = n;
+    place = n;
+  }
+  Expr *adr = addressCall(place);
+  adr->name = "ADR";
+  PType *bytePointer = make(PTypeKind::Reference);
+  bytePointer->refKind = RefKind::Pointer;
+  bytePointer->elem = elementaryType("BYTE");
+  if (!expr(adr) ||
+      !assignable(bytePointer, adr, a.loc, "ANY input '" + p->name + "'"))
+    return;
+  a.value = adr;
+  a.anyClass = unit.make<Expr>(ExprKind::EnumLit, a.loc);
+  a.anyClass->typeName = "TYPE_CLASS";
+  a.anyClass->name = typeClassOf(bt);
+  a.anySize = unit.make<Expr>(ExprKind::IntLit, a.loc);
+  a.anySize->typeName = "DINT";
+  a.anySize->intValue = layout->size;
+  expr(a.anyClass);
+  expr(a.anySize);
+}

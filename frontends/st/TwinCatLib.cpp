@@ -31,6 +31,16 @@ VAR_GLOBAL CONSTANT
 END_VAR
 
 TYPE
+  (* Every TwinCAT library holds a global of this type (its Global_Version
+     list, stLibVersion_<library>); Tc2_System declares it. *)
+  ST_LibVersion : STRUCT
+    iMajor : UINT;
+    iMinor : UINT;
+    iBuild : UINT;
+    iRevision : UINT;
+    nFlags : DWORD;
+    sVersion : STRING(23);
+  END_STRUCT;
   T_AmsNetId : STRING(23);
   T_AmsPort : UINT;
   T_MaxString : STRING(255);
@@ -93,6 +103,25 @@ FUNCTION_BLOCK FB_FileWrite
     bExecute : BOOL; tTimeout : TIME;
   END_VAR
   VAR_OUTPUT bBusy, bError : BOOL; nErrId, cbWrite : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FilePuts
+  VAR_INPUT
+    sNetId : T_AmsNetId; hFile : UINT; sLine : T_MaxString;
+    bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
+FUNCTION_BLOCK FB_FileGets
+  VAR_INPUT
+    sNetId : T_AmsNetId; hFile : UINT; bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT
+    bBusy, bError : BOOL; nErrId : UDINT; sLine : T_MaxString; bEOF : BOOL;
+  END_VAR
 END_FUNCTION_BLOCK
 
 {netlift environment 'accesses the file system'}

@@ -273,6 +273,13 @@ struct Connection {
 /// inputs (reach, check, sr, mealy) refuse such an input at its
 /// declaration and ask for one.
 inline constexpr llvm::StringLiteral kNeedsRangeAttribute = "needs_range";
+/// `attr t.CLOCK unbounded_clock = "PT of timer 't'";`: a timer's clock
+/// whose preset has no bound but its type's (a PLC timer's PT from an
+/// input without a range): translating is exact, but counting to that cap
+/// tick by tick cannot be explored; the exploring commands refuse it
+/// unless timers are abstracted (--timers=abstract).
+inline constexpr llvm::StringLiteral kUnboundedClockAttribute =
+    "unbounded_clock";
 
 struct Attribute {
   /// An entity or instance of the module, a scope of its qualified names
