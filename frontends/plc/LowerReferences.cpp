@@ -40,9 +40,15 @@ static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
   };
   forEachStmt(
       l, [](Stmt *) {}, walk);
-  for (VarDecl *v : vars)
+  for (VarDecl *v : vars) {
     if (v->typeSyntax)
       forEachInitialValue(v->typeSyntax->init, walk);
+    // The FB_init calls of an instance's declaration (`a : FB(ADR(x))`).
+    for (Expr *init : v->elementInitCalls)
+      walk(init);
+    if (v->initCall)
+      walk(v->initCall);
+  }
 }
 
 /// The same over every POU and global of `unit`.

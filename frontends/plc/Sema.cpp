@@ -882,7 +882,9 @@ void Checker::hmiVariable(VarDecl *v, Pou *owner) {
 
 void Checker::checkPou(Pou *p) {
   current = p;
-  for (VarDecl *v : p->vars) {
+  // By index: an initial value's call may add a temporary (anyArgument).
+  for (size_t i = 0; i < p->vars.size(); ++i) {
+    VarDecl *v = p->vars[i];
     if (v->section == VarSection::External) {
       bool found = false;
       for (VarDecl *g : allGlobals)

@@ -891,13 +891,19 @@ void Checker::anyArgument(CallArg &a, VarDecl *p) {
   for (Expr *x = place; x && x->kind != ExprKind::Deref; x = x->base())
     constant |= x->kind == ExprKind::Name && x->var && x->var->constant;
   if (!designatesStorage(place) || constant) {
+    if (!current) {
+      error(a.value->loc, "'" + p->name + "' is " + p->anyGeneric +
+                              ": outside a POU it takes a variable, not a "
+                              "value");
+      return;
+    }
     VarDecl *tmp = unit.make<VarDecl>();
     tmp->name = "__any" + std::to_string(++anyTemps);
     tmp->loc = a.loc;
     tmp->section = VarSection::Temp;
     tmp->owner = current;
     tmp->type = t;
-    current->vars.push_back(tmp);
+    current->vars.push_back(tmp); // (checkPou walks them by index)
     Expr *n = unit.make<Expr>(ExprKind::Name, a.loc);
     n->name = tmp->name;
     n->var = tmp;

@@ -28,6 +28,7 @@ using namespace netlift;
 static const char kTwinCatLibrary[] = R"ST(
 VAR_GLOBAL CONSTANT
   PI : LREAL := 3.14159265358979323846;
+  MAX_STRING_LENGTH : UDINT := 255;
 END_VAR
 
 TYPE
