@@ -374,8 +374,9 @@ std::optional<int64_t> Lowering::upperBound(Expr *e, Frame &f,
     return r;
   }
   // An element of an array (`PT := presets[i]`): the largest of its
-  // elements' initial values (0, a default one's) and of what is assigned
-  // to its elements.
+  // elements' initial values (0, a default one's) and of the values the
+  // array is assigned whole. One whose elements are written one by one is
+  // in writtenOtherwise: no bound here (its type's, noteClockBound).
   if (e->kind == ExprKind::Index) {
     Expr *root = e;
     while (root->kind == ExprKind::Index)
