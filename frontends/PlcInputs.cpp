@@ -225,6 +225,19 @@ static bool twinCatTask(pugi::xml_node task, plc::Unit &unit, At at,
     interval->intValue = us * 1000;
     t.interval = interval;
   }
+  // Read by the runtime's record of its tasks (_TaskInfo[i].Priority).
+  if (pugi::xml_node priority = task.child("Priority")) {
+    int64_t value = 0;
+    if (StringRef(priority.text().get()).trim().getAsInteger(10, value) ||
+        value < 0) {
+      diag.error(at(priority.offset_debug()),
+                 "a task's <Priority> is a number, 0 or more");
+      return false;
+    }
+    t.priority = unit.make<plc::Expr>(plc::ExprKind::IntLit,
+                                      at(priority.offset_debug()));
+    t.priority->intValue = value;
+  }
   cfg->tasks.push_back(t);
   for (pugi::xml_node call : task.children("PouCall")) {
     plc::ProgramInstance pi;

@@ -525,7 +525,17 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
                        : ": modelled as environment, its outputs " + outputs +
                              " are free inputs of the model"));
   }
+  // The memory the block writes, first: outputs are copied after the call.
+  for (CallArg &a : call->args)
+    if (!a.isOutput && llvm::any_of(fb->writesThrough, [&](auto &n) {
+          return sameName(n, a.name);
+        }))
+      writeThrough(a, fb, path, f, out);
   for (CallArg &a : call->args) {
+    if (!a.isOutput && llvm::any_of(fb->writesThrough, [&](auto &n) {
+          return sameName(n, a.name);
+        }))
+      continue;
     if (a.isOutput) {
       NExpr *v =
           environmentValueOr(b.ref(path + "." + sanitize(a.name), a.loc), out);
@@ -536,6 +546,53 @@ void Lowering::environmentCall(Expr *call, Pou *fb, const std::string &path,
     }
     runArgumentCalls(a.value, f, out);
   }
+}
+
+void Lowering::writeThrough(CallArg &a, Pou *fb, const std::string &path,
+                            Frame &f, Sink &out) {
+  std::string block = "'" + path + "' (" + fb->name + ")";
+  Expr *v = a.value;
+  auto refuseHere = [&](const std::string &why) {
+    refuse(v->loc, block + " " + fb->environment + " and writes the memory " +
+                       a.name + " designates: " + why);
+  };
+  if (v->kind != ExprKind::Call || !sameName(v->name, "ADR") ||
+      v->args.size() != 1)
+    refuseHere("netlift models it given ADR(variable) in the call");
+  // The variable written: whole, whatever part the address is of (the
+  // length may run past it into the rest of the variable).
+  Expr *root = v->args[0].value;
+  while (root->base() &&
+         (root->kind == ExprKind::Field || root->kind == ExprKind::Index ||
+          root->kind == ExprKind::BitAccess))
+    root = root->base();
+  if (root->kind != ExprKind::Name || !root->var || !root->var->type)
+    refuseHere("netlift models it given ADR(variable) in the call, not the "
+               "address of what a reference designates");
+  Sink none;
+  auto *place = llvm::dyn_cast<net::Ref>(lvalue(root, f, none));
+  if (!place || !none.empty())
+    refuseHere("'" + root->name +
+               "' is the caller's; netlift models a variable of this POU");
+  std::string stem = path + "_" + a.name;
+  std::replace(stem.begin(), stem.end(), '.', '_');
+  ChosenScalars chosen = chooseScalars(
+      place->name.str(), sanitize(stem), root->var->type,
+      "what " + a.name + " of " + block + " designates", root->name, v->loc);
+  for (NStmt *s : samplesOf(chosen))
+    out.push_back(s);
+  std::string ports =
+      chosen.scalars.empty()
+          ? std::string("none")
+          : "'" + chosen.scalars.front().port + "'" +
+                (chosen.scalars.size() > 1
+                     ? " to '" + chosen.scalars.back().port + "'"
+                     : "");
+  diag.note(v->loc, block + " " + fb->environment + ": the runtime writes '" +
+                        root->name + "' through " + a.name +
+                        ", modelled as any value at every call (the whole "
+                        "variable, whatever length is given); free inputs " +
+                        ports);
 }
 
 void Lowering::runArgumentCalls(Expr *value, Frame &f, Sink &out) {

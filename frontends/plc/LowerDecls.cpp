@@ -337,6 +337,10 @@ void Lowering::declareProgramVar(VarDecl *v) {
     declareEnvironmentValue(v, name);
     return;
   }
+  if (!v->runtimeRecord.empty()) {
+    declareRuntimeRecord(v, name);
+    return;
+  }
   if (instanceBlock(t)) {
     keepPragmas(name, v->attrs);
     sourcePaths[name] = (v->owner                ? v->owner->name + "."
@@ -534,16 +538,8 @@ void Lowering::declareEnvironment(const std::string &path, Pou *fb) {
       // Updated by the environment whether or not the program calls the
       // block: a scalar of it read is its free input, read there; a part
       // read whole is chosen where it is read (environmentRead).
-      for (const ChosenScalars::Scalar &c : chosen.scalars) {
-        std::string key = name;
-        for (auto &[field, index] : c.path)
-          key +=
-              field.empty() ? "[" + std::to_string(index) + "]" : "." + field;
-        environmentScalarPorts[key] = c.port;
-      }
-      environmentValues.push_back(chosen);
-      environmentOwners[name] =
-          "'" + path + "' (" + fb->name + ") " + fb->environment;
+      addEnvironmentValue(chosen, "'" + path + "' (" + fb->name + ") " +
+                                      fb->environment);
       sampled += (sampled.empty() ? "" : ", ") + m->name;
       continue;
     }

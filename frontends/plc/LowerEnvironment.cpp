@@ -43,10 +43,10 @@ void Lowering::addFreeInputPort(const std::string &port, const PType *t,
   b.addPort(port, net::PortKind::Data, net::PortDir::In, nt, at);
 }
 
-Lowering::ChosenScalars
-Lowering::chooseScalars(const std::string &name, const std::string &portStem,
-                        const PType *t, const std::string &what,
-                        const std::string &shown, SMLoc at) {
+Lowering::ChosenScalars Lowering::chooseScalars(
+    const std::string &name, const std::string &portStem, const PType *t,
+    const std::string &what, const std::string &shown, SMLoc at,
+    const std::vector<std::string> *onlyFields, bool portsWhenRead) {
   // The scalars, each with the selectors that reach it from the variable
   // and the suffix its port is named by (`buf_0`, `s_a`, `m_1_m2`).
   struct Selector {
@@ -103,6 +103,14 @@ Lowering::chooseScalars(const std::string &name, const std::string &portStem,
   };
   Scalar whole;
   collect(t, whole);
+  if (onlyFields)
+    llvm::erase_if(scalars, [&](const Scalar &sc) {
+      return llvm::none_of(sc.path, [&](const Selector &step) {
+        return llvm::any_of(*onlyFields, [&](const std::string &f) {
+          return !step.field.empty() && sameName(step.field, sanitize(f));
+        });
+      });
+    });
 
   // A port name no declaration of the POU uses.
   auto freeName = [&](std::string n) {
@@ -119,7 +127,10 @@ Lowering::chooseScalars(const std::string &name, const std::string &portStem,
   for (Scalar &sc : scalars) {
     ChosenScalars::Scalar c;
     c.port = freeName(portStem + sc.suffix);
-    addFreeInputPort(c.port, sc.type, shown + sc.suffix, at);
+    if (portsWhenRead)
+      portsDeclaredWhenRead[c.port] = {sc.type, shown + sc.suffix};
+    else
+      addFreeInputPort(c.port, sc.type, shown + sc.suffix, at);
     for (Selector &step : sc.path)
       c.path.push_back({step.field, step.index});
     c.type = sc.type;
@@ -187,6 +198,114 @@ void Lowering::declareEnvironmentValue(VarDecl *v, const std::string &name) {
     environmentResets[v] = defaultsOf(chosen);
 }
 
+NExpr *Lowering::freeInputRead(const std::string &port, SMLoc at) {
+  if (auto it = portsDeclaredWhenRead.find(port);
+      it != portsDeclaredWhenRead.end() &&
+      mod->lookup(port).kind == net::SymKind::None)
+    addFreeInputPort(port, it->second.first, it->second.second, at);
+  return b.ref(port, at);
+}
+
+void Lowering::addEnvironmentValue(const ChosenScalars &chosen,
+                                   const std::string &owner) {
+  for (const ChosenScalars::Scalar &c : chosen.scalars) {
+    std::string key = chosen.name;
+    for (auto &[field, index] : c.path)
+      key += field.empty() ? "[" + std::to_string(index) + "]" : "." + field;
+    environmentScalarPorts[key] = c.port;
+  }
+  environmentValues.push_back(chosen);
+  environmentOwners[chosen.name] = owner;
+}
+
+void Lowering::declareRuntimeRecord(VarDecl *v, const std::string &name) {
+  const PType *t = v->type;
+  // What the project states is its initial value, back at the end of
+  // every scan: the runtime writes the record before the next.
+  declareTemp(name, t, v->loc,
+              initialValue(v, v->typeSyntax ? v->typeSyntax->init : nullptr, t),
+              true);
+  std::string what = "'" + v->name + "' " + v->runtimeRecord;
+  // Ports only for what the program reads: a record has many fields.
+  ChosenScalars chosen = chooseScalars(name, name, t, what, v->name, v->loc,
+                                       &v->runtimeFree, true);
+  addEnvironmentValue(chosen, what);
+  std::vector<NStmt *> &samples = environmentSamples[v];
+  const PType *record = baseOf(t);
+  if (!v->runtimeFirst.empty()) {
+    // TRUE in the first scan only.
+    std::string flag = unique("_first_scan");
+    b.addVar(flag, design.types.getBool(), b.boolLit(true, v->loc), v->loc);
+    if (resetNames.insert(flag).second)
+      resets.push_back({flag, b.boolLit(false, v->loc)});
+    auto setFirst = [&](NExpr *element) {
+      samples.push_back(b.assign(b.field(element, v->runtimeFirst, v->loc),
+                                 b.ref(flag, v->loc), v->loc));
+    };
+    if (record->kind == PTypeKind::Array) {
+      forEachIndex(record, [&](llvm::ArrayRef<int64_t> index) {
+        NExpr *x = b.ref(name, v->loc);
+        for (int64_t i : index)
+          x = b.index(x, b.intLit(i, v->loc), v->loc);
+        setFirst(x);
+      });
+      record = baseOf(record->elem);
+    } else {
+      setFirst(b.ref(name, v->loc));
+    }
+  } else if (record->kind == PTypeKind::Array) {
+    record = baseOf(record->elem);
+  }
+  // Said where the program first reads it (environmentRead).
+  std::string known, free;
+  for (VarDecl *f : record->fields) {
+    bool isFree = llvm::any_of(v->runtimeFree, [&](const std::string &n) {
+      return sameName(n, f->name);
+    });
+    if (isFree || !sameName(f->name, v->runtimeFirst)) {
+      std::string &list = isFree ? free : known;
+      list += (list.empty() ? "" : ", ") + f->name;
+    }
+  }
+  runtimeRecordNotes[name] =
+      what + ": modelled as environment" +
+      (known.empty() ? "" : "; the project gives " + known) +
+      (v->runtimeFirst.empty()
+           ? ""
+           : "; " + v->runtimeFirst + " is TRUE in the first scan only") +
+      (free.empty() ? "" : "; free inputs read where read: " + free);
+}
+
+NExpr *Lowering::taskIndex(Expr *call) {
+  // FB_init runs when the application starts, outside any task.
+  if (loweringInitCalls)
+    return b.intLit(0, call->loc);
+  size_t tasks = 0;
+  for (Configuration *c : unit.configs)
+    if (c->name == "TwinCAT")
+      tasks += c->tasks.size();
+  if (tasks <= 1)
+    return b.intLit(1, call->loc);
+  // The runtime numbers the tasks; the project does not say how.
+  std::string port = "_task_index";
+  if (mod->lookup(port).kind == net::SymKind::None) {
+    PType *index = unit.make<PType>(*elementaryType("DINT"));
+    index->isSubrange = true;
+    index->base = elementaryType("DINT");
+    index->lo = 1;
+    index->hi = int64_t(tasks);
+    index->name = "DINT(1.." + std::to_string(tasks) + ")";
+    addFreeInputPort(port, index, "GETCURTASKINDEXEX()", call->loc);
+    diag.note(call->loc, "GETCURTASKINDEXEX() is the index the runtime gives "
+                         "the task that runs the program; the project has " +
+                             std::to_string(tasks) +
+                             " tasks and does not say which it is: the free "
+                             "input '" +
+                             port + "'");
+  }
+  return b.ref(port, call->loc);
+}
+
 bool Lowering::isEnvironmentValue(VarDecl *v) const {
   if (!v->owner || !runAsProgram(v->owner) || !v->type)
     return false;
@@ -231,6 +350,8 @@ NExpr *Lowering::environmentFunction(Expr *call, Frame &f, Sink &pre) {
       refuse(call->loc, "'" + fn->name + "' " + fn->environment +
                             ": an environment function with outputs is not "
                             "modelled");
+  if (fn->isLibrary && sameName(fn->name, "GETCURTASKINDEXEX"))
+    return taskIndex(call);
   for (CallArg &a : call->args)
     runArgumentCalls(a.value, f, pre);
   // Called as a statement (ADSLOGSTR(...);): its result is not read.
@@ -319,18 +440,84 @@ NExpr *Lowering::environmentRead(NExpr *place, Sink &pre) {
   }
   if (!owner)
     return nullptr;
-  if (opts.opaqueRefused)
-    refuse(place->loc, environmentOwners[owner->name] +
-                           ", which netlift does not model (--opaque=refuse; "
-                           "the default models it as environment)");
+  // Refused where a free scalar is read (a runtime record's known field
+  // is the model's own).
+  auto refuseIfOpaque = [&] {
+    if (opts.opaqueRefused)
+      refuse(place->loc, environmentOwners[owner->name] +
+                             ", which netlift does not model "
+                             "(--opaque=refuse; the default models it as "
+                             "environment)");
+  };
+  if (auto it = runtimeRecordNotes.find(owner->name);
+      it != runtimeRecordNotes.end() && !it->second.empty())
+    diag.note(place->loc, std::exchange(it->second, ""));
   // A scalar: its free input. Read whole, or at a run-time index: chosen
   // here.
   if (k)
     if (auto it = environmentScalarPorts.find(*k);
-        it != environmentScalarPorts.end())
-      return b.ref(it->second, place->loc);
-  for (NStmt *s : samplesOf(*owner))
-    pre.push_back(s);
+        it != environmentScalarPorts.end()) {
+      refuseIfOpaque();
+      return freeInputRead(it->second, place->loc);
+    }
+  // A part that holds no free scalar (a runtime record's known field):
+  // the variable's own.
+  auto holdsFree = [&](const std::string &key) {
+    for (auto it = environmentScalarPorts.lower_bound(key);
+         it != environmentScalarPorts.end() &&
+         StringRef(it->first).startswith(key);
+         ++it)
+      if (it->first.size() == key.size() || it->first[key.size()] == '.' ||
+          it->first[key.size()] == '[')
+        return true;
+    return false;
+  };
+  if (k && !holdsFree(*k))
+    return place;
+  // The selectors below the value: a scalar is chosen only where the place
+  // may lie over it (a run-time index over any element).
+  struct Step {
+    std::string field;            // else an index
+    std::optional<int64_t> index; // none: chosen at run time
+  };
+  std::vector<Step> steps;
+  std::string rootName;
+  for (NExpr *x = place;;) {
+    if (auto *fx = llvm::dyn_cast<net::FieldExpr>(x)) {
+      steps.insert(steps.begin(), {fx->field.str(), std::nullopt});
+      x = fx->base;
+    } else if (auto *ix = llvm::dyn_cast<net::IndexExpr>(x)) {
+      auto *lit = llvm::dyn_cast<net::IntLit>(ix->index);
+      steps.insert(steps.begin(), {"", lit ? std::optional<int64_t>(lit->value)
+                                           : std::nullopt});
+      x = ix->base;
+    } else {
+      rootName = llvm::cast<net::Ref>(x)->name.str();
+      break;
+    }
+  }
+  // Selectors spelled into the owner's name (an instance's member) are
+  // not the value's.
+  while (rootName.size() < owner->name.size() && !steps.empty() &&
+         !steps.front().field.empty()) {
+    rootName += "." + steps.front().field;
+    steps.erase(steps.begin());
+  }
+  for (const ChosenScalars::Scalar &sc : owner->scalars) {
+    bool under = true;
+    for (size_t i = 0; i < steps.size() && i < sc.path.size() && under; ++i) {
+      const auto &[field, index] = sc.path[i];
+      under =
+          steps[i].field.empty()
+              ? field.empty() && (!steps[i].index || *steps[i].index == index)
+              : sameName(field, steps[i].field);
+    }
+    if (!under)
+      continue;
+    refuseIfOpaque();
+    pre.push_back(b.assign(scalarOf(*owner, sc),
+                           freeInputRead(sc.port, place->loc), owner->at));
+  }
   return place;
 }
 

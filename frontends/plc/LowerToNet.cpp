@@ -344,7 +344,9 @@ void Lowering::initCallsOf(VarDecl *v, const PType *type,
     target.selfType = fb;
     target.prefixes.push_back(path + ".");
     target.tests.push_back(nullptr);
+    bool wasInit = std::exchange(loweringInitCalls, true);
     inlineCall(call, impl, target, in, calls);
+    loweringInitCalls = wasInit;
   }
 }
 
@@ -418,7 +420,7 @@ void Lowering::lowerProgramBody(ProgramRun &run) {
   std::vector<VarDecl *> chosenByEnvironment(program->vars.begin(),
                                              program->vars.end());
   for (VarDecl *g : globalsUsedBy(program))
-    if (g->sharedOutside)
+    if (g->sharedOutside || !g->runtimeRecord.empty())
       chosenByEnvironment.push_back(g);
   for (VarDecl *v : chosenByEnvironment)
     if (auto it = environmentSamples.find(v); it != environmentSamples.end())

@@ -276,10 +276,31 @@ private:
   /// The scalar `c` of the chosen value.
   NExpr *scalarOf(const ChosenScalars &chosen, const ChosenScalars::Scalar &c);
   std::vector<NStmt *> defaultsOf(const ChosenScalars &c);
-  ChosenScalars chooseScalars(const std::string &name,
-                              const std::string &portStem, const PType *t,
-                              const std::string &what, const std::string &shown,
-                              SMLoc at);
+  /// `onlyFields`, when given, keeps the scalars under those fields of a
+  /// structure (at any depth) and chooses no other; with `portsWhenRead`
+  /// a port is declared where it is first read (freeInputRead).
+  ChosenScalars
+  chooseScalars(const std::string &name, const std::string &portStem,
+                const PType *t, const std::string &what,
+                const std::string &shown, SMLoc at,
+                const std::vector<std::string> *onlyFields = nullptr,
+                bool portsWhenRead = false);
+  /// Ports chooseScalars named but declares only when first read: their
+  /// types and what messages call them.
+  std::map<std::string, std::pair<const PType *, std::string>>
+      portsDeclaredWhenRead;
+  /// A read of free input `port`, declared here if it is not yet.
+  NExpr *freeInputRead(const std::string &port, SMLoc at);
+  /// A record the runtime writes before every scan (VarDecl::runtimeRecord,
+  /// TwinCAT's `_TaskInfo`): a variable of the scan holding what the
+  /// project states, its other fields environment values read where read,
+  /// its first-cycle flag set at the start of each scan.
+  void declareRuntimeRecord(VarDecl *v, const std::string &name);
+  /// GETCURTASKINDEXEX(): 0 in FB_init, else the task's index (1 with one
+  /// task; with several, a free input over them).
+  NExpr *taskIndex(Expr *call);
+  /// Set while FB_init calls are lowered (they run outside any task).
+  bool loweringInitCalls = false;
   /// A free input port for a value of type `t` (`shown` names it in
   /// messages and in the range an exploration asks for).
   void addFreeInputPort(const std::string &port, const PType *t,
@@ -318,6 +339,11 @@ private:
   /// An argument of an environment block or function is not stored, but
   /// the calls computing it run.
   void runArgumentCalls(Expr *value, Frame &f, Sink &out);
+  /// `a` gives an address an environment block writes the program's memory
+  /// through (Pou::writesThrough): the variable it designates takes free
+  /// values (appended to `out`).
+  void writeThrough(CallArg &a, Pou *fb, const std::string &path, Frame &f,
+                    Sink &out);
   /// A call of a function marked `{netlift environment '...'}`: its result
   /// a free input (LowerEnvironment.cpp).
   NExpr *environmentFunction(Expr *call, Frame &f, Sink &pre);
@@ -892,6 +918,12 @@ private:
   std::vector<ChosenScalars> environmentValues;
   /// Each one's block, as notes name it.
   std::map<std::string, std::string> environmentOwners;
+  /// What a runtime record's first read notes (emptied once said).
+  std::map<std::string, std::string> runtimeRecordNotes;
+  /// Registers `chosen` as an environment value (its scalars read where
+  /// read); `owner` names it in refusals.
+  void addEnvironmentValue(const ChosenScalars &chosen,
+                           const std::string &owner);
   /// `place` read: a scalar of an environment block's structured output
   /// is its free input; a part of one read whole is chosen first (into
   /// `pre`). Null when `place` is none of these.

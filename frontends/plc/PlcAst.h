@@ -305,6 +305,15 @@ struct VarDecl {
   /// A global of a TwinCAT global variable list: the list's name, by
   /// which the program may qualify it (`GVL_IO.bStart`).
   std::string globalList;
+  /// A record the runtime writes before every scan (TwinCAT's `_TaskInfo`
+  /// and `_AppInfo`), declared by a library with `{netlift runtime 'what
+  /// it is' free 'fields' first 'field'}`: what it is; the fields whose
+  /// values the model does not know (free inputs, read where read); the
+  /// field that is TRUE in the first scan only. The program may only read
+  /// it (Sema; LowerEnvironment.cpp).
+  std::string runtimeRecord;
+  std::vector<std::string> runtimeFree;
+  std::string runtimeFirst;
 
   /// `AT %I...` / `%Q...` / `%M...`: 'I', 'Q', 'M' or 0.
   char area() const { return location.size() > 1 ? location[1] : 0; }
@@ -446,6 +455,11 @@ struct Pou {
   /// outputs are free inputs of the model (--opaque=environment), its
   /// inputs are not stored. Empty for a block modelled by its body.
   std::string environment;
+  /// An environment block's address inputs through which the runtime
+  /// writes the program's memory (ADSREAD's DESTADDR), from `{netlift
+  /// writes 'DESTADDR'}`: what `ADR(x)` given there designates takes free
+  /// values at every call (LowerCalls.cpp, environmentCall).
+  std::vector<std::string> writesThrough;
   /// A PROPERTY's accessor: 'G' (GET: a method whose result is the
   /// property's value) or 'S' (SET: a method whose input named like the
   /// property is the value assigned); 0 otherwise.

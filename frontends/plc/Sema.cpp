@@ -90,6 +90,38 @@ bool Checker::constInt(Expr *e, int64_t &v) {
       return false;
     }
   }
+  case ExprKind::Call: {
+    // SIZEOF of a type or a variable (TwinCAT sizes arrays by it:
+    // ARRAY[1..SIZEOF(_TaskInfo) / SIZEOF(PlcTaskSystemInfo)]).
+    if (!sameName(e->name, "SIZEOF") || e->args.size() != 1 ||
+        e->args[0].isOutput)
+      return false;
+    Expr *arg = e->args[0].value;
+    // A global qualified by its list (TwinCAT_SystemInfoVarList._TaskInfo).
+    VarDecl *qualified = nullptr;
+    if (arg->kind == ExprKind::Field && arg->base() &&
+        arg->base()->kind == ExprKind::Name)
+      for (VarDecl *g : allGlobals)
+        if (sameName(g->globalList, arg->base()->name) &&
+            sameName(g->name, arg->name))
+          qualified = g;
+    if (arg->kind != ExprKind::Name && !qualified)
+      return false;
+    const PType *t = nullptr;
+    if (VarDecl *var = qualified ? qualified : lookupVar(arg->name))
+      t = var->type         ? var->type
+          : var->typeSyntax ? resolve(var->typeSyntax, "")
+                            : nullptr;
+    else if (elementaryType(arg->name) || unit.findType(arg->name))
+      t = resolveNamed(arg->name, arg->loc);
+    std::string why;
+    std::optional<MemoryLayout> layout =
+        t ? memoryLayout(t, why) : std::nullopt;
+    if (!layout)
+      return false;
+    v = int64_t(layout->size);
+    return true;
+  }
   case ExprKind::Name: {
     // A CONSTANT variable with a literal initial value.
     VarDecl *var = lookupVar(e->name);

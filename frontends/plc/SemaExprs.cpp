@@ -26,6 +26,12 @@ const PType *Checker::lvalue(Expr *e) {
     error(e->loc, "assignment to constant '" + v->name + "'");
     return nullptr;
   }
+  if (!v->runtimeRecord.empty()) {
+    error(e->loc, "'" + v->name + "' " + v->runtimeRecord +
+                      ", which the runtime writes before every scan; "
+                      "netlift lets the program read it only");
+    return nullptr;
+  }
   // A program's input image may be written (matiec and CODESYS accept
   // it); the lowering gives such an input a scan-local copy, and so for a
   // function block's input when the block is translated as the top (an

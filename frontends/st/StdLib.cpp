@@ -623,13 +623,45 @@ bool st::isStandardFunctionBlock(llvm::StringRef name) {
   return false;
 }
 
+/// `{netlift runtime 'what it is' free 'A B' first 'C'}` on a library's
+/// global: a record the runtime writes before every scan (PlcAst.h).
+static void readRuntimeRecord(plc::VarDecl &g) {
+  for (const plc::Attribute &a : g.attrs) {
+    llvm::StringRef rest(a.text);
+    if (!rest.consume_front("netlift runtime"))
+      continue;
+    // Quoted words after their keys: the description first.
+    auto quoted = [&](llvm::StringRef &from) {
+      from = from.ltrim();
+      if (!from.consume_front("'"))
+        return llvm::StringRef();
+      auto [inside, after] = from.split('\'');
+      from = after;
+      return inside;
+    };
+    g.runtimeRecord = quoted(rest).str();
+    while (!(rest = rest.ltrim()).empty()) {
+      llvm::StringRef key = rest.take_while([](char c) { return c != ' '; });
+      rest = rest.drop_front(key.size());
+      llvm::StringRef value = quoted(rest);
+      if (key == "first")
+        g.runtimeFirst = value.str();
+      llvm::SmallVector<llvm::StringRef, 16> fields;
+      if (key == "free")
+        value.split(fields, ' ', -1, false);
+      for (llvm::StringRef f : fields)
+        g.runtimeFree.push_back(f.str());
+    }
+  }
+}
+
 bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
                         llvm::StringRef bufferName) {
   // Only the POUs and globals the user did not define are kept, so a
   // user's own TON replaces netlift's.
   llvm::SourceMgr &sm = diag.sourceMgr();
   unsigned id = sm.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBuffer(text, bufferName), llvm::SMLoc());
+      llvm::MemoryBuffer::getMemBufferCopy(text, bufferName), llvm::SMLoc());
   std::vector<plc::Pou *> before = unit.pous;
   std::vector<plc::VarDecl *> globalsBefore = unit.globals;
   std::vector<plc::TypeDecl *> typesBefore = unit.types;
@@ -650,13 +682,15 @@ bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
     plc::Pou *p = unit.pous[i];
     p->isLibrary = true;
     // `{netlift environment 'what it does'}`: a block with effects.
-    for (const plc::Attribute &a : p->attrs)
-      if (llvm::StringRef(a.text).startswith("netlift environment"))
-        p->environment = llvm::StringRef(a.text)
-                             .drop_front(strlen("netlift environment"))
-                             .trim()
-                             .trim('\'')
-                             .str();
+    for (const plc::Attribute &a : p->attrs) {
+      llvm::StringRef text(a.text);
+      if (text.consume_front("netlift environment"))
+        p->environment = text.trim().trim('\'').str();
+      // `{netlift writes 'DESTADDR'}`: an address input the runtime
+      // writes through.
+      if (text.consume_front("netlift writes"))
+        p->writesThrough.push_back(text.trim().trim('\'').str());
+    }
     bool shadowed = false;
     for (plc::Pou *u : before)
       shadowed |= !u->methodOf && plc::sameName(u->name, p->name);
@@ -667,6 +701,7 @@ bool st::addLibraryText(DiagEngine &diag, plc::Unit &unit, llvm::StringRef text,
   std::vector<plc::VarDecl *> globals = globalsBefore;
   for (size_t i = globalsBefore.size(); i < unit.globals.size(); ++i) {
     unit.globals[i]->isLibrary = true;
+    readRuntimeRecord(*unit.globals[i]);
     bool shadowed = false;
     for (plc::VarDecl *g : globalsBefore)
       shadowed |= plc::sameName(g->name, unit.globals[i]->name);

@@ -67,6 +67,28 @@ FUNCTION_BLOCK ADSWRITE
   VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; END_VAR
 END_FUNCTION_BLOCK
 
+(* Reads write the program's memory: what ADR(x) given as the destination
+   designates takes any value at every call. *)
+{netlift environment 'communicates over ADS'}
+{netlift writes 'DESTADDR'}
+FUNCTION_BLOCK ADSREAD
+  VAR_INPUT
+    NETID : T_AmsNetId; PORT : T_AmsPort; IDXGRP, IDXOFFS, LEN : UDINT;
+    DESTADDR : DWORD; READ : BOOL; TMOUT : TIME;
+  END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'communicates over ADS'}
+{netlift writes 'DESTADDR'}
+FUNCTION_BLOCK ADSRDWRT
+  VAR_INPUT
+    NETID : T_AmsNetId; PORT : T_AmsPort; IDXGRP, IDXOFFS, WRITELEN,
+    READLEN : UDINT; SRCADDR, DESTADDR : DWORD; WRTRD : BOOL; TMOUT : TIME;
+  END_VAR
+  VAR_OUTPUT BUSY, ERR : BOOL; ERRID : UDINT; END_VAR
+END_FUNCTION_BLOCK
+
 {netlift environment 'communicates over ADS'}
 FUNCTION_BLOCK ADSRDSTATE
   VAR_INPUT NETID : T_AmsNetId; PORT : T_AmsPort; RDSTATE : BOOL; TMOUT : TIME; END_VAR
@@ -107,6 +129,16 @@ FUNCTION_BLOCK FB_FileWrite
 END_FUNCTION_BLOCK
 
 {netlift environment 'accesses the file system'}
+{netlift writes 'pReadBuff'}
+FUNCTION_BLOCK FB_FileRead
+  VAR_INPUT
+    sNetId : T_AmsNetId; hFile : UINT; pReadBuff : DWORD; cbReadLen : UDINT;
+    bExecute : BOOL; tTimeout : TIME;
+  END_VAR
+  VAR_OUTPUT bBusy, bError : BOOL; nErrId, cbRead : UDINT; bEOF : BOOL; END_VAR
+END_FUNCTION_BLOCK
+
+{netlift environment 'accesses the file system'}
 FUNCTION_BLOCK FB_FilePuts
   VAR_INPUT
     sNetId : T_AmsNetId; hFile : UINT; sLine : T_MaxString;
@@ -134,9 +166,16 @@ FUNCTION_BLOCK FB_FileDelete
   VAR_OUTPUT bBusy, bError : BOOL; nErrId : UDINT; END_VAR
 END_FUNCTION_BLOCK
 
+(* The index of the task that runs the caller (1..n in a cyclic task, 0
+   in FB_init); lowered as the project's tasks give it
+   (LowerEnvironment.cpp, taskIndex). *)
 {netlift environment 'asks the runtime which task runs'}
+FUNCTION GETCURTASKINDEXEX : DINT
+END_FUNCTION
+
 FUNCTION_BLOCK GETCURTASKINDEX
   VAR_OUTPUT index : BYTE; END_VAR
+  index := DINT_TO_BYTE(GETCURTASKINDEXEX());
 END_FUNCTION_BLOCK
 
 (* Tc2_System: messages to the event log (and a message box); the result
@@ -585,7 +624,138 @@ FUNCTION_BLOCK MC_ReadStatus
 END_FUNCTION_BLOCK
 )ST";
 
+/// A string literal of Structured Text.
+static std::string stLiteral(llvm::StringRef text) {
+  std::string out = "'";
+  for (char c : text)
+    out += c == '\''  ? std::string("$'")
+           : c == '$' ? std::string("$$")
+                      : std::string(1, c);
+  return out + "'";
+}
+
+/// TwinCAT_SystemInfoVarList, the records the runtime writes before every
+/// scan: `_TaskInfo`, one PlcTaskSystemInfo per task of the project, and
+/// `_AppInfo`. What the project states is known: with one task, its name,
+/// cycle time (in 100 ns) and priority from its .TcTTO, and FirstCycle,
+/// TRUE in the first scan only; the project's name; the number of tasks.
+/// The rest (object ids, ports, counters, the runtime's timings and flags)
+/// is free: the `{netlift runtime}` pragma lists it. With several tasks
+/// the model does not know which index the runtime gives the task that
+/// runs the program, so each is free whole.
+static std::string systemInfoText(const plc::Unit &unit) {
+  std::vector<const plc::Task *> tasks;
+  for (const plc::Configuration *c : unit.configs)
+    if (c->name == "TwinCAT")
+      for (const plc::Task &t : c->tasks)
+        tasks.push_back(&t);
+  size_t n = std::max<size_t>(tasks.size(), 1);
+  std::string out = R"ST(
+TYPE
+  OTCID : UDINT;
+  PlcTaskSystemInfo : STRUCT
+    ObjId : OTCID;
+    CycleTime : UDINT;
+    Priority : UINT;
+    AdsPort : UINT;
+    CycleCount : UDINT;
+    DcTaskTime : LINT;
+    LastExecTime : UDINT;
+    FirstCycle : BOOL;
+    CycleTimeExceeded : BOOL;
+    InCallAfterOutputUpdate : BOOL;
+    RTViolation : BOOL;
+    TaskName : STRING(63);
+  END_STRUCT;
+  PlcAppSystemInfo : STRUCT
+    ObjId : OTCID;
+    TaskCnt : UDINT;
+    OnlineChangeCnt : UDINT;
+    Flags : DWORD;
+    AdsPort : UINT;
+    BootDataLoaded : BOOL;
+    OldBootData : BOOL;
+    AppTimestamp : DT;
+    KeepOutputsOnBP : BOOL;
+    ShutdownInProgress : BOOL;
+    LicensesPending : BOOL;
+    BSODOccured : BOOL;
+    TComSrvPtr : PVOID;
+    AppName : STRING(63);
+    ProjectName : STRING(63);
+  END_STRUCT;
+END_TYPE
+)ST";
+  std::string taskFree = "ObjId AdsPort CycleCount DcTaskTime LastExecTime "
+                         "CycleTimeExceeded InCallAfterOutputUpdate "
+                         "RTViolation";
+  std::string taskInit, first;
+  const plc::Task *task = tasks.size() == 1 ? tasks.front() : nullptr;
+  if (tasks.size() > 1) {
+    taskFree += " CycleTime Priority TaskName FirstCycle";
+  } else {
+    first = " first 'FirstCycle'";
+    std::vector<std::string> known;
+    if (task && task->interval)
+      known.push_back("CycleTime := " +
+                      std::to_string(task->interval->intValue / 100));
+    else
+      taskFree += " CycleTime";
+    if (task && task->priority)
+      known.push_back("Priority := " +
+                      std::to_string(task->priority->intValue));
+    else
+      taskFree += " Priority";
+    if (task)
+      known.push_back("TaskName := " + stLiteral(task->name));
+    else
+      taskFree += " TaskName";
+    for (size_t i = 0; i < known.size(); ++i)
+      taskInit += (i ? ", " : " := [(") + known[i];
+    if (!known.empty())
+      taskInit += ")]";
+  }
+  std::string appFree = "ObjId OnlineChangeCnt Flags AdsPort BootDataLoaded "
+                        "OldBootData AppTimestamp KeepOutputsOnBP "
+                        "ShutdownInProgress LicensesPending BSODOccured "
+                        "TComSrvPtr AppName";
+  std::vector<std::string> appKnown;
+  if (tasks.empty())
+    appFree += " TaskCnt";
+  else
+    appKnown.push_back("TaskCnt := " + std::to_string(n));
+  if (unit.projectName.empty())
+    appFree += " ProjectName";
+  else
+    appKnown.push_back("ProjectName := " + stLiteral(unit.projectName));
+  std::string appInit;
+  for (size_t i = 0; i < appKnown.size(); ++i)
+    appInit += (i ? ", " : " := (") + appKnown[i];
+  if (!appKnown.empty())
+    appInit += ")";
+  out += "VAR_GLOBAL\n"
+         "  {netlift runtime 'is the record TwinCAT keeps of its tasks' "
+         "free '" +
+         taskFree + "'" + first + "}\n  _TaskInfo : ARRAY[1.." +
+         std::to_string(n) + "] OF PlcTaskSystemInfo" + taskInit +
+         ";\n"
+         "  {netlift runtime 'is the record TwinCAT keeps of the "
+         "application' free '" +
+         appFree + "'}\n  _AppInfo : PlcAppSystemInfo" + appInit +
+         ";\nEND_VAR\n"
+         "FUNCTION F_GetTaskInfo : PlcTaskSystemInfo\n"
+         "  F_GetTaskInfo := _TaskInfo[GETCURTASKINDEXEX()];\n"
+         "END_FUNCTION\n";
+  return out;
+}
+
 bool st::addTwinCatLibrary(DiagEngine &diag, plc::Unit &unit) {
-  return addLibraryText(diag, unit, kTwinCatLibrary,
-                        "<netlift TwinCAT library>");
+  size_t globalsBefore = unit.globals.size();
+  if (!addLibraryText(diag, unit, kTwinCatLibrary + systemInfoText(unit),
+                      "<netlift TwinCAT library>"))
+    return false;
+  for (size_t i = globalsBefore; i < unit.globals.size(); ++i)
+    if (!unit.globals[i]->runtimeRecord.empty())
+      unit.globals[i]->globalList = "TwinCAT_SystemInfoVarList";
+  return true;
 }
