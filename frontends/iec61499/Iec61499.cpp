@@ -117,6 +117,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
     if (!st::addStandardLibrary(diag, unit) || !checkUnit(unit, diag))
       return false;
     LowerOptions opts;
+    opts.opaqueRefused = !opaqueAsEnvironment; // the clock, in algorithms
     opts.extraTimesNs = parameterTimes;
     opts.timescaleNs = timescaleNs;
     if (!lowerEventDriven(unit, blocks, opts, diag, design))

@@ -324,17 +324,20 @@ NExpr *Lowering::clockReading(Expr *call) {
                            "model (--opaque=refuse; the default models it as "
                            "environment)");
   // One reading per scan: a scan is one step, and the clock's millisecond
-  // (TIME) does not move within one on the PLCs netlift knows of.
+  // (TIME) does not move within one on the PLCs netlift knows of. (4diac's
+  // NOW_MONOTONIC and NOW alike: one reading per step of the model.)
   std::string port = "_" + StringRef(fn).lower() + "_now";
   if (mod->lookup(port).kind == net::SymKind::None) {
-    addFreeInputPort(port, elementaryType(fn), fn + "()", call->loc);
+    addFreeInputPort(port, call->type, fn + "()", call->loc);
     diag.note(call->loc,
               fn +
                   "() reads the PLC's clock: modelled as environment, the "
                   "free input '" +
                   port +
-                  "' read once per scan (any value: the model does not "
-                  "know that the clock advances)");
+                  (eventDriven ? "' read once per step of the model"
+                               : "' read once per scan") +
+                  " (any value: the model does not know that the clock "
+                  "advances)");
   }
   return b.ref(port, call->loc);
 }

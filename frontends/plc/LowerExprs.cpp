@@ -435,6 +435,8 @@ NExpr *Lowering::expr(Expr *e, Frame &f, Sink &pre) {
       return memoryCall(e, f, pre);
     if (e->name == "__QUERYINTERFACE")
       return queryInterfaceCall(e, f, pre);
+    if (e->name == "__UPCAST")
+      return referenceUpcast(e, f, pre);
     if (e->name == "__ISVALIDREF")
       return b.binary(net::BinaryOp::Ne, expr(e->args[0].value, f, pre),
                       b.intLit(0, e->loc), e->loc);
@@ -820,7 +822,6 @@ NExpr *Lowering::stdValue(Expr *e, Frame &f, Sink &pre) {
     return clockReading(e);
   case StdFn::Bound:
     return arrayBound(e, f);
-  case StdFn::Refused:
   case StdFn::None:
     break;
   }

@@ -51,6 +51,27 @@ static void forEachAddressTaken(StmtList &l, llvm::ArrayRef<VarDecl *> vars,
   }
 }
 
+/// Every `__UPCAST(r)` (a reference to a derived block used as one to its
+/// base; Sema's referenceAsBase) in `unit`'s bodies and initial values.
+static void forEachUpcast(Unit &unit, llvm::function_ref<void(Expr *)> fn) {
+  auto walk = [&](Expr *top) {
+    forEachNestedExpr(top, [&](Expr *e) {
+      if (e->kind == ExprKind::Call && e->name == "__UPCAST" && !e->callee)
+        fn(e);
+    });
+  };
+  for (Pou *p : unit.pous) {
+    forEachStmt(
+        p->body, [](Stmt *) {}, walk);
+    for (VarDecl *v : p->vars)
+      if (v->typeSyntax)
+        forEachInitialValue(v->typeSyntax->init, walk);
+  }
+  for (VarDecl *v : unit.globals)
+    if (v->typeSyntax)
+      forEachInitialValue(v->typeSyntax->init, walk);
+}
+
 /// The same over every POU and global of `unit`.
 static void forEachAddressTaken(Unit &unit,
                                 llvm::function_ref<void(Expr *)> fn) {
@@ -461,10 +482,31 @@ Lowering::planReferences(llvm::ArrayRef<ProgramRun> runs) {
         addSinglePlace(table, path);
     }
   }
+  // A reference to a derived block used as one to its base: every place
+  // it may designate is the base's too (same key, renumbered).
+  std::vector<Expr *> upcasts;
+  forEachUpcast(unit, [&](Expr *e) { upcasts.push_back(e); });
   // REF(r^.f): the field f of every place r may designate, itself
   // perhaps designated through another such REF: to a fixpoint.
   for (bool grew = true; grew;) {
     grew = false;
+    for (Expr *e : upcasts) {
+      auto from = plan.tables.find(referenceKey(e->args[0].value->type->elem));
+      if (from == plan.tables.end())
+        continue;
+      RefTable &table = plan.tables[referenceKey(e->type->elem)];
+      std::vector<RefFamily> sources = from->second.families;
+      for (const RefFamily &source : sources) {
+        if (table.byKey.count(source.key))
+          continue;
+        grew = true;
+        table.byKey[source.key] = table.families.size();
+        RefFamily fam = source;
+        fam.offset = table.count + 1;
+        table.count += fam.size;
+        table.families.push_back(std::move(fam));
+      }
+    }
     for (Expr *place : throughReferences) {
       Expr *d = derefBelow(place);
       if (!d)
@@ -1239,6 +1281,39 @@ NExpr *Lowering::interfaceQuery(NExpr *source, const PType *wanted, Sink &pre,
     yes = yes ? b.binary(net::BinaryOp::Or, yes, is, at) : is;
   }
   return yes ? b.cond(yes, source, b.intLit(0, at), at) : b.intLit(0, at);
+}
+
+NExpr *Lowering::referenceUpcast(Expr *call, Frame &f, Sink &pre) {
+  Expr *source = call->args[0].value;
+  SMLoc at = call->loc;
+  auto from = refPlan.tables.find(referenceKey(source->type->elem));
+  NExpr *value = expr(source, f, pre);
+  if (from == refPlan.tables.end())
+    return b.intLit(0, at); // it never designates anything
+  const RefTable &to = refPlan.tables.at(referenceKey(call->type->elem));
+  value = valueOnce(value, source->type, "upcast", pre, at);
+  // Each family's numbers to the same family's among the base's places;
+  // NULL stays NULL.
+  NExpr *out = b.intLit(0, at);
+  for (const RefFamily &fam : llvm::reverse(from->second.families)) {
+    const RefFamily &same = to.families[to.byKey.at(fam.key)];
+    if (fam.hasOutside != same.hasOutside)
+      refuse(at, "a pointer to '" + source->type->elem->str() +
+                     "' stepped outside '" + fam.key +
+                     "' cannot be seen as a pointer to '" +
+                     call->type->elem->str() + "'");
+    NExpr *in = b.binary(
+        net::BinaryOp::And,
+        b.binary(net::BinaryOp::Ge, value, b.intLit(fam.first(), at), at),
+        b.binary(net::BinaryOp::Le, value, b.intLit(fam.last(), at), at), at);
+    NExpr *renumbered =
+        same.offset == fam.offset
+            ? value
+            : b.binary(net::BinaryOp::Add, value,
+                       b.intLit(same.offset - fam.offset, at), at);
+    out = b.cond(in, renumbered, out, at);
+  }
+  return out;
 }
 
 NExpr *Lowering::queryInterfaceCall(Expr *call, Frame &f, Sink &pre) {

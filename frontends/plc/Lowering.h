@@ -687,6 +687,9 @@ private:
   /// (`?=` and __QUERYINTERFACE between interfaces).
   NExpr *interfaceQuery(NExpr *source, const PType *wanted, Sink &pre,
                         SMLoc at);
+  /// `__UPCAST(r)`: a reference to a derived block renumbered among its
+  /// base's places (LowerReferences.cpp).
+  NExpr *referenceUpcast(Expr *call, Frame &f, Sink &pre);
   NExpr *queryInterfaceCall(Expr *call, Frame &f, Sink &pre);
   /// The prefix of the instance an in-out argument designates.
   std::string boundInstance(Expr *argument, Frame &f);

@@ -144,7 +144,6 @@ enum class StdFn : uint8_t {
   Bcd,      // BCD_TO_INT, WORD_BCD_TO_UINT, INT_TO_BCD, UINT_TO_BCD_WORD
   Clock,    // TIME(), LTIME(): the PLC's clock, chosen by the environment
   Bound,    // LOWER_BOUND, UPPER_BOUND of an array (ARRAY[*]: the argument's)
-  Refused,  // recognised but not supported at all (NOW)
 };
 
 struct StdFnInfo {

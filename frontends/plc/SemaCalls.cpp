@@ -703,16 +703,15 @@ const PType *Checker::call(Expr *e, bool asStatement) {
     e->intValue = dim;
     return elementaryType("DINT");
   }
-  case StdFn::Clock:
+  case StdFn::Clock: {
     if (!arity(0, 0))
       return nullptr;
-    return elementaryType(StringRef(e->name).upper());
-  case StdFn::Refused:
-    error(e->loc, "'" + e->name +
-                      "' reads the runtime's clock, which grows without "
-                      "bound: it is not modelled (measure time with a "
-                      "timer, TON or E_DELAY)");
-    return nullptr;
+    // 4diac: NOW_MONOTONIC() is a TIME, NOW() a DATE_AND_TIME.
+    std::string fn = StringRef(e->name).upper();
+    return elementaryType(fn == "NOW_MONOTONIC" ? "TIME"
+                          : fn == "NOW"         ? "DT"
+                                                : fn);
+  }
   case StdFn::None:
     break;
   }

@@ -212,6 +212,10 @@ private:
   /// `REF(d)`/`ADR(d)` (or THIS) of an instance of a block derived from
   /// the block `to` designates: a reference to the base (CODESYS, TwinCAT).
   bool addressAsBase(const PType *to, Expr *from);
+  /// A reference or pointer to a block derived from the one `to`
+  /// designates, as `to` (IEC 61131-3 3rd edition): `from` becomes the
+  /// conversion `__UPCAST(from)`.
+  bool referenceAsBase(const PType *to, Expr *from);
   /// The function block or program whose instance runs `current`.
   Pou *runningBlock() const {
     return current && current->methodOf ? current->methodOf : current;

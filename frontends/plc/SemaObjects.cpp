@@ -219,6 +219,30 @@ bool Checker::addressAsBase(const PType *to, Expr *from) {
   return true;
 }
 
+bool Checker::referenceAsBase(const PType *to, Expr *from) {
+  const PType *ft = from->type;
+  if (!to->isReference() || to->refKind == RefKind::Interface || !to->elem ||
+      to->elem->kind != PTypeKind::FunctionBlock || to->elem->fb->isInterface ||
+      !ft->isReference() || ft->refKind != to->refKind || !ft->elem ||
+      ft->elem->kind != PTypeKind::FunctionBlock ||
+      ft->elem->fb == to->elem->fb || !derivedFrom(ft->elem->fb, to->elem->fb))
+    return false;
+  // The value is renumbered among the base's places, which hold every
+  // place the derived reference may designate (LowerReferences.cpp,
+  // referenceUpcast); a call through it runs the instance's own type's
+  // implementation.
+  Expr *inner = unit.make<Expr>(*from);
+  Expr upcast(ExprKind::Call, from->loc);
+  upcast.name = "__UPCAST";
+  CallArg arg;
+  arg.value = inner;
+  arg.loc = from->loc;
+  upcast.args.push_back(arg);
+  upcast.type = to;
+  *from = upcast;
+  return true;
+}
+
 bool Checker::instanceAsInterface(const PType *to, Expr *from, SMLoc at) {
   const PType *ft = from->type;
   if (!to->isReference() || to->refKind != RefKind::Interface || !ft)

@@ -65,6 +65,8 @@ std::optional<const PType *> Checker::referenceCall(Expr *e, bool asStatement) {
     e->name = "__QUERYINTERFACE";
     return queryInterface(e);
   }
+  if (e->name == "__UPCAST" && e->type)
+    return e->type; // checked where it was made (referenceAsBase)
   bool isRef = sameName(e->name, "REF"), isAdr = sameName(e->name, "ADR");
   bool isValid = sameName(e->name, "__ISVALIDREF");
   if (sameName(e->name, "__NEW") || sameName(e->name, "__DELETE")) {

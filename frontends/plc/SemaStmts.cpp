@@ -141,7 +141,8 @@ bool Checker::assignable(const PType *to, Expr *from, SMLoc at,
   const PType *ft = from ? from->type : nullptr;
   if (!to || !ft)
     return true; // already reported
-  if (instanceAsInterface(to, from, at) || addressAsBase(to, from))
+  if (instanceAsInterface(to, from, at) || addressAsBase(to, from) ||
+      referenceAsBase(to, from))
     return true;
   const PType *tb = baseOf(to), *fb = baseOf(ft);
   // INT_TO_BCD(n) writes the bit string its context wants (IEC 61131-3's

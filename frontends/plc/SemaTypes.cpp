@@ -407,11 +407,10 @@ StdFnInfo plc::lookupStdFunction(StringRef name) {
                 .Cases("LEN", "LEFT", "RIGHT", "MID", "CONCAT", "INSERT",
                        StdFn::StringOp)
                 .Cases("DELETE", "REPLACE", "FIND", StdFn::StringOp)
-                // CODESYS's and TwinCAT's clock since the PLC started.
-                .Cases("TIME", "LTIME", StdFn::Clock)
+                // CODESYS's and TwinCAT's clock since the PLC started;
+                // 4diac's monotonic clock and its date and time.
+                .Cases("TIME", "LTIME", "NOW_MONOTONIC", "NOW", StdFn::Clock)
                 .Cases("LOWER_BOUND", "UPPER_BOUND", StdFn::Bound)
-                // 4diac's clocks: unbounded, refused by name.
-                .Cases("NOW_MONOTONIC", "NOW", StdFn::Refused)
                 .Default(StdFn::None);
   if (info.fn != StdFn::None)
     return info;
