@@ -148,9 +148,9 @@ int checkers::checkProperties(
     if (!traceDir.empty()) {
       statespace::TraceFileHeader h{ctlToString(*f), holds, trace->witness,
                                     trace->claim};
-      if (!statespace::writeTraceFiles(traceDir + "/p" + std::to_string(index),
-                                       h, explorer, steps, trace->loopTo,
-                                       loopLabel, diag))
+      if (!statespace::writeTraceFiles(
+              traceDir + "/p" + std::to_string(index), h, explorer, semantics,
+              setup.timescale(), steps, trace->loopTo, loopLabel, diag))
         return 1;
     }
   }

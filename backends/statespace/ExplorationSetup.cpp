@@ -149,9 +149,12 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
                               "with --timers=abstract");
         return nullptr;
       }
-  if (!options.abstractTimers)
-    return std::unique_ptr<ExplorationSetup>(
-        new ExplorationSetup(*top, options));
+  if (!options.abstractTimers) {
+    auto setup =
+        std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
+    setup->tick = design.timescale;
+    return setup;
+  }
   // The exact model stays beside the abstract one, for the replay.
   net::Module *exact = flattenModule(design, top, diag);
   if (!exact || !net::verifyDesign(design, diag))
@@ -163,6 +166,7 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
     return nullptr;
   auto setup =
       std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
+  setup->tick = design.timescale;
   setup->timers = std::move(timers);
   setup->exactTop = exact;
   setup->exactLayout = std::make_unique<sem::StateLayout>(

@@ -77,6 +77,9 @@ public:
   const ExplorationOptions &options() const { return opts; }
   const sem::StateLayout &layout() const { return *stateLayout; }
   sem::Semantics &semantics() { return *sem; }
+  /// The design's tick (`timescale`), when it declares one: how long a
+  /// trace's `tick` steps last.
+  const std::optional<net::Timescale> &timescale() const { return tick; }
 
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
@@ -108,6 +111,7 @@ private:
   std::unique_ptr<sem::StateLayout> exactLayout;
   std::unique_ptr<sem::Semantics> exactSem;
   net::Module *exactTop = nullptr;
+  std::optional<net::Timescale> tick;
 };
 
 /// Reports the runtime error an exploration stopped at, at its place in

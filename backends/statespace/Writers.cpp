@@ -407,8 +407,190 @@ void netlift::statespace::writeStatePath(
   }
 }
 
+void statespace::writeVcd(sem::Semantics &sem,
+                          llvm::ArrayRef<std::string> labels,
+                          llvm::ArrayRef<const uint64_t *> states,
+                          const std::optional<net::Timescale> &tick,
+                          llvm::raw_ostream &os) {
+  // VCD's time unit is a power of ten of a second: the tick's own unit
+  // when it has one, each tick `amount` of them.
+  std::string unit = "ns";
+  uint64_t perTick = 1;
+  if (tick) {
+    llvm::StringRef u = tick->unit;
+    if (u == "s" || u == "ms" || u == "us" || u == "ns") {
+      unit = u.str();
+      perTick = tick->amount;
+    } else {
+      perTick = tick->nanoseconds();
+    }
+  }
+  // Identifiers: printable ASCII from '!', in base 94.
+  auto idOf = [](size_t n) {
+    std::string id;
+    do {
+      id += char('!' + n % 94);
+      n /= 94;
+    } while (n);
+    return id;
+  };
+  // A reference name: no spaces, and brackets are VCD's bit selects.
+  auto nameOf = [](std::string n) {
+    for (char &c : n)
+      c = c == '[' ? '(' : c == ']' ? ')' : c == ' ' ? '_' : c;
+    return n;
+  };
+  std::vector<StateColumn> cols;
+  std::vector<std::string> strings;
+  for (StateColumn &c : stateColumns(sem)) {
+    if (c.kind == StateColumn::Place || c.kind == StateColumn::Clock)
+      continue;
+    if (c.isString())
+      strings.push_back(c.name);
+    else
+      cols.push_back(c);
+  }
+  // The free inputs: each time shows the smallest valuation of the class
+  // that took its scan (`{scan} [go=1, level=91..100]`), `x` where the
+  // step did not depend on an input ([any]) or no class is known.
+  struct InputColumn {
+    std::string name;
+    bool isBool;
+  };
+  std::vector<InputColumn> inputs;
+  for (const Port &port : sem.module().ports)
+    if (port.isInput() && port.kind != PortKind::Event &&
+        (port.kind == PortKind::Cond ||
+         (port.type && (port.type->isInteger() || port.type->isBool()))))
+      inputs.push_back({port.name.str(),
+                        port.kind == PortKind::Cond || port.type->isBool()});
+  auto classOf = [](llvm::StringRef label) {
+    std::map<std::string, int64_t> values;
+    size_t open = label.find(" [");
+    if (open == llvm::StringRef::npos)
+      return values;
+    llvm::StringRef body = label.drop_front(open + 2);
+    body = body.take_until([](char c) { return c == ']'; });
+    llvm::SmallVector<llvm::StringRef, 8> items;
+    body.split(items, ", ");
+    for (llvm::StringRef item : items) {
+      auto [name, value] = item.split('=');
+      int64_t v;
+      if (!value.split("..").first.getAsInteger(10, v))
+        values[name.str()] = v;
+    }
+    return values;
+  };
+  os << "$version netlift $end\n"
+     << "$timescale 1 " << unit << " $end\n"
+     << "$scope module " << nameOf(sem.module().name.str()) << " $end\n";
+  os << "$var integer 32 " << idOf(0) << " step $end\n";
+  for (size_t i = 0; i < cols.size(); ++i) {
+    const StateColumn &c = cols[i];
+    const char *kind = c.type->isBool()                        ? "wire 1"
+                       : c.type->isReal() || c.type->isFloat() ? "real 64"
+                                                               : "integer 64";
+    os << "$var " << kind << " " << idOf(i + 1) << " " << nameOf(c.name)
+       << " $end\n";
+  }
+  for (size_t i = 0; i < inputs.size(); ++i)
+    os << "$var " << (inputs[i].isBool ? "wire 1 " : "integer 64 ")
+       << idOf(cols.size() + 1 + i) << " " << nameOf(inputs[i].name)
+       << " $end\n";
+  os << "$upscope $end\n";
+  for (const std::string &n : strings)
+    os << "$comment " << nameOf(n)
+       << ": a string, which VCD cannot show $end\n";
+  os << "$enddefinitions $end\n";
+  // Two's complement, leading zeros left out.
+  auto vector = [](int64_t v, const std::string &id) {
+    std::string bits;
+    for (int b = 63; b >= 0; --b)
+      bits += (uint64_t(v) >> b) & 1 ? '1' : '0';
+    size_t first = bits.find('1');
+    return "b" + (first == std::string::npos ? "0" : bits.substr(first)) + " " +
+           id;
+  };
+  auto valueText = [&](const StateColumn &c, const Cell &cell,
+                       const std::string &id) -> std::string {
+    if (c.type->isBool())
+      return (cell.v ? "1" : "0") + id;
+    if (c.type->isReal() || c.type->isFloat())
+      return "r" + cell.text + " " + id;
+    return vector(cell.v, id);
+  };
+  std::vector<std::string> shown(cols.size() + inputs.size());
+  std::string shownStep;
+  std::map<std::string, int64_t> chosen; // the inputs of the current time
+  uint64_t time = 0;
+  bool started = false;
+  for (size_t i = 0; i < states.size(); ++i) {
+    if (i > 0 && i < labels.size() && labels[i] == "tick") {
+      time += perTick;
+      chosen.clear();
+    } else if (i > 0 && i < labels.size() &&
+               labels[i].find(" [") != std::string::npos) {
+      chosen = classOf(labels[i]);
+    }
+    // A time's values are those after its last step.
+    bool last = i + 1 == states.size() ||
+                (i + 1 < labels.size() && labels[i + 1] == "tick");
+    if (!last)
+      continue;
+    std::string changes;
+    std::string step = vector(int64_t(i), idOf(0));
+    if (!started || step != shownStep)
+      changes += step + "\n";
+    shownStep = step;
+    for (size_t k = 0; k < cols.size(); ++k) {
+      std::string v =
+          valueText(cols[k], cellOf(sem, cols[k], states[i]), idOf(k + 1));
+      if (!started || v != shown[k])
+        changes += v + "\n";
+      shown[k] = v;
+    }
+    for (size_t k = 0; k < inputs.size(); ++k) {
+      std::string id = idOf(cols.size() + 1 + k);
+      auto it = chosen.find(inputs[k].name);
+      std::string v = it == chosen.end()
+                          ? (inputs[k].isBool ? "x" + id : "bx " + id)
+                      : inputs[k].isBool ? (it->second ? "1" : "0") + id
+                                         : vector(it->second, id);
+      if (!started || v != shown[cols.size() + k])
+        changes += v + "\n";
+      shown[cols.size() + k] = v;
+    }
+    os << "#" << time << "\n";
+    if (!started)
+      os << "$dumpvars\n" << changes << "$end\n";
+    else
+      os << changes;
+    started = true;
+  }
+}
+
+bool statespace::writeVcdFile(const Explorer &x, sem::Semantics &sem,
+                              uint32_t target,
+                              const std::optional<net::Timescale> &tick,
+                              llvm::StringRef file, DiagEngine &diag) {
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  for (auto &[label, s] : x.pathTo(target)) {
+    labels.push_back(label == Explorer::kNone ? "" : x.label(label));
+    states.push_back(x.store().state(s));
+  }
+  // The inputs of each step, as the text trace shows them.
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
+  return writeOutputFile(
+      file.str(),
+      [&](llvm::raw_ostream &os) { writeVcd(sem, labels, states, tick, os); },
+      diag);
+}
+
 bool statespace::writeTraceFiles(
     const std::string &base, const TraceFileHeader &header, const Explorer &x,
+    sem::Semantics &sem, const std::optional<net::Timescale> &tick,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> steps, int64_t loopTo,
     uint32_t loopLabel, DiagEngine &diag) {
   auto label = [&](uint32_t l) {
@@ -441,6 +623,20 @@ bool statespace::writeTraceFiles(
         os << "\n";
       },
       diag);
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  for (const auto &[l, st] : steps) {
+    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
+    states.push_back(x.store().state(st));
+  }
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
+  ok = ok && writeOutputFile(
+                 base + ".vcd",
+                 [&](llvm::raw_ostream &os) {
+                   writeVcd(sem, labels, states, tick, os);
+                 },
+                 diag);
   // Labels as `reach --format aut` writes them.
   return ok && writeOutputFile(
                    base + ".aut",
@@ -469,13 +665,19 @@ void statespace::writeSummaryText(const Explorer &x, const ExploreResult &r,
 int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
                              const ExploreResult &r, llvm::StringRef findText,
                              bool deadlockTrace, int code,
-                             llvm::raw_ostream &out) {
+                             llvm::raw_ostream &out, llvm::StringRef vcdFile,
+                             const std::optional<net::Timescale> &tick,
+                             DiagEngine *diag) {
+  auto vcd = [&](uint32_t target) {
+    return vcdFile.empty() || !diag ||
+           writeVcdFile(x, sem, target, tick, vcdFile, *diag);
+  };
   if (!findText.empty()) {
     if (r.found) {
       out << "found a state satisfying '" << findText << "' after "
           << x.pathTo(*r.found).size() - 1 << " steps:\n";
       writeTrace(x, sem, *r.found, out);
-      return 0;
+      return vcd(*r.found) ? 0 : 1;
     }
     if (code == 0) {
       out << "no reachable state satisfies '" << findText << "'\n";
@@ -488,7 +690,7 @@ int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
       uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
       out << "deadlock after " << x.pathTo(d).size() - 1 << " steps:\n";
       writeTrace(x, sem, d, out);
-      return 3;
+      return vcd(d) ? 3 : 1;
     }
     if (code == 0)
       out << "no deadlock\n";

@@ -12,9 +12,12 @@
 #define NETLIFT_BACKENDS_STATESPACE_WRITERS_H
 
 #include "backends/statespace/Explorer.h"
+#include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"
+
+#include <optional>
 
 namespace netlift::statespace {
 
@@ -73,14 +76,35 @@ void writeStatePath(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
                     llvm::ArrayRef<const uint64_t *> states,
                     llvm::raw_ostream &os);
 
+/// The same path as a Value Change Dump (IEEE 1364, what GTKWave opens):
+/// every variable and output of the state listing (Booleans as wires,
+/// integers as `integer` vectors, reals as `real`; strings, which VCD
+/// has no type for, as a comment), and `step`, the number of the last
+/// step at each time. Time advances by `tick` (the design's timescale,
+/// else 1 ns) at each `tick` step; the steps between two ticks take no
+/// time, so a time shows the values after its last step (a PLC: after
+/// its scan).
+void writeVcd(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+              llvm::ArrayRef<const uint64_t *> states,
+              const std::optional<net::Timescale> &tick, llvm::raw_ostream &os);
+
+/// The path to `target` as a VCD in `file`; false after reporting.
+bool writeVcdFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
+                  const std::optional<net::Timescale> &tick,
+                  llvm::StringRef file, DiagEngine &diag);
+
 /// `reach --find` and `--deadlock-trace` after a run: the shortest path to
 /// the state found (or to a closest deadlock) or that there is none.
 /// Returns the exit code: 0 found / no deadlock, 3 not found / a deadlock,
 /// `limitCode` (2) when a limit stopped the search before either was
 /// decided.
+/// With a `vcdFile`, the path is also written there as a VCD (`tick` the
+/// design's timescale).
 int reportSearch(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
                  llvm::StringRef findText, bool deadlockTrace, int limitCode,
-                 llvm::raw_ostream &os);
+                 llvm::raw_ostream &os, llvm::StringRef vcdFile = "",
+                 const std::optional<net::Timescale> &tick = std::nullopt,
+                 DiagEngine *diag = nullptr);
 
 /// What a trace file says of the path it holds.
 struct TraceFileHeader {
@@ -91,10 +115,12 @@ struct TraceFileHeader {
 };
 
 /// Writes a path as `BASE.json` (the header, the states by id as `reach`
-/// numbers them, the step labels, the loop) and `BASE.aut` (the path as an
-/// Aldebaran graph, the loop as an edge back). False after reporting.
+/// numbers them, the step labels, the loop), `BASE.aut` (the path as an
+/// Aldebaran graph, the loop as an edge back) and `BASE.vcd` (writeVcd).
+/// False after reporting.
 bool writeTraceFiles(const std::string &base, const TraceFileHeader &header,
-                     const Explorer &x,
+                     const Explorer &x, sem::Semantics &sem,
+                     const std::optional<net::Timescale> &tick,
                      llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                      int64_t loopTo, uint32_t loopLabel, DiagEngine &diag);
 

@@ -38,6 +38,12 @@ static cl::opt<bool>
     deadlockTrace("deadlock-trace",
                   cl::desc("Print a shortest path to a deadlock"),
                   cl::sub(reachCommand()), cl::cat(category()));
+static cl::opt<std::string>
+    traceVcd("trace-vcd",
+             cl::desc("Also write the path --find or --deadlock-trace "
+                      "prints as a Value Change Dump (GTKWave) to FILE"),
+             cl::value_desc("FILE"), cl::sub(reachCommand()),
+             cl::cat(category()));
 static cl::opt<bool> depthFirst("dfs", cl::desc("Depth-first order"),
                                 cl::sub(reachCommand()), cl::cat(category()));
 static cl::opt<bool> noProgress("q", cl::desc("No progress output"),
@@ -232,15 +238,19 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
     violation = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
   if (!xo.abstractTimers || !violation ||
       setup->timerAbstraction().abstracted.empty())
-    return statespace::reportSearch(explorer, semantics, r,
-                                    findExpr ? llvm::StringRef(findText) : "",
-                                    deadlockTrace, code, out);
+    return statespace::reportSearch(
+        explorer, semantics, r, findExpr ? llvm::StringRef(findText) : "",
+        deadlockTrace, code, out, traceVcd, design.timescale, &diag);
   auto path = explorer.pathTo(*violation);
   out << (findExpr ? "found a state satisfying '" + findText + "'"
                    : std::string("deadlock"))
       << " after " << path.size() - 1 << " steps with abstract timers ("
       << setup->timerAbstraction().abstracted.size() << " abstracted):\n";
   statespace::writeTrace(explorer, semantics, *violation, out);
+  if (!traceVcd.empty() &&
+      !statespace::writeVcdFile(explorer, semantics, *violation,
+                                design.timescale, traceVcd, diag))
+    return 1;
   std::vector<std::string> involved;
   auto verdict = statespace::replayAndReport(*setup, explorer, path, !findExpr,
                                              out, involved);
@@ -255,8 +265,8 @@ static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
                                        cl::Required, cl::sub(checkCommand()));
 static cl::opt<std::string>
     traceDir("trace-dir",
-             cl::desc("Also write each property's trace as DIR/p<N>.json and "
-                      "DIR/p<N>.aut"),
+             cl::desc("Also write each property's trace as DIR/p<N>.json, "
+                      "DIR/p<N>.aut and DIR/p<N>.vcd"),
              cl::value_desc("DIR"), cl::sub(checkCommand()),
              cl::cat(category()));
 
