@@ -101,7 +101,10 @@ def main():
             if kind == "r":
                 if declared != "real":
                     fail(f"line {line_no}: a real value for '{word}'")
-                values[word] = value
+                try:  # one spelling per number: r-1 and r-1.0 are one
+                    values[word] = repr(float(value))
+                except ValueError:
+                    fail(f"line {line_no}: '{value}' is not a real")
             else:
                 if declared == "real":
                     fail(f"line {line_no}: a vector for real '{word}'")

@@ -20,6 +20,7 @@ packages=(
 # UNSUPPORTED (lit says which), the rest runs.
 optional=(
   chromium                             # the HTML report in a browser (test/backends/structural)
+  gtkwave                              # vcd2fst/fst2vcd read the VCD traces back (test/tools/netlift)
 )
 
 installed() {

@@ -46,6 +46,10 @@ if inputs_mode:
 import shutil
 if shutil.which("spin") and shutil.which("cc"):
     config.available_features.add("spin")
+# GTKWave's converters (scripts/setup.sh installs gtkwave when it can): the
+# VCD traces are read back by the viewer's own reader.
+if shutil.which("vcd2fst") and shutil.which("fst2vcd"):
+    config.available_features.add("gtkwave")
 # A C compiler: IEEE arithmetic is cross-checked against what C computes.
 # No fused multiply-add: a PLC rounds every operation.
 if shutil.which("cc"):
