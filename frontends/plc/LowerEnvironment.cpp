@@ -280,10 +280,7 @@ NExpr *Lowering::taskIndex(Expr *call) {
   // FB_init runs when the application starts, outside any task.
   if (loweringInitCalls)
     return b.intLit(0, call->loc);
-  size_t tasks = 0;
-  for (Configuration *c : unit.configs)
-    if (c->name == "TwinCAT")
-      tasks += c->tasks.size();
+  size_t tasks = twinCatTasks(unit).size();
   if (tasks <= 1)
     return b.intLit(1, call->loc);
   // The runtime numbers the tasks; the project does not say how.

@@ -170,6 +170,16 @@ void netlift::plc::forEachInitialValue(Initializer *init,
     forEachInitialValue(e, fn);
 }
 
+std::vector<const netlift::plc::Task *>
+netlift::plc::twinCatTasks(const Unit &unit) {
+  std::vector<const Task *> tasks;
+  for (const Configuration *c : unit.configs)
+    if (c->name == "TwinCAT")
+      for (const Task &t : c->tasks)
+        tasks.push_back(&t);
+  return tasks;
+}
+
 bool netlift::plc::derivedFrom(const Pou *block, const Pou *base) {
   for (int depth = 0; block && depth < 64; block = block->base, ++depth)
     if (block == base)

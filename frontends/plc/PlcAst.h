@@ -622,6 +622,10 @@ Pou *findCallee(const Pou *block, const Expr *call);
 
 /// Is `block` `base`, or derived from it through EXTENDS?
 bool derivedFrom(const Pou *block, const Pou *base);
+/// The tasks of a TwinCAT project (its .TcTTO files, the configuration
+/// the loader names "TwinCAT"), in the order read: what sizes `_TaskInfo`
+/// and what GETCURTASKINDEXEX() ranges over.
+std::vector<const Task *> twinCatTasks(const Unit &unit);
 
 /// Does `block` (or a base) IMPLEMENT `itf`, or an interface that EXTENDS
 /// it?

@@ -644,11 +644,7 @@ static std::string stLiteral(llvm::StringRef text) {
 /// the model does not know which index the runtime gives the task that
 /// runs the program, so each is free whole.
 static std::string systemInfoText(const plc::Unit &unit) {
-  std::vector<const plc::Task *> tasks;
-  for (const plc::Configuration *c : unit.configs)
-    if (c->name == "TwinCAT")
-      for (const plc::Task &t : c->tasks)
-        tasks.push_back(&t);
+  std::vector<const plc::Task *> tasks = plc::twinCatTasks(unit);
   size_t n = std::max<size_t>(tasks.size(), 1);
   std::string out = R"ST(
 TYPE
