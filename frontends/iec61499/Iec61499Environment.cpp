@@ -170,14 +170,23 @@ void Translator::environmentModule(FbType &t) {
                         {net::PostArc{idle, 1}}, eat);
     b.setEmits(answer, {uint32_t(m->findPort(r->name))});
   }
+  std::optional<uint32_t> arrived;
   if (receiver) {
     // One message held at a time: a second before it is delivered
     // is out of range of `_messages_waiting` (a runtime error with its
-    // trace), never silently lost.
+    // trace), never silently lost. A held message also marks `arrived`,
+    // which the delivery empties before the next tick (a deadline): the
+    // network's latency is below the design's time unit. Without it the
+    // environment could hold a message while time passes, and every
+    // periodic publisher would overflow its subscriber. Capacity 2, so
+    // that a second message is received (and is the error) rather than
+    // refused by a full place.
     b.addVar("_messages_waiting", design.types.getRange(0, 1), nullptr, at);
+    arrived = b.addPlace("arrived", 0, 2, at);
     uint32_t rcv =
         b.addPort("_RCV", net::PortKind::Event, net::PortDir::In, nullptr, at);
-    uint32_t get = b.addTransition("receive", {}, {}, at);
+    uint32_t get =
+        b.addTransition("receive", {}, {net::PostArc{*arrived, 1}}, at);
     b.setEvents(get, {net::EventSource{rcv, true}});
     if (lossyChannels) {
       // Each message is received or lost (`lose`): the two take the same
@@ -188,7 +197,8 @@ void Translator::environmentModule(FbType &t) {
       b.setEvents(lose, {net::EventSource{rcv, true}});
       m->transitions[get].setArcs(
           design.copy(llvm::ArrayRef<net::PreArc>{net::PreArc{line, 1, {}}}),
-          design.copy(llvm::ArrayRef<net::PostArc>{net::PostArc{line, 1}}));
+          design.copy(llvm::ArrayRef<net::PostArc>{net::PostArc{line, 1},
+                                                   net::PostArc{*arrived, 1}}));
     }
     receive.push_back(
         b.assign(b.ref("_messages_waiting", at),
@@ -202,10 +212,11 @@ void Translator::environmentModule(FbType &t) {
       continue;
     SMLoc eat = t.src->locOf(e.node);
     if (receiver && StringRef(e.name).equals_insensitive(t.deliverEvent)) {
-      uint32_t deliver = b.addTransition("deliver_" + e.name, {}, {}, eat);
-      b.setGuard(deliver,
-                 b.binary(net::BinaryOp::Gt, b.ref("_messages_waiting", eat),
-                          b.intLit(0, eat), eat));
+      net::Interval beforeTick;
+      beforeTick.hi = 0;
+      beforeTick.deadline = true;
+      uint32_t deliver = b.addTransition(
+          "deliver_" + e.name, {net::PreArc{*arrived, 1, beforeTick}}, {}, eat);
       b.setEmits(deliver, {uint32_t(m->findPort(e.name))});
       b.setAction(deliver, {b.assign(b.ref("_messages_waiting", eat),
                                      b.intLit(0, eat), eat)});
@@ -220,7 +231,7 @@ void Translator::environmentModule(FbType &t) {
       how = "it sends its SD_i with " + t.sendEvent;
     if (receiver)
       how += (sender ? "; " : "") + std::string("what it receives is ") +
-             "delivered by its " + t.deliverEvent + ", now or later";
+             "delivered by its " + t.deliverEvent + ", before time advances";
     diag.note(at, Twine(what) + " '" + t.name +
                       "' is modelled as an end of a channel: " + how +
                       " (docs/iec61499.md)");
@@ -235,7 +246,7 @@ void Translator::environmentModule(FbType &t) {
 // Channels: a PUBLISH_n and the SUBSCRIBE_n blocks of the same network with
 // the same ID. The publisher's accepted REQ sends its SD_1..SD_n
 // (`_SENT`, `_SD_i`); each subscriber keeps the message (`_RCV`, `_RD_i`)
-// until its IND delivers it, now or later, with RD_i the values sent. A
+// until its IND delivers it, before the next tick, with RD_i the values sent. A
 // second message before the first is delivered is a runtime error (the
 // channel holds one): lossless, never silently dropped.
 //===----------------------------------------------------------------------===//
