@@ -79,6 +79,47 @@ static std::optional<VarBound> varBound(const Expr *c) {
   return VarBound{*v, l ? less : !less, *k};
 }
 
+bool Discretiser::markedWhenever(uint32_t p, uint32_t q) {
+  if (p == q)
+    return true;
+  auto [it, fresh] = markedWheneverCache.try_emplace({p, q}, false);
+  if (!fresh)
+    return it->second;
+  const Place &pp = m.places[p], &qp = m.places[q];
+  if (pp.capacity != 1 || qp.capacity != 1 || (pp.tokens && !qp.tokens))
+    return false;
+  for (const Transition &t : m.transitions) {
+    auto takes = [&](uint32_t x) {
+      for (const PreArc &a : t.pre())
+        if (a.place == x)
+          return a.weight == 1;
+      return false;
+    };
+    auto gives = [&](uint32_t x) {
+      for (const PostArc &a : t.post())
+        if (a.place == x)
+          return a.weight == 1;
+      return false;
+    };
+    bool touchesP = takes(p) || gives(p), touchesQ = takes(q) || gives(q);
+    if (!touchesP && !touchesQ)
+      continue;
+    if (gives(q))
+      continue; // q marked after t
+    if (takes(q)) {
+      // q emptied: p must be emptied too.
+      if (!(takes(p) && !gives(p)))
+        return false;
+      continue;
+    }
+    // q untouched: p marked after t only if it was before (then q was).
+    if (gives(p) && !takes(p))
+      return false;
+  }
+  it->second = true;
+  return true;
+}
+
 /// The range a real's model gives it where its type does not (SpaceEx
 /// declares none): every value it can take lies between its initial value,
 /// the constants it is reset to, and, in each place whose flow moves it,
@@ -159,8 +200,17 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
         continue;
       bool up = !dir || *dir > 0, down = !dir || *dir < 0;
       std::optional<double> upper, lower;
+      // A stable affine rate (x' = a*x + b, a < 0) moves x towards its
+      // equilibrium -b/a and never past it: it bounds x both ways, as an
+      // invariant would (a first-order lag: a heater towards its ambient).
+      if (!dir && !eq.rateHi)
+        if (auto ab = affineCoefficients(eq.rate, var); ab && ab->first < 0) {
+          double equilibrium = -ab->second / ab->first;
+          upper = equilibrium;
+          lower = equilibrium;
+        }
       for (const Invariant &inv : m.invariants) {
-        if (inv.place != f.place)
+        if (!markedWhenever(f.place, inv.place))
           continue;
         for (const Expr *c : inv.conditions) {
           std::optional<VarBound> vb = varBound(c);
@@ -186,7 +236,9 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
               (rising ? "up" : "down") + " and its invariant gives no " +
               (rising ? "upper" : "lower") + " bound, and it does not only " +
               (rising ? "rise" : "fall") +
-              " at constant rates (then its guards would bound it)";
+              " at constant rates (then its guards would bound it) nor "
+              "follow x' = a*x + b with a < 0 there (then its equilibrium "
+              "would)";
         return false;
       }
       if (up && needHi)
@@ -233,6 +285,28 @@ void Discretiser::closeOpenRanges() {
                   "at, nothing tells its values apart: its range ends at " +
                   num(r.openTop ? r.hi : r.lo) + ", where it rests");
   }
+}
+
+std::optional<std::pair<double, double>>
+discretise::affineCoefficients(const Expr *rate, uint32_t var,
+                               llvm::ArrayRef<double> alsoAt) {
+  RealEval ev(var);
+  auto f0 = ev.eval(rate, 0), f1 = ev.eval(rate, 1);
+  if (!f0 || !f1)
+    return std::nullopt;
+  double a = *f1 - *f0, b = *f0;
+  std::vector<double> points{-7.25, 13.5, 1e3, -1e3};
+  points.insert(points.end(), alsoAt.begin(), alsoAt.end());
+  for (double x : points) {
+    auto got = ev.eval(rate, x);
+    if (!got || !std::isfinite(x))
+      continue;
+    double want = a * x + b;
+    if (std::fabs(want - *got) >
+        1e-12 * std::max({std::fabs(want), std::fabs(*got), 1.0}))
+      return std::nullopt;
+  }
+  return std::make_pair(a, b);
 }
 
 std::optional<int> discretise::constantDirection(const Flow::Equation &eq) {
@@ -288,7 +362,7 @@ bool Discretiser::checkRectangularFlows() {
 bool Discretiser::collectReals() {
   for (uint32_t i = 0; i < m.vars.size(); ++i) {
     const Var &v = m.vars[i];
-    if (!v.type->isReal())
+    if (!v.type->isReal() || disturbances.count(i))
       continue;
     Real r;
     r.var = i;
@@ -429,6 +503,13 @@ bool Discretiser::collectAssignments() {
           auto *tr = llvm::dyn_cast<Ref>(a->target);
           bool toReal = tr && tr->sym.kind == SymKind::Var &&
                         realOfVar.count(tr->sym.index);
+          // `x := x` (SpaceEx tools write one per unchanged variable)
+          // leaves the position where it is; it is dropped with the
+          // other resets of reals.
+          auto *same = llvm::dyn_cast<Ref>(a->value);
+          if (toReal && top && same && same->sym == tr->sym &&
+              same->fields.empty() && tr->fields.empty())
+            continue;
           const Expr *where = nullptr;
           if (mentionsReal(a->value, realOfVar, where))
             return error(where->loc.isValid() ? where->loc : t.loc,
@@ -594,9 +675,11 @@ bool Discretiser::collectInvariants() {
       // A place no time may pass in (SpaceEx's `flow false`).
       if (auto *lit = llvm::dyn_cast<BoolLit>(c); lit && !lit->value) {
         if (!leaves(inv.place))
-          return error(inv.loc, "place '" + inv.placeName +
-                                    "' is a timelock: no time may pass in "
-                                    "it, and no transition leaves it");
+          diag.warning(inv.loc,
+                       "place '" + inv.placeName +
+                           "' is a timelock: no time may pass in it, and no "
+                           "transition leaves it; runs end there, and reach "
+                           "reports the states as deadlocks");
         urgentPlaces.push_back({inv.place, c->loc});
         continue;
       }
@@ -608,21 +691,30 @@ bool Discretiser::collectInvariants() {
                                  "one real by a constant (x <= c, x >= c)");
       Real &x = reals[realOfVar[vb->var]];
       x.thresholds.insert(vb->value);
-      if (!x.flowOfPlace.count(inv.place))
-        continue;
-      std::optional<int> dir =
-          constantDirection(*x.flows[x.flowOfPlace[inv.place]].eq);
-      if (dir && *dir == 0)
-        continue;
-      // A place the invariant bounds must have a way out.
-      if (!leaves(inv.place))
-        return error(inv.loc, "place '" + inv.placeName +
-                                  "' is a timelock: its invariant '" +
-                                  exprToString(c) +
-                                  "' ends its dwell, and no transition "
-                                  "leaves it");
-      invariantBounds.push_back(
-          {inv.place, size_t(&x - reals.data()), vb->upper, vb->value, c->loc});
+      // It bounds x in each place that moves x while inv.place is marked.
+      for (const FlowOf &fl : x.flows) {
+        if (!markedWhenever(fl.place, inv.place))
+          continue;
+        std::optional<int> dir = constantDirection(*fl.eq);
+        if (dir && *dir == 0)
+          continue;
+        // A place the invariant bounds and nothing leaves: the model's
+        // runs end there (SpaceEx models bound their horizon this way); the
+        // stop keeps it, and reach reports each such state as a deadlock.
+        if (!leaves(fl.place))
+          diag.warning(
+              inv.loc,
+              "place '" + m.places[fl.place].name +
+                  "' is a timelock: its invariant '" + exprToString(c) + "'" +
+                  (fl.place == inv.place
+                       ? std::string()
+                       : " (of '" + inv.placeName + "', marked with it)") +
+                  " ends its dwell, and no transition "
+                  "leaves it; runs end there, and reach "
+                  "reports the states as deadlocks");
+        invariantBounds.push_back({fl.place, size_t(&x - reals.data()),
+                                   vb->upper, vb->value, c->loc});
+      }
     }
   }
   return true;
@@ -634,8 +726,8 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!checkRectangularFlows() || !collectReals() || !collectUses() ||
-      !collectInvariants())
+  if (!eliminateDisturbances() || !checkRectangularFlows() || !collectReals() ||
+      !collectUses() || !collectInvariants())
     return false;
   closeOpenRanges();
   for (Real &r : reals)

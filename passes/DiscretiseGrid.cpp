@@ -164,17 +164,11 @@ bool Discretiser::computeTimes(Real &r) {
     };
     fl.rate.f = fl.fn;
     fl.rate.forceNumeric = numeric;
-    double f0 = fl.fn(0), f1 = fl.fn(1);
-    fl.rate.a = f1 - f0;
-    fl.rate.b = f0;
-    bool affine = true;
-    for (double x : {r.lo, r.hi, (r.lo + r.hi) / 2, r.lo + (r.hi - r.lo) / 3,
-                     -7.25, 13.5}) {
-      double want = fl.rate.a * x + fl.rate.b, got = fl.fn(x);
-      if (std::fabs(want - got) >
-          1e-12 * std::max({std::fabs(want), std::fabs(got), 1.0}))
-        affine = false;
-    }
+    auto ab = affineCoefficients(
+        rate, var, {r.lo, r.hi, (r.lo + r.hi) / 2, r.lo + (r.hi - r.lo) / 3});
+    bool affine = ab.has_value();
+    fl.rate.a = affine ? ab->first / scale : 0;
+    fl.rate.b = affine ? ab->second / scale : fl.fn(0);
     fl.rate.shape = !affine          ? hybrid::Rate::Shape::General
                     : fl.rate.a == 0 ? hybrid::Rate::Shape::Constant
                                      : hybrid::Rate::Shape::Affine;

@@ -349,6 +349,13 @@ void Discretiser::emitInvariantStops(Real &r, const std::vector<Form> &forms) {
                                r.grid[f.k - 1] == ib.bound
                          : f.kind == FormKind::Down && f.k < r.grid.size() &&
                                r.grid[f.k] == ib.bound;
+      // At the end of its range x rests, but the flow still pushes it past
+      // the bound: the place must be left there too.
+      if (f.kind == FormKind::Rest && f.k < r.grid.size() &&
+          r.grid[f.k] == ib.bound) {
+        double rate = r.flows[fl].fn(ib.bound);
+        atBound = ib.upper ? rate > 0 : rate < 0;
+      }
       if (!atBound)
         continue;
       addStop(placeOf(r, f),

@@ -68,6 +68,9 @@ public:
         readsVar = true;
         return x;
       }
+      if (others && r->sym.kind == SymKind::Var && r->fields.empty())
+        if (auto it = others->find(r->sym.index); it != others->end())
+          return it->second;
       bad = e;
       return std::nullopt;
     }
@@ -126,6 +129,8 @@ public:
     }
   }
   uint32_t var;
+  /// Values of other variables the expression may read (disturbances).
+  const std::map<uint32_t, double> *others = nullptr;
   bool readsVar = false;
   const Expr *bad = nullptr;
 };
@@ -222,10 +227,24 @@ private:
   /// such as SpaceEx's build expressions from XML text): the port or
   /// transition being read.
   llvm::SMLoc context;
+  /// Reals that change freely (SpaceEx's variables without a flow: inputs,
+  /// disturbances), bounded where they are read by invariants and read
+  /// only in the rates of other reals: each such rate becomes the interval
+  /// it spans (a rectangular flow) and the disturbance is removed
+  /// (DiscretiseDisturbances.cpp).
+  bool eliminateDisturbances();
+  std::set<uint32_t> disturbances;
   bool collectReals();
   /// The bounds of every rectangular flow: constants of one sign.
   bool checkRectangularFlows();
   bool inferRange(Real &r, std::string &why);
+  /// Is `q` marked whenever `p` is (p == q, or shown inductively on the
+  /// one-token places of both: the initial marking and every transition
+  /// keep "p marked implies q marked")? Then q's invariant bounds what
+  /// moves in p, as the invariant of a synchronised component's location
+  /// (a controller's mode) bounds the plant's flow in its own location.
+  bool markedWhenever(uint32_t p, uint32_t q);
+  std::map<std::pair<uint32_t, uint32_t>, bool> markedWheneverCache;
   /// A range left open by inferRange ends one grid step past the last
   /// constant the real is compared with, set to or starts at.
   void closeOpenRanges();
@@ -325,6 +344,13 @@ private:
 /// of a rectangular one) is constant: +1, -1 or 0; nullopt when it
 /// depends on the value.
 std::optional<int> constantDirection(const Flow::Equation &eq);
+
+/// The coefficients (a, b) of a rate x' = a*x + b that reads only x
+/// (`var`) and constants, where it is affine: checked at fixed points and
+/// at `alsoAt`; nullopt when it reads anything else or is not affine.
+std::optional<std::pair<double, double>>
+affineCoefficients(const Expr *rate, uint32_t var,
+                   llvm::ArrayRef<double> alsoAt = {});
 
 /// Does `e` read a real variable (`where`: the first such read)?
 bool mentionsReal(const Expr *e,
