@@ -359,6 +359,25 @@ bool Discretiser::checkRectangularFlows() {
   return true;
 }
 
+bool Discretiser::checkOneDimensional() {
+  for (const Flow &f : m.flows)
+    for (const Flow::Equation &eq : f.equations) {
+      if (eq.rateHi)
+        continue; // rectangular: constant bounds, checked with them
+      RealEval ev(eq.varIndex);
+      auto *other =
+          ev.eval(eq.rate, 0) ? nullptr : llvm::dyn_cast_or_null<Ref>(ev.bad);
+      if (other && other->sym.kind == SymKind::Var)
+        return error(other->loc.isValid() ? other->loc : eq.loc,
+                     "the rate of '" + eq.var + "' in place '" + f.placeName +
+                         "' reads '" + other->name +
+                         "': a coupled flow (x' = f(x, y)), which discretise "
+                         "does not take; it needs x' = f(x) "
+                         "(one-dimensional autonomous flows)");
+    }
+  return true;
+}
+
 bool Discretiser::collectReals() {
   for (uint32_t i = 0; i < m.vars.size(); ++i) {
     const Var &v = m.vars[i];
@@ -726,8 +745,9 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!eliminateDisturbances() || !checkRectangularFlows() || !collectReals() ||
-      !collectUses() || !collectInvariants())
+  if (!eliminateDisturbances() || !checkOneDimensional() ||
+      !checkRectangularFlows() || !collectReals() || !collectUses() ||
+      !collectInvariants())
     return false;
   closeOpenRanges();
   for (Real &r : reals)

@@ -369,7 +369,7 @@ void Discretiser::addStop(uint32_t place, const std::string &name,
                           llvm::SMLoc loc) {
   if (!neverFires) {
     uint32_t p = b.addPlace(d.save(fresh("_never_marked")), 0, 1);
-    neverFires = b.addTransition(d.save(fresh("_never")), {PreArc{p, 1}},
+    neverFires = b.addTransition(d.save(fresh("_never")), {PreArc{p, 1, {}}},
                                  {PostArc{p, 1}});
     ++numPlaces;
     ++numTransitions;

@@ -234,6 +234,10 @@ private:
   /// (DiscretiseDisturbances.cpp).
   bool eliminateDisturbances();
   std::set<uint32_t> disturbances;
+  /// Every rate reads only its own real and constants: a coupled flow is
+  /// the first thing to say about a model (no range or grid would make it
+  /// one-dimensional).
+  bool checkOneDimensional();
   bool collectReals();
   /// The bounds of every rectangular flow: constants of one sign.
   bool checkRectangularFlows();
