@@ -72,6 +72,78 @@ bool checkers::isInvariant(const CtlFormula &f) {
   return f.kind == CtlFormula::AG && isStateFormula(*f.lhs);
 }
 
+/// A limit stopped the exploration: what the explored part settles is
+/// reported all the same. Every stored state is reachable, so a state
+/// violating p refutes `AG p` and one satisfying p proves `EF p`, with the
+/// path to it (breadth-first, a shortest one: every state closer to the
+/// initial one was stored before the limit). Anything else is undecided.
+/// Exit code as checkProperties'.
+static int
+checkExploredPart(statespace::ExplorationSetup &setup,
+                  statespace::Explorer &explorer,
+                  const statespace::ExploreResult &r,
+                  llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
+                  const std::string &traceDir, llvm::raw_ostream &out,
+                  DiagEngine &diag, bool abstractTimers) {
+  sem::Semantics &semantics = setup.semantics();
+  size_t n = explorer.store().size();
+  CtlGraph g = graphOf(explorer, r);
+  out << "the exploration stopped at a limit (" << n
+      << " states): the properties it settles are reported, the others "
+         "are undecided\n";
+  sem::RuntimeError err;
+  auto atomValue = [&](const net::Expr *e, uint32_t st) {
+    return semantics.evalPredicate(e, explorer.store().state(st), err);
+  };
+  bool fails = false, undecided = false;
+  unsigned index = 0;
+  for (const auto &f : formulas) {
+    ++index;
+    // `deadlock` is unknown in the states the limit left unexpanded.
+    bool settles = !abstractTimers &&
+                   (f->kind == CtlFormula::AG || f->kind == CtlFormula::EF) &&
+                   isStateProposition(*f->lhs, false);
+    std::optional<uint32_t> hit;
+    bool exists = f->kind == CtlFormula::EF;
+    if (settles) {
+      // States are numbered as found, breadth-first: the first is closest.
+      std::vector<uint8_t> sat = evaluateCtl(*f->lhs, g, atomValue);
+      for (uint32_t st = 0; st < n && !hit; ++st)
+        if (bool(sat[st]) == exists)
+          hit = st;
+    }
+    if (!hit) {
+      undecided = true;
+      out << ctlToString(*f) << ": undecided ("
+          << (settles ? (exists ? "no state satisfying it" : "no violation")
+                      : "the explored part cannot settle it")
+          << (settles ? " among the " + std::to_string(n) + " explored" : "")
+          << ")\n";
+      continue;
+    }
+    fails |= !exists;
+    std::string claim = "a shortest path to a state where " +
+                        ctlToString(*f->lhs) +
+                        (exists ? " holds" : " does not hold");
+    out << ctlToString(*f) << ": " << (exists ? "holds" : "fails") << "\n"
+        << (exists ? "witness: " : "counterexample: ") << claim << "\n";
+    std::vector<std::pair<uint32_t, uint32_t>> steps = explorer.pathTo(*hit);
+    statespace::writePath(explorer, semantics, steps, out);
+    if (!traceDir.empty()) {
+      statespace::TraceFileHeader h{ctlToString(*f), exists, exists, claim};
+      if (!statespace::writeTraceFiles(
+              traceDir + "/p" + std::to_string(index), h, explorer, semantics,
+              setup.timescale(), steps, -1, statespace::Explorer::kNone, diag))
+        return 1;
+    }
+  }
+  if (!err.message.empty()) {
+    diag.error(llvm::SMLoc(), "runtime error in a property: " + err.message);
+    return 1;
+  }
+  return fails ? 3 : undecided ? 2 : 0;
+}
+
 int checkers::checkProperties(
     statespace::ExplorationSetup &setup,
     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
@@ -85,22 +157,21 @@ int checkers::checkProperties(
   if (!graph)
     return 1;
   statespace::Explorer &explorer = *graph;
-  if (!r.complete) {
-    out << "undecided: the exploration stopped at a limit ("
-        << explorer.store().size() << " states)\n";
-    return 2;
-  }
-  CtlGraph g = graphOf(explorer, r);
   sem::RuntimeError err;
-  auto atomValue = [&](const net::Expr *e, uint32_t s) {
-    return semantics.evalPredicate(e, explorer.store().state(s), err);
-  };
   if (!traceDir.empty())
     if (std::error_code ec = llvm::sys::fs::create_directories(traceDir)) {
       diag.error(llvm::SMLoc(),
                  "cannot create '" + traceDir + "': " + ec.message());
       return 1;
     }
+  if (!r.complete) {
+    return checkExploredPart(setup, explorer, r, formulas, traceDir, out, diag,
+                             abstractTimers);
+  }
+  CtlGraph g = graphOf(explorer, r);
+  auto atomValue = [&](const net::Expr *e, uint32_t s) {
+    return semantics.evalPredicate(e, explorer.store().state(s), err);
+  };
   // The label of a step: the first edge between its two states.
   auto labelOf = [&](uint32_t from, uint32_t to) {
     for (uint32_t k = g.succStart[from]; k < g.succStart[from + 1]; ++k)

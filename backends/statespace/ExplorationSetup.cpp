@@ -9,6 +9,7 @@
 #include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
 #include "passes/Flatten.h"
+#include "passes/LatchInputs.h"
 #include "passes/Pass.h"
 
 #include "llvm/Support/raw_ostream.h"
@@ -97,6 +98,15 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   net::Module *top = explorableTop(design, options.top, diag, command);
   if (!top)
     return nullptr;
+  // Inputs a property names are kept as the PLC's input image, for this
+  // run only (passes/LatchInputs.h).
+  std::vector<std::string> latch = options.latch;
+  for (const std::string &text : options.propertyTexts)
+    for (std::string &name : inputsNamedIn(*top, text))
+      if (llvm::find(latch, name) == latch.end())
+        latch.push_back(std::move(name));
+  if (!latchInputs(design, *top, latch, diag))
+    return nullptr;
   // Enumerating, every value of every input is tried at every step; split
   // on demand, only the values the program tells apart (and strings are
   // still too many).
@@ -153,6 +163,7 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
     auto setup =
         std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
     setup->tick = design.timescale;
+    setup->latchedInputs = std::move(latch);
     return setup;
   }
   // The exact model stays beside the abstract one, for the replay.
@@ -167,6 +178,7 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   auto setup =
       std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
   setup->tick = design.timescale;
+  setup->latchedInputs = std::move(latch);
   setup->timers = std::move(timers);
   setup->exactTop = exact;
   setup->exactLayout = std::make_unique<sem::StateLayout>(
@@ -177,11 +189,18 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
 }
 
 std::string ExplorationSetup::summaryJsonFields() const {
-  if (!opts.abstractTimers)
-    return "";
-  return ",\"timers\":{\"abstracted\":" +
-         std::to_string(timers.abstracted.size()) +
-         ",\"exact\":" + std::to_string(timers.kept.size()) + "}";
+  std::string out;
+  if (opts.abstractTimers)
+    out += ",\"timers\":{\"abstracted\":" +
+           std::to_string(timers.abstracted.size()) +
+           ",\"exact\":" + std::to_string(timers.kept.size()) + "}";
+  if (!latchedInputs.empty()) {
+    out += ",\"latched\":[";
+    for (size_t i = 0; i < latchedInputs.size(); ++i)
+      out += (i ? ",\"" : "\"") + latchedInputs[i] + "\"";
+    out += "]";
+  }
+  return out;
 }
 
 ExploreOptions ExplorationSetup::exploreOptions() const {

@@ -24,6 +24,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace netlift::statespace {
 
@@ -53,6 +54,11 @@ struct ExplorationOptions {
   /// --replay-states: most exact states a replay of an abstract
   /// counterexample (and the search of the exact model after it) visits.
   uint64_t replayStates = 1000000;
+  /// --latch, and the texts of the properties (--ctl, --find) whose named
+  /// free inputs are latched as the PLC's input image for this run
+  /// (passes/LatchInputs.h).
+  std::vector<std::string> latch;
+  std::vector<std::string> propertyTexts;
 };
 
 /// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for
@@ -90,8 +96,11 @@ public:
   const TimerAbstraction &timerAbstraction() const { return timers; }
   sem::Semantics *exactSemantics() { return exactSem.get(); }
   net::Module *exactModule() { return exactTop; }
-  /// `,"timers":{...}` for --summary json, empty without the option.
+  /// `,"timers":{...}` for --summary json, empty without the option;
+  /// `,"latched":[...]` when inputs were latched.
   std::string summaryJsonFields() const;
+  /// The inputs latched for this run, in the module's port order.
+  const std::vector<std::string> &latched() const { return latchedInputs; }
 
   /// Runs `explorer` (made on this set-up's semantics) into `result`;
   /// false after reporting a runtime error of the model with its trace.
@@ -112,6 +121,7 @@ private:
   std::unique_ptr<sem::Semantics> exactSem;
   net::Module *exactTop = nullptr;
   std::optional<net::Timescale> tick;
+  std::vector<std::string> latchedInputs;
 };
 
 /// Reports the runtime error an exploration stopped at, at its place in

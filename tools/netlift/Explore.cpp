@@ -169,6 +169,9 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   net::Design design;
   std::vector<std::string> inputs{reachInput};
   xo.timerNotes = round == 0;
+  xo.propertyTexts.clear();
+  if (!findText.empty())
+    xo.propertyTexts.push_back(findText);
   if (!loadModels(inputs, diag, design))
     return 1;
   if (edgeLabels == EdgeLabels::Inputs) {
@@ -280,6 +283,7 @@ int driver::runCheck(DiagEngine &diag) {
   statespace::ExplorationOptions xo;
   if (!explorationOptions(xo, diag))
     return 1;
+  xo.propertyTexts.assign(properties.begin(), properties.end());
   for (unsigned round = 0;; ++round) {
     net::Design design;
     std::vector<std::string> inputs{checkInput};

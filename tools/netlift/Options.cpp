@@ -276,6 +276,13 @@ static cl::opt<uint64_t> replayStates(
              "counterexample visits (default 1000000)"),
     cl::init(1000000), cl::sub(reachCommand()), cl::sub(checkCommand()),
     cl::cat(category()));
+static cl::list<std::string> latch(
+    "latch",
+    cl::desc("Keep these free inputs in the state as the PLC's input image "
+             "(what the scan last read); inputs a property or --find names "
+             "are latched without it (docs/check.md)"),
+    cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
+    cl::sub(checkCommand()), cl::cat(category()));
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -359,6 +366,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
     return false;
   }
   eo.abstractTimers = timersMode == TimersMode::Abstract;
+  eo.latch.assign(latch.begin(), latch.end());
   eo.refineRounds = refineRounds;
   eo.replayStates = replayStates;
   eo.maxStates = maxStates;
