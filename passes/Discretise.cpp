@@ -381,7 +381,7 @@ bool Discretiser::checkOneDimensional() {
 bool Discretiser::collectReals() {
   for (uint32_t i = 0; i < m.vars.size(); ++i) {
     const Var &v = m.vars[i];
-    if (!v.type->isReal() || disturbances.count(i))
+    if (!v.type->isReal() || unfollowed.count(i))
       continue;
     Real r;
     r.var = i;
@@ -745,9 +745,9 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!eliminateDisturbances() || !checkOneDimensional() ||
-      !checkRectangularFlows() || !collectReals() || !collectUses() ||
-      !collectInvariants())
+  if (!eliminateDisturbances() || !dropUnobservedReals() ||
+      !checkOneDimensional() || !checkRectangularFlows() || !collectReals() ||
+      !collectUses() || !collectInvariants())
     return false;
   closeOpenRanges();
   for (Real &r : reals)

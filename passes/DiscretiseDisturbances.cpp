@@ -310,6 +310,6 @@ bool Discretiser::eliminateDisturbances() {
     }
     b.setAction(ti, kept);
   }
-  disturbances = std::move(candidates);
+  unfollowed = std::move(candidates);
   return true;
 }

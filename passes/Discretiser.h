@@ -228,12 +228,18 @@ private:
   /// transition being read.
   llvm::SMLoc context;
   /// Reals that change freely (SpaceEx's variables without a flow: inputs,
-  /// disturbances), bounded where they are read by invariants and read
+  /// unfollowed), bounded where they are read by invariants and read
   /// only in the rates of other reals: each such rate becomes the interval
   /// it spans (a rectangular flow) and the disturbance is removed
   /// (DiscretiseDisturbances.cpp).
   bool eliminateDisturbances();
-  std::set<uint32_t> disturbances;
+  /// Reals nothing observes (no guard, condition, output, invariant, or
+  /// observed real's rate or reset reads them) are dropped with their
+  /// flows and resets (DiscretiseUnobserved.cpp).
+  bool dropUnobservedReals();
+  /// The reals discretise removes without giving them a position:
+  /// disturbances and unobserved reals.
+  std::set<uint32_t> unfollowed;
   /// Every rate reads only its own real and constants: a coupled flow is
   /// the first thing to say about a model (no range or grid would make it
   /// one-dimensional).

@@ -369,6 +369,8 @@ bool spaceex::readConfig(StringRef path, DiagEngine &diag, Config &out) {
       out.initially = entry;
     else if (key == "forbidden")
       out.forbidden = entry;
+    else if (key == "output-variables")
+      out.outputVariables = entry;
     pos = eol + 1;
   }
   return !out.initially || splitInitialSet(*out.initially, diag, out.initial);

@@ -65,6 +65,8 @@ struct InitialSet {
 
 struct Config {
   std::optional<ConfigEntry> system, initially, forbidden;
+  /// `output-variables`: the variables the user plots (observes).
+  std::optional<ConfigEntry> outputVariables;
   InitialSet initial;
 };
 

@@ -1055,6 +1055,19 @@ bool SpaceExReader::applyInitialSet(pugi::xml_node top) {
                              top.attribute("id").value() + "'");
       return false;
     }
+  // What the user plots is observed even where the model reads it not:
+  // discretise keeps those reals.
+  if (cfg->outputVariables) {
+    llvm::SmallVector<StringRef, 4> names;
+    cfg->outputVariables->text.split(names, ',', -1, false);
+    for (StringRef name : names) {
+      name = name.trim();
+      net::Symbol s = mod->lookup(name);
+      if (s.kind == net::SymKind::Var && mod->vars[s.index].type->isReal())
+        b.addAttribute(d.save(name), net::kObservedAttribute,
+                       "output-variables", cfg->outputVariables->loc);
+    }
+  }
   return !cfg->forbidden || addForbidden();
 }
 

@@ -280,6 +280,11 @@ inline constexpr llvm::StringLiteral kNeedsRangeAttribute = "needs_range";
 /// unless timers are abstracted (--timers=abstract).
 inline constexpr llvm::StringLiteral kUnboundedClockAttribute =
     "unbounded_clock";
+/// `attr x observed = "output-variables";`: a real the model's user
+/// observes though the model does not read it (the variables a SpaceEx
+/// configuration plots): `discretise` keeps it instead of dropping it as
+/// unobserved.
+inline constexpr llvm::StringLiteral kObservedAttribute = "observed";
 
 struct Attribute {
   /// An entity or instance of the module, a scope of its qualified names
