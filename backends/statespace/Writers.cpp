@@ -407,6 +407,96 @@ void netlift::statespace::writeStatePath(
   }
 }
 
+void statespace::writeJsonSteps(sem::Semantics &sem,
+                                llvm::ArrayRef<std::string> labels,
+                                llvm::ArrayRef<const uint64_t *> states,
+                                const std::optional<net::Timescale> &tick,
+                                llvm::json::OStream &j) {
+  std::vector<StateColumn> attrs = stateColumns(sem);
+  auto value = [&](const StateColumn &a, const Cell &c) {
+    if (a.isString()) {
+      j.value(toUtf8(c.str));
+      return;
+    }
+    double d;
+    if (llvm::to_float(c.text, d) && std::isfinite(d))
+      j.value(c.text.find_first_of(".eE") == std::string::npos
+                  ? llvm::json::Value(int64_t(c.v))
+                  : llvm::json::Value(d));
+    else
+      j.value(c.text);
+  };
+  j.attribute("time_unit", tick
+                               ? std::to_string(tick->amount) + tick->unit.str()
+                               : std::string("tick"));
+  j.attributeArray("steps", [&] {
+    std::vector<Cell> prev;
+    uint64_t ticks = 0;
+    for (size_t i = 0; i < states.size(); ++i) {
+      llvm::StringRef label = i == 0 ? "" : llvm::StringRef(labels[i]);
+      auto [step, inputs] = label.split(" [");
+      if (step == "tick")
+        ++ticks;
+      std::vector<Cell> cur;
+      for (const StateColumn &a : attrs)
+        cur.push_back(cellOf(sem, a, states[i]));
+      j.object([&] {
+        j.attribute("step", int64_t(i));
+        j.attribute("label", i == 0 ? "(initial)" : step.str());
+        if (inputs.empty())
+          j.attribute("inputs", nullptr);
+        else
+          j.attribute("inputs", "[" + inputs.str());
+        j.attribute("time", int64_t(ticks));
+        j.attributeObject(i == 0 ? "values" : "changes", [&] {
+          for (size_t k = 0; k < attrs.size(); ++k)
+            if (i == 0 || cur[k] != prev[k]) {
+              j.attributeBegin(attrs[k].name);
+              value(attrs[k], cur[k]);
+              j.attributeEnd();
+            }
+        });
+      });
+      prev = std::move(cur);
+    }
+  });
+}
+
+bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
+                                    uint32_t target,
+                                    const TraceFileHeader &header,
+                                    const std::optional<net::Timescale> &tick,
+                                    llvm::StringRef file, DiagEngine &diag) {
+  auto path = x.pathTo(target);
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  for (auto &[l, st] : path) {
+    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
+    states.push_back(x.store().state(st));
+  }
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
+  return writeOutputFile(
+      file,
+      [&](llvm::raw_ostream &os) {
+        llvm::json::OStream j(os, 1);
+        j.object([&] {
+          j.attribute("formula", header.formula);
+          j.attribute("holds", header.holds);
+          j.attribute("trace", header.witness ? "witness" : "counterexample");
+          j.attribute("claim", header.claim);
+          j.attributeArray("states", [&] {
+            for (const auto &step : path)
+              j.value(int64_t(step.second));
+          });
+          j.attribute("loop_to", nullptr);
+          writeJsonSteps(sem, labels, states, tick, j);
+        });
+        os << "\n";
+      },
+      diag);
+}
+
 void statespace::writeVcd(sem::Semantics &sem,
                           llvm::ArrayRef<std::string> labels,
                           llvm::ArrayRef<const uint64_t *> states,
@@ -596,6 +686,14 @@ bool statespace::writeTraceFiles(
   auto label = [&](uint32_t l) {
     return l == Explorer::kNone ? std::string("tau") : x.label(l);
   };
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  for (const auto &[l, st] : steps) {
+    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
+    states.push_back(x.store().state(st));
+  }
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
   bool ok = writeOutputFile(
       base + ".json",
       [&](llvm::raw_ostream &os) {
@@ -619,18 +717,11 @@ bool statespace::writeTraceFiles(
           } else {
             j.attribute("loop_to", nullptr);
           }
+          writeJsonSteps(sem, labels, states, tick, j);
         });
         os << "\n";
       },
       diag);
-  std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  for (const auto &[l, st] : steps) {
-    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
-    states.push_back(x.store().state(st));
-  }
-  if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
   ok = ok && writeOutputFile(
                  base + ".vcd",
                  [&](llvm::raw_ostream &os) {

@@ -15,6 +15,7 @@
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
+#include "llvm/Support/JSON.h"
 #include "llvm/Support/raw_ostream.h"
 
 #include <optional>
@@ -114,10 +115,26 @@ struct TraceFileHeader {
   std::string claim;    // what the path shows, in words
 };
 
+/// The `time_unit` and `steps` members of a JSON trace (docs/formats.md,
+/// "JSON traces"): per step its label, the input classes that took it,
+/// the time in ticks, and the values (step 0) or the values it changed.
+void writeJsonSteps(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+                    llvm::ArrayRef<const uint64_t *> states,
+                    const std::optional<net::Timescale> &tick,
+                    llvm::json::OStream &j);
+
+/// The path to `target` as a JSON trace document in `file` (reach
+/// --trace-json). False after reporting.
+bool writeJsonTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
+                        const TraceFileHeader &header,
+                        const std::optional<net::Timescale> &tick,
+                        llvm::StringRef file, DiagEngine &diag);
+
 /// Writes a path as `BASE.json` (the header, the states by id as `reach`
-/// numbers them, the step labels, the loop), `BASE.aut` (the path as an
-/// Aldebaran graph, the loop as an edge back) and `BASE.vcd` (writeVcd).
-/// False after reporting.
+/// numbers them, the step labels, the loop, and the steps as
+/// writeJsonSteps writes them), `BASE.aut` (the path as an Aldebaran graph,
+/// the loop as an edge back) and `BASE.vcd` (writeVcd). False after
+/// reporting.
 bool writeTraceFiles(const std::string &base, const TraceFileHeader &header,
                      const Explorer &x, sem::Semantics &sem,
                      const std::optional<net::Timescale> &tick,
