@@ -282,13 +282,6 @@ bool Discretiser::eliminateDisturbances() {
                                  "' changes freely and is read only by "
                                  "rates, which now span its bounds: it is "
                                  "removed");
-  for (Flow &f : m.flows) {
-    std::vector<Flow::Equation> kept;
-    for (const Flow::Equation &eq : f.equations)
-      if (!candidates.count(eq.varIndex))
-        kept.push_back(eq);
-    f.equations = d.copy(llvm::ArrayRef<Flow::Equation>(kept));
-  }
   for (Invariant &inv : m.invariants) {
     std::vector<Expr *> kept;
     for (Expr *c : inv.conditions)
@@ -296,20 +289,6 @@ bool Discretiser::eliminateDisturbances() {
         kept.push_back(c);
     inv.conditions = d.copy(llvm::ArrayRef<Expr *>(kept));
   }
-  for (uint32_t ti = 0; ti < m.transitions.size(); ++ti) {
-    Transition &t = m.transitions[ti];
-    if (!t.hasAction())
-      continue;
-    std::vector<Stmt *> kept;
-    for (Stmt *s : t.action()) {
-      auto *a = llvm::dyn_cast<AssignStmt>(s);
-      auto *target = a ? llvm::dyn_cast<Ref>(a->target) : nullptr;
-      if (!target || target->sym.kind != SymKind::Var ||
-          !candidates.count(target->sym.index))
-        kept.push_back(s);
-    }
-    b.setAction(ti, kept);
-  }
-  unfollowed = std::move(candidates);
+  removeReals(candidates);
   return true;
 }

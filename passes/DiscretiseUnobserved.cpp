@@ -92,10 +92,15 @@ bool Discretiser::dropUnobservedReals() {
                   "observed real, nor plotted (output-variables): nothing "
                   "tells its values apart, and discretise drops it with its "
                   "flows and resets");
+  removeReals(dropped);
+  return true;
+}
+
+void Discretiser::removeReals(const std::set<uint32_t> &vars) {
   for (Flow &f : m.flows) {
     std::vector<Flow::Equation> kept;
     for (const Flow::Equation &eq : f.equations)
-      if (!dropped.count(eq.varIndex))
+      if (!vars.count(eq.varIndex))
         kept.push_back(eq);
     f.equations = d.copy(llvm::ArrayRef<Flow::Equation>(kept));
   }
@@ -104,13 +109,13 @@ bool Discretiser::dropUnobservedReals() {
     if (!t.hasAction())
       continue;
     Block kept = dropAssignments(b, t.action(), [&](const AssignStmt *a) {
-      std::optional<uint32_t> target = realTarget(a);
-      return !target || !dropped.count(*target);
+      auto *target = llvm::dyn_cast<Ref>(a->target);
+      return !target || target->sym.kind != SymKind::Var ||
+             !vars.count(target->sym.index);
     });
     b.setAction(ti, kept);
   }
-  // They need no position: collectReals skips them as it skips
-  // disturbances, and finish() removes every real variable.
-  unfollowed.insert(dropped.begin(), dropped.end());
-  return true;
+  // They need no position: collectReals skips them, and finish() removes
+  // every real variable.
+  unfollowed.insert(vars.begin(), vars.end());
 }

@@ -240,6 +240,9 @@ private:
   /// The reals discretise removes without giving them a position:
   /// disturbances and unobserved reals.
   std::set<uint32_t> unfollowed;
+  /// Removes the flow equations of `vars` and every assignment to them
+  /// (they join `unfollowed`).
+  void removeReals(const std::set<uint32_t> &vars);
   /// Every rate reads only its own real and constants: a coupled flow is
   /// the first thing to say about a model (no range or grid would make it
   /// one-dimensional).

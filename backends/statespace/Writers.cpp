@@ -350,19 +350,19 @@ void netlift::statespace::withInputClasses(
   }
 }
 
+static void labelledPath(const Explorer &x, sem::Semantics &sem,
+                         llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                         std::vector<std::string> &labels,
+                         std::vector<const uint64_t *> &states);
+
 void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
     int64_t loopTo, uint32_t loopLabel) {
+  // Which inputs took each step (issue 40), unless the labels say it.
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
-  for (auto &[label, s] : path) {
-    labels.push_back(label == Explorer::kNone ? "" : x.label(label));
-    states.push_back(x.store().state(s));
-  }
-  // Which inputs took each step (issue 40), unless the labels say it.
-  if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
+  labelledPath(x, sem, path, labels, states);
   writeStatePath(sem, labels, states, os);
   if (loopTo >= 0) {
     size_t width = 9;
@@ -462,6 +462,57 @@ void statespace::writeJsonSteps(sem::Semantics &sem,
   });
 }
 
+/// A path's step labels (with the input classes that took each step,
+/// unless the labels already say them) and its states.
+static void labelledPath(const Explorer &x, sem::Semantics &sem,
+                         llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                         std::vector<std::string> &labels,
+                         std::vector<const uint64_t *> &states) {
+  for (const auto &[l, st] : path) {
+    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
+    states.push_back(x.store().state(st));
+  }
+  if (!x.options().inputLabels)
+    withInputClasses(sem, labels, states);
+}
+
+/// The JSON trace document (docs/formats.md, "JSON traces").
+static void writeJsonTrace(const TraceFileHeader &header, const Explorer &x,
+                           sem::Semantics &sem,
+                           const std::optional<net::Timescale> &tick,
+                           llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                           llvm::ArrayRef<std::string> labels,
+                           llvm::ArrayRef<const uint64_t *> states,
+                           int64_t loopTo, uint32_t loopLabel,
+                           llvm::raw_ostream &os) {
+  auto label = [&](uint32_t l) {
+    return l == Explorer::kNone ? std::string("tau") : x.label(l);
+  };
+  llvm::json::OStream j(os, 1);
+  j.object([&] {
+    j.attribute("formula", header.formula);
+    j.attribute("holds", header.holds);
+    j.attribute("trace", header.witness ? "witness" : "counterexample");
+    j.attribute("claim", header.claim);
+    j.attributeArray("states", [&] {
+      for (const auto &step : path)
+        j.value(int64_t(step.second));
+    });
+    j.attributeArray("labels", [&] {
+      for (size_t i = 1; i < path.size(); ++i)
+        j.value(label(path[i].first));
+    });
+    if (loopTo >= 0) {
+      j.attribute("loop_to", loopTo);
+      j.attribute("loop_label", label(loopLabel));
+    } else {
+      j.attribute("loop_to", nullptr);
+    }
+    writeJsonSteps(sem, labels, states, tick, j);
+  });
+  os << "\n";
+}
+
 bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
                                     uint32_t target,
                                     const TraceFileHeader &header,
@@ -470,29 +521,12 @@ bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
   auto path = x.pathTo(target);
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
-  for (auto &[l, st] : path) {
-    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
-    states.push_back(x.store().state(st));
-  }
-  if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
+  labelledPath(x, sem, path, labels, states);
   return writeOutputFile(
       file,
       [&](llvm::raw_ostream &os) {
-        llvm::json::OStream j(os, 1);
-        j.object([&] {
-          j.attribute("formula", header.formula);
-          j.attribute("holds", header.holds);
-          j.attribute("trace", header.witness ? "witness" : "counterexample");
-          j.attribute("claim", header.claim);
-          j.attributeArray("states", [&] {
-            for (const auto &step : path)
-              j.value(int64_t(step.second));
-          });
-          j.attribute("loop_to", nullptr);
-          writeJsonSteps(sem, labels, states, tick, j);
-        });
-        os << "\n";
+        writeJsonTrace(header, x, sem, tick, path, labels, states, -1,
+                       Explorer::kNone, os);
       },
       diag);
 }
@@ -663,15 +697,10 @@ bool statespace::writeVcdFile(const Explorer &x, sem::Semantics &sem,
                               uint32_t target,
                               const std::optional<net::Timescale> &tick,
                               llvm::StringRef file, DiagEngine &diag) {
+  // The inputs of each step, as the text trace shows them.
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
-  for (auto &[label, s] : x.pathTo(target)) {
-    labels.push_back(label == Explorer::kNone ? "" : x.label(label));
-    states.push_back(x.store().state(s));
-  }
-  // The inputs of each step, as the text trace shows them.
-  if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
+  labelledPath(x, sem, x.pathTo(target), labels, states);
   return writeOutputFile(
       file.str(),
       [&](llvm::raw_ostream &os) { writeVcd(sem, labels, states, tick, os); },
@@ -688,38 +717,12 @@ bool statespace::writeTraceFiles(
   };
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
-  for (const auto &[l, st] : steps) {
-    labels.push_back(l == Explorer::kNone ? "" : x.label(l));
-    states.push_back(x.store().state(st));
-  }
-  if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
+  labelledPath(x, sem, steps, labels, states);
   bool ok = writeOutputFile(
       base + ".json",
       [&](llvm::raw_ostream &os) {
-        llvm::json::OStream j(os, 1);
-        j.object([&] {
-          j.attribute("formula", header.formula);
-          j.attribute("holds", header.holds);
-          j.attribute("trace", header.witness ? "witness" : "counterexample");
-          j.attribute("claim", header.claim);
-          j.attributeArray("states", [&] {
-            for (const auto &step : steps)
-              j.value(int64_t(step.second));
-          });
-          j.attributeArray("labels", [&] {
-            for (size_t i = 1; i < steps.size(); ++i)
-              j.value(label(steps[i].first));
-          });
-          if (loopTo >= 0) {
-            j.attribute("loop_to", loopTo);
-            j.attribute("loop_label", label(loopLabel));
-          } else {
-            j.attribute("loop_to", nullptr);
-          }
-          writeJsonSteps(sem, labels, states, tick, j);
-        });
-        os << "\n";
+        writeJsonTrace(header, x, sem, tick, steps, labels, states, loopTo,
+                       loopLabel, os);
       },
       diag);
   ok = ok && writeOutputFile(
