@@ -102,6 +102,9 @@ bool iec61499::orderLikeForte(Design &design, Module &m, DiagEngine &diag) {
   b.addVar("_fifo_n", design.types.getRange(0, room), b.intLit(0, at), at);
   b.addVar("_fifo_k", design.types.getRange(0, 8), b.intLit(0, at), at);
   b.addVar("_fifo_overflow", design.types.getRange(0, 0), b.intLit(0, at), at);
+  for (StringRef v : {"_fifo", "_fifo_n", "_fifo_k", "_fifo_overflow"})
+    b.addAttribute(v, net::kInternalAttribute, "the resource's event queue",
+                   at);
 
   auto ref = [&](StringRef n) { return b.ref(n, at); };
   auto num = [&](int64_t v) { return b.intLit(v, at); };

@@ -128,7 +128,7 @@ checkExploredPart(statespace::ExplorationSetup &setup,
     out << ctlToString(*f) << ": " << (exists ? "holds" : "fails") << "\n"
         << (exists ? "witness: " : "counterexample: ") << claim << "\n";
     std::vector<std::pair<uint32_t, uint32_t>> steps = explorer.pathTo(*hit);
-    statespace::writePath(explorer, semantics, steps, out);
+    statespace::writePath(explorer, semantics, steps, out, setup.traceView());
     if (!traceDir.empty()) {
       statespace::TraceFileHeader h{ctlToString(*f), exists, exists, claim};
       if (!statespace::writeTraceFiles(
@@ -204,8 +204,8 @@ int checkers::checkProperties(
         trace->loopTo >= 0
             ? labelOf(trace->states.back(), trace->states[trace->loopTo])
             : statespace::Explorer::kNone;
-    statespace::writePath(explorer, semantics, steps, out, trace->loopTo,
-                          loopLabel);
+    statespace::writePath(explorer, semantics, steps, out, setup.traceView(),
+                          trace->loopTo, loopLabel);
     if (abstractTimers && !holds) {
       std::vector<std::string> involved;
       if (statespace::replayAndReport(setup, explorer, steps, false, out,

@@ -216,7 +216,7 @@ bool ExplorationSetup::explore(Explorer &explorer, ExploreResult &r,
   bool started = explorer.run(r);
   if (!r.error)
     return true;
-  reportRuntimeError(r, started, explorer, *sem, diag);
+  reportRuntimeError(r, started, explorer, *sem, diag, traceView());
   if (!r.error->limit && opts.abstractTimers && !timers.abstracted.empty())
     diag.note(llvm::SMLoc(),
               "found with abstract timers: the error may need a timer to "
@@ -236,8 +236,8 @@ std::unique_ptr<Explorer> ExplorationSetup::exploreGraph(ExploreResult &r,
 
 void statespace::reportRuntimeError(const ExploreResult &r, bool started,
                                     Explorer &explorer,
-                                    sem::Semantics &semantics,
-                                    DiagEngine &diag) {
+                                    sem::Semantics &semantics, DiagEngine &diag,
+                                    const TraceView &view) {
   std::string what = r.error->limit ? "" : "runtime error: ";
   if (r.error->loc.isValid())
     diag.error(r.error->loc, what + r.error->message);
@@ -246,6 +246,6 @@ void statespace::reportRuntimeError(const ExploreResult &r, bool started,
   if (started) {
     llvm::errs() << "trace to the state where it happens (the next step "
                     "fails):\n";
-    writeTrace(explorer, semantics, r.errorState, llvm::errs());
+    writeTrace(explorer, semantics, r.errorState, llvm::errs(), view);
   }
 }

@@ -14,6 +14,7 @@
 #define NETLIFT_BACKENDS_STATESPACE_EXPLORATIONSETUP_H
 
 #include "backends/statespace/Explorer.h"
+#include "backends/statespace/Writers.h"
 #include "ir/net/Module.h"
 #include "ir/semantics/Semantics.h"
 #include "ir/semantics/StateLayout.h"
@@ -59,6 +60,8 @@ struct ExplorationOptions {
   /// (passes/LatchInputs.h).
   std::vector<std::string> latch;
   std::vector<std::string> propertyTexts;
+  /// --trace-internals: traces show every step and name (TraceView).
+  bool traceInternals = false;
 };
 
 /// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for
@@ -86,6 +89,8 @@ public:
   /// The design's tick (`timescale`), when it declares one: how long a
   /// trace's `tick` steps last.
   const std::optional<net::Timescale> &timescale() const { return tick; }
+  /// How this command's traces are shown.
+  TraceView traceView() const { return {opts.traceInternals, tick}; }
 
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
@@ -129,7 +134,7 @@ private:
 /// could be built). Every command that explores says it the same way.
 void reportRuntimeError(const ExploreResult &result, bool started,
                         Explorer &explorer, sem::Semantics &semantics,
-                        DiagEngine &diag);
+                        DiagEngine &diag, const TraceView &view = {});
 
 } // namespace netlift::statespace
 

@@ -195,13 +195,14 @@ ReplayOutcome statespace::replayInExactTime(
 }
 
 void statespace::writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
-                                  llvm::raw_ostream &os) {
+                                  llvm::raw_ostream &os,
+                                  const TraceView &view) {
   std::vector<const uint64_t *> states;
   for (const std::vector<uint64_t> &s : o.states)
     states.push_back(s.data());
   std::vector<std::string> labels(o.labels.begin(), o.labels.end());
   withInputClasses(exact, labels, states);
-  writeStatePath(exact, labels, states, os);
+  writeStatePath(exact, labels, states, os, view);
 }
 
 ReplayOutcome::Verdict
@@ -227,7 +228,7 @@ statespace::replayAndReport(ExplorationSetup &setup, const Explorer &x,
   case ReplayOutcome::Confirmed:
     out << "confirmed in exact time: " << o.states.size() - 1 << " steps ("
         << o.visited << " exact states searched):\n";
-    writeReplayedRun(exact, o, out);
+    writeReplayedRun(exact, o, out, setup.traceView());
     break;
   case ReplayOutcome::Undecided:
     out << "undecided: the replay in exact time stopped after " << o.visited

@@ -18,6 +18,7 @@
 #define NETLIFT_BACKENDS_STATESPACE_TIMERREPLAY_H
 
 #include "backends/statespace/Explorer.h"
+#include "backends/statespace/Writers.h"
 #include "ir/semantics/Semantics.h"
 
 #include "llvm/Support/raw_ostream.h"
@@ -53,7 +54,7 @@ ReplayOutcome replayInExactTime(
 
 /// The exact run of a confirmed replay, as `reach` prints paths.
 void writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
-                      llvm::raw_ostream &os);
+                      llvm::raw_ostream &os, const TraceView &view = {});
 
 class ExplorationSetup;
 

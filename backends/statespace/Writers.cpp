@@ -1,5 +1,6 @@
 //===- Writers.cpp - state spaces as files --------------------------------===//
 #include "backends/statespace/Writers.h"
+#include "backends/statespace/StateColumns.h"
 #include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
@@ -16,6 +17,7 @@
 using namespace netlift;
 using namespace netlift::statespace;
 using namespace netlift::net;
+using namespace netlift::statespace::listing;
 
 void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
   os << "des (0, " << x.edges().size() << ", " << x.store().size() << ")\n";
@@ -24,18 +26,15 @@ void netlift::statespace::writeAut(const Explorer &x, llvm::raw_ostream &os) {
 }
 
 namespace {
-/// The columns of a state listing: places, variables (leaves; a string is
-/// one leaf), outputs.
-struct StateColumn {
-  std::string name;
-  enum Kind { Place, Clock, Data, Output } kind;
-  uint32_t slot = 0;          // Place, Clock, Data, stored Output
-  const Expr *def = nullptr;  // defined Output
-  const Type *type = nullptr; // Data and Output: how to write the value
-  bool isString() const { return type && type->isString(); }
-};
+std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
+  std::vector<char> flags(x.store().size(), 0);
+  for (uint32_t d : r.deadlocks)
+    flags[d] = 1;
+  return flags;
+}
+} // namespace
 
-std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
+std::vector<StateColumn> listing::stateColumns(const sem::Semantics &sem) {
   const sem::StateLayout &L = sem.layout();
   const Module &m = sem.module();
   std::vector<StateColumn> out;
@@ -73,23 +72,8 @@ std::vector<StateColumn> stateColumns(const sem::Semantics &sem) {
   return out;
 }
 
-std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
-  std::vector<char> flags(x.store().size(), 0);
-  for (uint32_t d : r.deadlocks)
-    flags[d] = 1;
-  return flags;
-}
-
-/// A column's value in one state: the number it holds (a string: its
-/// length) and how it is written (a string: as a NetIR literal).
-struct Cell {
-  int64_t v = 0;
-  StringValue str; // a string's characters
-  std::string text;
-  bool operator!=(const Cell &o) const { return text != o.text; }
-};
-
-Cell cellOf(sem::Semantics &sem, const StateColumn &a, const uint64_t *state) {
+Cell listing::cellOf(sem::Semantics &sem, const StateColumn &a,
+                     const uint64_t *state) {
   Cell c;
   sem::RuntimeError err;
   if (a.isString()) {
@@ -110,7 +94,6 @@ Cell cellOf(sem::Semantics &sem, const StateColumn &a, const uint64_t *state) {
   c.text = formatScalar(a.type, c.v);
   return c;
 }
-} // namespace
 
 std::string netlift::statespace::describeState(sem::Semantics &sem,
                                                const uint64_t *state,
@@ -315,8 +298,9 @@ void netlift::statespace::writeSummaryJson(const Explorer &x,
 }
 
 void netlift::statespace::writeTrace(const Explorer &x, sem::Semantics &sem,
-                                     uint32_t target, llvm::raw_ostream &os) {
-  writePath(x, sem, x.pathTo(target), os);
+                                     uint32_t target, llvm::raw_ostream &os,
+                                     const TraceView &view) {
+  writePath(x, sem, x.pathTo(target), os, view);
 }
 
 void netlift::statespace::withInputClasses(
@@ -358,53 +342,13 @@ static void labelledPath(const Explorer &x, sem::Semantics &sem,
 void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path, llvm::raw_ostream &os,
-    int64_t loopTo, uint32_t loopLabel) {
+    const TraceView &view, int64_t loopTo, uint32_t loopLabel) {
   // Which inputs took each step (issue 40), unless the labels say it.
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
   labelledPath(x, sem, path, labels, states);
-  writeStatePath(sem, labels, states, os);
-  if (loopTo >= 0) {
-    size_t width = 9;
-    for (const std::string &l : labels)
-      width = std::max(width, l.size());
-    os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
-                      loopLabel == Explorer::kNone ? "" : x.label(loopLabel),
-                      width, loopTo);
-  }
-}
-
-void netlift::statespace::writeStatePath(
-    sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
-    llvm::ArrayRef<const uint64_t *> states, llvm::raw_ostream &os) {
-  std::vector<StateColumn> attrs = stateColumns(sem);
-  std::vector<Cell> prev;
-  size_t width = 9; // "(initial)"
-  for (const std::string &l : labels)
-    width = std::max(width, l.size());
-  os << fmt::format("{:>4}  {:<{}}  {}\n", "step", "label", width,
-                    "values (initial) / changes");
-  for (size_t i = 0; i < states.size(); ++i) {
-    std::vector<Cell> cur;
-    for (const StateColumn &a : attrs)
-      cur.push_back(cellOf(sem, a, states[i]));
-    std::string changes;
-    for (size_t k = 0; k < attrs.size(); ++k) {
-      if (i == 0) {
-        if (attrs[k].kind == StateColumn::Place && cur[k].v == 0)
-          continue;
-        changes +=
-            (changes.empty() ? "" : ", ") + attrs[k].name + "=" + cur[k].text;
-      } else if (cur[k] != prev[k]) {
-        changes += (changes.empty() ? "" : ", ") + attrs[k].name + ": " +
-                   prev[k].text + " -> " + cur[k].text;
-      }
-    }
-    os << fmt::format("{:>4}  {:<{}}  {}\n", i,
-                      i == 0 ? std::string("(initial)") : labels[i], width,
-                      changes);
-    prev = std::move(cur);
-  }
+  writeStatePath(sem, labels, states, os, view, loopTo,
+                 loopLabel == Explorer::kNone ? "" : x.label(loopLabel));
 }
 
 void statespace::writeJsonSteps(sem::Semantics &sem,
@@ -759,18 +703,17 @@ void statespace::writeSummaryText(const Explorer &x, const ExploreResult &r,
 int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
                              const ExploreResult &r, llvm::StringRef findText,
                              bool deadlockTrace, int code,
-                             llvm::raw_ostream &out, llvm::StringRef vcdFile,
-                             const std::optional<net::Timescale> &tick,
-                             DiagEngine *diag) {
+                             llvm::raw_ostream &out, const TraceView &view,
+                             llvm::StringRef vcdFile, DiagEngine *diag) {
   auto vcd = [&](uint32_t target) {
     return vcdFile.empty() || !diag ||
-           writeVcdFile(x, sem, target, tick, vcdFile, *diag);
+           writeVcdFile(x, sem, target, view.tick, vcdFile, *diag);
   };
   if (!findText.empty()) {
     if (r.found) {
       out << "found a state satisfying '" << findText << "' after "
           << x.pathTo(*r.found).size() - 1 << " steps:\n";
-      writeTrace(x, sem, *r.found, out);
+      writeTrace(x, sem, *r.found, out, view);
       return vcd(*r.found) ? 0 : 1;
     }
     if (code == 0) {
@@ -783,7 +726,7 @@ int statespace::reportSearch(const Explorer &x, sem::Semantics &sem,
       // Breadth-first numbering: the smallest index is a closest deadlock.
       uint32_t d = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
       out << "deadlock after " << x.pathTo(d).size() - 1 << " steps:\n";
-      writeTrace(x, sem, d, out);
+      writeTrace(x, sem, d, out, view);
       return vcd(d) ? 3 : 1;
     }
     if (code == 0)

@@ -52,17 +52,29 @@ void writeSummaryJson(const Explorer &x, const ExploreResult &r,
 /// complete.
 void writeSummaryText(const Explorer &x, const ExploreResult &r,
                       llvm::raw_ostream &os);
+/// How a trace is shown as text (docs/reach.md, "Traces").
+struct TraceView {
+  /// --trace-internals: every step (ticks too) and every name, clocks and
+  /// what frontends generated included, as the net has them. Otherwise the
+  /// program's view: time folded into a column, a row per step that is not
+  /// a tick, the inputs that took it, then the outputs and the other
+  /// values it changed, internal names hidden.
+  bool internals = false;
+  /// The design's tick: the unit of the time column (none: ticks).
+  std::optional<net::Timescale> tick;
+};
+
 /// The path to `target` as a table: the initial values, then for each step
 /// its label and the values it changed.
 void writeTrace(const Explorer &x, sem::Semantics &sem, uint32_t target,
-                llvm::raw_ostream &os);
+                llvm::raw_ostream &os, const TraceView &view = {});
 /// The same table for any path: (label of the step into it, state) pairs,
 /// the first label unused. `loopTo` >= 0 adds a closing line: the step
 /// `loopLabel` leads back to that step and the run goes round forever.
 void writePath(const Explorer &x, sem::Semantics &sem,
                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
-               llvm::raw_ostream &os, int64_t loopTo = -1,
-               uint32_t loopLabel = Explorer::kNone);
+               llvm::raw_ostream &os, const TraceView &view = {},
+               int64_t loopTo = -1, uint32_t loopLabel = Explorer::kNone);
 
 /// Adds to each step's label the classes of input valuations that take
 /// it, `{scan} [go=1, level=91..100]`, found by running the step again from
@@ -72,10 +84,11 @@ void withInputClasses(sem::Semantics &sem, std::vector<std::string> &labels,
                       llvm::ArrayRef<const uint64_t *> states);
 
 /// The same table for states held anywhere: `labels[i]` is the step into
-/// `states[i]` (the first unused).
+/// `states[i]` (the first unused); a `loopTo` >= 0 as for writePath.
 void writeStatePath(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
                     llvm::ArrayRef<const uint64_t *> states,
-                    llvm::raw_ostream &os);
+                    llvm::raw_ostream &os, const TraceView &view = {},
+                    int64_t loopTo = -1, llvm::StringRef loopLabel = "");
 
 /// The same path as a Value Change Dump (IEEE 1364, what GTKWave opens):
 /// every variable and output of the state listing (Booleans as wires,
@@ -99,13 +112,12 @@ bool writeVcdFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
 /// Returns the exit code: 0 found / no deadlock, 3 not found / a deadlock,
 /// `limitCode` (2) when a limit stopped the search before either was
 /// decided.
-/// With a `vcdFile`, the path is also written there as a VCD (`tick` the
-/// design's timescale).
+/// With a `vcdFile`, the path is also written there as a VCD (the view's
+/// tick the design's timescale).
 int reportSearch(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
                  llvm::StringRef findText, bool deadlockTrace, int limitCode,
-                 llvm::raw_ostream &os, llvm::StringRef vcdFile = "",
-                 const std::optional<net::Timescale> &tick = std::nullopt,
-                 DiagEngine *diag = nullptr);
+                 llvm::raw_ostream &os, const TraceView &view = {},
+                 llvm::StringRef vcdFile = "", DiagEngine *diag = nullptr);
 
 /// What a trace file says of the path it holds.
 struct TraceFileHeader {

@@ -78,6 +78,7 @@ void Translator::environmentModule(FbType &t) {
                  ": not supported");
   if (!b.createModule(t.name, false, at))
     fail(at, "a module named '" + t.name + "' exists already");
+  environmentModules.insert(t.name);
   declarePorts(t, true);
   net::Module *m = b.getModule();
   bool sender = !t.sendEvent.empty();

@@ -288,6 +288,8 @@ private:
   std::vector<std::unique_ptr<File>> files;
   std::map<std::string, std::unique_ptr<FbType>> types; // upper-case name
   std::vector<FbType *> order;                          // translation order
+  /// The modules environmentModule made (their places model a runtime).
+  std::set<std::string> environmentModules;
   std::vector<std::pair<File *, pugi::xml_node>> systems;
   /// Types given on the command line: their event inputs are the
   /// environment's, queued like a runtime's external events.

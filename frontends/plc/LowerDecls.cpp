@@ -331,6 +331,9 @@ void Lowering::declareProgramVar(VarDecl *v) {
   std::string name = (v->owner ? programPrefix : "") + sanitize(v->name);
   declaringPrefix = programPrefix;
   declaringLoc = v->loc;
+  if (v->generated)
+    b.addAttribute(name, net::kInternalAttribute, "generated for an element",
+                   v->loc);
   // The caller's variable, or one shared with code outside the design: the
   // environment's (LowerEnvironment.cpp).
   if (v->section == VarSection::InOut || v->sharedOutside) {
@@ -460,6 +463,13 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
           mi = finit;
     if (m->section == VarSection::InOut)
       continue; // an alias of the caller's variable (or instance) per call
+    // What netlift's own blocks keep besides their interface (a timer's
+    // state and clock) is not the user's: traces hide it by default.
+    if ((fb->isLibrary && m->section == VarSection::Var) || m->generated)
+      b.addAttribute(name, net::kInternalAttribute,
+                     m->generated ? "generated for an element"
+                                  : "state of " + fb->name,
+                     m->loc);
     if (instanceBlock(m->type)) {
       sourcePaths[name] = sourcePaths[path] + "." + m->name;
       declareInstances(name, m->type, mi);
@@ -505,9 +515,12 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
           chooseScalars(name, port + "_in", m->type,
                         "HMI variable '" + name + "'", name, m->loc));
     }
-    if (m->edge) // what the caller passed last time
+    if (m->edge) { // what the caller passed last time
       b.addVar(name + ".prev", design.types.getBool(), b.boolLit(false, m->loc),
                m->loc);
+      b.addAttribute(name + ".prev", net::kInternalAttribute, "edge detection",
+                     m->loc);
+    }
   }
 }
 

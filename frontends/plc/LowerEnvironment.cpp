@@ -236,6 +236,7 @@ void Lowering::declareRuntimeRecord(VarDecl *v, const std::string &name) {
     // TRUE in the first scan only.
     std::string flag = unique("_first_scan");
     b.addVar(flag, design.types.getBool(), b.boolLit(true, v->loc), v->loc);
+    b.addAttribute(flag, net::kInternalAttribute, "first scan", v->loc);
     if (resetNames.insert(flag).second)
       resets.push_back({flag, b.boolLit(false, v->loc)});
     auto setFirst = [&](NExpr *element) {

@@ -583,6 +583,7 @@ void Lowering::stmt(Stmt *s, Frame &f, Sink &out,
 std::string Lowering::newFlag(const char *what, SMLoc at) {
   std::string name = unique(std::string("_") + what + std::to_string(++flags));
   declareTemp(name, elementaryType("BOOL"), at);
+  b.addAttribute(name, net::kInternalAttribute, "loop control", at);
   return name;
 }
 

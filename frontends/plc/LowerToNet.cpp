@@ -364,6 +364,8 @@ void Lowering::runInitCalls(ProgramRun &run, Frame &top, Sink &action) {
   SMLoc at = run.pou->loc;
   std::string done = unique(run.prefix + "_initialised");
   b.addVar(done, design.types.getBool(), b.boolLit(false, at), at);
+  b.addAttribute(done, net::kInternalAttribute, "first-scan initialisation",
+                 at);
   calls.push_back(b.assign(b.ref(done, at), b.boolLit(true, at), at));
   net::IfArm arm{b.unary(net::UnaryOp::Not, b.ref(done, at), at),
                  design.copy(llvm::ArrayRef<NStmt *>(calls))};
@@ -387,6 +389,8 @@ Sink Lowering::globalInitCalls(std::vector<ProgramRun> &runs) {
   SMLoc at = runs.front().pou->loc;
   std::string done = unique("_globals_initialised");
   b.addVar(done, design.types.getBool(), b.boolLit(false, at), at);
+  b.addAttribute(done, net::kInternalAttribute, "first-scan initialisation",
+                 at);
   calls.push_back(b.assign(b.ref(done, at), b.boolLit(true, at), at));
   net::IfArm arm{b.unary(net::UnaryOp::Not, b.ref(done, at), at),
                  design.copy(llvm::ArrayRef<NStmt *>(calls))};
@@ -537,6 +541,8 @@ void Lowering::lowerPrograms(const std::string &name, SMLoc loc,
     SMLoc at = runs[i].pou->loc;
     uint32_t period = uint32_t(runs[i].period);
     uint32_t cycle = b.addPlace(runs[i].cycle, 1, 1, at);
+    b.addAttribute(runs[i].cycle, net::kInternalAttribute,
+                   "the task's scan cycle", at);
     net::PreArc pre{cycle, 1, net::Interval{period, period}};
     net::PostArc post{cycle, 1};
     uint32_t scan = b.addTransition(runs[i].scan, {pre}, {post}, at);
@@ -847,6 +853,8 @@ void Lowering::lowerEventBlock(EventDrivenBlock &block) {
   // that arrive together are taken one per successor, never two in one
   // step, and a block never sends while it reacts.
   uint32_t ready = b.addPlace("ready", 1, 1, pou->loc);
+  b.addAttribute("ready", net::kInternalAttribute, "one event at a time",
+                 pou->loc);
   for (EventHandler &h : block.handlers) {
     Frame top;
     top.pou = pou;

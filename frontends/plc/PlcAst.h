@@ -267,6 +267,9 @@ struct VarDecl {
   std::string name;
   llvm::SMLoc loc;
   bool isLibrary = false; // a global of netlift's own (st::addLibraryText)
+  /// Declared by a frontend for an element, not by the user (a graphical
+  /// body's temporaries, enable flags and edge detectors): internal.
+  bool generated = false;
   /// A global no input declares, made for a VAR_EXTERNAL: the variable is
   /// shared with code outside the design (an Arduino sketch, a runtime
   /// extension), which may write it between scans (Sema, LowerEnvironment).

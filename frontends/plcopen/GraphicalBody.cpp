@@ -521,7 +521,9 @@ VarDecl *Network::declare(const std::string &name, StringRef type,
                  "' for this element, but POU '" + pou->name +
                  "' already declares one");
   }
-  return AstMaker::declare(*pou, name, type, src.locOf(at), section);
+  VarDecl *v = AstMaker::declare(*pou, name, type, src.locOf(at), section);
+  v->generated = true;
+  return v;
 }
 
 /// Statements between a taken forward jump and its label do not run.

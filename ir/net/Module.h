@@ -285,6 +285,12 @@ inline constexpr llvm::StringLiteral kUnboundedClockAttribute =
 /// configuration plots): `discretise` keeps it instead of dropping it as
 /// unobserved.
 inline constexpr llvm::StringLiteral kObservedAttribute = "observed";
+/// `attr t.STATE internal = "state of TON";`: an entity (or, on a scope,
+/// every entity under it) a frontend or pass introduced that the source
+/// does not name: a library block's own state, an event queue, a generated
+/// block. Traces show the program's own names and hide these unless asked
+/// (--trace-internals); analyses treat them like any other entity.
+inline constexpr llvm::StringLiteral kInternalAttribute = "internal";
 
 struct Attribute {
   /// An entity or instance of the module, a scope of its qualified names

@@ -28,3 +28,7 @@ std::string netlift::net::toIdentifier(StringRef name, bool keepDots) {
     out += "_";
   return out;
 }
+
+bool netlift::net::hasGeneratedComponent(StringRef name) {
+  return name.startswith("_") || name.contains("._");
+}

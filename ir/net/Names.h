@@ -27,6 +27,11 @@ bool isIdentifier(llvm::StringRef name);
 /// name gets a '_' in front, and a reserved word a '_' after.
 std::string toIdentifier(llvm::StringRef name, bool keepDots = false);
 
+/// Does a component of `name` start with '_' (`_fifo`, `onOff._queue`)?
+/// The IEC 61499 frontend and its passes give what they generate such
+/// names, and mark it internal (ir/net/Module.h kInternalAttribute).
+bool hasGeneratedComponent(llvm::StringRef name);
+
 } // namespace netlift::net
 
 #endif

@@ -143,7 +143,7 @@ static int searchExactModel(statespace::ExplorationSetup &setup,
   if (hit) {
     out << "confirmed by a search of the exact model (" << x.store().size()
         << " states), " << x.pathTo(*hit).size() - 1 << " steps:\n";
-    statespace::writeTrace(x, exact, *hit, out);
+    statespace::writeTrace(x, exact, *hit, out, setup.traceView());
     return find ? 0 : 3;
   }
   if (!r.complete)
@@ -260,13 +260,14 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
       setup->timerAbstraction().abstracted.empty())
     return statespace::reportSearch(
         explorer, semantics, r, findExpr ? llvm::StringRef(findText) : "",
-        deadlockTrace, code, out, traceVcd, design.timescale, &diag);
+        deadlockTrace, code, out, setup->traceView(), traceVcd, &diag);
   auto path = explorer.pathTo(*violation);
   out << (findExpr ? "found a state satisfying '" + findText + "'"
                    : std::string("deadlock"))
       << " after " << path.size() - 1 << " steps with abstract timers ("
       << setup->timerAbstraction().abstracted.size() << " abstracted):\n";
-  statespace::writeTrace(explorer, semantics, *violation, out);
+  statespace::writeTrace(explorer, semantics, *violation, out,
+                         setup->traceView());
   if (!traceVcd.empty() &&
       !statespace::writeVcdFile(explorer, semantics, *violation,
                                 design.timescale, traceVcd, diag))

@@ -283,6 +283,12 @@ static cl::list<std::string> latch(
              "are latched without it (docs/check.md)"),
     cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
     cl::sub(checkCommand()), cl::cat(category()));
+static cl::opt<bool> traceInternals(
+    "trace-internals",
+    cl::desc("Show traces as the net has them: every step (ticks too) and "
+             "every name (clocks, library blocks' state, generated "
+             "scaffolding), instead of the program's own names per step"),
+    NETLIFT_EXPLORING);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -367,6 +373,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   }
   eo.abstractTimers = timersMode == TimersMode::Abstract;
   eo.latch.assign(latch.begin(), latch.end());
+  eo.traceInternals = traceInternals;
   eo.refineRounds = refineRounds;
   eo.replayStates = replayStates;
   eo.maxStates = maxStates;

@@ -1,0 +1,257 @@
+//===- TraceTable.cpp - a path as a table of steps ------------------------===//
+//
+// The text view of a trace (docs/reach.md, "Traces"). By default it is the
+// program's view: one row per step that is not a tick, time folded into a
+// column in the design's unit, the inputs that took the step, then the
+// outputs and the other values it changed, with clocks and what frontends
+// generated (kInternalAttribute) hidden. --trace-internals gives the net's
+// view instead: every step and every name.
+//
+//===----------------------------------------------------------------------===//
+#include "backends/statespace/StateColumns.h"
+#include "backends/statespace/Writers.h"
+
+#include "llvm/ADT/StringSet.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+using namespace netlift;
+using namespace netlift::statespace;
+using namespace netlift::statespace::listing;
+
+namespace {
+
+/// The targets of the module's `internal` attributes: entities and scopes.
+llvm::StringSet<> internalTargets(const net::Module &m) {
+  llvm::StringSet<> out;
+  for (const net::Attribute &a : m.attributes)
+    if (a.key == net::kInternalAttribute && !a.target.empty())
+      out.insert(a.target);
+  return out;
+}
+
+/// Is the column (a variable's leaf `q`, `buf[2]`, `r.f`, or a place) one
+/// of the internal entities, or under an internal scope?
+bool isInternal(llvm::StringRef name, const llvm::StringSet<> &targets) {
+  if (targets.empty())
+    return false;
+  while (!name.empty()) {
+    if (targets.count(name))
+      return true;
+    size_t cut = name.find_last_of(".[");
+    if (cut == llvm::StringRef::npos)
+      return false;
+    name = name.take_front(cut);
+  }
+  return false;
+}
+
+/// Whether the program's view leaves the column out: clocks (time has its
+/// own column) and internal names.
+bool hiddenColumn(const StateColumn &c, const llvm::StringSet<> &targets) {
+  if (c.kind == StateColumn::Clock || (c.type && c.type->isClock()))
+    return true;
+  return isInternal(c.name, targets);
+}
+
+/// `{scan} [go=1]` -> (`{scan}`, `go=1`): the transitions and the inputs
+/// that took them (withInputClasses); a class that any input takes shows
+/// no inputs.
+std::pair<std::string, std::string> splitLabel(llvm::StringRef label) {
+  size_t at = label.find(" [");
+  if (at == llvm::StringRef::npos)
+    return {label.str(), ""};
+  llvm::StringRef taken = label.take_front(at);
+  llvm::StringRef inputs = label.drop_front(at + 1);
+  llvm::SmallVector<llvm::StringRef, 4> classes;
+  inputs.split(classes, " | ");
+  if (llvm::all_of(classes, [](llvm::StringRef c) { return c == "[any]"; }))
+    return {taken.str(), ""};
+  if (classes.size() == 1 && inputs.startswith("[") && inputs.endswith("]"))
+    inputs = inputs.drop_front().drop_back();
+  return {taken.str(), inputs.str()};
+}
+
+/// `{a,_gen.b}` without the transitions of internal scopes (unless every
+/// one is).
+std::string withoutInternal(const std::string &taken,
+                            const llvm::StringSet<> &targets) {
+  llvm::StringRef t(taken);
+  if (!t.consume_front("{") || !t.consume_back("}"))
+    return taken;
+  llvm::SmallVector<llvm::StringRef, 4> names;
+  t.split(names, ',');
+  std::string kept;
+  for (llvm::StringRef n : names)
+    if (!isInternal(n, targets))
+      kept += (kept.empty() ? "" : ",") + n.str();
+  return kept.empty() ? taken : "{" + kept + "}";
+}
+
+std::string timeText(uint64_t ticks,
+                     const std::optional<net::Timescale> &tick) {
+  if (!tick)
+    return std::to_string(ticks);
+  return std::to_string(ticks * tick->amount) + " " + tick->unit.str();
+}
+
+void append(std::string &list, const std::string &item) {
+  list += (list.empty() ? "" : ", ") + item;
+}
+
+/// The net's view: every step and every name.
+void writeInternalsTable(sem::Semantics &sem,
+                         llvm::ArrayRef<std::string> labels,
+                         llvm::ArrayRef<const uint64_t *> states,
+                         llvm::raw_ostream &os, int64_t loopTo,
+                         llvm::StringRef loopLabel) {
+  std::vector<StateColumn> attrs = stateColumns(sem);
+  std::vector<Cell> prev;
+  size_t width = 9; // "(initial)"
+  for (const std::string &l : labels)
+    width = std::max(width, l.size());
+  os << fmt::format("{:>4}  {:<{}}  {}\n", "step", "label", width,
+                    "values (initial) / changes");
+  for (size_t i = 0; i < states.size(); ++i) {
+    std::vector<Cell> cur;
+    for (const StateColumn &a : attrs)
+      cur.push_back(cellOf(sem, a, states[i]));
+    std::string changes;
+    for (size_t k = 0; k < attrs.size(); ++k) {
+      if (i == 0) {
+        if (attrs[k].kind == StateColumn::Place && cur[k].v == 0)
+          continue;
+        append(changes, attrs[k].name + "=" + cur[k].text);
+      } else if (cur[k] != prev[k]) {
+        append(changes,
+               attrs[k].name + ": " + prev[k].text + " -> " + cur[k].text);
+      }
+    }
+    os << fmt::format("{:>4}  {:<{}}  {}\n", i,
+                      i == 0 ? std::string("(initial)") : labels[i], width,
+                      changes);
+    prev = std::move(cur);
+  }
+  if (loopTo >= 0)
+    os << fmt::format("{:>4}  {:<{}}  back to step {}, and so on forever\n", "",
+                      loopLabel.str(), width, loopTo);
+}
+
+} // namespace
+
+void statespace::writeStatePath(sem::Semantics &sem,
+                                llvm::ArrayRef<std::string> labels,
+                                llvm::ArrayRef<const uint64_t *> states,
+                                llvm::raw_ostream &os, const TraceView &view,
+                                int64_t loopTo, llvm::StringRef loopLabel) {
+  if (view.internals) {
+    writeInternalsTable(sem, labels, states, os, loopTo, loopLabel);
+    return;
+  }
+  std::vector<StateColumn> attrs = stateColumns(sem);
+  llvm::StringSet<> targets = internalTargets(sem.module());
+  std::vector<char> hidden;
+  size_t hiddenNames = 0;
+  for (const StateColumn &a : attrs) {
+    hidden.push_back(hiddenColumn(a, targets));
+    hiddenNames += hidden.back() && a.kind != StateColumn::Clock;
+  }
+
+  struct Row {
+    size_t step;
+    std::string time, taken, inputs, outputs, changed;
+  };
+  std::vector<Row> rows;
+  std::string initialValues;
+  std::vector<Cell> prev;
+  uint64_t ticks = 0;
+  for (size_t i = 0; i < states.size(); ++i) {
+    std::vector<Cell> cur;
+    for (const StateColumn &a : attrs)
+      cur.push_back(cellOf(sem, a, states[i]));
+    bool isTick = i > 0 && labels[i] == "tick";
+    ticks += isTick;
+    Row row;
+    row.step = i;
+    row.time = timeText(ticks, view.tick);
+    for (size_t k = 0; k < attrs.size(); ++k) {
+      if (hidden[k])
+        continue;
+      std::string item;
+      if (i == 0) {
+        if (attrs[k].kind == StateColumn::Place && cur[k].v == 0)
+          continue;
+        item = attrs[k].name + "=" + cur[k].text;
+      } else if (cur[k] != prev[k]) {
+        item = attrs[k].name + ": " + prev[k].text + " -> " + cur[k].text;
+      } else {
+        continue;
+      }
+      append(attrs[k].kind == StateColumn::Output ? row.outputs : row.changed,
+             item);
+    }
+    prev = std::move(cur);
+    // A tick only moves clocks: it shows as the time of the next row,
+    // unless it changed something shown or ends the path.
+    if (isTick && row.outputs.empty() && row.changed.empty() &&
+        i + 1 < states.size())
+      continue;
+    if (i == 0) {
+      // The initial values span the columns: they set no widths.
+      row.taken = "(initial)";
+      initialValues = row.outputs;
+      append(initialValues, row.changed);
+      row.outputs.clear();
+      row.changed.clear();
+    } else {
+      std::tie(row.taken, row.inputs) = splitLabel(labels[i]);
+      row.taken = withoutInternal(row.taken, targets);
+    }
+    rows.push_back(std::move(row));
+  }
+
+  Row head{
+      0,        view.tick ? "time" : "ticks", "step taken", "inputs", "outputs",
+      "changed"};
+  size_t wTime = head.time.size(), wTaken = head.taken.size(),
+         wInputs = head.inputs.size(), wOutputs = head.outputs.size();
+  bool anyInputs = false, anyOutputs = false;
+  for (const Row &r : rows) {
+    wTime = std::max(wTime, r.time.size());
+    wTaken = std::max(wTaken, r.taken.size());
+    wInputs = std::max(wInputs, r.inputs.size());
+    wOutputs = std::max(wOutputs, r.outputs.size());
+    anyInputs |= !r.inputs.empty();
+    anyOutputs |= !r.outputs.empty();
+  }
+  auto line = [&](const std::string &step, const Row &r) {
+    std::string text = fmt::format("{:>4}  {:>{}}  {:<{}}", step, r.time, wTime,
+                                   r.taken, wTaken);
+    if (anyInputs)
+      text += fmt::format("  {:<{}}", r.inputs, wInputs);
+    if (anyOutputs)
+      text += fmt::format("  {:<{}}", r.outputs, wOutputs);
+    text += "  " + r.changed;
+    os << llvm::StringRef(text).rtrim() << "\n";
+  };
+  line("step", head);
+  for (const Row &r : rows) {
+    if (r.step == 0) {
+      os << llvm::StringRef(fmt::format("{:>4}  {:>{}}  {:<{}}  {}", 0, r.time,
+                                        wTime, r.taken, wTaken, initialValues))
+                .rtrim()
+         << "\n";
+      continue;
+    }
+    line(std::to_string(r.step), r);
+  }
+  if (loopTo >= 0)
+    os << fmt::format("{:>4}  {:>{}}  {} back to step {}, and so on forever\n",
+                      "", "", wTime, loopLabel.str(), loopTo);
+  if (hiddenNames)
+    os << fmt::format("({} internal name{} hidden: --trace-internals shows "
+                      "them and every tick)\n",
+                      hiddenNames, hiddenNames == 1 ? "" : "s");
+}
