@@ -163,6 +163,8 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
     auto setup =
         std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
     setup->tick = design.timescale;
+    setup->sources = &diag.sourceMgr();
+    setup->sources = &diag.sourceMgr();
     setup->latchedInputs = std::move(latch);
     return setup;
   }

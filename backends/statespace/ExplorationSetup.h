@@ -62,6 +62,9 @@ struct ExplorationOptions {
   std::vector<std::string> propertyTexts;
   /// --trace-internals: traces show every step and name (TraceView).
   bool traceInternals = false;
+  /// --trace-source: each row of a trace lists the source lines its step
+  /// executed.
+  bool traceSource = false;
 };
 
 /// A size such as `512M` or `4G` (suffix K, M, G; none: bytes), for
@@ -90,7 +93,9 @@ public:
   /// trace's `tick` steps last.
   const std::optional<net::Timescale> &timescale() const { return tick; }
   /// How this command's traces are shown.
-  TraceView traceView() const { return {opts.traceInternals, tick}; }
+  TraceView traceView() const {
+    return {opts.traceInternals, tick, sources, opts.traceSource};
+  }
 
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
@@ -126,6 +131,7 @@ private:
   std::unique_ptr<sem::Semantics> exactSem;
   net::Module *exactTop = nullptr;
   std::optional<net::Timescale> tick;
+  const llvm::SourceMgr *sources = nullptr;
   std::vector<std::string> latchedInputs;
 };
 

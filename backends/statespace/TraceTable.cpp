@@ -101,12 +101,102 @@ void append(std::string &list, const std::string &item) {
   list += (list.empty() ? "" : ", ") + item;
 }
 
+/// What each step of the path executed: the step run again from the state
+/// before it (split, recording), the log of the run that leads to the
+/// state after it. Empty for ticks and steps without actions.
+std::vector<sem::Semantics::ExecutionLog>
+executedSteps(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+              llvm::ArrayRef<const uint64_t *> states) {
+  std::vector<sem::Semantics::ExecutionLog> out(states.size());
+  sem::Options o = sem.options();
+  o.splitInputs = true;
+  o.inputConditions = false;
+  sem::Semantics replay(sem.module(), sem.layout(), o);
+  replay.recordExecution(true);
+  uint32_t words = sem.layout().numWords();
+  for (size_t i = 1; i < states.size() && i < labels.size(); ++i) {
+    if (labels[i] == "tick")
+      continue;
+    std::string taken = splitLabel(labels[i]).first;
+    bool found = false;
+    sem::RuntimeError err;
+    replay.successors(
+        states[i - 1],
+        [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
+          if (!found && Explorer::stepText(sem.module(), step) == taken &&
+              std::equal(succ, succ + words, states[i])) {
+            out[i] = replay.lastExecution();
+            found = true;
+          }
+        },
+        err);
+  }
+  return out;
+}
+
+/// `delay.st:7` for a location in a file the user gave; empty for
+/// netlift's own library and generated text (buffers named `<...>`), and
+/// unless `netir`, for NetIR files (`.net`: the model itself, not the
+/// program it was translated from).
+std::string sourceLine(const llvm::SourceMgr &sm, llvm::SMLoc loc,
+                       bool netir = true) {
+  if (!loc.isValid())
+    return "";
+  unsigned id = sm.FindBufferContainingLoc(loc);
+  if (!id)
+    return "";
+  llvm::StringRef name = sm.getMemoryBuffer(id)->getBufferIdentifier();
+  if (name.startswith("<") || (!netir && name.endswith(".net")))
+    return "";
+  size_t slash = name.find_last_of('/');
+  if (slash != llvm::StringRef::npos)
+    name = name.drop_front(slash + 1);
+  return name.str() + ":" + std::to_string(sm.getLineAndColumn(loc, id).first);
+}
+
+/// `ran delay.st:6,7, rungs.xml:40`: the lines a step executed, in order,
+/// a line repeated at once (a statement and the branch on its line) once.
+std::string ranLines(const llvm::SourceMgr &sm,
+                     const sem::Semantics::ExecutionLog &log) {
+  std::string out, file, last;
+  for (llvm::SMLoc loc : log.statements) {
+    std::string where = sourceLine(sm, loc);
+    if (where.empty() || where == last)
+      continue;
+    last = where;
+    auto [f, line] = llvm::StringRef(where).rsplit(':');
+    if (f == file) {
+      out += "," + line.str();
+      continue;
+    }
+    file = f.str();
+    out += (out.empty() ? "" : ", ") + where;
+  }
+  return out;
+}
+
+/// The source line of the assignment that wrote `slot` last in the step
+/// (NetIR lines with --trace-source only).
+std::string writtenAt(const llvm::SourceMgr *sm,
+                      const sem::Semantics::ExecutionLog &log, uint32_t slot,
+                      bool netir) {
+  if (!sm)
+    return "";
+  for (auto it = log.writes.rbegin(); it != log.writes.rend(); ++it)
+    if (it->first == slot)
+      return sourceLine(*sm, it->second, netir);
+  return "";
+}
+
 /// The net's view: every step and every name.
 void writeInternalsTable(sem::Semantics &sem,
                          llvm::ArrayRef<std::string> labels,
                          llvm::ArrayRef<const uint64_t *> states,
-                         llvm::raw_ostream &os, int64_t loopTo,
-                         llvm::StringRef loopLabel) {
+                         llvm::raw_ostream &os, const TraceView &view,
+                         int64_t loopTo, llvm::StringRef loopLabel) {
+  std::vector<sem::Semantics::ExecutionLog> logs;
+  if (view.source && view.sources)
+    logs = executedSteps(sem, labels, states);
   std::vector<StateColumn> attrs = stateColumns(sem);
   std::vector<Cell> prev;
   size_t width = 9; // "(initial)"
@@ -132,6 +222,9 @@ void writeInternalsTable(sem::Semantics &sem,
     os << fmt::format("{:>4}  {:<{}}  {}\n", i,
                       i == 0 ? std::string("(initial)") : labels[i], width,
                       changes);
+    if (!logs.empty())
+      if (std::string ran = ranLines(*view.sources, logs[i]); !ran.empty())
+        os << fmt::format("{:>4}  {:<{}}  ran {}\n", "", "", width, ran);
     prev = std::move(cur);
   }
   if (loopTo >= 0)
@@ -147,7 +240,7 @@ void statespace::writeStatePath(sem::Semantics &sem,
                                 llvm::raw_ostream &os, const TraceView &view,
                                 int64_t loopTo, llvm::StringRef loopLabel) {
   if (view.internals) {
-    writeInternalsTable(sem, labels, states, os, loopTo, loopLabel);
+    writeInternalsTable(sem, labels, states, os, view, loopTo, loopLabel);
     return;
   }
   std::vector<StateColumn> attrs = stateColumns(sem);
@@ -159,9 +252,13 @@ void statespace::writeStatePath(sem::Semantics &sem,
     hiddenNames += hidden.back() && a.kind != StateColumn::Clock;
   }
 
+  std::vector<sem::Semantics::ExecutionLog> logs;
+  if (view.sources)
+    logs = executedSteps(sem, labels, states);
+
   struct Row {
     size_t step;
-    std::string time, taken, inputs, outputs, changed;
+    std::string time, taken, inputs, outputs, changed, ran;
   };
   std::vector<Row> rows;
   std::string initialValues;
@@ -186,6 +283,11 @@ void statespace::writeStatePath(sem::Semantics &sem,
         item = attrs[k].name + "=" + cur[k].text;
       } else if (cur[k] != prev[k]) {
         item = attrs[k].name + ": " + prev[k].text + " -> " + cur[k].text;
+        if (!logs.empty() && !attrs[k].def)
+          if (std::string at =
+                  writtenAt(view.sources, logs[i], attrs[k].slot, view.source);
+              !at.empty())
+            item += " (" + at + ")";
       } else {
         continue;
       }
@@ -208,13 +310,19 @@ void statespace::writeStatePath(sem::Semantics &sem,
     } else {
       std::tie(row.taken, row.inputs) = splitLabel(labels[i]);
       row.taken = withoutInternal(row.taken, targets);
+      if (view.source && !logs.empty())
+        row.ran = ranLines(*view.sources, logs[i]);
     }
     rows.push_back(std::move(row));
   }
 
-  Row head{
-      0,        view.tick ? "time" : "ticks", "step taken", "inputs", "outputs",
-      "changed"};
+  Row head{0,
+           view.tick ? "time" : "ticks",
+           "step taken",
+           "inputs",
+           "outputs",
+           "changed",
+           ""};
   size_t wTime = head.time.size(), wTaken = head.taken.size(),
          wInputs = head.inputs.size(), wOutputs = head.outputs.size();
   bool anyInputs = false, anyOutputs = false;
@@ -246,6 +354,8 @@ void statespace::writeStatePath(sem::Semantics &sem,
       continue;
     }
     line(std::to_string(r.step), r);
+    if (!r.ran.empty())
+      os << fmt::format("{:>4}  {:>{}}  ran {}\n", "", "", wTime, r.ran);
   }
   if (loopTo >= 0)
     os << fmt::format("{:>4}  {:>{}}  {} back to step {}, and so on forever\n",

@@ -16,6 +16,7 @@
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/JSON.h"
+#include "llvm/Support/SourceMgr.h"
 #include "llvm/Support/raw_ostream.h"
 
 #include <optional>
@@ -62,6 +63,12 @@ struct TraceView {
   bool internals = false;
   /// The design's tick: the unit of the time column (none: ticks).
   std::optional<net::Timescale> tick;
+  /// Where the model was read from: a change shows the source line of the
+  /// assignment that made it (`q: 0 -> 1 (delay.st:7)`; lines of netlift's
+  /// own library and generated text are left out). Null: no lines.
+  const llvm::SourceMgr *sources = nullptr;
+  /// --trace-source: each row also lists every source line its step ran.
+  bool source = false;
 };
 
 /// The path to `target` as a table: the initial values, then for each step

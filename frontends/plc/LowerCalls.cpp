@@ -763,7 +763,12 @@ void Lowering::instanceCall(Expr *call, Pou *fb, const std::string &path,
                            v->type, v->loc))
         assignParts(b.ref(path + "." + sanitize(v->name), v->loc), init,
                     v->type, 0, out, v->loc);
+  size_t bodyStart = out.size();
   enabledBody(fb, path + ".", call, nf, out);
+  // netlift's own block (a TON) runs at the user's call: its errors and
+  // trace lines are the call's.
+  if (fb->isLibrary)
+    atCallSite(llvm::ArrayRef<NStmt *>(out).drop_front(bodyStart), call->loc);
   knownConstants.resize(knownBefore);
   for (CallArg &a : call->args)
     if (a.isOutput) {

@@ -325,6 +325,12 @@ uint64_t Semantics::lastInputClasses() const { return impl->classes; }
 
 const std::string &Semantics::edgeCondition() const { return impl->edgeCond; }
 
+void Semantics::recordExecution(bool on) { impl->recording = on; }
+
+const Semantics::ExecutionLog &Semantics::lastExecution() const {
+  return impl->log;
+}
+
 bool Semantics::hasFreeInputs() const {
   return !impl->inputSlots.empty() || !impl->eventInputs.empty();
 }

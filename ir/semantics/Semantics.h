@@ -102,6 +102,20 @@ public:
   /// Does the module have free inputs (cond, data or event input ports)?
   bool hasFreeInputs() const;
 
+  /// What the actions of one fired step executed: every statement in the
+  /// order it ran (an `if` before the branch it took), and each slot
+  /// written with the assignment that wrote it last.
+  struct ExecutionLog {
+    std::vector<llvm::SMLoc> statements;
+    std::vector<std::pair<uint32_t, llvm::SMLoc>> writes;
+  };
+  /// Keeps an ExecutionLog of each step fired (traces' source lines; off by
+  /// default, it costs a branch per statement).
+  void recordExecution(bool on);
+  /// While successors() reports a step (without Options::inputConditions,
+  /// which reports after every class ran): what its actions executed.
+  const ExecutionLog &lastExecution() const;
+
   /// Restricts successors() and evalInState() to one valuation of the free
   /// inputs (the Mealy view of a controller: one input vector per step).
   /// `leafValues[k]` is the value of the k-th scalar leaf of the cond/data

@@ -64,6 +64,10 @@ struct Semantics::Impl {
   std::vector<int32_t> eventInputIndex; // port -> position in eventInputs
   // fixInputs(): one valuation instead of all of them.
   bool inputsFixed = false;
+  // recordExecution(): the log of the step being fired.
+  bool recording = false;
+  Semantics::ExecutionLog log;
+  llvm::SMLoc assigning; // the assignment store() writes for
   std::vector<int64_t> fixedLeaves;
   std::vector<uint8_t> fixedPresent;
   /// The compiled successor function, when the module is a plain P/T net.
@@ -480,6 +484,8 @@ struct Semantics::Impl {
     }
     v[slot] = value;
     written.push_back(slot);
+    if (recording)
+      log.writes.push_back({slot, assigning});
   }
 
   /// Writes a string into the slots of a variable of type `t` at `slot`:
@@ -497,6 +503,10 @@ struct Semantics::Impl {
   void exec(Block block, std::vector<int64_t> &v,
             std::vector<uint32_t> &written) {
     for (const Stmt *st : block) {
+      if (recording) {
+        log.statements.push_back(st->loc);
+        assigning = st->loc;
+      }
       switch (st->getKind()) {
       case StmtKind::Assign: {
         auto *a = cast<AssignStmt>(st);
@@ -723,6 +733,10 @@ struct Semantics::Impl {
   /// Fires a step: starts from the packed pre-state and changes only what
   /// the step touches, so the cost is that of its arcs and actions.
   void fire(llvm::ArrayRef<uint32_t> step, uint64_t *out) {
+    if (recording) {
+      log.statements.clear();
+      log.writes.clear();
+    }
     std::copy(cur, cur + L.numWords(), out);
     touched.resize(m.places.size(), 0);
     touchedList.clear();

@@ -289,6 +289,11 @@ static cl::opt<bool> traceInternals(
              "every name (clocks, library blocks' state, generated "
              "scaffolding), instead of the program's own names per step"),
     NETLIFT_EXPLORING);
+static cl::opt<bool> traceSource(
+    "trace-source",
+    cl::desc("In traces, list under each step the source lines it ran "
+             "(statements in the order a PLC debugger would step them)"),
+    NETLIFT_EXPLORING);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
@@ -374,6 +379,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.abstractTimers = timersMode == TimersMode::Abstract;
   eo.latch.assign(latch.begin(), latch.end());
   eo.traceInternals = traceInternals;
+  eo.traceSource = traceSource;
   eo.refineRounds = refineRounds;
   eo.replayStates = replayStates;
   eo.maxStates = maxStates;
