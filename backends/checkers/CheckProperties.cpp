@@ -133,7 +133,7 @@ checkExploredPart(statespace::ExplorationSetup &setup,
       statespace::TraceFileHeader h{ctlToString(*f), exists, exists, claim};
       if (!statespace::writeTraceFiles(
               traceDir + "/p" + std::to_string(index), h, explorer, semantics,
-              setup.timescale(), steps, -1, statespace::Explorer::kNone, diag))
+              setup.traceView(), steps, -1, statespace::Explorer::kNone, diag))
         return 1;
     }
   }
@@ -221,7 +221,7 @@ int checkers::checkProperties(
                                     trace->claim};
       if (!statespace::writeTraceFiles(
               traceDir + "/p" + std::to_string(index), h, explorer, semantics,
-              setup.timescale(), steps, trace->loopTo, loopLabel, diag))
+              setup.traceView(), steps, trace->loopTo, loopLabel, diag))
         return 1;
     }
   }

@@ -9,6 +9,7 @@
 #ifndef NETLIFT_BACKENDS_STATESPACE_STATECOLUMNS_H
 #define NETLIFT_BACKENDS_STATESPACE_STATECOLUMNS_H
 
+#include "backends/statespace/Writers.h"
 #include "ir/net/Module.h"
 #include "ir/net/StringOps.h"
 #include "ir/semantics/Semantics.h"
@@ -41,6 +42,31 @@ struct Cell {
 };
 
 Cell cellOf(sem::Semantics &sem, const StateColumn &a, const uint64_t *state);
+
+/// A path in the program's view (docs/reach.md, "Traces"): the columns
+/// shown (clocks and internal names left out) and a row per step that is
+/// not a tick (a tick ending the path, or changing something shown, too).
+struct TraceRow {
+  size_t step = 0;
+  std::string time;         // in the design's unit, or ticks
+  std::string taken;        // `{scan}`, transitions of internal scopes left out
+  std::string inputs;       // the input classes that took it, `go=1`
+  std::string ran;          // with `withRan`: the source lines it executed
+  std::vector<Cell> values; // per shown column, after the step
+  std::vector<char> changed;   // per shown column
+  std::vector<std::string> at; // per changed column: its assignment's line
+};
+struct ProgramTrace {
+  std::vector<StateColumn> columns;
+  std::vector<TraceRow> rows;
+  size_t hiddenNames = 0;
+  bool timed = false; // the time column is in the design's unit
+};
+/// `withRan`: each row lists the source lines it ran (--trace-source).
+ProgramTrace programTrace(sem::Semantics &sem,
+                          llvm::ArrayRef<std::string> labels,
+                          llvm::ArrayRef<const uint64_t *> states,
+                          const TraceView &view, bool withRan);
 
 } // namespace netlift::statespace::listing
 

@@ -234,6 +234,60 @@ void writeInternalsTable(sem::Semantics &sem,
 
 } // namespace
 
+ProgramTrace listing::programTrace(sem::Semantics &sem,
+                                   llvm::ArrayRef<std::string> labels,
+                                   llvm::ArrayRef<const uint64_t *> states,
+                                   const TraceView &view, bool withRan) {
+  ProgramTrace out;
+  out.timed = view.tick.has_value();
+  std::vector<StateColumn> attrs = stateColumns(sem);
+  llvm::StringSet<> targets = internalTargets(sem.module());
+  for (StateColumn &a : attrs) {
+    if (!hiddenColumn(a, targets))
+      out.columns.push_back(std::move(a));
+    else
+      out.hiddenNames += a.kind != StateColumn::Clock;
+  }
+  std::vector<sem::Semantics::ExecutionLog> logs;
+  if (view.sources)
+    logs = executedSteps(sem, labels, states);
+  std::vector<Cell> prev;
+  uint64_t ticks = 0;
+  for (size_t i = 0; i < states.size(); ++i) {
+    TraceRow row;
+    row.step = i;
+    bool isTick = i > 0 && labels[i] == "tick";
+    ticks += isTick;
+    row.time = timeText(ticks, view.tick);
+    bool any = false;
+    for (const StateColumn &c : out.columns) {
+      row.values.push_back(cellOf(sem, c, states[i]));
+      bool changed = i > 0 && row.values.back() != prev[row.values.size() - 1];
+      row.changed.push_back(changed);
+      any |= changed;
+      std::string at;
+      if (changed && !logs.empty() && !c.def)
+        at = writtenAt(view.sources, logs[i], c.slot, view.source);
+      row.at.push_back(std::move(at));
+    }
+    prev = row.values;
+    // A tick only moves clocks: it shows as the time of the next row,
+    // unless it changed something shown or ends the path.
+    if (isTick && !any && i + 1 < states.size())
+      continue;
+    if (i == 0) {
+      row.taken = "(initial)";
+    } else {
+      std::tie(row.taken, row.inputs) = splitLabel(labels[i]);
+      row.taken = withoutInternal(row.taken, targets);
+      if (withRan && !logs.empty())
+        row.ran = ranLines(*view.sources, logs[i]);
+    }
+    out.rows.push_back(std::move(row));
+  }
+  return out;
+}
+
 void statespace::writeStatePath(sem::Semantics &sem,
                                 llvm::ArrayRef<std::string> labels,
                                 llvm::ArrayRef<const uint64_t *> states,
@@ -243,109 +297,72 @@ void statespace::writeStatePath(sem::Semantics &sem,
     writeInternalsTable(sem, labels, states, os, view, loopTo, loopLabel);
     return;
   }
-  std::vector<StateColumn> attrs = stateColumns(sem);
-  llvm::StringSet<> targets = internalTargets(sem.module());
-  std::vector<char> hidden;
-  size_t hiddenNames = 0;
-  for (const StateColumn &a : attrs) {
-    hidden.push_back(hiddenColumn(a, targets));
-    hiddenNames += hidden.back() && a.kind != StateColumn::Clock;
-  }
-
-  std::vector<sem::Semantics::ExecutionLog> logs;
-  if (view.sources)
-    logs = executedSteps(sem, labels, states);
-
-  struct Row {
-    size_t step;
-    std::string time, taken, inputs, outputs, changed, ran;
+  ProgramTrace trace = programTrace(sem, labels, states, view, view.source);
+  // The text of each row: outputs, then the other values it changed (the
+  // initial row: every value shown, marked places only).
+  struct Text {
+    std::string outputs, changed;
   };
-  std::vector<Row> rows;
+  std::vector<Text> texts;
   std::string initialValues;
-  std::vector<Cell> prev;
-  uint64_t ticks = 0;
-  for (size_t i = 0; i < states.size(); ++i) {
-    std::vector<Cell> cur;
-    for (const StateColumn &a : attrs)
-      cur.push_back(cellOf(sem, a, states[i]));
-    bool isTick = i > 0 && labels[i] == "tick";
-    ticks += isTick;
-    Row row;
-    row.step = i;
-    row.time = timeText(ticks, view.tick);
-    for (size_t k = 0; k < attrs.size(); ++k) {
-      if (hidden[k])
-        continue;
+  for (size_t i = 0; i < trace.rows.size(); ++i) {
+    const TraceRow &r = trace.rows[i];
+    Text t;
+    for (size_t k = 0; k < trace.columns.size(); ++k) {
+      const StateColumn &c = trace.columns[k];
       std::string item;
-      if (i == 0) {
-        if (attrs[k].kind == StateColumn::Place && cur[k].v == 0)
+      if (r.step == 0) {
+        if (c.kind == StateColumn::Place && r.values[k].v == 0)
           continue;
-        item = attrs[k].name + "=" + cur[k].text;
-      } else if (cur[k] != prev[k]) {
-        item = attrs[k].name + ": " + prev[k].text + " -> " + cur[k].text;
-        if (!logs.empty() && !attrs[k].def)
-          if (std::string at =
-                  writtenAt(view.sources, logs[i], attrs[k].slot, view.source);
-              !at.empty())
-            item += " (" + at + ")";
+        item = c.name + "=" + r.values[k].text;
+      } else if (r.changed[k]) {
+        // The value before: the last row's (a tick left out changed
+        // nothing shown).
+        item = c.name + ": " + trace.rows[i - 1].values[k].text + " -> " +
+               r.values[k].text;
+        if (!r.at[k].empty())
+          item += " (" + r.at[k] + ")";
       } else {
         continue;
       }
-      append(attrs[k].kind == StateColumn::Output ? row.outputs : row.changed,
-             item);
+      append(c.kind == StateColumn::Output ? t.outputs : t.changed, item);
     }
-    prev = std::move(cur);
-    // A tick only moves clocks: it shows as the time of the next row,
-    // unless it changed something shown or ends the path.
-    if (isTick && row.outputs.empty() && row.changed.empty() &&
-        i + 1 < states.size())
-      continue;
-    if (i == 0) {
+    if (r.step == 0) {
       // The initial values span the columns: they set no widths.
-      row.taken = "(initial)";
-      initialValues = row.outputs;
-      append(initialValues, row.changed);
-      row.outputs.clear();
-      row.changed.clear();
-    } else {
-      std::tie(row.taken, row.inputs) = splitLabel(labels[i]);
-      row.taken = withoutInternal(row.taken, targets);
-      if (view.source && !logs.empty())
-        row.ran = ranLines(*view.sources, logs[i]);
+      initialValues = t.outputs;
+      append(initialValues, t.changed);
+      t = Text();
     }
-    rows.push_back(std::move(row));
+    texts.push_back(std::move(t));
   }
 
-  Row head{0,
-           view.tick ? "time" : "ticks",
-           "step taken",
-           "inputs",
-           "outputs",
-           "changed",
-           ""};
-  size_t wTime = head.time.size(), wTaken = head.taken.size(),
-         wInputs = head.inputs.size(), wOutputs = head.outputs.size();
+  std::string timeHead = trace.timed ? "time" : "ticks";
+  size_t wTime = timeHead.size(), wTaken = 10, wInputs = 6, wOutputs = 7;
   bool anyInputs = false, anyOutputs = false;
-  for (const Row &r : rows) {
+  for (size_t i = 0; i < trace.rows.size(); ++i) {
+    const TraceRow &r = trace.rows[i];
     wTime = std::max(wTime, r.time.size());
     wTaken = std::max(wTaken, r.taken.size());
     wInputs = std::max(wInputs, r.inputs.size());
-    wOutputs = std::max(wOutputs, r.outputs.size());
+    wOutputs = std::max(wOutputs, texts[i].outputs.size());
     anyInputs |= !r.inputs.empty();
-    anyOutputs |= !r.outputs.empty();
+    anyOutputs |= !texts[i].outputs.empty();
   }
-  auto line = [&](const std::string &step, const Row &r) {
-    std::string text = fmt::format("{:>4}  {:>{}}  {:<{}}", step, r.time, wTime,
-                                   r.taken, wTaken);
+  auto line = [&](const std::string &step, const std::string &time,
+                  const std::string &taken, const std::string &inputs,
+                  const std::string &outputs, const std::string &changed) {
+    std::string text =
+        fmt::format("{:>4}  {:>{}}  {:<{}}", step, time, wTime, taken, wTaken);
     if (anyInputs)
-      text += fmt::format("  {:<{}}", r.inputs, wInputs);
+      text += fmt::format("  {:<{}}", inputs, wInputs);
     if (anyOutputs)
-      text += fmt::format("  {:<{}}", r.outputs, wOutputs);
-    text += "  " + r.changed;
+      text += fmt::format("  {:<{}}", outputs, wOutputs);
+    text += "  " + changed;
     os << llvm::StringRef(text).rtrim() << "\n";
   };
-  line("step", head);
-  for (const Row &r : rows) {
+  line("step", timeHead, "step taken", "inputs", "outputs", "changed");
+  for (size_t i = 0; i < trace.rows.size(); ++i) {
+    const TraceRow &r = trace.rows[i];
     if (r.step == 0) {
       os << llvm::StringRef(fmt::format("{:>4}  {:>{}}  {:<{}}  {}", 0, r.time,
                                         wTime, r.taken, wTaken, initialValues))
@@ -353,15 +370,16 @@ void statespace::writeStatePath(sem::Semantics &sem,
          << "\n";
       continue;
     }
-    line(std::to_string(r.step), r);
+    line(std::to_string(r.step), r.time, r.taken, r.inputs, texts[i].outputs,
+         texts[i].changed);
     if (!r.ran.empty())
       os << fmt::format("{:>4}  {:>{}}  ran {}\n", "", "", wTime, r.ran);
   }
   if (loopTo >= 0)
     os << fmt::format("{:>4}  {:>{}}  {} back to step {}, and so on forever\n",
                       "", "", wTime, loopLabel.str(), loopTo);
-  if (hiddenNames)
+  if (trace.hiddenNames)
     os << fmt::format("({} internal name{} hidden: --trace-internals shows "
                       "them and every tick)\n",
-                      hiddenNames, hiddenNames == 1 ? "" : "s");
+                      trace.hiddenNames, trace.hiddenNames == 1 ? "" : "s");
 }

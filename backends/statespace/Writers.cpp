@@ -651,14 +651,31 @@ bool statespace::writeVcdFile(const Explorer &x, sem::Semantics &sem,
       diag);
 }
 
+bool statespace::writeHtmlTraceFile(const Explorer &x, sem::Semantics &sem,
+                                    uint32_t target,
+                                    const TraceFileHeader &header,
+                                    const TraceView &view, llvm::StringRef file,
+                                    DiagEngine &diag) {
+  std::vector<std::string> labels;
+  std::vector<const uint64_t *> states;
+  labelledPath(x, sem, x.pathTo(target), labels, states);
+  return writeOutputFile(
+      file.str(),
+      [&](llvm::raw_ostream &os) {
+        writeHtmlTrace(sem, labels, states, header, view, -1, "", os);
+      },
+      diag);
+}
+
 bool statespace::writeTraceFiles(
     const std::string &base, const TraceFileHeader &header, const Explorer &x,
-    sem::Semantics &sem, const std::optional<net::Timescale> &tick,
+    sem::Semantics &sem, const TraceView &view,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> steps, int64_t loopTo,
     uint32_t loopLabel, DiagEngine &diag) {
   auto label = [&](uint32_t l) {
     return l == Explorer::kNone ? std::string("tau") : x.label(l);
   };
+  const std::optional<net::Timescale> &tick = view.tick;
   std::vector<std::string> labels;
   std::vector<const uint64_t *> states;
   labelledPath(x, sem, steps, labels, states);
@@ -669,6 +686,15 @@ bool statespace::writeTraceFiles(
                        loopLabel, os);
       },
       diag);
+  ok = ok &&
+       writeOutputFile(
+           base + ".html",
+           [&](llvm::raw_ostream &os) {
+             writeHtmlTrace(
+                 sem, labels, states, header, view, loopTo,
+                 loopLabel == Explorer::kNone ? "" : x.label(loopLabel), os);
+           },
+           diag);
   ok = ok && writeOutputFile(
                  base + ".vcd",
                  [&](llvm::raw_ostream &os) {

@@ -142,6 +142,22 @@ void writeJsonSteps(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
                     const std::optional<net::Timescale> &tick,
                     llvm::json::OStream &j);
 
+/// A path as a self-contained HTML page: a timing diagram of the
+/// program's view (signals as rows, steps as columns; the pointer on a
+/// cell shows its value, time and source line). `loopTo` >= 0 as for
+/// writePath.
+void writeHtmlTrace(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+                    llvm::ArrayRef<const uint64_t *> states,
+                    const TraceFileHeader &header, const TraceView &view,
+                    int64_t loopTo, llvm::StringRef loopLabel,
+                    llvm::raw_ostream &os);
+
+/// The path to `target` as an HTML page in `file` (reach --trace-html).
+/// False after reporting.
+bool writeHtmlTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
+                        const TraceFileHeader &header, const TraceView &view,
+                        llvm::StringRef file, DiagEngine &diag);
+
 /// The path to `target` as a JSON trace document in `file` (reach
 /// --trace-json). False after reporting.
 bool writeJsonTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
@@ -152,11 +168,11 @@ bool writeJsonTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
 /// Writes a path as `BASE.json` (the header, the states by id as `reach`
 /// numbers them, the step labels, the loop, and the steps as
 /// writeJsonSteps writes them), `BASE.aut` (the path as an Aldebaran graph,
-/// the loop as an edge back) and `BASE.vcd` (writeVcd). False after
-/// reporting.
+/// the loop as an edge back), `BASE.vcd` (writeVcd) and `BASE.html`
+/// (writeHtmlTrace). False after reporting.
 bool writeTraceFiles(const std::string &base, const TraceFileHeader &header,
                      const Explorer &x, sem::Semantics &sem,
-                     const std::optional<net::Timescale> &tick,
+                     const TraceView &view,
                      llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                      int64_t loopTo, uint32_t loopLabel, DiagEngine &diag);
 

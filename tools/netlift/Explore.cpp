@@ -50,6 +50,12 @@ static cl::opt<std::string>
                        "prints as a JSON trace (docs/formats.md) to FILE"),
               cl::value_desc("FILE"), cl::sub(reachCommand()),
               cl::cat(category()));
+static cl::opt<std::string>
+    traceHtml("trace-html",
+              cl::desc("Also write the path --find or --deadlock-trace "
+                       "prints as an HTML timing diagram to FILE"),
+              cl::value_desc("FILE"), cl::sub(reachCommand()),
+              cl::cat(category()));
 static cl::opt<bool> depthFirst("dfs", cl::desc("Depth-first order"),
                                 cl::sub(reachCommand()), cl::cat(category()));
 static cl::opt<bool> noProgress("q", cl::desc("No progress output"),
@@ -245,15 +251,20 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
     violation = *r.found;
   else if (deadlockTrace && !r.deadlocks.empty())
     violation = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
-  if (violation && !traceJson.empty()) {
+  if (violation && (!traceJson.empty() || !traceHtml.empty())) {
     statespace::TraceFileHeader h;
     h.formula = findExpr ? findText : std::string("deadlock");
     h.holds = bool(findExpr);
     h.witness = bool(findExpr);
     h.claim = findExpr ? "a shortest path to a state satisfying " + findText
                        : std::string("a shortest path to a deadlock");
-    if (!statespace::writeJsonTraceFile(explorer, semantics, *violation, h,
+    if (!traceJson.empty() &&
+        !statespace::writeJsonTraceFile(explorer, semantics, *violation, h,
                                         design.timescale, traceJson, diag))
+      return 1;
+    if (!traceHtml.empty() &&
+        !statespace::writeHtmlTraceFile(explorer, semantics, *violation, h,
+                                        setup->traceView(), traceHtml, diag))
       return 1;
   }
   if (!xo.abstractTimers || !violation ||

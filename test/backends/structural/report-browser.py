@@ -4,120 +4,27 @@ pointer onto an attribute-graph node and onto an Edwards-Venn region,
 prints the tooltip text shown each time, and saves a screenshot.
 
 usage: report-browser.py REPORT.html NODE_ID REGION_ID SCREENSHOT.png
-
-Talks to Chromium over its DevTools pipe (--remote-debugging-pipe: JSON
-messages separated by NUL bytes on file descriptors 3 and 4), so it needs
-nothing beyond Python's standard library and Debian's chromium.
 """
-import base64
-import json
 import os
-import shutil
-import subprocess
 import sys
-import tempfile
-import time
 
-
-class Browser:
-    def __init__(self):
-        self.profile = tempfile.mkdtemp()
-        to_child_r, self.to_child = os.pipe()
-        self.from_child, from_child_w = os.pipe()
-        # fd 3: commands to Chromium, fd 4: its answers.
-        def place_fds():
-            os.dup2(to_child_r, 3)
-            os.dup2(from_child_w, 4)
-        self.proc = subprocess.Popen(
-            ["chromium", "--headless", "--no-sandbox", "--disable-gpu",
-             "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update",
-             "--disable-sync", "--disable-dev-shm-usage",
-             "--remote-debugging-pipe",
-             "--window-size=1200,1400", "--user-data-dir=" + self.profile,
-             "about:blank"],
-            preexec_fn=place_fds, pass_fds=(3, 4),
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        os.close(to_child_r)
-        os.close(from_child_w)
-        self.next_id = 0
-        self.buffer = b""
-
-    def call(self, method, params=None, session=None):
-        self.next_id += 1
-        msg = {"id": self.next_id, "method": method, "params": params or {}}
-        if session:
-            msg["sessionId"] = session
-        os.write(self.to_child, json.dumps(msg).encode() + b"\0")
-        deadline = time.time() + 30
-        while time.time() < deadline:
-            while b"\0" not in self.buffer:
-                chunk = os.read(self.from_child, 65536)
-                if not chunk:
-                    raise RuntimeError("chromium closed its pipe")
-                self.buffer += chunk
-            raw, self.buffer = self.buffer.split(b"\0", 1)
-            answer = json.loads(raw)
-            if answer.get("id") == self.next_id:
-                if "error" in answer:
-                    raise RuntimeError(f"{method}: {answer['error']}")
-                return answer["result"]
-        raise RuntimeError(f"{method}: no answer")
-
-    def close(self):
-        try:
-            self.call("Browser.close")
-        except Exception:
-            pass
-        self.proc.wait(timeout=30)
-        shutil.rmtree(self.profile, ignore_errors=True)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "..", "scripts"))
+from headless_chromium import Browser, hover, open_page, screenshot  # noqa
 
 
 def main():
     report, node_id, region_id, shot = sys.argv[1:5]
     b = Browser()
     try:
-        target = b.call("Target.createTarget",
-                        {"url": "file://" + os.path.abspath(report)})
-        session = b.call("Target.attachToTarget",
-                         {"targetId": target["targetId"], "flatten": True})["sessionId"]
-
-        def js(expr):
-            r = b.call("Runtime.evaluate",
-                       {"expression": expr, "returnByValue": True}, session)
-            return r["result"].get("value")
-
-        # The new target starts blank, then loads the report.
-        for _ in range(200):
-            if (js("location.href") or "").startswith("file:") and \
-                    js("document.readyState") == "complete":
-                break
-            time.sleep(0.05)
-
-        def hover(selector):
-            box = js(f"""(function() {{
-                var el = document.querySelector({json.dumps(selector)});
-                if (!el) return null;
-                el.scrollIntoView({{block: 'center'}});
-                var r = el.getBoundingClientRect();
-                return [r.left + r.width / 2, r.top + r.height / 2];
-            }})()""")
-            if box is None:
-                return f"(no element {selector})"
-            b.call("Input.dispatchMouseEvent",
-                   {"type": "mouseMoved", "x": box[0], "y": box[1]}, session)
-            return js("""(function() { var t = document.getElementById('tooltip');
-                return t.style.display === 'block' ? t.textContent : '(hidden)'; })()""")
-
+        session, js = open_page(b, report)
         # A graph node: graphviz keeps the node's id on its <g>; its ellipse
         # is where the pointer goes.
-        print("node tooltip:", hover(f"[id='{node_id}'] ellipse"))
+        print("node tooltip:", hover(b, session, js, f"[id='{node_id}'] ellipse"))
         # A diagram region: the first piece of the group with that id.
-        print("region tooltip:", hover(f"g.region[data-id='{region_id}'] path"))
-        png = b.call("Page.captureScreenshot", {"format": "png"}, session)
-        with open(shot, "wb") as f:
-            f.write(base64.b64decode(png["data"]))
-        print("screenshot:", os.path.getsize(shot) > 1000)
+        print("region tooltip:",
+              hover(b, session, js, f"g.region[data-id='{region_id}'] path"))
+        print("screenshot:", screenshot(b, session, shot))
     finally:
         b.close()
 
