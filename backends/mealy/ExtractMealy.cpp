@@ -1,6 +1,7 @@
 //===- ExtractMealy.cpp - the Mealy machine of a controller ---------------===//
 #include "backends/mealy/ExtractMealy.h"
 
+#include "backends/statespace/ScanStep.h"
 #include "backends/statespace/StateStore.h"
 #include "ir/semantics/StateLayout.h"
 
@@ -84,8 +85,6 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
   states.insert(init.data());
 
   std::vector<int64_t> leaves(n);
-  std::vector<uint64_t> at(W), tick(W), next(W);
-  llvm::SmallVector<std::string, 2> stepNames;
   for (uint32_t s = 0; s < states.size(); ++s) {
     for (uint32_t v = 0; v < (uint32_t(1) << n); ++v) {
       std::string vector = automata::vectorBits(v, n);
@@ -98,46 +97,26 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
       };
       // Time passes while no step is possible; the first step is the
       // scan (it is unique, or the controller is not a Mealy machine).
-      std::copy(states.state(s), states.state(s) + W, at.begin());
-      for (uint64_t waited = 0;; ++waited) {
-        stepNames.clear();
-        bool ticks = false;
-        if (!sem.successors(
-                at.data(),
-                [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
-                  if (step.empty()) {
-                    ticks = true;
-                    std::copy(succ, succ + W, tick.begin());
-                    return;
-                  }
-                  std::string name;
-                  for (uint32_t t : step)
-                    name +=
-                        (name.empty() ? "" : ",") + m.transitions[t].name.str();
-                  stepNames.push_back("{" + name + "}");
-                  std::copy(succ, succ + W, next.begin());
-                },
-                err))
-          return runtimeError(err);
-        if (stepNames.size() > 1) {
-          diag.error(m.loc, "module '" + m.name + "' is not deterministic: " +
-                                where() + " both " + stepNames[0] + " and " +
-                                stepNames[1] + " can happen");
-          return false;
-        }
-        if (stepNames.size() == 1)
-          break;
-        if (!ticks || waited == opts.maxWaitTicks) {
-          diag.error(m.loc, "module '" + m.name + "' never takes a step " +
-                                where() +
-                                (ticks ? " (waited " +
-                                             std::to_string(opts.maxWaitTicks) +
-                                             " ticks)"
-                                       : std::string(" (a deadlock)")));
-          return false;
-        }
-        at.swap(tick);
+      statespace::ScanOutcome scan;
+      if (!statespace::nextScan(sem, states.state(s), opts.maxWaitTicks, scan,
+                                err))
+        return runtimeError(err);
+      if (scan.kind == statespace::ScanOutcome::Nondeterministic) {
+        diag.error(m.loc, "module '" + m.name +
+                              "' is not deterministic: " + where() + " both " +
+                              scan.step + " and " + scan.other + " can happen");
+        return false;
       }
+      if (scan.kind != statespace::ScanOutcome::Stepped) {
+        diag.error(m.loc,
+                   "module '" + m.name + "' never takes a step " + where() +
+                       (scan.kind == statespace::ScanOutcome::Waited
+                            ? " (waited " + std::to_string(opts.maxWaitTicks) +
+                                  " ticks)"
+                            : std::string(" (a deadlock)")));
+        return false;
+      }
+      std::vector<uint64_t> &next = scan.after;
       std::string output;
       for (uint32_t p : sig.outputPorts) {
         const Port &port = m.ports[p];

@@ -27,7 +27,7 @@ cl::OptionCategory &category();
 cl::SubCommand &translateCommand(), &optCommand(), &composeCommand();
 cl::SubCommand &emitCommand(), &reachCommand(), &checkCommand();
 cl::SubCommand &srCommand(), &mealyCommand(), &editAutomatonCommand();
-cl::SubCommand &enforceCommand();
+cl::SubCommand &enforceCommand(), &replayCommand();
 
 // Options several subcommands take.
 extern cl::opt<std::string> outputFile;  // -o
@@ -69,7 +69,7 @@ bool readMealySpec(const std::string &path, DiagEngine &diag,
 int runTranslate(DiagEngine &), runOpt(DiagEngine &), runCompose(DiagEngine &);
 int runEmit(DiagEngine &), runReach(DiagEngine &), runCheck(DiagEngine &);
 int runSr(DiagEngine &), runMealy(DiagEngine &), runEnforce(DiagEngine &);
-int runEditAutomaton(DiagEngine &);
+int runEditAutomaton(DiagEngine &), runReplay(DiagEngine &);
 /// Puts the registry's formats into `emit --to`'s description.
 void describeEmitFormats();
 

@@ -46,6 +46,10 @@ NETLIFT_SUBCOMMAND(mealyCommand, "mealy",
 NETLIFT_SUBCOMMAND(editAutomatonCommand, "edit-automaton",
                    "Build the edit automaton of a Mealy specification "
                    "(desynchronised reading of simultaneous input changes)")
+NETLIFT_SUBCOMMAND(replayCommand, "replay",
+                   "Run a log recorded on the PLC (CSV: the inputs and "
+                   "any outputs, one row per scan) through the model and "
+                   "say where the two differ")
 NETLIFT_SUBCOMMAND(enforceCommand, "enforce",
                    "Enforce an observed I/O trace (CSV) against a Mealy "
                    "specification and give a verdict")
@@ -57,13 +61,13 @@ NETLIFT_SUBCOMMAND(enforceCommand, "enforce",
       cl::sub(composeCommand()), cl::sub(emitCommand()),                       \
       cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),  \
       cl::sub(mealyCommand()), cl::sub(editAutomatonCommand()),                \
-      cl::sub(enforceCommand()), cl::cat(category())
+      cl::sub(enforceCommand()), cl::sub(replayCommand()), cl::cat(category())
 // Every subcommand that explores (or encodes the step relation) takes the
 // exploration set-up's options, so they all mean the same model.
 #define NETLIFT_EXPLORING                                                      \
   cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),      \
       cl::sub(mealyCommand()), cl::sub(editAutomatonCommand()),                \
-      cl::sub(enforceCommand()), cl::cat(category())
+      cl::sub(enforceCommand()), cl::sub(replayCommand()), cl::cat(category())
 
 cl::opt<std::string> driver::outputFile("o",
                                         cl::desc("Output file ('-' = stdout)"),

@@ -39,6 +39,7 @@ static const char *const overview =
     "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
     "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
     "  netlift check MODEL --ctl FORMULA...\n"
+    "  netlift replay MODEL LOG.csv [--trace-html FILE]\n"
     "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json|html] [--ev "
     "F.svg] [--ag FILE.dot]\n\n"
     "Exploring commands (reach, check, sr, mealy, edit-automaton, enforce) "
@@ -60,6 +61,7 @@ static const struct {
     {enforceCommand, runEnforce},
     {srCommand, runSr},
     {checkCommand, runCheck},
+    {replayCommand, runReplay},
 };
 
 int main(int argc, char **argv) {
