@@ -185,20 +185,27 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
                                std::to_string(columns.size()));
       return 1;
     }
+    // Every cell's value (empty cells none), refused at the first that
+    // is not one.
+    std::vector<std::optional<int64_t>> values(columns.size());
+    for (size_t k = 0; k < columns.size(); ++k) {
+      if (row[k].empty())
+        continue;
+      values[k] = parseValue(row[k]);
+      if (!values[k]) {
+        diag.error(at(row[k]), "'" + row[k].str() + "' is not a value of '" +
+                                   columns[k].name +
+                                   "' (0, 1, TRUE, FALSE or an integer)");
+        return 1;
+      }
+    }
     std::fill(present.begin(), present.end(), 0);
     std::string inputsText;
     for (size_t k = 0; k < columns.size(); ++k) {
       const LogColumn &c = columns[k];
       if (c.kind == LogColumn::Compared || row[k].empty())
         continue;
-      std::optional<int64_t> v = parseValue(row[k]);
-      if (!v) {
-        diag.error(at(row[k]), "'" + row[k].str() + "' is not a value of '" +
-                                   c.name +
-                                   "' (0, 1, TRUE, FALSE or an "
-                                   "integer)");
-        return 1;
-      }
+      std::optional<int64_t> v = values[k];
       int64_t lo = c.type ? c.type->lo : 0, hi = c.type ? c.type->hi : 1;
       if (c.kind == LogColumn::Input && (*v < lo || *v > hi)) {
         diag.error(at(row[k]), "value " + std::to_string(*v) + " is outside " +
@@ -264,14 +271,7 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
       const LogColumn &c = columns[k];
       if (c.kind != LogColumn::Compared || row[k].empty())
         continue;
-      std::optional<int64_t> v = parseValue(row[k]);
-      if (!v) {
-        diag.error(at(row[k]), "'" + row[k].str() + "' is not a value of '" +
-                                   c.name +
-                                   "' (0, 1, TRUE, FALSE or an "
-                                   "integer)");
-        return 1;
-      }
+      std::optional<int64_t> v = values[k];
       Cell cell = cellOf(sem, state[c.column], kept.back().data());
       ++compared;
       if (cell.v != *v) {
