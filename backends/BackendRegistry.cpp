@@ -10,9 +10,10 @@
 
 using namespace netlift;
 
-static bool writeNetText(const EmitInput &in, DiagEngine &,
+static bool writeNetText(const EmitInput &in, DiagEngine &diag,
                          llvm::raw_ostream &os) {
-  net::printDesign(*in.design, os);
+  net::printDesign(*in.design, os,
+                   in.sourceLocations ? &diag.sourceMgr() : nullptr);
   return true;
 }
 

@@ -31,6 +31,8 @@ struct EmitInput {
   statespace::ExplorationSetup *setup = nullptr;
   /// Steps: the --ctl properties.
   llvm::ArrayRef<const checkers::CtlFormula *> properties;
+  /// NetIR text: statements carry their source locations (`@N:line:col`).
+  bool sourceLocations = true;
 };
 
 struct BackendInfo {

@@ -40,6 +40,10 @@ static const FrontendInfo *byExtension(StringRef path) {
 /// Does `text` read like IEC 61131-3 source (a line opening a POU, a
 /// declaration block or a configuration)?
 static bool looksLikePlcSource(StringRef text) {
+  // NetIR declares `var x : bool = false;` too: IEC text also closes its
+  // sections (END_VAR, END_PROGRAM, ...), which NetIR never does.
+  if (!StringRef(text.upper()).contains("END_"))
+    return false;
   while (!text.empty()) {
     auto [line, rest] = text.split('\n');
     text = rest;
@@ -81,13 +85,13 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
                            DiagEngine &diag) {
   std::string first;
   llvm::raw_string_ostream os1(first);
-  net::printDesign(design, os1);
+  net::printDesign(design, os1, &diag.sourceMgr());
   os1.flush();
   llvm::SourceMgr sm;
   DiagEngine inner(sm);
-  unsigned id = sm.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBufferCopy(first, (path + ".printed").str()),
-      llvm::SMLoc());
+  unsigned id = sm.AddNewSourceBuffer(llvm::MemoryBuffer::getMemBufferCopy(
+                                          first, (path + ".printed.net").str()),
+                                      llvm::SMLoc());
   net::Design again;
   if (!net::parseNetIR(id, inner, again) || !net::verifyDesign(again, inner)) {
     llvm::errs() << "netlift: error: round trip: the printed form of '" << path
@@ -96,7 +100,7 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
   }
   std::string second;
   llvm::raw_string_ostream os2(second);
-  net::printDesign(again, os2);
+  net::printDesign(again, os2, &sm);
   os2.flush();
   if (first != second) {
     llvm::errs() << "netlift: error: round trip: printing '" << path

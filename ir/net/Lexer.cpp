@@ -162,6 +162,8 @@ Token Lexer::next() {
     return make(Tok::Question, start);
   case '#':
     return make(Tok::Hash, start);
+  case '@':
+    return make(Tok::At, start);
   case '\'':
     return make(Tok::Prime, start);
   default:

@@ -55,6 +55,7 @@ enum class Tok : uint8_t {
   Question,
   Hash,
   Prime,
+  At, // @ (a statement's source location)
 };
 
 struct Token {

@@ -310,7 +310,7 @@ bool Parser::parseBlock(Block &out) {
     if (tok.is(Tok::Eof))
       return errorHere("expected '}' to end the block");
     Stmt *s = parseStmt();
-    if (!s)
+    if (!s || (tok.is(Tok::At) && !parseStmtLocation(s)))
       return false;
     stmts.push_back(s);
   }

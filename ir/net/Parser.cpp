@@ -106,12 +106,16 @@ bool Parser::parseFile() {
     } else if (tok.isIdent("timescale")) {
       if (!parseTimescale())
         return false;
+    } else if (tok.isIdent("source")) {
+      if (!parseSourceDecl())
+        return false;
     } else {
-      return errorHere("expected 'module', 'system', 'type' or 'timescale', "
-                       "found " +
+      return errorHere("expected 'module', 'system', 'type', 'timescale' or "
+                       "'source', found " +
                        describe());
     }
   }
+  resolveStmtLocations();
   return !failed;
 }
 
@@ -906,9 +910,16 @@ bool Parser::parseAttrDecl() {
                               "' must not be qualified (no '.')");
   if (!expect(Tok::Equal, "'='"))
     return false;
+  std::string value;
+  if (!parseQuotedText(value))
+    return false;
+  b.addAttribute(target, key, value, loc);
+  return expect(Tok::Semi, "';'");
+}
+
+bool Parser::parseQuotedText(std::string &out) {
   if (!tok.is(Tok::String))
     return errorHere("expected a string (\"...\"), found " + describe());
-  std::string value;
   StringRef quoted = tok.text.drop_front().drop_back();
   for (size_t i = 0; i < quoted.size(); ++i) {
     char c = quoted[i];
@@ -920,11 +931,10 @@ bool Parser::parseAttrDecl() {
                          "' (write \\\", \\\\, \\n or \\t)");
       c = n == 'n' ? '\n' : n == 't' ? '\t' : n;
     }
-    value += c;
+    out += c;
   }
   consume();
-  b.addAttribute(target, key, value, loc);
-  return expect(Tok::Semi, "';'");
+  return true;
 }
 
 bool Parser::parseDefinition() {

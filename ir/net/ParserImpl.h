@@ -18,6 +18,8 @@
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/ADT/StringSwitch.h"
 
+#include <map>
+
 namespace netlift::net::detail {
 
 using llvm::SMLoc;
@@ -159,6 +161,15 @@ private:
   bool parseInstDecl();
   bool parseConnectDecl();
   bool parseAttrDecl();
+  /// The text between a string token's quotes, `\"` `\\` `\n` `\t` read.
+  bool parseQuotedText(std::string &out);
+  // Source locations (ParseLocations.cpp) ----------------------------------
+  bool parseSourceDecl();
+  /// `@N:line:col` after a statement: where it was lowered from.
+  bool parseStmtLocation(Stmt *s);
+  /// Points the statements read with `@` into their files (loaded into the
+  /// SourceMgr, or stand-ins when a file is gone or no longer matches).
+  void resolveStmtLocations();
   bool parseEndpoint(Endpoint &e);
   bool parseDefinition();
   bool resolveModuleFixups();
@@ -231,6 +242,18 @@ private:
     Expr *expr;
   };
   std::vector<Definition> definitions;
+  // `source N = "file";` and the statements that refer to it.
+  struct SourceFile {
+    std::string path;
+    SMLoc declLoc;
+  };
+  std::map<int64_t, SourceFile> sourceFiles;
+  struct PendingLocation {
+    Stmt *stmt;
+    int64_t file;
+    unsigned line, col;
+  };
+  std::vector<PendingLocation> pendingLocations;
 };
 
 } // namespace netlift::net::detail

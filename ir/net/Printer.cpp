@@ -4,11 +4,30 @@
 
 #include "llvm/ADT/STLExtras.h"
 
+#include <optional>
+
 using namespace netlift::net;
 using llvm::raw_ostream;
 using llvm::StringRef;
 
 namespace {
+
+/// An attribute value or a file name in quotes, with `"`, `\\`, newline
+/// and tab escaped (the parser's parseQuotedText reads it back).
+void printQuoted(StringRef text, raw_ostream &os) {
+  os << '"';
+  for (char c : text) {
+    if (c == '"' || c == '\\')
+      os << '\\' << c;
+    else if (c == '\n')
+      os << "\\n";
+    else if (c == '\t')
+      os << "\\t";
+    else
+      os << c;
+  }
+  os << '"';
+}
 
 /// Precedence of an expression as a whole (see precedence(BinaryOp)):
 /// 0 conditional, 1-11 binary, 4 `not`, 12 prefix minus/complement,
@@ -127,17 +146,54 @@ void print(const Expr *e, raw_ostream &os, int ctx) {
   }
 }
 
+} // namespace
+
+SourceTable::SourceTable(const llvm::SourceMgr &sm) : sm(sm) {}
+
+bool SourceTable::carriesLocations(StringRef bufferName) {
+  // NetIR text is the model itself: its own lines are not carried into the
+  // text printed from it. netlift's library and generated text are `<...>`.
+  return !bufferName.empty() && !bufferName.startswith("<") &&
+         !bufferName.endswith(".net");
+}
+
+std::string SourceTable::reference(llvm::SMLoc loc) {
+  if (!loc.isValid())
+    return "";
+  unsigned id = sm.FindBufferContainingLoc(loc);
+  if (!id)
+    return "";
+  auto [it, inserted] = numbers.try_emplace(id, 0);
+  if (inserted) {
+    StringRef name = sm.getMemoryBuffer(id)->getBufferIdentifier();
+    if (carriesLocations(name)) {
+      files.push_back(name.str());
+      it->second = files.size();
+    }
+  }
+  if (!it->second)
+    return "";
+  auto [line, col] = sm.getLineAndColumn(loc, id);
+  return "@" + std::to_string(it->second) + ":" + std::to_string(line) + ":" +
+         std::to_string(col);
+}
+
+namespace {
+
 class ModulePrinter {
 public:
-  ModulePrinter(const Module &m, raw_ostream &os) : m(m), os(os) {}
+  ModulePrinter(const Module &m, raw_ostream &os, SourceTable *sources)
+      : m(m), os(os), sources(sources) {}
   void run();
 
 private:
   void printBlock(Block b, unsigned indent);
   void printStmt(const Stmt *s, unsigned indent);
+  void printStmtBody(const Stmt *s, unsigned indent);
   void printTransition(const Transition &t);
   const Module &m;
   raw_ostream &os;
+  SourceTable *sources;
 };
 
 void ModulePrinter::printBlock(Block b, unsigned indent) {
@@ -149,13 +205,23 @@ void ModulePrinter::printBlock(Block b, unsigned indent) {
 
 void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
   os.indent(indent);
+  printStmtBody(s, indent);
+  if (sources) {
+    std::string ref = sources->reference(s->loc);
+    if (!ref.empty())
+      os << ' ' << ref;
+  }
+  os << '\n';
+}
+
+void ModulePrinter::printStmtBody(const Stmt *s, unsigned indent) {
   switch (s->getKind()) {
   case StmtKind::Assign: {
     auto *a = llvm::cast<AssignStmt>(s);
     printExpr(a->target, os);
     os << " := ";
     printExpr(a->value, os);
-    os << ";\n";
+    os << ";";
     return;
   }
   case StmtKind::If: {
@@ -172,7 +238,6 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
       os << " else ";
       printBlock(i->elseBody, indent);
     }
-    os << '\n';
     return;
   }
   case StmtKind::Case: {
@@ -201,7 +266,7 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
       printBlock(c->elseBody, indent + 2);
       os << '\n';
     }
-    os.indent(indent) << "}\n";
+    os.indent(indent) << "}";
     return;
   }
   case StmtKind::For: {
@@ -212,7 +277,6 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
     printOperand(f->hi, os, 6);
     os << ' ';
     printBlock(f->body, indent);
-    os << '\n';
     return;
   }
   case StmtKind::While: {
@@ -222,14 +286,13 @@ void ModulePrinter::printStmt(const Stmt *s, unsigned indent) {
       printBlock(w->body, indent);
       os << " until ";
       print(w->cond, os, 0);
-      os << ";\n";
+      os << ";";
       return;
     }
     os << "while ";
     print(w->cond, os, 0);
     os << ' ';
     printBlock(w->body, indent);
-    os << '\n';
     return;
   }
   }
@@ -400,18 +463,9 @@ void ModulePrinter::run() {
     os << "  attr ";
     if (!a.target.empty())
       os << a.target << ' ';
-    os << a.key << " = \"";
-    for (char c : a.value) {
-      if (c == '"' || c == '\\')
-        os << '\\' << c;
-      else if (c == '\n')
-        os << "\\n";
-      else if (c == '\t')
-        os << "\\t";
-      else
-        os << c;
-    }
-    os << "\";\n";
+    os << a.key << " = ";
+    printQuoted(a.value, os);
+    os << ";\n";
   }
   os << "}\n";
 }
@@ -429,14 +483,26 @@ std::string netlift::net::exprToString(const Expr *e) {
   return os.str();
 }
 
-void netlift::net::printModule(const Module &m, raw_ostream &os) {
-  ModulePrinter(m, os).run();
+void netlift::net::printModule(const Module &m, raw_ostream &os,
+                               SourceTable *sources) {
+  ModulePrinter(m, os, sources).run();
 }
 
-void netlift::net::printDesign(const Design &d, raw_ostream &os) {
+/// The lines before the modules: timescale, source files, named types.
+/// Returns whether it printed anything (a blank line then separates).
+static bool printHeader(const Design &d, raw_ostream &os,
+                        llvm::ArrayRef<std::string> files) {
   bool needBlank = false;
   if (d.timescale) {
     os << "timescale " << d.timescale->amount << d.timescale->unit << ";\n";
+    needBlank = true;
+  }
+  if (!files.empty()) {
+    for (size_t i = 0; i < files.size(); ++i) {
+      os << "source " << i + 1 << " = ";
+      printQuoted(files[i], os);
+      os << ";\n";
+    }
     needBlank = true;
   }
   if (!d.types.namedTypes().empty()) {
@@ -452,10 +518,27 @@ void netlift::net::printDesign(const Design &d, raw_ostream &os) {
     }
     needBlank = true;
   }
+  return needBlank;
+}
+
+void netlift::net::printDesign(const Design &d, raw_ostream &os,
+                               const llvm::SourceMgr *sources) {
+  // The modules are printed first so that the source table above them
+  // numbers files in the order their statements use them.
+  std::optional<SourceTable> table;
+  if (sources)
+    table.emplace(*sources);
+  std::string modules;
+  llvm::raw_string_ostream mos(modules);
   for (const auto &m : d.modules) {
-    if (needBlank)
-      os << '\n';
-    printModule(*m, os);
-    needBlank = true;
+    if (&m != &d.modules.front())
+      mos << '\n';
+    printModule(*m, mos, table ? &*table : nullptr);
   }
+  mos.flush();
+  bool needBlank = printHeader(
+      d, os, table ? table->fileNames() : llvm::ArrayRef<std::string>());
+  if (needBlank && !modules.empty())
+    os << '\n';
+  os << modules;
 }

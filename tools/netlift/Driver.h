@@ -35,6 +35,7 @@ extern cl::opt<std::string> inputFormat; // --from
 extern cl::opt<std::string> topName;     // --top
 extern cl::list<std::string> properties; // --ctl (check, emit)
 extern cl::opt<std::string> edgesFile;   // --edges (reach, sr)
+extern cl::opt<bool> noSourceLocations;  // --no-locations (NetIR output)
 
 /// The frontends' options (--top, --timescale, --scan-period, --ranges, -I,
 /// --fb-semantics); false after reporting a malformed one.

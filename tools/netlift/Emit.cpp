@@ -69,6 +69,7 @@ int driver::runEmit(DiagEngine &diag) {
     return nces::writeNcesModules(design, topName, outputFile, diag) ? 0 : 1;
   EmitInput in;
   in.design = &design;
+  in.sourceLocations = !noSourceLocations;
   std::unique_ptr<statespace::ExplorationSetup> setup;
   std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
   std::vector<const checkers::CtlFormula *> claims;

@@ -73,6 +73,12 @@ cl::opt<std::string> driver::outputFile("o",
                                         cl::desc("Output file ('-' = stdout)"),
                                         cl::value_desc("file"), cl::init("-"),
                                         NETLIFT_READING);
+cl::opt<bool> driver::noSourceLocations(
+    "no-locations",
+    cl::desc("Write NetIR without the program's source locations (the "
+             "`source` table and `@N:line:col` after statements)"),
+    cl::sub(translateCommand()), cl::sub(optCommand()),
+    cl::sub(composeCommand()), cl::sub(emitCommand()), cl::cat(category()));
 cl::opt<std::string>
     driver::inputFormat("from",
                         cl::desc("Input format (default: by file extension)"),
@@ -426,6 +432,10 @@ int driver::writeResult(llvm::StringRef path,
 
 int driver::writeDesign(const net::Design &design, DiagEngine &diag) {
   return writeResult(
-      outputFile, [&](llvm::raw_ostream &os) { net::printDesign(design, os); },
+      outputFile,
+      [&](llvm::raw_ostream &os) {
+        net::printDesign(design, os,
+                         noSourceLocations ? nullptr : &diag.sourceMgr());
+      },
       diag);
 }
