@@ -130,7 +130,8 @@ bool netlift::enforce::enforceTrace(
 int netlift::enforce::enforceAndJudge(const EditAutomaton &ea,
                                       unsigned bufferID, DiagEngine &diag,
                                       llvm::raw_ostream &out,
-                                      llvm::raw_ostream *csv) {
+                                      llvm::raw_ostream *csv,
+                                      EnforceResult *result) {
   if (csv) {
     for (size_t i = 0; i < ea.signals.size(); ++i)
       *csv << (i ? "," : "") << ea.signals[i];
@@ -149,6 +150,8 @@ int netlift::enforce::enforceAndJudge(const EditAutomaton &ea,
   };
   if (!enforceTrace(ea, bufferID, diag, vector, r))
     return 1;
+  if (result)
+    *result = r;
   if (r.conform) {
     out << "verdict: conform (" << r.vectors << " vectors read, " << emitted
         << " emitted)\n";

@@ -45,7 +45,7 @@ bool enforceTrace(const automata::EditAutomaton &ea, unsigned bufferID,
 /// (reported).
 int enforceAndJudge(const automata::EditAutomaton &ea, unsigned bufferID,
                     DiagEngine &diag, llvm::raw_ostream &vectors,
-                    llvm::raw_ostream *csv);
+                    llvm::raw_ostream *csv, EnforceResult *result = nullptr);
 
 void writeEditAutomatonDot(const automata::EditAutomaton &ea,
                            llvm::raw_ostream &os);

@@ -177,7 +177,9 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
   uint64_t compared = 0;
   for (size_t r = 1; r < lines.size(); ++r) {
     auto [lineNo, line] = lines[r];
-    std::string where = file.str() + ":" + std::to_string(lineNo);
+    std::string where = options.rowName
+                            ? options.rowName(r)
+                            : file.str() + ":" + std::to_string(lineNo);
     auto row = cells(line);
     if (row.size() != columns.size()) {
       diag.error(at(line), "row has " + std::to_string(row.size()) +
@@ -279,14 +281,15 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
           return 1;
         os << "diverges at " << where << " (scan " << r << ", step "
            << kept.size() - 1 << "): " << c.name << " is " << cell.text
-           << " in the model, " << row[k] << " in the log\n";
+           << " in the model, " << row[k] << " in the " << options.recordName
+           << "\n";
         return 3;
       }
     }
   }
   if (!printRun())
     return 1;
-  os << "the model agrees with the log: " << lines.size() - 1 << " scans, "
-     << compared << " recorded values\n";
+  os << "the model agrees with the " << options.recordName << ": "
+     << lines.size() - 1 << " scans, " << compared << " recorded values\n";
   return 0;
 }

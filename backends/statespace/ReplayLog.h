@@ -19,6 +19,8 @@
 
 #include "llvm/Support/raw_ostream.h"
 
+#include <functional>
+
 namespace netlift::statespace {
 
 struct ReplayLogOptions {
@@ -26,6 +28,11 @@ struct ReplayLogOptions {
   uint64_t maxWaitTicks = 100000;
   /// Also write the replayed run as an HTML trace here.
   std::string htmlFile;
+  /// How a verdict names a row (1-based, the header not counted); by
+  /// default `LOG.csv:LINE`. enforce names the vectors it replays.
+  std::function<std::string(size_t row)> rowName;
+  /// What the recorded values are called in a verdict.
+  std::string recordName = "log";
 };
 
 /// Replays the log in buffer `bufferID` on `sem` and prints the run and

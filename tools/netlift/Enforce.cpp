@@ -1,6 +1,8 @@
 //===- Enforce.cpp - edit-automaton and enforce ---------------------------===//
 #include "backends/enforce/Enforce.h"
 #include "backends/enforce/EditAutomatonJson.h"
+#include "backends/statespace/ExplorationSetup.h"
+#include "backends/statespace/ReplayLog.h"
 #include "ir/automata/EditAutomaton.h"
 #include "tools/netlift/Driver.h"
 
@@ -92,6 +94,76 @@ int driver::runEditAutomaton(DiagEngine &diag) {
       diag);
 }
 
+/// Is the specification a program (whose Mealy machine is extracted), not
+/// an automaton file?
+static bool isProgramSpec(const std::string &path) {
+  if (!inputFormat.empty())
+    return inputFormat != "json" && inputFormat != "kiss2" &&
+           inputFormat != "dot";
+  llvm::StringRef ext = llvm::sys::path::extension(path);
+  return ext != ".json" && ext != ".kiss2" && ext != ".kiss" && ext != ".kis" &&
+         ext != ".dot";
+}
+
+/// A program specification explains a stop in its own terms: the program
+/// runs on the vectors the automaton emitted, then on the stopped one
+/// (replay's scan table, with the source lines of every change), up to the
+/// output the trace does not show. Returns 1 on an error, else 3 (the
+/// verdict stands).
+static int explainStop(const automata::EditAutomaton &ea, unsigned traceID,
+                       const enforce::EnforceResult &stop,
+                       const std::string &program, DiagEngine &diag) {
+  auto row = [](const std::string &vector) {
+    std::string r;
+    for (char c : vector)
+      r.append(r.empty() ? "" : ",").push_back(c);
+    return r + "\n";
+  };
+  std::string csv;
+  for (const std::string &signal : ea.signals)
+    csv.append(csv.empty() ? "" : ",").append(signal);
+  csv += "\n";
+  size_t emitted = 0;
+  enforce::EnforceResult again;
+  if (!enforce::enforceTrace(
+          ea, traceID, diag,
+          [&](const std::string &v) {
+            csv += row(v);
+            ++emitted;
+          },
+          again))
+    return 1;
+  csv += row(stop.stopVector);
+  std::string trace =
+      llvm::sys::path::filename(
+          diag.sourceMgr().getMemoryBuffer(traceID)->getBufferIdentifier())
+          .str();
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(csv, "<the vectors enforced on " +
+                                                    trace + ">"),
+      llvm::SMLoc());
+  statespace::ExplorationOptions xo;
+  net::Design design;
+  std::vector<std::string> inputs{program};
+  if (!explorationOptions(xo, diag) || !loadModels(inputs, diag, design))
+    return 1;
+  auto setup =
+      statespace::ExplorationSetup::create(design, xo, diag, "enforce");
+  if (!setup)
+    return 1;
+  statespace::ReplayLogOptions options;
+  options.rowName = [&](size_t r) {
+    return r <= emitted ? "enforced vector " + std::to_string(r)
+                        : trace + " vector " + std::to_string(stop.stopIndex);
+  };
+  options.recordName = "trace";
+  llvm::outs() << "the program on the enforced vectors, then on vector "
+               << stop.stopIndex << ":\n";
+  int code = statespace::replayLog(setup->semantics(), id, setup->traceView(),
+                                   options, diag, llvm::outs());
+  return code == 1 ? 1 : 3;
+}
+
 /// Exit 0 conform, 3 not conform, 1 error.
 int driver::runEnforce(DiagEngine &diag) {
   if (enforceInputs.size() != 2) {
@@ -107,17 +179,24 @@ int driver::runEnforce(DiagEngine &diag) {
     return 1;
   // Streamed: each enforced vector is printed as it is emitted, and written
   // to -o (a temporary renamed into place at the end).
-  if (outputFile == "-")
-    return enforce::enforceAndJudge(ea, id, diag, llvm::outs(), nullptr);
+  enforce::EnforceResult result;
   int code = 1;
-  if (writeResult(
-          outputFile,
-          [&](llvm::raw_ostream &os) {
-            code = enforce::enforceAndJudge(ea, id, diag, llvm::outs(), &os);
-          },
-          diag))
-    return 1;
-  if (code == 1)
-    llvm::sys::fs::remove(outputFile);
+  if (outputFile == "-") {
+    code =
+        enforce::enforceAndJudge(ea, id, diag, llvm::outs(), nullptr, &result);
+  } else {
+    if (writeResult(
+            outputFile,
+            [&](llvm::raw_ostream &os) {
+              code = enforce::enforceAndJudge(ea, id, diag, llvm::outs(), &os,
+                                              &result);
+            },
+            diag))
+      return 1;
+    if (code == 1)
+      llvm::sys::fs::remove(outputFile);
+  }
+  if (code == 3 && result.stopped && isProgramSpec(enforceInputs[0]))
+    return explainStop(ea, id, result, enforceInputs[0], diag);
   return code;
 }
