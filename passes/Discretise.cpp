@@ -529,13 +529,22 @@ bool Discretiser::collectAssignments() {
           if (toReal && top && same && same->sym == tr->sym &&
               same->fields.empty() && tr->fields.empty())
             continue;
+          // `x := a*x + b` (SpaceEx's `x' == 3*x`, `y' == y - 10`): the
+          // new position is the image of the old one's value or segment.
+          if (toReal && top && tr->fields.empty() && !evalConstReal(a->value)) {
+            auto ab = affineCoefficients(a->value, tr->sym.index);
+            if (ab && ab->first != 0) {
+              affineResets[{ti, realOfVar[tr->sym.index]}] = *ab;
+              continue;
+            }
+          }
           const Expr *where = nullptr;
           if (mentionsReal(a->value, realOfVar, where))
             return error(where->loc.isValid() ? where->loc : t.loc,
                          "an action reads a real variable; after discretise "
                          "reals exist only as position places, which actions "
-                         "can only reset (`x := constant`); test thresholds "
-                         "in the guard instead");
+                         "can only reset (`x := constant`, `x := a*x + b`); "
+                         "test thresholds in the guard instead");
           if (!toReal)
             continue;
           size_t ri = realOfVar[tr->sym.index];

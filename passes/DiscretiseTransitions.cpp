@@ -18,10 +18,15 @@ void Discretiser::emitTransitions(Real &r) {
   struct Effect {
     int leaves = -1, enters = -1;
     std::optional<std::pair<double, double>> assign; // [lo, hi]
-    bool interval() const { return assign && assign->first < assign->second; }
+    std::optional<std::pair<double, double>> affine; // x := a*x + b
+    bool interval() const {
+      return (assign && assign->first < assign->second) || affine;
+    }
     int locFrom = -1, locTo = -1; // component places; -1: not touched
     bool touchesOtherReal = false;
-    bool relevant() const { return leaves >= 0 || enters >= 0 || assign; }
+    bool relevant() const {
+      return leaves >= 0 || enters >= 0 || assign || affine;
+    }
   };
   std::vector<Effect> effects(numOriginal);
   std::vector<bool> isEventSource(numOriginal);
@@ -52,10 +57,12 @@ void Discretiser::emitTransitions(Real &r) {
     auto it = assigns.find({ti, ri});
     if (it != assigns.end())
       e.assign = it->second;
+    if (auto af = affineResets.find({ti, ri}); af != affineResets.end())
+      e.affine = af->second;
     for (size_t rj = 0; rj < reals.size(); ++rj) {
       if (rj == ri)
         continue;
-      if (assigns.count({ti, rj}))
+      if (assigns.count({ti, rj}) || affineResets.count({ti, rj}))
         e.touchesOtherReal = true;
       for (uint32_t pl : pre)
         if (reals[rj].flowOfPlace.count(pl) && !post.count(pl))
@@ -70,6 +77,85 @@ void Discretiser::emitTransitions(Real &r) {
                                      c - 1e-12 * std::max(1.0, std::fabs(c))) -
                     r.grid.begin());
   };
+  // `x := a*x + b` from value v: the grid points and open segments the
+  // image of v (a point, or an open segment) meets. Past the end of a
+  // range left open by closeOpenRanges, values rest at its end; past a
+  // closed range the reset is refused.
+  constexpr double kInfReal = std::numeric_limits<double>::infinity();
+  std::set<uint32_t> refusedResets;
+  auto affineImage = [&](uint32_t ti, std::pair<double, double> ab, Value v,
+                         std::vector<Value> &values) {
+    double lo = v.atPoint ? r.grid[v.k] : r.grid[v.k - 1];
+    double hi = r.grid[v.k];
+    // The end point of an open range stands for every value past it.
+    if (v.atPoint && r.openTop && v.k + 1 == r.grid.size())
+      hi = kInfReal;
+    if (v.atPoint && r.openBottom && v.k == 0)
+      lo = -kInfReal;
+    double l = ab.first * lo + ab.second, h = ab.first * hi + ab.second;
+    if (l > h)
+      std::swap(l, h);
+    double eps = 1e-9 * std::max({1.0, std::fabs(r.grid.front()),
+                                  std::fabs(r.grid.back())});
+    double bottom = r.grid.front(), top = r.grid.back();
+    bool restTop = false, restBottom = false;
+    bool overTop = h > top + eps, underBottom = l < bottom - eps;
+    if (overTop || underBottom) {
+      // The side that a closed end cannot take, if any.
+      bool beyondTop = overTop && !r.openTop;
+      if (beyondTop || (underBottom && !r.openBottom)) {
+        if (!refusedResets.insert(ti).second)
+          return false; // said once per transition
+        std::string image = (ab.first == 1 ? "" : num(ab.first) + "*") +
+                            r.shortName +
+                            (ab.second > 0   ? " + " + num(ab.second)
+                             : ab.second < 0 ? " - " + num(-ab.second)
+                                             : "");
+        error(m.transitions[ti].loc,
+              "transition '" + m.transitions[ti].name + "' resets '" + r.name +
+                  "' to " + image + ", which can take it to " +
+                  num(beyondTop ? h : l) + ", outside its range [" +
+                  num(bottom) + ", " + num(top) +
+                  "] (widen the range, or bound it by the target's "
+                  "invariant)");
+        return false;
+      }
+      restTop = overTop;
+      restBottom = underBottom;
+      l = std::clamp(l, bottom, top);
+      h = std::clamp(h, bottom, top);
+    }
+    auto add = [&](Value w) {
+      if (llvm::none_of(values, [&](Value o) {
+            return o.atPoint == w.atPoint && o.k == w.k;
+          }))
+        values.push_back(w);
+    };
+    if (restBottom)
+      add({true, 0});
+    if (h - l <= eps) {
+      // A point: exactly a grid point or inside one segment.
+      unsigned k = valueIndex(l);
+      if (k < r.grid.size() && std::fabs(r.grid[k] - l) <= eps)
+        add({true, k});
+      else
+        add({false, k});
+    } else {
+      // The open interval (l, h): the segment just above l, then every
+      // point strictly inside with the segment above it.
+      unsigned k = 0;
+      while (k < r.grid.size() && r.grid[k] <= l + eps)
+        ++k;
+      add({false, k});
+      for (unsigned j = k; j < r.grid.size() && r.grid[j] < h - eps; ++j) {
+        add({true, j});
+        add({false, j + 1});
+      }
+    }
+    if (restTop)
+      add({true, unsigned(r.grid.size() - 1)});
+    return true;
+  };
   // Where the token goes when t fires from form f (clockZero: the form's
   // place clock is 0, i.e. a moving token is exactly at its entry point):
   // one form, or one per value of a reset to an interval (its grid points
@@ -80,12 +166,15 @@ void Discretiser::emitTransitions(Real &r) {
                     : (f.flow >= 0 && e.leaves != f.flow) ? f.flow
                                                           : -1;
     std::vector<Form> out;
-    if (flowAfter == f.flow && !e.assign) {
+    if (flowAfter == f.flow && !e.assign && !e.affine) {
       out.push_back(f);
       return out;
     }
     std::vector<Value> values;
-    if (e.assign) {
+    if (e.affine) {
+      if (!affineImage(ti, *e.affine, valueOf(r, f, clockZero), values))
+        return std::vector<Form>();
+    } else if (e.assign) {
       unsigned k0 = valueIndex(e.assign->first);
       unsigned k1 = valueIndex(e.assign->second);
       for (unsigned k = k0; k <= k1; ++k) {
@@ -267,7 +356,7 @@ void Discretiser::emitTransitions(Real &r) {
       // (a self-loop re-marks the place); a choice among several values
       // must be made even where one of them is the current form (the
       // forced transitions of a step are maximal).
-      if (to == f && !(e.assign && (f.moving() || e.interval())))
+      if (to == f && !((e.assign || e.affine) && (f.moving() || e.interval())))
         return;
       std::string name =
           m.transitions[ti].name.str() + "_" + formName(r, f) + suffix.str();
@@ -280,7 +369,14 @@ void Discretiser::emitTransitions(Real &r) {
     if (e.interval()) {
       // One forced transition per value: they take the same token, so each
       // firing of t takes one of them.
-      for (Form to : targetsOf(ti, f, false))
+      std::vector<Form> tos = targetsOf(ti, f, false);
+      // An affine image depends on where in its form x is: a token that
+      // just entered stands at the entry point, one later inside.
+      if (e.affine && split)
+        for (Form to : targetsOf(ti, f, true))
+          if (!llvm::is_contained(tos, to))
+            tos.push_back(to);
+      for (Form to : tos)
         emit(to, Interval{}, "_to_" + formName(r, to));
       continue;
     }

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -333,6 +334,9 @@ private:
   // Per transition and real: `x := c` assigned at the top of its action,
   // as [c, c], or `x := between(a, b)` as [a, b].
   std::map<std::pair<uint32_t, size_t>, std::pair<double, double>> assigns;
+  /// Per transition and real: `x := a*x + b` (a != 0) at the top of its
+  /// action, as (a, b): the image of x's grid value or segment.
+  std::map<std::pair<uint32_t, size_t>, std::pair<double, double>> affineResets;
   llvm::StringSet<> taken;
   double ticksPerUnit = 1; // model time units per second or tick
   std::string timeUnit = "tick";
