@@ -180,13 +180,14 @@ bool Discretiser::computeTimes(Real &r) {
 /// machine component: the places linked to them by one-in-one-out
 /// transitions, holding one token at most, which every transition that
 /// touches them preserves.
-bool Discretiser::checkExclusive(Real &r) {
-  std::set<uint32_t> comp;
-  for (FlowOf &fl : r.flows)
-    comp.insert(fl.place);
+/// The places a one-token state machine component holding `seed` needs:
+/// closed under the transitions that move one token from one place to
+/// another.
+static std::set<uint32_t> closeUnderMoves(const Module &m,
+                                          std::set<uint32_t> comp) {
   for (bool grew = true; grew;) {
     grew = false;
-    for (Transition &t : m.transitions) {
+    for (const Transition &t : m.transitions) {
       if (t.pre().size() != 1 || t.post().size() != 1 ||
           t.pre()[0].weight != 1 || t.post()[0].weight != 1)
         continue;
@@ -198,6 +199,60 @@ bool Discretiser::checkExclusive(Real &r) {
       }
     }
   }
+  return comp;
+}
+
+/// The first transition that changes the number of tokens in `comp`.
+static const Transition *tokenChange(const Module &m,
+                                     const std::set<uint32_t> &comp) {
+  for (const Transition &t : m.transitions) {
+    int64_t delta = 0;
+    for (const PreArc &a : t.pre())
+      if (comp.count(a.place))
+        delta -= a.weight;
+    for (const PostArc &a : t.post())
+      if (comp.count(a.place))
+        delta += a.weight;
+    if (delta != 0)
+      return &t;
+  }
+  return nullptr;
+}
+
+bool Discretiser::checkExclusive(Real &r) {
+  std::set<uint32_t> seed;
+  for (FlowOf &fl : r.flows)
+    seed.insert(fl.place);
+  std::set<uint32_t> comp = closeUnderMoves(m, seed);
+  const Transition *change = tokenChange(m, comp);
+  if (change) {
+    // A composed network moves the tokens of several automata in one
+    // synchronised transition: the component is then the locations of the
+    // automata holding the flows (the places of their scopes, `inst.loc`),
+    // if those keep one token.
+    std::set<StringRef> scopes;
+    for (uint32_t p : seed)
+      scopes.insert(m.places[p].name.rsplit('.').second.empty()
+                        ? StringRef()
+                        : m.places[p].name.rsplit('.').first);
+    std::set<uint32_t> automata = seed;
+    for (uint32_t p = 0; p < m.places.size(); ++p) {
+      StringRef name = m.places[p].name;
+      StringRef scope = name.rsplit('.').second.empty()
+                            ? StringRef()
+                            : name.rsplit('.').first;
+      if (scopes.count(scope))
+        automata.insert(p);
+    }
+    automata = closeUnderMoves(m, automata);
+    uint64_t tokens = 0;
+    for (uint32_t p : automata)
+      tokens += m.places[p].tokens;
+    if (tokens <= 1 && !tokenChange(m, automata)) {
+      comp = std::move(automata);
+      change = nullptr;
+    }
+  }
   uint64_t initial = 0;
   for (uint32_t p : comp)
     initial += m.places[p].tokens;
@@ -207,27 +262,13 @@ bool Discretiser::checkExclusive(Real &r) {
                      "' may be marked together (their component starts "
                      "with " +
                      std::to_string(initial) + " tokens)");
-  for (Transition &t : m.transitions) {
-    int64_t delta = 0;
-    bool touches = false;
-    for (const PreArc &a : t.pre())
-      if (comp.count(a.place)) {
-        delta -= a.weight;
-        touches = true;
-      }
-    for (const PostArc &a : t.post())
-      if (comp.count(a.place)) {
-        delta += a.weight;
-        touches = true;
-      }
-    if (touches && delta != 0)
-      return error(t.loc, "transition '" + t.name +
-                              "' changes the number of tokens among the "
-                              "places that hold the flows of '" +
-                              r.name +
-                              "', so discretise cannot show that two of "
-                              "them are never marked together");
-  }
+  if (change)
+    return error(change->loc, "transition '" + change->name +
+                                  "' changes the number of tokens among the "
+                                  "places that hold the flows of '" +
+                                  r.name +
+                                  "', so discretise cannot show that two of "
+                                  "them are never marked together");
   r.component = std::move(comp);
   return true;
 }
