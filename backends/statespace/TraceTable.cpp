@@ -154,6 +154,28 @@ std::string sourceLine(const llvm::SourceMgr &sm, llvm::SMLoc loc,
   return name.str() + ":" + std::to_string(sm.getLineAndColumn(loc, id).first);
 }
 
+/// ` coil 111` where a location is a PLCopen graphical element (its XML
+/// start tag with a localId: a contact, coil or block of a rung), the name
+/// by which an LD or FBD editor finds it; empty elsewhere.
+std::string graphicalElement(const llvm::SourceMgr &sm, llvm::SMLoc loc) {
+  unsigned id = sm.FindBufferContainingLoc(loc);
+  llvm::StringRef rest(loc.getPointer(),
+                       sm.getMemoryBuffer(id)->getBufferEnd() -
+                           loc.getPointer());
+  if (!rest.consume_front("<"))
+    return "";
+  llvm::StringRef tag = rest.take_while(
+      [](char c) { return isalnum((unsigned char)c) || c == '_'; });
+  llvm::StringRef attrs = rest.take_until([](char c) { return c == '>'; });
+  size_t at = attrs.find("localId=\"");
+  if (tag.empty() || at == llvm::StringRef::npos || at == 0 ||
+      !isspace((unsigned char)attrs[at - 1]))
+    return "";
+  llvm::StringRef localId =
+      attrs.drop_front(at + 9).take_until([](char c) { return c == '"'; });
+  return " " + tag.str() + " " + localId.str();
+}
+
 /// `ran delay.st:6,7, rungs.xml:40`: the lines a step executed, in order,
 /// a line repeated at once (a statement and the branch on its line) once.
 std::string ranLines(const llvm::SourceMgr &sm,
@@ -183,8 +205,10 @@ std::string writtenAt(const llvm::SourceMgr *sm,
   if (!sm)
     return "";
   for (auto it = log.writes.rbegin(); it != log.writes.rend(); ++it)
-    if (it->first == slot)
-      return sourceLine(*sm, it->second, netir);
+    if (it->first == slot) {
+      std::string line = sourceLine(*sm, it->second, netir);
+      return line.empty() ? line : line + graphicalElement(*sm, it->second);
+    }
   return "";
 }
 

@@ -35,7 +35,8 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
                                   net::Design &design,
                                   llvm::ArrayRef<Attribute> attrs,
                                   bool collectExamples, Analysis &an,
-                                  ExploredRegions &out, DiagEngine &diag) {
+                                  ExploredRegions &out, DiagEngine &diag,
+                                  llvm::StringRef witnessDir) {
   for (const Attribute &a : attrs)
     if (!net::verifyPredicate(design, setup.top(), a.predicate, diag))
       return false;
@@ -68,6 +69,31 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
       if (!out.examples.count(region[s]))
         out.examples[region[s]] = statespace::describeState(
             semantics, explorer.store().state(s), ", ");
+  if (witnessDir.empty())
+    return true;
+  if (std::error_code ec = llvm::sys::fs::create_directories(witnessDir)) {
+    diag.error(llvm::SMLoc(),
+               "cannot create '" + witnessDir + "': " + ec.message());
+    return false;
+  }
+  // States are numbered in discovery order: breadth-first (the default),
+  // the first state of a region ends a shortest path into it.
+  for (uint32_t s = 0; s < region.size(); ++s) {
+    if (out.witnesses.count(region[s]))
+      continue;
+    std::string name = an.regionName(region[s]);
+    statespace::TraceFileHeader h;
+    h.formula = name;
+    h.holds = true;
+    h.witness = true;
+    h.claim = "a shortest path into region " + name;
+    std::string file =
+        (witnessDir + "/region-" + llvm::Twine(region[s]) + ".html").str();
+    if (!statespace::writeHtmlTraceFile(explorer, semantics, s, h,
+                                        setup.traceView(), file, diag))
+      return false;
+    out.witnesses[region[s]] = file;
+  }
   return true;
 }
 

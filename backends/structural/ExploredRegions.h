@@ -37,15 +37,20 @@ struct ExploredRegions {
   bool complete = false;
   /// The first state (in discovery order) of each region, described.
   std::map<Region, std::string> examples;
+  /// The witness page of each region (`DIR/region-N.html`), when asked.
+  std::map<Region, std::string> witnesses;
 };
 
 /// Explores the set-up's state space and classifies it into `an` (states
 /// by region, deadlocks, edges between regions); examples when asked.
+/// With `witnessDir`, also writes there, per region, a shortest path to its
+/// first state as an HTML trace (`region-N.html`, N the region's number).
 /// False after reporting (an attribute that is not a state property, or a
 /// runtime error of the model with its trace).
 bool classifyExplored(statespace::ExplorationSetup &setup, net::Design &design,
                       llvm::ArrayRef<Attribute> attrs, bool collectExamples,
-                      Analysis &an, ExploredRegions &out, DiagEngine &diag);
+                      Analysis &an, ExploredRegions &out, DiagEngine &diag,
+                      llvm::StringRef witnessDir = "");
 
 /// The same over a state space `reach` wrote: `path` as JSON, or as CSV
 /// when `csv` (with the edges file `edgesPath` unless it is empty).

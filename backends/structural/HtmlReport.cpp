@@ -13,6 +13,18 @@ using namespace netlift::structural;
 
 namespace {
 
+/// A link to region r's witness page, or nothing.
+std::string witnessLink(const HtmlReportInputs &in, Region r,
+                        llvm::StringRef text) {
+  auto it = in.witnesses.find(r);
+  if (it == in.witnesses.end())
+    return "";
+  llvm::StringRef lead = text.take_while([](char c) { return c == ' '; });
+  return fmt::format("{}<a class=\"witness\" href=\"{}\">{}</a>", lead.str(),
+                     xmlEscape(it->second),
+                     xmlEscape(text.drop_front(lead.size())));
+}
+
 const char *const kStyle = R"(
 body { font-family: Helvetica, Arial, sans-serif; margin: 24px; color: #222; }
 h1 { font-size: 22px; } h2 { font-size: 17px; margin-top: 28px; }
@@ -141,8 +153,9 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
   } else {
     os << "<ul id=\"deadlocks\">\n";
     for (auto &[r, d] : a.deadlockCounts())
-      os << fmt::format("<li>{}: {} of its {} states are deadlocks</li>\n",
-                        xmlEscape(a.regionName(r)), d, a.statesIn(r));
+      os << fmt::format("<li>{}: {} of its {} states are deadlocks{}</li>\n",
+                        xmlEscape(a.regionName(r)), d, a.statesIn(r),
+                        witnessLink(in, r, " (how the region is reached)"));
     os << "</ul>\n";
   }
 
@@ -154,26 +167,32 @@ void netlift::structural::writeHtmlReport(const Analysis &a,
     } else {
       os << "<ul id=\"never-left\">\n";
       for (Region r : trapped)
-        os << fmt::format("<li>{}: {} states; no edge leaves it</li>\n",
-                          xmlEscape(a.regionName(r)), a.statesIn(r));
+        os << fmt::format("<li>{}: {} states; no edge leaves it{}</li>\n",
+                          xmlEscape(a.regionName(r)), a.statesIn(r),
+                          witnessLink(in, r, " (how it is reached)"));
       os << "</ul>\n";
     }
   }
 
+  bool witnesses = !in.witnesses.empty();
   os << "<h2>Regions</h2>\n<table id=\"region-table\">\n<tr><th>region</th>"
         "<th>states</th><th>share</th><th>deadlocks</th><th>example state"
-        "</th></tr>\n";
+        "</th>"
+     << (witnesses ? "<th>witness</th>" : "") << "</tr>\n";
   llvm::json::Object info;
   for (Region r = 0; r < (Region(1) << k); ++r) {
     uint64_t c = a.statesIn(r), d = a.deadlocksIn(r);
     auto ex = in.examples.find(r);
     std::string example = ex == in.examples.end() ? "" : ex->second;
     if (c)
-      os << fmt::format("<tr{}><td>{}</td><td class=\"num\">{}</td>"
-                        "<td class=\"num\">{}</td><td class=\"num\">{}</td>"
-                        "<td>{}</td></tr>\n",
-                        d ? " class=\"dead\"" : "", xmlEscape(a.regionName(r)),
-                        c, share(c), d, xmlEscape(example));
+      os << fmt::format(
+          "<tr{}><td>{}</td><td class=\"num\">{}</td>"
+          "<td class=\"num\">{}</td><td class=\"num\">{}</td>"
+          "<td>{}</td>{}</tr>\n",
+          d ? " class=\"dead\"" : "", xmlEscape(a.regionName(r)), c, share(c),
+          d, xmlEscape(example),
+          witnesses ? "<td>" + witnessLink(in, r, "shortest path") + "</td>"
+                    : "");
     info[std::to_string(r)] = llvm::json::Object{{"name", a.regionName(r)},
                                                  {"states", int64_t(c)},
                                                  {"share", share(c)},

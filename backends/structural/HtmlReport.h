@@ -28,6 +28,8 @@ struct HtmlReportInputs {
   std::string attributeGraphSvg;
   /// An example state of each occurring region, as `name=value` text.
   std::map<Region, std::string> examples;
+  /// Links to each region's witness page (a shortest path into it).
+  std::map<Region, std::string> witnesses;
 };
 
 void writeHtmlReport(const Analysis &a, const HtmlReportInputs &in,

@@ -25,7 +25,7 @@ for ctl in lifter-faulty lifter; do
     --connect "$here/wiring.txt" -q -o "$out/$ctl.net"
   "$netlift" opt "$out/$ctl.net" -p 'flatten,reduce' -o "$out/$ctl-reduced.net"
   "$netlift" sr "$out/$ctl-reduced.net" "${attrs[@]}" --report html \
-    -o "$out/$ctl-report.html"
+    --witnesses "$out/$ctl-witnesses" -o "$out/$ctl-report.html"
   "$netlift" sr "$out/$ctl-reduced.net" "${attrs[@]}" --report json \
     -o "$out/$ctl-report.json"
 done

@@ -5,6 +5,7 @@
 #include "backends/structural/HtmlReport.h"
 #include "tools/netlift/Driver.h"
 
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
 
 using namespace netlift;
@@ -58,6 +59,28 @@ static cl::opt<bool>
                 cl::desc("Colour the Edwards-Venn regions by necklace"),
                 cl::sub(srCommand()), cl::cat(category()));
 
+static cl::opt<std::string> witnessDir(
+    "witnesses",
+    cl::desc("Write per region a shortest path into it as an HTML trace "
+             "(DIR/region-N.html); the HTML report links them"),
+    cl::value_desc("DIR"), cl::sub(srCommand()), cl::cat(category()));
+
+/// `file` as the report at `report` links it: relative to the report's
+/// directory when under it, else absolute.
+static std::string linkFrom(llvm::StringRef report, llvm::StringRef file) {
+  llvm::SmallString<256> target(file), base(report == "-" ? "." : report);
+  llvm::sys::fs::make_absolute(target);
+  llvm::sys::fs::make_absolute(base);
+  llvm::sys::path::remove_dots(target, true);
+  llvm::sys::path::remove_dots(base, true);
+  if (report != "-")
+    llvm::sys::path::remove_filename(base);
+  llvm::StringRef t = target;
+  if (t.consume_front(base) && t.consume_front("/"))
+    return t.str();
+  return target.str().str();
+}
+
 static bool refuse(DiagEngine &diag, const llvm::Twine &msg) {
   diag.error(llvm::SMLoc(), msg);
   return false;
@@ -94,6 +117,9 @@ int driver::runSr(DiagEngine &diag) {
       csv || inputFormat == "states" || (inputFormat.empty() && ext == ".json");
   if (!edgesFile.empty() && !csv)
     return !refuse(diag, "--edges goes with a CSV state file");
+  if (!witnessDir.empty() && stateFile)
+    return !refuse(diag, "--witnesses needs the model (a state file has no "
+                         "paths to replay)");
   if (csv && edgesFile.empty())
     diag.warning(llvm::SMLoc(),
                  "a CSV state file has no edges: without --edges FILE (from "
@@ -114,10 +140,12 @@ int driver::runSr(DiagEngine &diag) {
     auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
     if (!setup || !structural::classifyExplored(*setup, design, attrs,
                                                 report == Report::Html, an,
-                                                regions, diag))
+                                                regions, diag, witnessDir))
       return 1;
   }
   html.examples = std::move(regions.examples);
+  for (auto &[r, file] : regions.witnesses)
+    html.witnesses[r] = linkFrom(outputFile, file);
 
   if (!agFile.empty()) {
     std::string svg;
