@@ -1,6 +1,7 @@
 //===- ExtractMealy.cpp - the Mealy machine of a controller ---------------===//
 #include "backends/mealy/ExtractMealy.h"
 
+#include "backends/statespace/ExplorationSetup.h"
 #include "backends/statespace/ScanStep.h"
 #include "backends/statespace/StateStore.h"
 #include "ir/semantics/StateLayout.h"
@@ -74,7 +75,7 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
     out.outputs.push_back(m.ports[p].name.str());
 
   auto runtimeError = [&](const sem::RuntimeError &e) {
-    diag.error(e.loc, "runtime error: " + e.message);
+    statespace::reportRuntimeErrorAt(e, diag);
     return false;
   };
   statespace::StateStore states(W);

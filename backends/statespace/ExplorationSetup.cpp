@@ -236,15 +236,27 @@ std::unique_ptr<Explorer> ExplorationSetup::exploreGraph(ExploreResult &r,
   return explorer;
 }
 
+void statespace::reportRuntimeErrorAt(const sem::RuntimeError &error,
+                                      DiagEngine &diag) {
+  if (!error.loc.isValid()) {
+    diag.error(llvm::SMLoc(), error.message);
+    return;
+  }
+  diag.error(error.loc, (error.limit ? "" : "runtime error: ") + error.message);
+  // A model read from NetIR text: the expression is in the .net, the
+  // statement it belongs to in the program it was translated from.
+  const llvm::SourceMgr &sm = diag.sourceMgr();
+  if (error.statement.isValid() &&
+      sm.FindBufferContainingLoc(error.statement) !=
+          sm.FindBufferContainingLoc(error.loc))
+    diag.note(error.statement, "in this statement of the program");
+}
+
 void statespace::reportRuntimeError(const ExploreResult &r, bool started,
                                     Explorer &explorer,
                                     sem::Semantics &semantics, DiagEngine &diag,
                                     const TraceView &view) {
-  std::string what = r.error->limit ? "" : "runtime error: ";
-  if (r.error->loc.isValid())
-    diag.error(r.error->loc, what + r.error->message);
-  else
-    diag.error(llvm::SMLoc(), r.error->message);
+  reportRuntimeErrorAt(*r.error, diag);
   if (started) {
     llvm::errs() << "trace to the state where it happens (the next step "
                     "fails):\n";

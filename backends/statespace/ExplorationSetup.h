@@ -142,6 +142,11 @@ void reportRuntimeError(const ExploreResult &result, bool started,
                         Explorer &explorer, sem::Semantics &semantics,
                         DiagEngine &diag, const TraceView &view = {});
 
+/// `runtime error: ...` at the error's place, and where it is an
+/// expression read from NetIR text, a note at the statement of the
+/// program it was translated from.
+void reportRuntimeErrorAt(const sem::RuntimeError &error, DiagEngine &diag);
+
 } // namespace netlift::statespace
 
 #endif

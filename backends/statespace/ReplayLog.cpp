@@ -1,5 +1,6 @@
 //===- ReplayLog.cpp - a field log run through the model ------------------===//
 #include "backends/statespace/ReplayLog.h"
+#include "backends/statespace/ExplorationSetup.h"
 #include "backends/statespace/ScanStep.h"
 #include "backends/statespace/StateColumns.h"
 #include "ir/support/OutputFile.h"
@@ -150,7 +151,7 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
   std::vector<std::string> labels{""};
   sem::RuntimeError err;
   auto runtimeError = [&] {
-    diag.error(err.loc, "runtime error: " + err.message);
+    reportRuntimeErrorAt(err, diag);
     return 1;
   };
   if (!sem.initialState(kept.back().data(), err))

@@ -123,7 +123,7 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
       if (m.ports[p].isStored())
         init(L.portSlot(p), m.ports[p].type, m.ports[p].init);
   } catch (const EvalError &e) {
-    err = {e.message, e.loc};
+    err = {e.message, e.loc, e.limit, e.statement};
     return false;
   }
   I.pack(v, out);
@@ -311,7 +311,7 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
     }
   } catch (const EvalError &e) {
     I.unsplit = 0;
-    err = {e.message, e.loc, e.limit};
+    err = {e.message, e.loc, e.limit, e.statement};
     // Which inputs the failing step saw: its class, as far as it was split.
     if (split && manyValuations && !e.limit)
       err.message +=
@@ -373,7 +373,7 @@ static T orReport(F f, T fallback, RuntimeError &err) {
   try {
     return f();
   } catch (const EvalError &x) {
-    err = {x.message, x.loc};
+    err = {x.message, x.loc, x.limit, x.statement};
     return fallback;
   }
 }

@@ -67,6 +67,8 @@ struct RuntimeError {
   /// Not an error of the model but a limit of the exploration (an input
   /// with more values than --max-input-values where each is needed).
   bool limit = false;
+  /// The statement running when it happened (none in a guard or output).
+  llvm::SMLoc statement;
 };
 
 class Semantics {

@@ -38,6 +38,8 @@ struct EvalError {
   std::string message;
   llvm::SMLoc loc;
   bool limit = false;
+  /// The innermost statement running when it happened (set by exec).
+  llvm::SMLoc statement;
 };
 
 /// Every maximal subset of `cand` (kept in `cand` order) that `fits`
@@ -503,107 +505,120 @@ struct Semantics::Impl {
   void exec(Block block, std::vector<int64_t> &v,
             std::vector<uint32_t> &written) {
     for (const Stmt *st : block) {
-      if (recording) {
-        log.statements.push_back(st->loc);
-        assigning = st->loc;
+      try {
+        execStmt(st, v, written);
+      } catch (EvalError &e) {
+        // Said with the error: an expression read from NetIR text points
+        // into the .net, its statement into the program it came from.
+        if (!e.statement.isValid())
+          e.statement = st->loc;
+        throw;
       }
-      switch (st->getKind()) {
-      case StmtKind::Assign: {
-        auto *a = cast<AssignStmt>(st);
-        int64_t slot = slotOf(a->target, v);
-        if (slot < 0)
-          fail(a->target, "'" + exprToString(a->target) + "' has no storage");
-        if (a->target->type->isString()) {
-          storeStr(a->target, uint32_t(slot), a->target->type,
-                   evalStr(a->value, v), v, written);
-        } else if (!a->target->type->isScalar()) {
-          int64_t src = slotOf(a->value, v);
-          if (src < 0)
-            fail(a->value, "assigning this aggregate value is not supported");
-          uint32_t n = StateLayout::slotsOf(a->target->type);
-          readInputs(uint32_t(src), n, a->value);
-          std::vector<int64_t> tmp(v.begin() + src, v.begin() + src + n);
-          for (uint32_t i = 0; i < n; ++i)
-            store(a->target, uint32_t(slot + i), tmp[i], v, written);
-        } else {
-          store(a->target, uint32_t(slot), eval(a->value, v), v, written);
+    }
+  }
+
+  void execStmt(const Stmt *st, std::vector<int64_t> &v,
+                std::vector<uint32_t> &written) {
+    if (recording) {
+      log.statements.push_back(st->loc);
+      assigning = st->loc;
+    }
+    switch (st->getKind()) {
+    case StmtKind::Assign: {
+      auto *a = cast<AssignStmt>(st);
+      int64_t slot = slotOf(a->target, v);
+      if (slot < 0)
+        fail(a->target, "'" + exprToString(a->target) + "' has no storage");
+      if (a->target->type->isString()) {
+        storeStr(a->target, uint32_t(slot), a->target->type,
+                 evalStr(a->value, v), v, written);
+      } else if (!a->target->type->isScalar()) {
+        int64_t src = slotOf(a->value, v);
+        if (src < 0)
+          fail(a->value, "assigning this aggregate value is not supported");
+        uint32_t n = StateLayout::slotsOf(a->target->type);
+        readInputs(uint32_t(src), n, a->value);
+        std::vector<int64_t> tmp(v.begin() + src, v.begin() + src + n);
+        for (uint32_t i = 0; i < n; ++i)
+          store(a->target, uint32_t(slot + i), tmp[i], v, written);
+      } else {
+        store(a->target, uint32_t(slot), eval(a->value, v), v, written);
+      }
+      break;
+    }
+    case StmtKind::If: {
+      auto *i = cast<IfStmt>(st);
+      bool done = false;
+      for (const IfArm &arm : i->arms)
+        if (eval(arm.cond, v)) {
+          exec(arm.body, v, written);
+          done = true;
+          break;
         }
-        break;
+      if (!done)
+        exec(i->elseBody, v, written);
+      break;
+    }
+    case StmtKind::Case: {
+      auto *c = cast<CaseStmt>(st);
+      if (unsplit) {
+        // A selector of one input not yet known: the class splits by
+        // the arm taken, not by the selector's value.
+        int32_t arm = 0;
+        if (splitCase(c, v, arm)) {
+          exec(arm < 0 ? c->elseBody : c->arms[arm].body, v, written);
+          break;
+        }
       }
-      case StmtKind::If: {
-        auto *i = cast<IfStmt>(st);
-        bool done = false;
-        for (const IfArm &arm : i->arms)
-          if (eval(arm.cond, v)) {
-            exec(arm.body, v, written);
+      int64_t sel = eval(c->selector, v);
+      bool done = false;
+      for (const CaseArm &arm : c->arms) {
+        for (const CaseLabel &l : arm.labels) {
+          int64_t lo = eval(l.lo, v);
+          int64_t hi = l.hi ? eval(l.hi, v) : lo;
+          if (sel >= lo && sel <= hi) {
             done = true;
             break;
           }
-        if (!done)
-          exec(i->elseBody, v, written);
-        break;
-      }
-      case StmtKind::Case: {
-        auto *c = cast<CaseStmt>(st);
-        if (unsplit) {
-          // A selector of one input not yet known: the class splits by
-          // the arm taken, not by the selector's value.
-          int32_t arm = 0;
-          if (splitCase(c, v, arm)) {
-            exec(arm < 0 ? c->elseBody : c->arms[arm].body, v, written);
-            break;
-          }
         }
-        int64_t sel = eval(c->selector, v);
-        bool done = false;
-        for (const CaseArm &arm : c->arms) {
-          for (const CaseLabel &l : arm.labels) {
-            int64_t lo = eval(l.lo, v);
-            int64_t hi = l.hi ? eval(l.hi, v) : lo;
-            if (sel >= lo && sel <= hi) {
-              done = true;
-              break;
-            }
-          }
-          if (done) {
-            exec(arm.body, v, written);
-            break;
-          }
+        if (done) {
+          exec(arm.body, v, written);
+          break;
         }
-        if (!done)
-          exec(c->elseBody, v, written);
-        break;
       }
-      case StmtKind::For: {
-        auto *f = cast<ForStmt>(st);
-        int64_t lo = eval(f->lo, v), hi = eval(f->hi, v);
-        loopVals.push_back(0);
-        for (int64_t i = lo; i <= hi; ++i) {
+      if (!done)
+        exec(c->elseBody, v, written);
+      break;
+    }
+    case StmtKind::For: {
+      auto *f = cast<ForStmt>(st);
+      int64_t lo = eval(f->lo, v), hi = eval(f->hi, v);
+      loopVals.push_back(0);
+      for (int64_t i = lo; i <= hi; ++i) {
+        countIteration(st);
+        loopVals.back() = i;
+        exec(f->body, v, written);
+        if (i == INT64_MAX)
+          break;
+      }
+      loopVals.pop_back();
+      break;
+    }
+    case StmtKind::While: {
+      auto *w = cast<WhileStmt>(st);
+      if (w->testAfter) {
+        do {
           countIteration(st);
-          loopVals.back() = i;
-          exec(f->body, v, written);
-          if (i == INT64_MAX)
-            break;
+          exec(w->body, v, written);
+        } while (!eval(w->cond, v));
+      } else {
+        while (eval(w->cond, v)) {
+          countIteration(st);
+          exec(w->body, v, written);
         }
-        loopVals.pop_back();
-        break;
       }
-      case StmtKind::While: {
-        auto *w = cast<WhileStmt>(st);
-        if (w->testAfter) {
-          do {
-            countIteration(st);
-            exec(w->body, v, written);
-          } while (!eval(w->cond, v));
-        } else {
-          while (eval(w->cond, v)) {
-            countIteration(st);
-            exec(w->body, v, written);
-          }
-        }
-        break;
-      }
-      }
+      break;
+    }
     }
   }
 
