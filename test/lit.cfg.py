@@ -31,8 +31,11 @@ config.environment["PATH"] = os.pathsep.join(
 
 # `lit --param roundtrip=1`: every NetIR input any test reads must be a
 # fixed point of print -> parse -> print (checked inside netlift).
+# The same run replays every JSON trace netlift writes on its model at
+# once (NETLIFT_VERIFY_TRACES): each must end in the state it claims.
 if lit_config.params.get("roundtrip", "0") not in ("0", ""):
     config.environment["NETLIFT_VERIFY_ROUNDTRIP"] = "1"
+    config.environment["NETLIFT_VERIFY_TRACES"] = "1"
 
 # `lit --param inputs=enumerate` (or split): the exploring commands' default
 # for free inputs, so that the whole suite runs in each mode and shows the

@@ -43,6 +43,16 @@ int replayLog(sem::Semantics &sem, unsigned bufferID, const TraceView &view,
               const ReplayLogOptions &options, DiagEngine &diag,
               llvm::raw_ostream &os);
 
+/// Follows the JSON trace in buffer `bufferID` (docs/formats.md, "JSON
+/// traces"; ReplayTrace.cpp) on `sem`: each step must be one the model can
+/// take with the step's label, reaching exactly the recorded values, and a
+/// lasso's last state must step back to its loop. Prints the run and the
+/// verdict on `os`; returns 0 the model follows it, 3 it does not, 1 a
+/// malformed trace or a runtime error (reported).
+int replayTrace(sem::Semantics &sem, unsigned bufferID, const TraceView &view,
+                const ReplayLogOptions &options, DiagEngine &diag,
+                llvm::raw_ostream &os);
+
 } // namespace netlift::statespace
 
 #endif

@@ -14,6 +14,8 @@
 #include "ir/net/StringOps.h"
 #include "ir/semantics/Semantics.h"
 
+#include "llvm/Support/JSON.h"
+
 #include <string>
 #include <vector>
 
@@ -42,6 +44,10 @@ struct Cell {
 };
 
 Cell cellOf(sem::Semantics &sem, const StateColumn &a, const uint64_t *state);
+/// A cell as a JSON trace writes it (docs/formats.md, "JSON traces"): a
+/// Boolean or integer as an integer, a real as a number, a string as its
+/// characters, anything else as its text.
+llvm::json::Value jsonOf(const StateColumn &a, const Cell &c);
 
 /// A path in the program's view (docs/reach.md, "Traces"): the columns
 /// shown (clocks and internal names left out) and a row per step that is

@@ -1,5 +1,6 @@
 //===- Writers.cpp - state spaces as files --------------------------------===//
 #include "backends/statespace/Writers.h"
+#include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
 #include "ir/support/OutputFile.h"
 
@@ -351,6 +352,17 @@ void netlift::statespace::writePath(
                  loopLabel == Explorer::kNone ? "" : x.label(loopLabel));
 }
 
+llvm::json::Value listing::jsonOf(const StateColumn &a, const Cell &c) {
+  if (a.isString())
+    return toUtf8(c.str);
+  double d;
+  if (llvm::to_float(c.text, d) && std::isfinite(d))
+    return c.text.find_first_of(".eE") == std::string::npos
+               ? llvm::json::Value(int64_t(c.v))
+               : llvm::json::Value(d);
+  return c.text;
+}
+
 void statespace::writeJsonSteps(sem::Semantics &sem,
                                 llvm::ArrayRef<std::string> labels,
                                 llvm::ArrayRef<const uint64_t *> states,
@@ -358,17 +370,7 @@ void statespace::writeJsonSteps(sem::Semantics &sem,
                                 llvm::json::OStream &j) {
   std::vector<StateColumn> attrs = stateColumns(sem);
   auto value = [&](const StateColumn &a, const Cell &c) {
-    if (a.isString()) {
-      j.value(toUtf8(c.str));
-      return;
-    }
-    double d;
-    if (llvm::to_float(c.text, d) && std::isfinite(d))
-      j.value(c.text.find_first_of(".eE") == std::string::npos
-                  ? llvm::json::Value(int64_t(c.v))
-                  : llvm::json::Value(d));
-    else
-      j.value(c.text);
+    j.value(jsonOf(a, c));
   };
   j.attribute("time_unit", tick
                                ? std::to_string(tick->amount) + tick->unit.str()
@@ -457,6 +459,26 @@ static void writeJsonTrace(const TraceFileHeader &header, const Explorer &x,
   os << "\n";
 }
 
+/// NETLIFT_VERIFY_TRACES=1 (set by `lit --param roundtrip=1`, as CI runs
+/// the suite): every JSON trace written is read back and replayed on the
+/// model at once (replayTrace), so the whole suite shows that each trace
+/// netlift writes ends in the state it claims.
+static bool verifyJsonTrace(sem::Semantics &sem, llvm::StringRef file,
+                            DiagEngine &diag) {
+  if (!getenv("NETLIFT_VERIFY_TRACES") || file == "-")
+    return true;
+  unsigned id = addInputFile(diag.sourceMgr(), file);
+  if (!id)
+    return false;
+  llvm::raw_null_ostream quiet;
+  if (replayTrace(sem, id, TraceView{}, ReplayLogOptions{}, diag, quiet) == 0)
+    return true;
+  diag.error(llvm::SMLoc(), "trace verification: the model does not follow "
+                            "the JSON trace it wrote to '" +
+                                file + "'");
+  return false;
+}
+
 bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
                                     uint32_t target,
                                     const TraceFileHeader &header,
@@ -467,12 +489,13 @@ bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
   std::vector<const uint64_t *> states;
   labelledPath(x, sem, path, labels, states);
   return writeOutputFile(
-      file,
-      [&](llvm::raw_ostream &os) {
-        writeJsonTrace(header, x, sem, tick, path, labels, states, -1,
-                       Explorer::kNone, os);
-      },
-      diag);
+             file,
+             [&](llvm::raw_ostream &os) {
+               writeJsonTrace(header, x, sem, tick, path, labels, states, -1,
+                              Explorer::kNone, os);
+             },
+             diag) &&
+         verifyJsonTrace(sem, file, diag);
 }
 
 void statespace::writeVcd(sem::Semantics &sem,
@@ -686,6 +709,7 @@ bool statespace::writeTraceFiles(
                        loopLabel, os);
       },
       diag);
+  ok = ok && verifyJsonTrace(sem, base + ".json", diag);
   ok = ok &&
        writeOutputFile(
            base + ".html",

@@ -1,7 +1,8 @@
 //===- Replay.cpp - netlift replay ----------------------------------------===//
 //
 // `netlift replay MODEL LOG.csv`: a log recorded on the PLC run through the
-// model, scan by scan (backends/statespace/ReplayLog.h).
+// model, scan by scan; `netlift replay MODEL TRACE.json`: a trace netlift
+// wrote followed step by step (backends/statespace/ReplayLog.h).
 //
 //===----------------------------------------------------------------------===//
 #include "tools/netlift/Driver.h"
@@ -13,7 +14,8 @@ using namespace netlift::driver;
 
 static cl::opt<std::string> replayModel(cl::Positional, cl::desc("<model>"),
                                         cl::Required, cl::sub(replayCommand()));
-static cl::opt<std::string> replayLogFile(cl::Positional, cl::desc("<log.csv>"),
+static cl::opt<std::string> replayLogFile(cl::Positional,
+                                          cl::desc("<log.csv|trace.json>"),
                                           cl::Required,
                                           cl::sub(replayCommand()));
 static cl::opt<std::string>
@@ -46,6 +48,10 @@ int driver::runReplay(DiagEngine &diag) {
   statespace::ReplayLogOptions options;
   options.htmlFile = replayHtml;
   options.maxWaitTicks = replayWait;
+  // A JSON trace netlift wrote, or a CSV log recorded on the PLC.
+  if (llvm::StringRef(replayLogFile).endswith(".json"))
+    return statespace::replayTrace(setup->semantics(), log, setup->traceView(),
+                                   options, diag, llvm::outs());
   return statespace::replayLog(setup->semantics(), log, setup->traceView(),
                                options, diag, llvm::outs());
 }
