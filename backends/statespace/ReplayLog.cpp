@@ -42,6 +42,28 @@ llvm::SMLoc at(llvm::StringRef cell) {
 
 } // namespace
 
+bool statespace::showReplayedRun(sem::Semantics &sem,
+                                 llvm::ArrayRef<std::string> labels,
+                                 llvm::ArrayRef<std::vector<uint64_t>> kept,
+                                 const TraceView &view,
+                                 const ReplayLogOptions &options,
+                                 llvm::StringRef source, llvm::StringRef claim,
+                                 DiagEngine &diag, llvm::raw_ostream &os) {
+  std::vector<const uint64_t *> states;
+  for (const std::vector<uint64_t> &s : kept)
+    states.push_back(s.data());
+  writeStatePath(sem, labels, states, os, view);
+  if (options.htmlFile.empty())
+    return true;
+  TraceFileHeader h{"replay " + source.str(), true, true, claim.str()};
+  return writeOutputFile(
+      options.htmlFile,
+      [&](llvm::raw_ostream &out) {
+        writeHtmlTrace(sem, labels, states, h, view, -1, "", out);
+      },
+      diag);
+}
+
 int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
                           const TraceView &view,
                           const ReplayLogOptions &options, DiagEngine &diag,
@@ -160,20 +182,9 @@ int statespace::replayLog(sem::Semantics &sem, unsigned bufferID,
   std::vector<uint8_t> present(eventInputs.size());
   std::vector<bool> given(inputLeaves.size());
   auto printRun = [&] {
-    std::vector<const uint64_t *> states;
-    for (const std::vector<uint64_t> &s : kept)
-      states.push_back(s.data());
-    writeStatePath(sem, labels, states, os, view);
-    if (options.htmlFile.empty())
-      return true;
-    TraceFileHeader h{"replay " + file.str(), true, true,
-                      "the log's scans run through the model"};
-    return writeOutputFile(
-        options.htmlFile,
-        [&](llvm::raw_ostream &out) {
-          writeHtmlTrace(sem, labels, states, h, view, -1, "", out);
-        },
-        diag);
+    std::vector<std::vector<uint64_t>> run(kept.begin(), kept.end());
+    return showReplayedRun(sem, labels, run, view, options, file,
+                           "the log's scans run through the model", diag, os);
   };
   uint64_t compared = 0;
   for (size_t r = 1; r < lines.size(); ++r) {

@@ -43,6 +43,15 @@ int replayLog(sem::Semantics &sem, unsigned bufferID, const TraceView &view,
               const ReplayLogOptions &options, DiagEngine &diag,
               llvm::raw_ostream &os);
 
+/// A replayed run (`kept` states, one label each, the first "") as the
+/// trace table on `os`, and as an HTML page when `options.htmlFile` is set
+/// (`claim` says what the page shows). False after reporting.
+bool showReplayedRun(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
+                     llvm::ArrayRef<std::vector<uint64_t>> kept,
+                     const TraceView &view, const ReplayLogOptions &options,
+                     llvm::StringRef source, llvm::StringRef claim,
+                     DiagEngine &diag, llvm::raw_ostream &os);
+
 /// Follows the JSON trace in buffer `bufferID` (docs/formats.md, "JSON
 /// traces"; ReplayTrace.cpp) on `sem`: each step must be one the model can
 /// take with the step's label, reaching exactly the recorded values, and a

@@ -14,7 +14,6 @@
 #include "backends/statespace/Explorer.h"
 #include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
-#include "ir/support/OutputFile.h"
 
 #include "llvm/Support/JSON.h"
 
@@ -117,21 +116,10 @@ int statespace::replayTrace(sem::Semantics &sem, unsigned bufferID,
     return 1;
   }
   auto printRun = [&](size_t upTo) {
-    std::vector<const uint64_t *> states;
-    for (const std::vector<uint64_t> &s : kept)
-      states.push_back(s.data());
-    llvm::ArrayRef<std::string> shown(labels.data(), upTo);
-    writeStatePath(sem, shown, states, os, view);
-    if (options.htmlFile.empty())
-      return true;
-    TraceFileHeader h{"replay " + file.str(), true, true,
-                      "the trace's steps run through the model"};
-    return writeOutputFile(
-        options.htmlFile,
-        [&](llvm::raw_ostream &out) {
-          writeHtmlTrace(sem, shown, states, h, view, -1, "", out);
-        },
-        diag);
+    std::vector<std::vector<uint64_t>> run(kept.begin(), kept.end());
+    return showReplayedRun(
+        sem, llvm::ArrayRef<std::string>(labels.data(), upTo), run, view,
+        options, file, "the trace's steps run through the model", diag, os);
   };
   if (auto d = difference(kept.back().data(), expected[0])) {
     printRun(1);
