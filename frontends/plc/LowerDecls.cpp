@@ -465,10 +465,17 @@ void Lowering::declareInstance(const std::string &path, Pou *fb,
       continue; // an alias of the caller's variable (or instance) per call
     // What netlift's own blocks keep besides their interface (a timer's
     // state and clock) is not the user's: traces hide it by default.
-    if ((fb->isLibrary && m->section == VarSection::Var) || m->generated)
+    // An SFC step's inputs are the chart's machinery too: the user reads
+    // its X and T.
+    bool sfcStepInput = fb->isLibrary &&
+                        llvm::StringRef(fb->name).startswith("NETLIFT_SFC_") &&
+                        m->section == VarSection::Input;
+    if ((fb->isLibrary && m->section == VarSection::Var) || m->generated ||
+        sfcStepInput)
       b.addAttribute(name, net::kInternalAttribute,
-                     m->generated ? "generated for an element"
-                                  : "state of " + fb->name,
+                     m->generated   ? "generated for an element"
+                     : sfcStepInput ? "SFC step of the chart"
+                                    : "state of " + fb->name,
                      m->loc);
     if (instanceBlock(m->type)) {
       sourcePaths[name] = sourcePaths[path] + "." + m->name;

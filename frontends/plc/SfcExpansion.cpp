@@ -95,7 +95,11 @@ private:
   }
   VarDecl *declare(StringRef n, StringRef type, SMLoc at,
                    VarSection section = VarSection::Var) {
-    return AstMaker::declare(pou, n, type, at, section);
+    VarDecl *v = AstMaker::declare(pou, n, type, at, section);
+    // The chart's machinery (transition firings, action flags and
+    // counters) is not the user's: traces hide it. Steps stay, with X, T.
+    v->generated = n.startswith("__SFC_");
+    return v;
   }
 
   bool checkChart();
