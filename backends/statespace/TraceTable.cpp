@@ -154,26 +154,50 @@ std::string sourceLine(const llvm::SourceMgr &sm, llvm::SMLoc loc,
   return name.str() + ":" + std::to_string(sm.getLineAndColumn(loc, id).first);
 }
 
+/// The value of attribute `name` in a start tag's attribute text.
+llvm::StringRef xmlAttribute(llvm::StringRef attrs, llvm::StringRef name) {
+  for (size_t at = attrs.find(name); at != llvm::StringRef::npos;
+       at = attrs.find(name, at + 1)) {
+    llvm::StringRef after = attrs.drop_front(at + name.size());
+    if (at > 0 && isspace((unsigned char)attrs[at - 1]) &&
+        after.consume_front("=\""))
+      return after.take_until([](char c) { return c == '"'; });
+  }
+  return "";
+}
+
 /// ` coil 111` where a location is a PLCopen graphical element (its XML
 /// start tag with a localId: a contact, coil or block of a rung), the name
-/// by which an LD or FBD editor finds it; empty elsewhere.
+/// by which an LD or FBD editor finds it; ` block 32 PT` for a block's
+/// formal parameter; empty elsewhere.
 std::string graphicalElement(const llvm::SourceMgr &sm, llvm::SMLoc loc) {
-  unsigned id = sm.FindBufferContainingLoc(loc);
+  const llvm::MemoryBuffer *buf =
+      sm.getMemoryBuffer(sm.FindBufferContainingLoc(loc));
   llvm::StringRef rest(loc.getPointer(),
-                       sm.getMemoryBuffer(id)->getBufferEnd() -
-                           loc.getPointer());
+                       buf->getBufferEnd() - loc.getPointer());
   if (!rest.consume_front("<"))
     return "";
   llvm::StringRef tag = rest.take_while(
       [](char c) { return isalnum((unsigned char)c) || c == '_'; });
   llvm::StringRef attrs = rest.take_until([](char c) { return c == '>'; });
-  size_t at = attrs.find("localId=\"");
-  if (tag.empty() || at == llvm::StringRef::npos || at == 0 ||
-      !isspace((unsigned char)attrs[at - 1]))
+  if (tag.empty())
     return "";
-  llvm::StringRef localId =
-      attrs.drop_front(at + 9).take_until([](char c) { return c == '"'; });
-  return " " + tag.str() + " " + localId.str();
+  if (llvm::StringRef id = xmlAttribute(attrs, "localId"); !id.empty())
+    return " " + tag.str() + " " + id.str();
+  // A formal parameter is inside its block's start and end tags: the
+  // nearest block opened before it.
+  llvm::StringRef param = xmlAttribute(attrs, "formalParameter");
+  if (tag != "variable" || param.empty())
+    return "";
+  llvm::StringRef before(buf->getBufferStart(),
+                         loc.getPointer() - buf->getBufferStart());
+  size_t open = before.rfind("<block ");
+  if (open == llvm::StringRef::npos)
+    return "";
+  llvm::StringRef blockAttrs =
+      before.drop_front(open).take_until([](char c) { return c == '>'; });
+  llvm::StringRef id = xmlAttribute(blockAttrs, "localId");
+  return id.empty() ? "" : " block " + id.str() + " " + param.str();
 }
 
 /// `ran delay.st:6,7, rungs.xml:40`: the lines a step executed, in order,
