@@ -29,7 +29,7 @@ WORDS = [b" attr ", b" \"", b"\\", b" = \"x\";", b" IF ", b" THEN ", b" END_IF;"
          b" EXIT;", b" WHILE ", b" DO ", b" INT", b" BOOL", b" ARRAY[1..2] OF ",
          b"\n  LD ", b"\n  ST ", b"\n  JMPC l\n", b"\nl:\n", b" AND( ", b"\n)\n",
          b" CAL ", b" %IX0.1 ", b" 16#FF ", b" -32768 ", b" trans ", b" place ",
-         b" module ", b"{range 0..3}", b" FUNCTION_BLOCK ", b" END_PROGRAM ",
+         b" module ", b" @1:2:3", b"\nsource 2 = \"x.st\";\n", b"{range 0..3}", b" FUNCTION_BLOCK ", b" END_PROGRAM ",
          b" -> ", b' [label="a/b"]', b" digraph ", b"<br/>", b" subgraph { ",
          b"\n.i 2\n", b"\n# symbol input 0 = a\n",
          # PLCopen XML: wiring and element attributes.
