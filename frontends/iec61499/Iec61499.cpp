@@ -37,6 +37,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
     }
     for (FbType *t : topList)
       tops.insert(t);
+    for (auto &[file, sys] : systems)
+      adoptResourceBlocks(*file->src, sys);
     for (FbType *t : topList)
       collect(*t);
     for (auto &[file, sys] : systems)
@@ -47,9 +49,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
         collectNetwork(*file->src, net, nullptr);
       }
     collectResourceStarts();
-    // A resource's own FBs (not mapped from an application) would run
-    // besides the applications; netlift translates applications only, so
-    // they are refused rather than left out.
+    // A resource's copy of a mapped block must have the block's type (its
+    // own blocks were moved into an application by adoptResourceBlocks).
     for (auto &[file, sys] : systems) {
       std::map<std::string, std::string> mappedFrom; // To -> From, upper
       for (pugi::xml_node m : sys.children("Mapping"))
@@ -62,14 +63,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
                                "." + res.attribute("Name").value() + "." +
                                fb.attribute("Name").value();
             auto from = mappedFrom.find(StringRef(path).upper());
-            if (from == mappedFrom.end())
-              fail(file->src->locOf(fb),
-                   "FB '" + Twine(fb.attribute("Name").value()) +
-                       "' of resource '" + dev.attribute("Name").value() + "." +
-                       res.attribute("Name").value() +
-                       "' is mapped from no application; netlift translates "
-                       "applications only (move it into one)");
-            checkMappedType(*file->src, sys, fb, from->second);
+            if (from != mappedFrom.end())
+              checkMappedType(*file->src, sys, fb, from->second);
           }
     }
 

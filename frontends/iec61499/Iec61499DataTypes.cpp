@@ -166,26 +166,34 @@ TypeSyntax *Translator::typeOf(XmlSource &src, pugi::xml_node decl) {
   return ts;
 }
 
-void Translator::useDataType(StringRef name, SMLoc at) {
+std::pair<XmlSource *, pugi::xml_node> Translator::findDataType(StringRef name,
+                                                                SMLoc at) {
   std::string key = name.upper();
-  if (declaredDataTypes.count(key))
-    return;
   auto it = dataTypes.find(key);
   if (it == dataTypes.end()) {
     indexLibraries();
     auto path = dataTypeIndex.find(key);
     if (path == dataTypeIndex.end())
-      return; // elementary, a block type, or unknown to the checker
+      return {nullptr, {}}; // elementary, a block type, or unknown
     File &f = readLibraryFile(path->second, name, at);
     if (localName(f.doc->document_element()) != "DataType")
-      return;
+      return {nullptr, {}};
     registerTypes(f, false);
     it = dataTypes.find(key);
     if (it == dataTypes.end())
-      return;
+      return {nullptr, {}};
   }
+  return it->second;
+}
+
+void Translator::useDataType(StringRef name, SMLoc at) {
+  std::string key = name.upper();
+  if (declaredDataTypes.count(key))
+    return;
+  auto [src, root] = findDataType(name, at);
+  if (!src)
+    return;
   declaredDataTypes.insert(key);
-  auto [src, root] = it->second;
   auto *td = unit.make<TypeDecl>();
   td->name = root.attribute("Name").value();
   td->loc = src->locOf(root);

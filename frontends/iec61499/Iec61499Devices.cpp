@@ -12,6 +12,14 @@
 // draw (directly, or inside a subapplication) is warned about: netlift
 // reads connections from the application.
 //
+// A resource may also hold blocks of its own, mapped from no application
+// (4diac lets a user draw them in the resource's editor). They run in
+// the resource like mapped ones, so netlift moves them, with their
+// connections, into the application mapped to that resource (the same
+// event queue; a connection to a mapped block becomes one to the
+// application's block), or into an application of their own named after
+// the resource when none is mapped to it.
+//
 //===----------------------------------------------------------------------===//
 #include "frontends/iec61499/Iec61499Internal.h"
 
@@ -50,6 +58,136 @@ bool usesStart(pugi::xml_node res) {
 }
 
 } // namespace
+
+void Translator::adoptResourceBlocks(XmlSource &src, pugi::xml_node sys) {
+  std::map<std::string, std::string> mappedFrom; // DEV.RES.BLOCK -> From
+  for (pugi::xml_node m : sys.children("Mapping"))
+    mappedFrom[StringRef(m.attribute("To").value()).upper()] =
+        m.attribute("From").value();
+  for (pugi::xml_node dev : sys.children("Device"))
+    for (pugi::xml_node res : dev.children("Resource")) {
+      std::string where = std::string(dev.attribute("Name").value()) + "." +
+                          res.attribute("Name").value();
+      pugi::xml_node net = child(res, "FBNetwork");
+      std::vector<pugi::xml_node> own;
+      std::set<std::string> ownNames; // upper case
+      for (pugi::xml_node fb : blocksOf(net))
+        if (!mappedFrom.count(
+                StringRef(where + "." + fb.attribute("Name").value())
+                    .upper())) {
+          own.push_back(fb);
+          ownNames.insert(StringRef(fb.attribute("Name").value()).upper());
+        }
+      if (own.empty())
+        continue;
+      // The applications mapped to this resource.
+      std::set<std::string> apps;
+      for (auto &[to, from] : mappedFrom)
+        if (StringRef(to).startswith(StringRef(where + ".").upper()))
+          apps.insert(StringRef(from).split('.').first.upper());
+      if (apps.size() > 1)
+        fail(src.locOf(own[0]),
+             "FB '" + Twine(own[0].attribute("Name").value()) +
+                 "' of resource '" + where +
+                 "' is mapped from no application, and " + Twine(apps.size()) +
+                 " applications are mapped to the resource: netlift "
+                 "cannot tell whose event queue it joins (move it into "
+                 "one)");
+      pugi::xml_node app;
+      for (pugi::xml_node a : sys.children("Application"))
+        if (apps.count(StringRef(a.attribute("Name").value()).upper()))
+          app = a;
+      if (!app) {
+        std::string name = net::toIdentifier(where);
+        for (pugi::xml_node a : sys.children("Application"))
+          if (StringRef(name).equals_insensitive(a.attribute("Name").value()))
+            fail(src.locOf(res),
+                 "resource '" + where +
+                     "' has blocks of its own, and the "
+                     "application netlift would put them in, '" +
+                     name + "', exists already");
+        app = sys.insert_child_before("Application", res.parent());
+        app.append_attribute("Name") = name.c_str();
+      }
+      StringRef appName = app.attribute("Name").value();
+      pugi::xml_node appNet = child(app, "SubAppNetwork");
+      if (!appNet)
+        appNet = child(app, "FBNetwork");
+      if (!appNet)
+        appNet = app.append_child("SubAppNetwork");
+      for (pugi::xml_node fb : own) {
+        StringRef name = fb.attribute("Name").value();
+        for (pugi::xml_node other : blocksOf(appNet))
+          if (name.equals_insensitive(other.attribute("Name").value()))
+            fail(src.locOf(fb), "FB '" + name + "' of resource '" + where +
+                                    "' is mapped from no application, and "
+                                    "application '" +
+                                    appName +
+                                    "' mapped to the resource has a block of "
+                                    "that name");
+        appNet.append_move(fb);
+        pugi::xml_node m = sys.append_child("Mapping");
+        m.append_attribute("From") = (appName + "." + name).str().c_str();
+        m.append_attribute("To") = (where + "." + name).str().c_str();
+      }
+      // `block.port` of the resource in the application's terms, or "" when
+      // the block is neither the resource's own nor mapped from `app`.
+      auto inApp = [&](StringRef end) -> std::string {
+        auto [blk, port] = end.split('.');
+        if (ownNames.count(blk.upper()))
+          return end.str();
+        auto it = mappedFrom.find(StringRef(where + "." + blk.str()).upper());
+        if (it == mappedFrom.end())
+          return "";
+        auto [fromApp, path] = StringRef(it->second).split('.');
+        if (!fromApp.equals_insensitive(appName) || path.contains('.'))
+          return "";
+        return (path + "." + port).str();
+      };
+      for (const char *list : {"EventConnections", "DataConnections"}) {
+        std::vector<pugi::xml_node> moved;
+        for (pugi::xml_node c : child(net, list).children("Connection")) {
+          StringRef from = c.attribute("Source").value();
+          StringRef to = c.attribute("Destination").value();
+          bool ownFrom = ownNames.count(from.split('.').first.upper());
+          bool ownTo = ownNames.count(to.split('.').first.upper());
+          if (!ownFrom && !ownTo)
+            continue; // between mapped copies, or from the start-up block
+          std::string source = inApp(from), dest = inApp(to);
+          if (source.empty() &&
+              !(from.startswith_insensitive("START.") && usesStart(res)))
+            fail(src.locOf(c),
+                 "connection '" + from + " -> " + to + "' of resource '" +
+                     where + "' joins a block of the resource's own to '" +
+                     from + "', which is not a block of application '" +
+                     appName + "' at its top");
+          if (dest.empty())
+            fail(src.locOf(c),
+                 "connection '" + from + " -> " + to + "' of resource '" +
+                     where + "' joins a block of the resource's own to '" + to +
+                     "', which is not a block of application '" + appName +
+                     "' at its top");
+          if (source.empty())
+            continue; // START.COLD: resourceConnections starts the block
+          c.attribute("Source") = source.c_str();
+          c.attribute("Destination") = dest.c_str();
+          moved.push_back(c);
+        }
+        if (moved.empty())
+          continue;
+        pugi::xml_node into = child(appNet, list);
+        if (!into)
+          into = appNet.append_child(list);
+        for (pugi::xml_node c : moved)
+          into.append_move(c);
+      }
+      diag.note(src.locOf(own[0]),
+                Twine(own.size()) + " FB" + (own.size() == 1 ? "" : "s") +
+                    " of resource '" + where +
+                    "' mapped from no application run with application '" +
+                    appName + "' (the resource's own blocks)");
+    }
+}
 
 void Translator::collectResourceStarts() {
   for (auto &[file, sys] : systems)

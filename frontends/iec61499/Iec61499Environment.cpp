@@ -331,7 +331,7 @@ void Translator::makeChannelEnds(XmlSource &src, pugi::xml_node net) {
                               }) + "</InterfaceList>\n<Service/>\n</FBType>\n");
       ct.sendEvent = send.str();
       ct.deliverEvent = deliver.str();
-      fb.attribute("Type") = name.c_str();
+      retype(fb, name);
     };
     if (c.clientServer) {
       end(first, "REQ", "CNF");

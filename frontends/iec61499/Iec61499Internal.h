@@ -205,6 +205,9 @@ private:
   /// of the -I directories) to the ST checker, once; nothing when there is
   /// none of that name (elementary types, FB types).
   void useDataType(StringRef name, SMLoc at);
+  /// The `<DataType>` named `name` in the inputs or the -I directories,
+  /// with its file; {nullptr, {}} when there is none.
+  std::pair<XmlSource *, pugi::xml_node> findDataType(StringRef name, SMLoc at);
   TypeSyntax *dataTypeSyntax(XmlSource &src, pugi::xml_node root);
   /// The dimensions an ArraySize attribute gives.
   std::vector<std::pair<int64_t, int64_t>> arraySize(StringRef written,
@@ -238,6 +241,9 @@ private:
                        StringRef from);
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
+  bool structManipulator(XmlSource &src, pugi::xml_node fb, FbType &t);
+  void unconnectedGenericFunction(XmlSource &src, pugi::xml_node net,
+                                  pugi::xml_node fb, FbType &t);
   void specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
                                   const FbType *owner);
   /// The type of every typed block of `net`, by upper-case name.
@@ -257,6 +263,9 @@ private:
   void restartModule(FbType &t);
   /// What a system's resources add to its applications (Iec61499Devices.cpp).
   void collectResourceStarts();
+  /// Moves a resource's own blocks (mapped from no application) into the
+  /// application mapped to it, or one named after it.
+  void adoptResourceBlocks(XmlSource &src, pugi::xml_node sys);
   void resourceConnections(XmlSource &src, pugi::xml_node sys,
                            pugi::xml_node app);
   void untypedSubApp(XmlSource &src, pugi::xml_node fb, const FbType *owner);
@@ -371,6 +380,14 @@ inline bool isPlatformType(StringRef rootElement) {
 bool isShipped(StringRef name);
 /// The FB elements of a network, in document order.
 std::vector<pugi::xml_node> blocksOf(pugi::xml_node net);
+
+/// Gives block `fb` the type netlift made for it (a generic function or
+/// environment block specialised to its connections, a channel end),
+/// keeping the type the file declares for what compares with the file
+/// (a resource's copy of a mapped block).
+void retype(pugi::xml_node fb, const std::string &type);
+/// The type the file gives block `fb`, whatever netlift retyped it to.
+llvm::StringRef declaredType(pugi::xml_node fb);
 
 } // namespace netlift::iec61499::detail
 

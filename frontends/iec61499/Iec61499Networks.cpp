@@ -348,7 +348,7 @@ void Translator::checkMappedType(XmlSource &src, pugi::xml_node sys,
     if (!net)
       net = child(app, "FBNetwork");
     for (pugi::xml_node fb : blocksOf(net)) {
-      StringRef type = fb.attribute("Type").value();
+      StringRef type = declaredType(fb);
       StringRef copyType = copy.attribute("Type").value();
       if (!path.equals_insensitive(fb.attribute("Name").value()) ||
           copyType.empty() || copyType.equals_insensitive(type))

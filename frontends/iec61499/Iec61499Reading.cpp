@@ -298,6 +298,21 @@ netlift::iec61499::detail::blocksOf(pugi::xml_node net) {
   return out;
 }
 
+static constexpr const char *kDeclaredType = "netlift.DeclaredType";
+
+void netlift::iec61499::detail::retype(pugi::xml_node fb,
+                                       const std::string &type) {
+  if (!fb.attribute(kDeclaredType))
+    fb.append_attribute(kDeclaredType) = fb.attribute("Type").value();
+  fb.attribute("Type") = type.c_str();
+}
+
+StringRef netlift::iec61499::detail::declaredType(pugi::xml_node fb) {
+  if (pugi::xml_attribute a = fb.attribute(kDeclaredType))
+    return a.value();
+  return fb.attribute("Type").value();
+}
+
 /// Finds every type `t` uses, depth first, so that a type is translated
 /// after those it instantiates.
 void Translator::collect(FbType &t) {
