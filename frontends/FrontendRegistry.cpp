@@ -193,7 +193,8 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
                           : "XML root element <" + root + ">") +
                 " not recognised (known: PLCopen <project>, SpaceEx "
                 "<sspaceex>, PNML <pnml>, IEC 61499 "
-                "<FBType>/<System>/<SubAppType>/<AdapterType>/<DataType>/"
+                "<FBType>/<System>/<SubAppType>/<AdapterType>/<Function>/"
+                "<DataType>/"
                 "<DeviceType>/<ResourceType>/<SegmentType>); name the "
                 "format "
                 "with --from");

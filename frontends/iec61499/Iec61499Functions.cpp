@@ -516,3 +516,141 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
     types[inst.upper()] = this->types.at(StringRef(name).upper()).get();
   }
 }
+
+//===----------------------------------------------------------------------===//
+// Function types (.fct)
+//===----------------------------------------------------------------------===//
+
+/// The ranges of `text` holding the `PACKAGE p;`, `USING p;` and `IMPORT
+/// p;` declarations 4diac writes before a FUNCTION (the ST frontend reads
+/// POUs only), skipping comments.
+static std::vector<std::pair<size_t, size_t>> packageLines(StringRef text) {
+  std::vector<std::pair<size_t, size_t>> out;
+  size_t i = 0;
+  while (i < text.size()) {
+    if (isspace((unsigned char)text[i])) {
+      ++i;
+    } else if (text.substr(i).startswith("(*") ||
+               text.substr(i).startswith("/*")) {
+      size_t end = text.find(text[i] == '(' ? "*)" : "*/", i + 2);
+      i = end == StringRef::npos ? text.size() : end + 2;
+    } else if (text.substr(i).startswith("//")) {
+      i = std::min(text.find('\n', i), text.size());
+    } else {
+      size_t end = i;
+      while (end < text.size() &&
+             (isalnum((unsigned char)text[end]) || text[end] == '_'))
+        ++end;
+      StringRef word = text.slice(i, end);
+      if (!word.equals_insensitive("PACKAGE") &&
+          !word.equals_insensitive("USING") &&
+          !word.equals_insensitive("IMPORT"))
+        break;
+      size_t semi = text.find(';', end);
+      if (semi == StringRef::npos)
+        break;
+      out.push_back({i, semi + 1});
+      i = semi + 1;
+    }
+  }
+  return out;
+}
+
+/// Renames every use of variable `from` in `e` to `to`.
+static void renameVariable(plc::Expr *e, StringRef from, StringRef to) {
+  if (!e)
+    return;
+  if (e->kind == ExprKind::Name && StringRef(e->name).equals_insensitive(from))
+    e->name = to.str();
+  for (plc::Expr *o : e->operands)
+    renameVariable(o, from, to);
+  for (plc::CallArg &a : e->args)
+    renameVariable(a.value, from, to);
+}
+
+/// A 4diac function (`<Function>`, 4diac IDE 3's `.fct`): an interface
+/// (REQ, CNF, input and output variables; the return value an output
+/// without a name) and a `<FunctionBody>` holding an ST `FUNCTION`. The ST
+/// function joins the program under the name `<NAME>__FUNCTION` (the
+/// block's module keeps the type's name), and the type becomes the simple
+/// FB whose REQ calls it: `NAME := NAME__FUNCTION(IN := IN, ..., Q => Q);`
+/// then CNF, so the function's locals start afresh at every call as the
+/// ST frontend's calls have them. The unnamed return output is named like
+/// the type.
+void Translator::functionType(FbType &t) {
+  t.function = true;
+  pugi::xml_node iface = child(t.root, "InterfaceList");
+  bool returns = false;
+  for (pugi::xml_node v : child(iface, "OutputVars").children("VarDeclaration"))
+    if (StringRef(v.attribute("Name").value()).empty()) {
+      v.attribute("Name") = t.name.c_str();
+      returns = true;
+    }
+  for (pugi::xml_node e : child(iface, "EventOutputs").children("Event"))
+    for (pugi::xml_node w : e.children("With"))
+      if (StringRef(w.attribute("Var").value()).empty())
+        w.attribute("Var") = t.name.c_str();
+  readInterface(t, iface);
+  pugi::xml_node st = child(child(t.root, "FunctionBody"), "ST");
+  if (!st)
+    fail(t, t.root,
+         "function '" + t.name +
+             "' has no <FunctionBody> in ST; netlift reads ST functions");
+  if (t.eventInputs.size() != 1 || t.eventOutputs.size() != 1)
+    fail(t, t.root,
+         "function '" + t.name + "' has " + Twine(t.eventInputs.size()) +
+             " input and " + Twine(t.eventOutputs.size()) +
+             " output events; a function block has REQ and CNF");
+  // The body as placed in the file's copy that the SourceMgr owns (so that
+  // errors keep their lines and columns), its package lines blanked there.
+  StringRef body = t.src->placeText(st);
+  char *placed = const_cast<char *>(body.data());
+  for (auto [from, to] : packageLines(body))
+    for (size_t i = from; i < to; ++i)
+      if (placed[i] != '\n')
+        placed[i] = ' ';
+  size_t before = unit.pous.size();
+  if (!st::parseStructuredText(body, diag, unit))
+    throw Failure();
+  Pou *fn = unit.pous.size() == before + 1 ? unit.pous.back() : nullptr;
+  if (!fn || fn->kind != PouKind::Function ||
+      !StringRef(fn->name).equals_insensitive(t.name))
+    fail(t.src->locOf(st), "the <FunctionBody> of function '" + t.name +
+                               "' must declare one ST FUNCTION named '" +
+                               t.name + "'");
+  std::string internalName = t.name + "__FUNCTION";
+  plc::forEachStmt(fn->body, nullptr, [&](plc::Expr *e) {
+    renameVariable(e, fn->name, internalName);
+  });
+  fn->name = internalName;
+  // REQ calls the function with every input and output.
+  std::string call;
+  for (const Var &v : t.inputs)
+    call += (call.empty() ? "" : ", ") + v.name + " := " + v.name;
+  for (const Var &v : t.outputs)
+    if (!StringRef(v.name).equals_insensitive(t.name))
+      call += (call.empty() ? "" : ", ") + v.name + " => " + v.name;
+  call = internalName + "(" + call + ");";
+  if (returns)
+    call = t.name + " := " + call;
+  t.body = t.root.append_child("SimpleFB");
+  pugi::xml_node alg = t.body.append_child("Algorithm");
+  alg.append_attribute("Name") = t.eventInputs[0].name.c_str();
+  alg.append_child("ST").append_attribute("Text") = call.c_str();
+  simpleAsBasic(t);
+  t.kind = TypeKind::Basic;
+}
+
+void Translator::nameReturnOutputs(XmlSource &src, pugi::xml_node net) {
+  std::map<std::string, FbType *> types = blockTypes(src, net);
+  for (pugi::xml_node c : child(net, "DataConnections").children("Connection"))
+    for (const char *end : {"Source", "Destination"}) {
+      pugi::xml_attribute a = c.attribute(end);
+      auto [blk, port] = StringRef(a.value()).split('.');
+      if (!StringRef(a.value()).endswith(".") || !port.empty())
+        continue;
+      auto it = types.find(blk.upper());
+      if (it != types.end() && it->second->function)
+        a = (blk + "." + it->second->name).str().c_str();
+    }
+}

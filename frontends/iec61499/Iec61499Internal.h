@@ -105,6 +105,10 @@ struct FbType {
   std::vector<AdapterUse> adapters;
   bool builtin = false;
   bool translated = false;
+  /// A 4diac function type (`.fct`): a simple FB whose REQ calls the ST
+  /// FUNCTION of its body; its return value is the output named like the
+  /// type (4diac leaves it unnamed).
+  bool function = false;
   /// An environment block one end of a channel (Iec61499Environment.cpp):
   /// the input event on which it sends its SD_i (a publisher's or client's
   /// REQ, a server's RSP) and the output event by which it delivers the
@@ -241,6 +245,10 @@ private:
                        StringRef from);
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
+  void functionType(FbType &t);
+  /// Names a function block's unnamed return output (`blk.` in 4diac's
+  /// connections) after the function.
+  void nameReturnOutputs(XmlSource &src, pugi::xml_node net);
   bool structManipulator(XmlSource &src, pugi::xml_node fb, FbType &t);
   void unconnectedGenericFunction(XmlSource &src, pugi::xml_node net,
                                   pugi::xml_node fb, FbType &t);

@@ -54,6 +54,12 @@ void Translator::readInterface(FbType &t, pugi::xml_node iface) {
   events(child(iface, "SubAppEventOutputs"), t.eventOutputs);
   vars(child(iface, "InputVars"), t.inputs);
   vars(child(iface, "OutputVars"), t.outputs);
+  for (pugi::xml_node v : child(iface, "InOutVars").children("VarDeclaration"))
+    fail(t, v,
+         "in-out variable '" + Twine(v.attribute("Name").value()) + "' of '" +
+             t.name +
+             "' (<InOutVars>, VAR_IN_OUT) is not supported: netlift reads "
+             "input and output variables");
   for (const char *adapters : {"Plugs", "Sockets"})
     for (pugi::xml_node a :
          child(iface, adapters).children("AdapterDeclaration"))
@@ -151,27 +157,25 @@ void Translator::registerTypes(File &f, bool builtin) {
   }
   if (isPlatformType(kind))
     return;
-  if (kind == "Function")
-    fail(f.src->locOf(root),
-         "function type '" + Twine(root.attribute("Name").value()) +
-             "' (4diac's .fct) is not supported: netlift reads FB, "
-             "subapplication, adapter and data types");
   auto t = std::make_unique<FbType>();
   t->name = root.attribute("Name").value();
   t->package = child(root, "CompilerInfo").attribute("packageName").value();
   t->src = f.src.get();
   t->root = root;
   t->builtin = builtin;
-  if (kind != "FBType" && kind != "SubAppType" && kind != "AdapterType")
+  if (kind != "FBType" && kind != "SubAppType" && kind != "AdapterType" &&
+      kind != "Function")
     fail(*t, root,
          "not an IEC 61499 type or system: root element <" + kind +
-             "> (known: FBType, SubAppType, AdapterType, DataType, System, "
-             "DeviceType, ResourceType, SegmentType)");
+             "> (known: FBType, SubAppType, AdapterType, Function, DataType, "
+             "System, DeviceType, ResourceType, SegmentType)");
   if (t->name.empty())
     fail(*t, root, "<" + kind + "> without a Name");
   if (kind == "AdapterType") {
     readInterface(*t, child(root, "InterfaceList"));
     t->kind = TypeKind::Adapter;
+  } else if (kind == "Function") {
+    functionType(*t);
   } else if (kind == "SubAppType") {
     readInterface(*t, child(root, "SubAppInterfaceList"));
     t->kind = TypeKind::SubApp;
@@ -215,7 +219,8 @@ void Translator::indexLibraries() {
          it != end && !ec; it.increment(ec)) {
       StringRef ext = llvm::sys::path::extension(it->path());
       if (ext.equals_insensitive(".fbt") || ext.equals_insensitive(".sub") ||
-          ext.equals_insensitive(".adp") || ext.equals_insensitive(".dtp"))
+          ext.equals_insensitive(".adp") || ext.equals_insensitive(".dtp") ||
+          ext.equals_insensitive(".fct"))
         found.push_back(it->path());
     }
     if (ec)
@@ -362,6 +367,7 @@ void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
   for (pugi::xml_node fb : blocksOf(net))
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       untypedSubApp(src, fb, owner);
+  nameReturnOutputs(src, net);
   specializeGenericFunctions(src, net, owner);
   makeChannelEnds(src, net);
   for (pugi::xml_node fb : blocksOf(net)) {

@@ -166,9 +166,14 @@ std::string SourceTable::reference(llvm::SMLoc loc) {
   auto [it, inserted] = numbers.try_emplace(id, 0);
   if (inserted) {
     StringRef name = sm.getMemoryBuffer(id)->getBufferIdentifier();
+    // A frontend's working copy of a file (XML text placed at its offsets)
+    // is a buffer of the same name and lines: one number for both.
     if (carriesLocations(name)) {
-      files.push_back(name.str());
-      it->second = files.size();
+      size_t index =
+          std::find(files.begin(), files.end(), name.str()) - files.begin();
+      if (index == files.size())
+        files.push_back(name.str());
+      it->second = index + 1;
     }
   }
   if (!it->second)
