@@ -75,9 +75,53 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
     if (!found)
       text = t.src->placeText(st);
     StmtList out;
-    if (!st::parseStatements(text, diag, unit, out))
+    std::vector<VarDecl *> temps;
+    if (!st::parseAlgorithmBody(text, diag, unit, temps, out))
       throw Failure();
+    if (temps.empty()) {
+      rename(out);
+      return out;
+    }
+    // The algorithm's VAR_TEMPs become temporaries of the block's POU
+    // under names of their own (`_tmp_REQ_i`), back at their initial value
+    // at the end of every reaction, and set to it where the algorithm
+    // starts (so a second run in one reaction starts afresh too).
+    std::map<std::string, std::string> outer = copied;
+    StmtList start;
+    AstMaker make(unit);
+    for (VarDecl *v : temps) {
+      std::string model = "_tmp_" + name.str() + "_" + v->name;
+      copied[StringRef(v->name).upper()] = model;
+      v->name = model;
+      if (algorithmTemps.insert(StringRef(model).upper()).second)
+        currentPou->vars.push_back(v);
+      Initializer *init = v->typeSyntax ? v->typeSyntax->init : nullptr;
+      Expr *value =
+          init && init->kind == Initializer::Value ? init->value : nullptr;
+      if (!init && v->typeSyntax &&
+          v->typeSyntax->kind == TypeSyntaxKind::Named) {
+        StringRef type = v->typeSyntax->name;
+        if (type.equals_insensitive("BOOL"))
+          value = make.boolLit(false, v->loc);
+        else if (llvm::is_contained(
+                     std::initializer_list<StringRef>{
+                         "SINT", "INT", "DINT", "LINT", "USINT", "UINT",
+                         "UDINT", "ULINT", "BYTE", "WORD", "DWORD", "LWORD"},
+                     type.upper()))
+          value = make.intLit(0, v->loc);
+        else if (type.equals_insensitive("REAL") ||
+                 type.equals_insensitive("LREAL"))
+          value = make.make(ExprKind::RealLit, v->loc); // 0.0
+        else if (type.equals_insensitive("TIME"))
+          value = make.make(ExprKind::TimeLit, v->loc); // T#0s
+      }
+      if (value)
+        start.push_back(
+            make.assign(make.nameRef(model, v->loc), value, v->loc));
+    }
+    out.insert(out.begin(), start.begin(), start.end());
     rename(out);
+    copied = std::move(outer);
     return out;
   }
   fail(t, at,
@@ -229,6 +273,8 @@ void Translator::basicBlock(FbType &t) {
   unit.pous.push_back(pou);
   copied.clear();
   current = &t;
+  currentPou = pou;
+  algorithmTemps.clear();
   // The environment's queue stays event-driven: it feeds the cycle.
   bool cyclic =
       semantics == "cyclic" && !StringRef(t.name).startswith("_Inputs_");

@@ -331,6 +331,10 @@ private:
   std::string internal(StringRef name) const;
   /// The basic FB being read (its plugs and sockets name ports).
   const FbType *current = nullptr;
+  /// The POU of the basic FB being built, and the VAR_TEMPs its algorithms
+  /// declared (model name, upper case).
+  Pou *currentPou = nullptr;
+  std::set<std::string> algorithmTemps;
 
   // Parameters: durations for the tick, constant modules by name.
   std::vector<int64_t> parameterTimes;

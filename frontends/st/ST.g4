@@ -57,6 +57,9 @@ initializerOnly : initializer EOF ;
 // A POU body alone (the ST bodies of PLCopen XML).
 statementsOnly : bodyStatementList EOF ;
 
+// An IEC 61499 ST algorithm: 4diac lets VAR_TEMP blocks open it.
+algorithmBody : varBlock* bodyStatementList EOF ;
+
 // Declarations alone (a long VAR block parsed in groups).
 varDeclsOnly : varDecl* EOF ;
 

@@ -61,6 +61,7 @@ public:
   void statements(P::StatementListContext *c, StmtList &out);
   /// A POU body: statements and labels (Stmt Label), in order.
   void bodyStatements(P::BodyStatementListContext *c, StmtList &out);
+  void varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out);
   /// Refuses the pragmas in a body that change what the program does.
   void bodyPragmas(P::BodyStatementListContext *c);
   Initializer *initializer(P::InitializerContext *c);
@@ -109,7 +110,6 @@ private:
   Pou *function(P::FunctionDeclContext *c);
   void typeDecl(P::TypeDeclContext *c);
   void configuration(P::ConfigurationDeclContext *c);
-  void varBlock(P::VarBlockContext *c, std::vector<VarDecl *> &out);
   /// VAR_ACCESS: read-only access paths noted, read-write ones refused.
   void accessBlock(P::VarBlockContext *c);
   TypeSyntax *typeSpec(P::TypeSpecContext *c);

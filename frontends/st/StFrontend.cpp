@@ -1399,6 +1399,26 @@ Initializer *st::parseStInitializer(StringRef text, DiagEngine &diag,
   return ok ? init : nullptr;
 }
 
+bool st::parseAlgorithmBody(StringRef text, DiagEngine &diag, Unit &unit,
+                            std::vector<VarDecl *> &temps, StmtList &out) {
+  bool ok = parseAlone(text, diag, unit, &P::algorithmBody, kMaxSyntaxErrors,
+                       "end of the body",
+                       [&](AstBuilder &b, P::AlgorithmBodyContext *t) {
+                         for (P::VarBlockContext *vb : t->varBlock())
+                           b.varBlock(vb, temps);
+                         b.bodyStatements(t->bodyStatementList(), out);
+                       });
+  for (VarDecl *v : temps)
+    if (v->section != VarSection::Temp) {
+      diag.error(v->loc, "'" + v->name +
+                             "' is declared in an algorithm outside "
+                             "VAR_TEMP; an algorithm declares temporaries "
+                             "only (VAR_TEMP ... END_VAR)");
+      ok = false;
+    }
+  return ok;
+}
+
 bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,
                          StmtList &out) {
   return parseAlone(text, diag, unit, &P::statementsOnly, kMaxSyntaxErrors,

@@ -40,6 +40,12 @@ bool parseStructuredText(llvm::StringRef text, DiagEngine &diag,
 bool parseStatements(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
                      plc::StmtList &out);
 
+/// Parses an algorithm's body that VAR_TEMP blocks may open (IEC 61499
+/// algorithms as 4diac writes them): the temporaries into `temps`, the
+/// statements into `out`.
+bool parseAlgorithmBody(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
+                        std::vector<plc::VarDecl *> &temps, plc::StmtList &out);
+
 /// Parses one ST expression (used for pragma values and --ranges files).
 plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
                              plc::Unit &unit);
