@@ -33,7 +33,16 @@ FORMATS = {
     "plcopen_xml": ((".xml",), None, (), "translate"),
     "iec61499": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct", ".dev",
                   ".res", ".seg"), None, (), "translate"),
+    # The same files with their project's types on -I, as a 4diac user
+    # translates them (issue 38's measure).
+    "iec61499-libraries": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct",
+                            ".dev", ".res", ".seg"), None, (), "translate",
+                           "iec61499"),
 }
+
+# Formats whose files are translated with `-I <their project>`: the folder
+# of the corpus format's directory that holds them (4diac-ide, fb2smv).
+WITH_PROJECT_LIBRARIES = {"iec61499-libraries"}
 
 
 LOCATED = re.compile(r"^.+:\d+:\d+: error: ")
@@ -77,6 +86,10 @@ def main():
         for f in files:
             try:
                 cmd = [netlift, *command.split(), f, "-o", os.devnull]
+                if fmt in WITH_PROJECT_LIBRARIES:
+                    top = os.path.join(corpus, folder[0] if folder else fmt)
+                    project = os.path.relpath(f, top).split(os.sep)[0]
+                    cmd += ["-I", os.path.join(top, project)]
                 if from_fmt:
                     cmd += ["--from", from_fmt]
                 r = subprocess.run(cmd, capture_output=True, text=True,

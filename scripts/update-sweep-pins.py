@@ -24,6 +24,8 @@ TESTS = {
         ("corpus-sweep.py", ["plcopen_xml"]),
     "test/frontends/iec61499/corpus-sweep.test":
         ("corpus-sweep.py", ["iec61499"]),
+    "test/frontends/iec61499/corpus-sweep-libraries.test":
+        ("corpus-sweep.py", ["iec61499-libraries"]),
     "test/frontends/hybrid/corpus-sweep.test": ("corpus-sweep.py", ["spaceex"]),
     "test/passes/discretise/corpus-sweep.test":
         ("corpus-sweep.py", ["spaceex-discretise"]),

@@ -471,12 +471,16 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
   }
   // A block modelled as environment (Iec61499Environment.cpp) with generic
   // ports: each port takes the type of the typed port it is connected to,
-  // one by one (PUBLISH_2's SD_1 and SD_2 may differ); a generic port
-  // connected to nothing typed is left out, as nothing reads or drives it.
+  // one by one (PUBLISH_2's SD_1 and SD_2 may differ), or of its typed
+  // parameter (SD_1 = TRUE); a port of a channel end nothing fixes takes
+  // the type of the other end's datum (a SUBSCRIBE_1 whose RD_1 is left
+  // unconnected receives what its PUBLISH_1 sends). A generic port fixed by
+  // nothing is left out, as nothing reads or drives it.
+  std::map<std::string, std::map<std::string, std::string>> fixedOf;
   for (pugi::xml_node fb : environment) {
     StringRef inst = fb.attribute("Name").value();
     FbType &t = *types.at(inst.upper());
-    std::map<std::string, std::string> fixed; // port (upper) -> type
+    std::map<std::string, std::string> &fixed = fixedOf[inst.upper()];
     for (pugi::xml_node c :
          child(net, "DataConnections").children("Connection"))
       for (auto [here, there] : {std::pair{"Destination", "Source"},
@@ -491,12 +495,39 @@ void Translator::specializeGenericFunctions(XmlSource &src, pugi::xml_node net,
     for (pugi::xml_node p : fb.children("Parameter"))
       for (const Var &v : t.inputs)
         if (StringRef(v.name).equals_insensitive(p.attribute("Name").value()) &&
+            isGenericType(v.type))
+          if (std::string lit = typeOfLiteral(src.placeAttribute(p, "Value"));
+              !lit.empty())
+            fixed.emplace(StringRef(v.name).upper(), lit);
+  }
+  for (const Channel &c : channelsOf(src, net))
+    for (auto [from, to] : {std::pair{&c.publishers, &c.subscribers},
+                            std::pair{&c.subscribers, &c.publishers}})
+      for (pugi::xml_node sender : *from)
+        for (pugi::xml_node receiver : *to) {
+          // SD_i of one end is RD_i of the other.
+          auto &sent =
+              fixedOf[StringRef(sender.attribute("Name").value()).upper()];
+          auto &got =
+              fixedOf[StringRef(receiver.attribute("Name").value()).upper()];
+          for (auto &[port, type] : sent)
+            if (StringRef(port).startswith("SD_"))
+              got.emplace("RD_" + port.substr(3), type);
+        }
+  for (pugi::xml_node fb : environment) {
+    StringRef inst = fb.attribute("Name").value();
+    FbType &t = *types.at(inst.upper());
+    const std::map<std::string, std::string> &fixed = fixedOf[inst.upper()];
+    for (pugi::xml_node p : fb.children("Parameter"))
+      for (const Var &v : t.inputs)
+        if (StringRef(v.name).equals_insensitive(p.attribute("Name").value()) &&
             isGenericType(v.type) && !fixed.count(StringRef(v.name).upper()))
           fail(src.locOf(p),
                "parameter '" + v.name + "' of '" + inst +
                    "' has the generic type " + v.type +
-                   " and no data connection fixes it (connect it, or give "
-                   "the parameter to a typed port)");
+                   " and nothing fixes it (connect it, give it a typed "
+                   "value such as INT#5, or give the parameter to a typed "
+                   "port)");
     auto concrete = [&](const Var &v) -> std::string {
       if (!isGenericType(v.type))
         return v.type;
