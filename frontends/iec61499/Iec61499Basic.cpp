@@ -342,6 +342,20 @@ void Translator::basicBlock(FbType &t) {
           declare(kept, typeOf(*t.src, v), VarSection::Var, t.src->locOf(v));
       d->constant = StringRef(list) == "InternalConstVars";
     }
+  // What else a body holds would change the block's behaviour unseen.
+  for (pugi::xml_node e : t.body.children()) {
+    StringRef kind = localName(e);
+    if (e.type() == pugi::node_element &&
+        !llvm::is_contained(
+            std::initializer_list<StringRef>{
+                "InternalVars", "InternalConstVars", "ECC", "ECState",
+                "Algorithm", "Method", "Attribute"},
+            kind))
+      fail(t, e,
+           "<" + kind + "> in the body of '" + t.name +
+               "' is not read by netlift (it reads InternalVars, "
+               "InternalConstVars, ECC and ST algorithms)");
+  }
   for (pugi::xml_node m : t.body.children("Method"))
     fail(t, m,
          "method '" + Twine(m.attribute("Name").value()) + "' of '" + t.name +

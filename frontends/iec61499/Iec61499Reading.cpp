@@ -364,6 +364,17 @@ void Translator::untypedSubApp(XmlSource &src, pugi::xml_node fb,
 
 void Translator::collectNetwork(XmlSource &src, pugi::xml_node net,
                                 const FbType *owner) {
+  // 4diac leaves out the end of a connection it cannot resolve (a block or
+  // port missing from the library: an error marker in the IDE).
+  for (const char *list :
+       {"EventConnections", "DataConnections", "AdapterConnections"})
+    for (pugi::xml_node c : child(net, list).children("Connection"))
+      for (const char *end : {"Source", "Destination"})
+        if (StringRef(c.attribute(end).value()).trim().empty())
+          fail(src.locOf(c),
+               "connection without a " + Twine(end) +
+                   " (4diac writes one so where the block or port it "
+                   "connects is missing: an error marker in the IDE)");
   for (pugi::xml_node fb : blocksOf(net))
     if (localName(fb) == "SubApp" && !fb.attribute("Type"))
       untypedSubApp(src, fb, owner);
