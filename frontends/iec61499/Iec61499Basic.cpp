@@ -78,6 +78,7 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
     std::vector<VarDecl *> temps;
     if (!st::parseAlgorithmBody(text, diag, unit, temps, out))
       throw Failure();
+    callFunctionTypes(out);
     if (temps.empty()) {
       rename(out);
       return out;

@@ -654,6 +654,7 @@ void Translator::functionType(FbType &t) {
     renameVariable(e, fn->name, internalName);
   });
   fn->name = internalName;
+  callFunctionTypes(fn->body);
   // REQ calls the function with every input and output.
   std::string call;
   for (const Var &v : t.inputs)
@@ -670,6 +671,38 @@ void Translator::functionType(FbType &t) {
   alg.append_child("ST").append_attribute("Text") = call.c_str();
   simpleAsBasic(t);
   t.kind = TypeKind::Basic;
+}
+
+FbType *Translator::functionTypeNamed(StringRef name) {
+  std::string key = name.upper();
+  auto it = types.find(key);
+  if (it == types.end()) {
+    indexLibraries();
+    auto path = libraryIndex.find(key);
+    if (path == libraryIndex.end() ||
+        !StringRef(path->second).endswith_insensitive(".fct"))
+      return nullptr;
+    registerTypes(readLibraryFile(path->second, name, SMLoc()), false);
+    it = types.find(key);
+    if (it == types.end())
+      return nullptr;
+  }
+  return it->second->function ? it->second.get() : nullptr;
+}
+
+void Translator::callFunctionTypes(plc::StmtList &body) {
+  std::function<void(plc::Expr *)> visit = [&](plc::Expr *e) {
+    if (!e)
+      return;
+    if (e->kind == ExprKind::Call && e->operands.empty())
+      if (FbType *f = functionTypeNamed(e->name))
+        e->name = f->name + "__FUNCTION";
+    for (plc::Expr *o : e->operands)
+      visit(o);
+    for (plc::CallArg &a : e->args)
+      visit(a.value);
+  };
+  plc::forEachStmt(body, nullptr, visit);
 }
 
 void Translator::nameReturnOutputs(XmlSource &src, pugi::xml_node net) {

@@ -246,6 +246,12 @@ private:
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
   void functionType(FbType &t);
+  /// The function type (`.fct`) named `name`, from the inputs or the -I
+  /// directories; null when there is none.
+  FbType *functionTypeNamed(StringRef name);
+  /// Points the calls in `body` of function types at their ST functions
+  /// (`SCALE(...)` calls `SCALE__FUNCTION`).
+  void callFunctionTypes(plc::StmtList &body);
   /// Names a function block's unnamed return output (`blk.` in 4diac's
   /// connections) after the function.
   void nameReturnOutputs(XmlSource &src, pugi::xml_node net);
