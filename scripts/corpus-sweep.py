@@ -14,6 +14,8 @@ import re
 import subprocess
 import sys
 
+from sweep_reasons import reason
+
 # Format -> (file extensions, --from format or None for "by extension",
 # files to skip, subcommand and its options[, the corpus folder when it is
 # not the format's name]). matiec keeps ST in .txt and .test files.
@@ -54,15 +56,6 @@ def located(stderr):
         if ": error: " in line:
             return bool(LOCATED.match(line))
     return False
-
-
-def reason(stderr):
-    for line in stderr.splitlines():
-        if ": error: " in line:
-            msg = line.split(": error: ", 1)[1]
-            msg = re.sub(r"'[^']*'", "'…'", msg)
-            return re.sub(r"\d+", "N", msg)
-    return stderr.strip().splitlines()[0] if stderr.strip() else "(no message)"
 
 
 def main():

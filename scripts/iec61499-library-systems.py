@@ -8,11 +8,10 @@ alone has nothing connected, so generic functions keep only their events.
 
 usage: iec61499-library-systems.py NETLIFT LIBRARY_DIR
 """
-import collections
 import os
-import re
-import subprocess
 import sys
+
+from sweep_reasons import Tally
 import tempfile
 
 SYSTEM = """<?xml version="1.0" encoding="UTF-8"?>
@@ -35,14 +34,6 @@ SYSTEM = """<?xml version="1.0" encoding="UTF-8"?>
 """
 
 
-def reason(stderr):
-    for line in stderr.splitlines():
-        if ": error: " in line:
-            msg = line.split(": error: ", 1)[1]
-            return re.sub(r"\d+", "N", re.sub(r"'[^']*'", "'…'", msg))
-    return "(no message)"
-
-
 def main():
     netlift, library = sys.argv[1], sys.argv[2]
     if not os.path.isdir(library):
@@ -50,32 +41,16 @@ def main():
         return 0
     types = sorted(f[:-4] for _, _, fs in os.walk(library) for f in fs
                    if f.endswith(".fbt"))
-    ok, refused, crashed = 0, collections.Counter(), []
+    tally = Tally()
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "one.sys")
         for name in types:
             with open(path, "w") as f:
                 f.write(SYSTEM.format(name=name))
-            try:
-                r = subprocess.run([netlift, "translate", path, "-I", library,
-                                    "-o", os.devnull], capture_output=True,
-                                   text=True, timeout=120, errors="replace")
-            except subprocess.TimeoutExpired:
-                crashed.append((name, "hang"))
-                continue
-            if r.returncode == 0:
-                ok += 1
-            elif r.returncode == 1:
-                refused[reason(r.stderr)] += 1
-            else:
-                crashed.append((name, f"exit {r.returncode}"))
-    print(f"library blocks: {len(types)} types, {ok} translate in a system, "
-          f"{sum(refused.values())} refused, {len(crashed)} crashed")
-    for why, n in sorted(refused.items(), key=lambda kv: (-kv[1], kv[0])):
-        print(f"  {n:5}  {why}")
-    for name, how in crashed:
-        print(f"  CRASH {how}: {name}")
-    return 1 if crashed else 0
+            tally.run([netlift, "translate", path, "-I", library, "-o",
+                       os.devnull], name)
+    return tally.report(f"library blocks: {len(types)} types, "
+                        f"{tally.translated} translate in a system")
 
 
 if __name__ == "__main__":

@@ -8,11 +8,11 @@ than 0/1, or over 120 s). Exits 1 if anything crashed.
 
 usage: project-tops.py NETLIFT PROJECT...
 """
-import collections
 import os
 import re
-import subprocess
 import sys
+
+from sweep_reasons import Tally
 
 POU = re.compile(r"\b(?:PROGRAM|FUNCTION_BLOCK)\s+"
                  r"(?:(?:ABSTRACT|FINAL|PUBLIC|PRIVATE|PROTECTED|INTERNAL)\s+)*"
@@ -32,41 +32,16 @@ def pous(project):
     return sorted(names)
 
 
-def reason(stderr):
-    for line in stderr.splitlines():
-        if ": error: " in line:
-            msg = line.split(": error: ", 1)[1]
-            return re.sub(r"\d+", "N", re.sub(r"'[^']*'", "'…'", msg))
-    return "(no message)"
-
-
 def main():
     netlift, projects = sys.argv[1], sys.argv[2:]
-    ok, total, refused, crashed = 0, 0, collections.Counter(), []
+    tally, total = Tally(), 0
     for project in projects:
         for name in pous(project):
             total += 1
-            try:
-                r = subprocess.run([netlift, "translate", project, "--top",
-                                    name, "-o", os.devnull],
-                                   capture_output=True, text=True,
-                                   timeout=120)
-            except subprocess.TimeoutExpired:
-                crashed.append(f"{project} --top {name}: hang")
-                continue
-            if r.returncode == 0:
-                ok += 1
-            elif r.returncode == 1:
-                refused[reason(r.stderr)] += 1
-            else:
-                crashed.append(f"{project} --top {name}: exit {r.returncode}")
-    print(f"tops: {total} PROGRAMs and FBs, {ok} translated, "
-          f"{sum(refused.values())} refused, {len(crashed)} crashed")
-    for why, n in refused.most_common():
-        print(f"  {n:5}  {why}")
-    for c in crashed:
-        print(f"  CRASH {c}")
-    return 1 if crashed else 0
+            tally.run([netlift, "translate", project, "--top", name, "-o",
+                       os.devnull], f"{project} --top {name}")
+    return tally.report(f"tops: {total} PROGRAMs and FBs, "
+                        f"{tally.translated} translated")
 
 
 if __name__ == "__main__":
