@@ -127,16 +127,17 @@ static const FrontendInfo *sniffXml(StringRef text, StringRef &root) {
     root = rest.take_while([](char c) {
       return !isspace((unsigned char)c) && c != '>' && c != '/';
     });
-    StringRef id = root == "sspaceex"  ? "spaceex"
-                   : root == "pnml"    ? "pnml"
-                   : root == "project" ? "plcopen"
-                   : root == "FBType" || root == "System" ||
-                           root == "SubAppType" || root == "AdapterType" ||
-                           root == "DataType" || root == "Function" ||
-                           root == "DeviceType" || root == "ResourceType" ||
-                           root == "SegmentType"
-                       ? "iec61499"
-                       : "";
+    StringRef id =
+        root == "sspaceex"  ? "spaceex"
+        : root == "pnml"    ? "pnml"
+        : root == "project" ? "plcopen"
+        : root == "FBType" || root == "System" || root == "SubAppType" ||
+                root == "AdapterType" || root == "DataType" ||
+                root == "Function" || root == "DeviceType" ||
+                root == "ResourceType" || root == "SegmentType" ||
+                root == "AttributeDeclaration" || root == "GlobalConstants"
+            ? "iec61499"
+            : "";
     for (const FrontendInfo &f : registry)
       if (!id.empty() && f.id == id)
         return &f;

@@ -34,12 +34,12 @@ FORMATS = {
                            "opt -p discretise{grid=4}", "spaceex"),
     "plcopen_xml": ((".xml",), None, (), "translate"),
     "iec61499": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct", ".dev",
-                  ".res", ".seg"), None, (), "translate"),
+                  ".res", ".seg", ".atp", ".gcf"), None, (), "translate"),
     # The same files with their project's types on -I, as a 4diac user
     # translates them (issue 38's measure).
     "iec61499-libraries": ((".fbt", ".sub", ".sys", ".adp", ".dtp", ".fct",
-                            ".dev", ".res", ".seg"), None, (), "translate",
-                           "iec61499"),
+                            ".dev", ".res", ".seg", ".atp", ".gcf"), None,
+                           (), "translate", "iec61499"),
 }
 
 # Formats whose files are translated with `-I <their project>`: the folder

@@ -29,7 +29,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
       registerTypes(f, false);
       pugi::xml_node root = f.doc->document_element();
       StringRef kind = localName(root);
-      if (kind == "DataType" || kind == "AdapterType" || isPlatformType(kind))
+      if (kind == "DataType" || kind == "AdapterType" || isPlatformType(kind) ||
+          isDeclarationsOnly(kind))
         noteTypeOnlyFile(f);
       else if (kind != "System")
         topList.push_back(

@@ -75,6 +75,15 @@ void Translator::noteTypeOnlyFile(File &f) {
     diag.note(at, "adapter type '" + name +
                       "' has no behaviour of its own: blocks use it through "
                       "their plugs and sockets");
+  } else if (kind == "AttributeDeclaration") {
+    diag.note(at, "attribute type '" + name +
+                      "' annotates elements for the IDE; it has no "
+                      "behaviour, and netlift reads no attribute it declares");
+  } else if (kind == "GlobalConstants") {
+    diag.note(at, "global constants '" + name +
+                      "' have no behaviour of their own; netlift does not "
+                      "yet give them to algorithms (an algorithm naming one "
+                      "is refused as an unknown variable)");
   } else {
     diag.note(at, StringRef(kind).drop_back(4).lower() + " type '" + name +
                       "' describes the runtime platform: netlift runs every "

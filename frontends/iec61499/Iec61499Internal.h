@@ -394,6 +394,13 @@ inline bool isPlatformType(StringRef rootElement) {
          rootElement == "SegmentType";
 }
 
+/// 4diac IDE 3's attribute types (`.atp`) and global constants (`.gcf`):
+/// read alone, with a note; nothing of theirs is translated.
+inline bool isDeclarationsOnly(StringRef rootElement) {
+  return rootElement == "AttributeDeclaration" ||
+         rootElement == "GlobalConstants";
+}
+
 /// Service FBs netlift has a model of (whatever file declares them).
 bool isShipped(StringRef name);
 /// The FB elements of a network, in document order.

@@ -155,7 +155,7 @@ void Translator::registerTypes(File &f, bool builtin) {
     }
     return;
   }
-  if (isPlatformType(kind))
+  if (isPlatformType(kind) || isDeclarationsOnly(kind))
     return;
   auto t = std::make_unique<FbType>();
   t->name = root.attribute("Name").value();
