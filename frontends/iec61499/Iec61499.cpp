@@ -53,10 +53,7 @@ bool Translator::run(const std::vector<unsigned> &ids,
     // A resource's copy of a mapped block must have the block's type (its
     // own blocks were moved into an application by adoptResourceBlocks).
     for (auto &[file, sys] : systems) {
-      std::map<std::string, std::string> mappedFrom; // To -> From, upper
-      for (pugi::xml_node m : sys.children("Mapping"))
-        mappedFrom[StringRef(m.attribute("To").value()).upper()] =
-            m.attribute("From").value();
+      std::map<std::string, std::string> mappedFrom = mappingsByTarget(sys);
       for (pugi::xml_node dev : sys.children("Device"))
         for (pugi::xml_node res : dev.children("Resource"))
           for (pugi::xml_node fb : blocksOf(child(res, "FBNetwork"))) {

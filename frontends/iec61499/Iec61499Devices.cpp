@@ -59,11 +59,17 @@ bool usesStart(pugi::xml_node res) {
 
 } // namespace
 
-void Translator::adoptResourceBlocks(XmlSource &src, pugi::xml_node sys) {
-  std::map<std::string, std::string> mappedFrom; // DEV.RES.BLOCK -> From
+std::map<std::string, std::string>
+netlift::iec61499::detail::mappingsByTarget(pugi::xml_node sys) {
+  std::map<std::string, std::string> out;
   for (pugi::xml_node m : sys.children("Mapping"))
-    mappedFrom[StringRef(m.attribute("To").value()).upper()] =
+    out[StringRef(m.attribute("To").value()).upper()] =
         m.attribute("From").value();
+  return out;
+}
+
+void Translator::adoptResourceBlocks(XmlSource &src, pugi::xml_node sys) {
+  std::map<std::string, std::string> mappedFrom = mappingsByTarget(sys);
   for (pugi::xml_node dev : sys.children("Device"))
     for (pugi::xml_node res : dev.children("Resource")) {
       std::string where = std::string(dev.attribute("Name").value()) + "." +
@@ -202,10 +208,7 @@ void Translator::collectResourceStarts() {
 void Translator::resourceConnections(XmlSource &src, pugi::xml_node sys,
                                      pugi::xml_node app) {
   StringRef appName = app.attribute("Name").value();
-  std::map<std::string, std::string> mappedFrom; // DEV.RES.BLOCK -> From
-  for (pugi::xml_node m : sys.children("Mapping"))
-    mappedFrom[StringRef(m.attribute("To").value()).upper()] =
-        m.attribute("From").value();
+  std::map<std::string, std::string> mappedFrom = mappingsByTarget(sys);
   pugi::xml_node appNet = child(app, "SubAppNetwork");
   if (!appNet)
     appNet = child(app, "FBNetwork");

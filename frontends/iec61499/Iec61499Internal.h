@@ -406,6 +406,10 @@ bool isShipped(StringRef name);
 /// The FB elements of a network, in document order.
 std::vector<pugi::xml_node> blocksOf(pugi::xml_node net);
 
+/// A system's mappings by target: `DEV.RES.BLOCK` (upper case) -> the
+/// `From` path it is mapped from (`App.block`).
+std::map<std::string, std::string> mappingsByTarget(pugi::xml_node sys);
+
 /// Gives block `fb` the type netlift made for it (a generic function or
 /// environment block specialised to its connections, a channel end),
 /// keeping the type the file declares for what compares with the file
