@@ -343,6 +343,8 @@ void Translator::basicBlock(FbType &t) {
           declare(kept, typeOf(*t.src, v), VarSection::Var, t.src->locOf(v));
       d->constant = StringRef(list) == "InternalConstVars";
     }
+  // 4diac IDE 3's global constants: read where an algorithm names them.
+  declareGlobalConstantsUsed(t, declare);
   // What else a body holds would change the block's behaviour unseen.
   for (pugi::xml_node e : t.body.children()) {
     StringRef kind = localName(e);

@@ -81,9 +81,8 @@ void Translator::noteTypeOnlyFile(File &f) {
                       "behaviour, and netlift reads no attribute it declares");
   } else if (kind == "GlobalConstants") {
     diag.note(at, "global constants '" + name +
-                      "' have no behaviour of their own; netlift does not "
-                      "yet give them to algorithms (an algorithm naming one "
-                      "is refused as an unknown variable)");
+                      "' have no behaviour of their own: the algorithms "
+                      "that name one of them read its value");
   } else {
     diag.note(at, StringRef(kind).drop_back(4).lower() + " type '" + name +
                       "' describes the runtime platform: netlift runs every "
@@ -346,5 +345,84 @@ void Translator::aggregateConstantModules() {
     uint32_t p =
         b.addPort("OUT", net::PortKind::Data, net::PortDir::Out, type, c.loc);
     m->ports[p].init = init;
+  }
+}
+
+void Translator::addGlobalConstants(File &f) {
+  // <GlobalConstants><GlobalConstants><VarDeclaration .../>... (the
+  // declarations, then the ST source they were written as).
+  pugi::xml_node root = f.doc->document_element();
+  for (pugi::xml_node list : root.children())
+    if (localName(list) == "GlobalConstants")
+      for (pugi::xml_node v : list.children())
+        if (localName(v) == "VarDeclaration")
+          globalConstants[StringRef(v.attribute("Name").value()).upper()]
+              .push_back({f.src.get(), v});
+}
+
+void Translator::readGlobalConstants() {
+  if (globalConstantsRead)
+    return;
+  globalConstantsRead = true;
+  indexLibraries();
+  for (const std::string &path : globalConstantFiles) {
+    auto buf = llvm::MemoryBuffer::getFile(path);
+    if (!buf)
+      fail(SMLoc(), "cannot read '" + path + "': " + buf.getError().message());
+    unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
+    addGlobalConstants(readFile(id));
+  }
+}
+
+void Translator::declareGlobalConstantsUsed(
+    FbType &t,
+    llvm::function_ref<VarDecl *(StringRef, TypeSyntax *, VarSection, SMLoc)>
+        declare) {
+  // The words of the algorithms and the transition conditions.
+  std::set<std::string> words;
+  auto collectWords = [&](StringRef text) {
+    for (size_t i = 0; i < text.size();) {
+      if (!isalpha(static_cast<unsigned char>(text[i])) && text[i] != '_') {
+        ++i;
+        continue;
+      }
+      size_t j = i;
+      while (j < text.size() &&
+             (isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_'))
+        ++j;
+      words.insert(text.slice(i, j).upper());
+      i = j;
+    }
+  };
+  for (pugi::xml_node a : t.body.children("Algorithm")) {
+    pugi::xml_node st = a.child("ST");
+    collectWords(st.attribute("Text").value());
+    collectWords(st.child_value());
+  }
+  for (pugi::xml_node tr : child(t.body, "ECC").children("ECTransition"))
+    collectWords(tr.attribute("Condition").value());
+  if (words.empty())
+    return;
+  readGlobalConstants();
+  for (const auto &[name, decls] : globalConstants) {
+    if (!words.count(name) || currentPou->find(name))
+      continue;
+    const auto &[src, node] = decls.front();
+    for (const auto &[otherSrc, other] : decls)
+      if (StringRef(other.attribute("Type").value()) !=
+              node.attribute("Type").value() ||
+          StringRef(other.attribute("InitialValue").value()) !=
+              node.attribute("InitialValue").value()) {
+        diag.error(t.src->locOf(t.root),
+                   "'" + t.name + "' names the global constant '" +
+                       node.attribute("Name").value() +
+                       "', which two files declare differently");
+        diag.note(src->locOf(node), "one declaration");
+        diag.note(otherSrc->locOf(other), "the other");
+        throw Failure();
+      }
+    VarDecl *d = declare(node.attribute("Name").value(), typeOf(*src, node),
+                         VarSection::Var, src->locOf(node));
+    d->constant = true;
   }
 }

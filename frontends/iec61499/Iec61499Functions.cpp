@@ -28,7 +28,17 @@ bool Translator::modelFunctionFb(FbType &t) {
       !StringRef(t.inputs[0].name).equals_insensitive("IN") ||
       !StringRef(t.outputs[0].name).equals_insensitive("OUT"))
     return false;
-  StringRef name = t.name, from = t.inputs[0].type, to = t.outputs[0].type;
+  // The name abbreviates (F_DT_TO_DATE, F_TOD_TO_STRING) what the ports
+  // spell out (DATE_AND_TIME, TIME_OF_DAY).
+  auto shortName = [](StringRef type) -> StringRef {
+    if (type.equals_insensitive("DATE_AND_TIME"))
+      return "DT";
+    if (type.equals_insensitive("TIME_OF_DAY"))
+      return "TOD";
+    return type;
+  };
+  StringRef name = t.name, from = shortName(t.inputs[0].type),
+            to = shortName(t.outputs[0].type);
   std::string text;
   if (name.equals_insensitive(("F_" + from + "_TO_" + to).str()))
     text = "OUT := " + from.str() + "_TO_" + to.str() + "(IN);";
@@ -80,6 +90,27 @@ static const char *genericFunctionBody(StringRef name) {
       {"F_LIMIT", "OUT := LIMIT(MN, IN, MX);"},
       {"F_SEL", "OUT := SEL(G, IN0, IN1);"},
       {"F_MUX_2", "OUT := MUX(K, IN1, IN2);"},
+      {"F_SQRT", "OUT := SQRT(IN);"},
+      {"F_LN", "OUT := LN(IN);"},
+      {"F_LOG", "OUT := LOG(IN);"},
+      {"F_EXP", "OUT := EXP(IN);"},
+      {"F_SIN", "OUT := SIN(IN);"},
+      {"F_COS", "OUT := COS(IN);"},
+      {"F_TAN", "OUT := TAN(IN);"},
+      {"F_ASIN", "OUT := ASIN(IN);"},
+      {"F_ACOS", "OUT := ACOS(IN);"},
+      {"F_ATAN", "OUT := ATAN(IN);"},
+      {"F_EXPT", "OUT := EXPT(IN1, IN2);"},
+      {"F_TRUNC", "OUT := TRUNC(IN);"},
+      {"F_LEN", "OUT := LEN(IN);"},
+      {"F_LEFT", "OUT := LEFT(IN, L);"},
+      {"F_RIGHT", "OUT := RIGHT(IN, L);"},
+      {"F_MID", "OUT := MID(IN, L, P);"},
+      {"F_CONCAT", "OUT := CONCAT(IN1, IN2);"},
+      {"F_INSERT", "OUT := INSERT(IN1, IN2, P);"},
+      {"F_DELETE", "OUT := DELETE(IN, L, P);"},
+      {"F_REPLACE", "OUT := REPLACE(IN1, IN2, L, P);"},
+      {"F_FIND", "OUT := FIND(IN1, IN2);"},
   };
   for (const auto &[n, body] : kBodies)
     if (name.equals_insensitive(n))

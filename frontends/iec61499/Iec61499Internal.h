@@ -179,7 +179,7 @@ private:
   /// Reads a file of the -I directories found for type `name`, which it
   /// must declare.
   File &readLibraryFile(const std::string &path, StringRef name, SMLoc use);
-  FbType *libraryType(StringRef name);
+  FbType *libraryType(StringRef name, SMLoc use = SMLoc());
   void collect(FbType &t);
   void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
   FbType &generatedType(const std::string &name, const std::string &text);
@@ -325,6 +325,22 @@ private:
   std::map<std::string, std::pair<XmlSource *, pugi::xml_node>> dataTypes;
   std::set<std::string> declaredDataTypes;
   bool indexed = false;
+  /// 4diac IDE 3's global constants (`.gcf`) of the inputs and the -I
+  /// directories: each declaration by upper-case name (one per file that
+  /// declares the name).
+  std::map<std::string, std::vector<std::pair<XmlSource *, pugi::xml_node>>>
+      globalConstants;
+  std::vector<std::string> globalConstantFiles; // .gcf found on -I
+  bool globalConstantsRead = false;
+  void addGlobalConstants(File &f);
+  /// Reads the .gcf files of the -I directories (once).
+  void readGlobalConstants();
+  /// Declares in the basic FB being lowered the global constants its
+  /// algorithms and transition conditions name and it does not declare.
+  void declareGlobalConstantsUsed(
+      FbType &t,
+      llvm::function_ref<VarDecl *(StringRef, TypeSyntax *, VarSection, SMLoc)>
+          declare);
 
   // Basic FBs lowered together.
   Unit unit;
@@ -403,6 +419,10 @@ inline bool isDeclarationsOnly(StringRef rootElement) {
 
 /// Service FBs netlift has a model of (whatever file declares them).
 bool isShipped(StringRef name);
+/// The XML of a 4diac standard library type that netlift knows by name
+/// (F_ADD, F_INT_TO_REAL, IX, PUBLISH_2, FB_CTU...; Iec61499Standard.cpp),
+/// or nullopt.
+std::optional<std::string> standardTypeXml(StringRef name);
 /// The FB elements of a network, in document order.
 std::vector<pugi::xml_node> blocksOf(pugi::xml_node net);
 

@@ -155,6 +155,8 @@ void Translator::registerTypes(File &f, bool builtin) {
     }
     return;
   }
+  if (kind == "GlobalConstants")
+    addGlobalConstants(f);
   if (isPlatformType(kind) || isDeclarationsOnly(kind))
     return;
   auto t = std::make_unique<FbType>();
@@ -222,6 +224,8 @@ void Translator::indexLibraries() {
           ext.equals_insensitive(".adp") || ext.equals_insensitive(".dtp") ||
           ext.equals_insensitive(".fct"))
         found.push_back(it->path());
+      else if (ext.equals_insensitive(".gcf"))
+        globalConstantFiles.push_back(it->path());
     }
     if (ec)
       fail(SMLoc(), "-I " + dir + ": " + ec.message());
@@ -241,7 +245,7 @@ FbType *Translator::searchLibraries(StringRef name, SMLoc use) {
     if (auto t = types.find(key); t != types.end())
       return t->second.get();
   }
-  return libraryType(name);
+  return libraryType(name, use);
 }
 
 File &Translator::readLibraryFile(const std::string &path, StringRef name,
@@ -265,7 +269,7 @@ File &Translator::readLibraryFile(const std::string &path, StringRef name,
   return f;
 }
 
-FbType *Translator::libraryType(StringRef name) {
+FbType *Translator::libraryType(StringRef name, SMLoc use) {
   for (const LibraryFile &lf : kLibraryFiles)
     if (llvm::sys::path::stem(lf.name).equals_insensitive(name)) {
       unsigned id = diag.sourceMgr().AddNewSourceBuffer(
@@ -276,7 +280,20 @@ FbType *Translator::libraryType(StringRef name) {
       if (auto t = types.find(name.upper()); t != types.end())
         return t->second.get();
     }
-  return nullptr;
+  std::optional<std::string> xml = standardTypeXml(name);
+  if (!xml)
+    return nullptr;
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(
+          *xml, ("<netlift library>/" + name + ".fbt").str()),
+      SMLoc());
+  registerTypes(readFile(id), true);
+  diag.note(use, "type '" + name +
+                     "' is in neither the inputs nor the -I directories: "
+                     "netlift takes it as 4diac's standard library type of "
+                     "that name (docs/iec61499.md)");
+  auto t = types.find(name.upper());
+  return t == types.end() ? nullptr : t->second.get();
 }
 
 FbType *Translator::findType(StringRef name, SMLoc use, const char *what) {
