@@ -122,6 +122,34 @@ bool netlift::iec61499::detail::isGenericType(StringRef type) {
   return type.startswith_insensitive("ANY");
 }
 
+std::string
+netlift::iec61499::detail::varListXml(const char *tag,
+                                      const std::vector<PortSpec> &vars) {
+  std::string text = std::string("<") + tag + ">";
+  for (const PortSpec &p : vars)
+    text += "<VarDeclaration Name=\"" + p.name + "\" Type=\"" + p.type + "\"/>";
+  return text + "</" + tag + ">\n";
+}
+
+std::string
+netlift::iec61499::detail::interfaceListContents(const InterfaceSpec &spec) {
+  std::string text;
+  for (const auto &[tag, list] :
+       {std::pair{"EventInputs", &spec.eventInputs},
+        std::pair{"EventOutputs", &spec.eventOutputs}}) {
+    text += std::string("<") + tag + ">";
+    for (const EventSpec &e : *list) {
+      text += "<Event Name=\"" + e.name + "\">";
+      for (const std::string &w : e.with)
+        text += "<With Var=\"" + w + "\"/>";
+      text += "</Event>";
+    }
+    text += std::string("</") + tag + ">\n";
+  }
+  return text + varListXml("InputVars", spec.inputs) +
+         varListXml("OutputVars", spec.outputs);
+}
+
 std::string netlift::iec61499::detail::interfaceXml(
     const std::string &name, const FbType &t,
     llvm::function_ref<std::string(const Var &)> typeOf) {
@@ -132,31 +160,27 @@ std::string netlift::iec61499::detail::interfaceXml(
           return !typeOf(v).empty();
     return true;
   };
-  std::string text = "<FBType Name=\"" + name + "\">\n<InterfaceList>\n";
-  auto events = [&](const char *tag, const std::vector<Event> &list) {
-    text += std::string("<") + tag + ">";
-    for (const Event &e : list) {
-      text += "<Event Name=\"" + e.name + "\">";
+  InterfaceSpec spec;
+  auto events = [&](const std::vector<Event> &from,
+                    std::vector<EventSpec> &to) {
+    for (const Event &e : from) {
+      EventSpec &out = to.emplace_back(EventSpec{e.name, {}});
       for (const std::string &w : e.with)
         if (kept(w))
-          text += "<With Var=\"" + w + "\"/>";
-      text += "</Event>";
+          out.with.push_back(w);
     }
-    text += std::string("</") + tag + ">\n";
   };
-  auto vars = [&](const char *tag, const std::vector<Var> &list) {
-    text += std::string("<") + tag + ">";
-    for (const Var &v : list)
+  auto vars = [&](const std::vector<Var> &from, std::vector<PortSpec> &to) {
+    for (const Var &v : from)
       if (std::string type = typeOf(v); !type.empty())
-        text +=
-            "<VarDeclaration Name=\"" + v.name + "\" Type=\"" + type + "\"/>";
-    text += std::string("</") + tag + ">\n";
+        to.push_back({v.name, type});
   };
-  events("EventInputs", t.eventInputs);
-  events("EventOutputs", t.eventOutputs);
-  vars("InputVars", t.inputs);
-  vars("OutputVars", t.outputs);
-  return text;
+  events(t.eventInputs, spec.eventInputs);
+  events(t.eventOutputs, spec.eventOutputs);
+  vars(t.inputs, spec.inputs);
+  vars(t.outputs, spec.outputs);
+  return "<FBType Name=\"" + name + "\">\n<InterfaceList>\n" +
+         interfaceListContents(spec);
 }
 
 /// The type a typed literal names (`DINT#7`, `T#1s`, `WORD#16#FF`,

@@ -132,6 +132,25 @@ inline std::string adapterPort(StringRef adapter, StringRef element) {
   return adapter.str() + "_" + element.str();
 }
 
+/// A port and an event of an interface the frontend writes as XML for a
+/// type it generates (interfaceXml; Iec61499Standard.cpp).
+struct PortSpec {
+  std::string name, type;
+};
+struct EventSpec {
+  std::string name;
+  std::vector<std::string> with;
+};
+struct InterfaceSpec {
+  std::vector<EventSpec> eventInputs, eventOutputs;
+  std::vector<PortSpec> inputs, outputs;
+};
+/// `<tag><VarDeclaration Name Type/>...</tag>`.
+std::string varListXml(const char *tag, const std::vector<PortSpec> &vars);
+/// What an `<InterfaceList>` holds for `spec`: its event and variable
+/// lists.
+std::string interfaceListContents(const InterfaceSpec &spec);
+
 /// The start of an `<FBType>` named `name` with `t`'s interface, each
 /// variable of the type `typeOf` gives it (empty: left out, with its With
 /// references), up to the open `<InterfaceList>`'s end (the frontend's

@@ -25,20 +25,10 @@ using namespace netlift::iec61499::detail;
 
 namespace {
 
-struct PortSpec {
-  std::string name, type;
-};
-
-struct EventSpec {
-  std::string name;
-  std::vector<std::string> with;
-};
-
 /// An interface (and, for the IEC 61131-3 function blocks, the ST run on
 /// REQ over internal variables) from which the type's XML is written.
-struct TypeSpec {
-  std::vector<EventSpec> eventInputs, eventOutputs;
-  std::vector<PortSpec> inputs, outputs, internals;
+struct TypeSpec : InterfaceSpec {
+  std::vector<PortSpec> internals;
   std::string requestBody; // a SimpleFB's REQ algorithm, or none
 
   /// REQ with every input, CNF with every output: IEC 61131-3's call of a
@@ -387,32 +377,12 @@ std::optional<TypeSpec> serviceBlock(StringRef name) {
 std::string xmlOf(StringRef name, const TypeSpec &t) {
   std::string x = "<FBType Name=\"" + name.str() +
                   "\" Comment=\"netlift: 4diac standard library type known "
-                  "by name\">\n<InterfaceList>\n";
-  auto events = [&](const char *tag, const std::vector<EventSpec> &list) {
-    x += std::string("<") + tag + ">";
-    for (const EventSpec &e : list) {
-      x += "<Event Name=\"" + e.name + "\">";
-      for (const std::string &w : e.with)
-        x += "<With Var=\"" + w + "\"/>";
-      x += "</Event>";
-    }
-    x += std::string("</") + tag + ">\n";
-  };
-  auto vars = [&](const char *tag, const std::vector<PortSpec> &list) {
-    x += std::string("<") + tag + ">";
-    for (const PortSpec &p : list)
-      x += "<VarDeclaration Name=\"" + p.name + "\" Type=\"" + p.type + "\"/>";
-    x += std::string("</") + tag + ">\n";
-  };
-  events("EventInputs", t.eventInputs);
-  events("EventOutputs", t.eventOutputs);
-  vars("InputVars", t.inputs);
-  vars("OutputVars", t.outputs);
-  x += "</InterfaceList>\n";
+                  "by name\">\n<InterfaceList>\n" +
+                  interfaceListContents(t) + "</InterfaceList>\n";
   if (!t.requestBody.empty()) {
     x += "<SimpleFB>";
     if (!t.internals.empty())
-      vars("InternalVars", t.internals);
+      x += varListXml("InternalVars", t.internals);
     x += "<Algorithm Name=\"REQ\"><ST Text=\"" + xmlEscape(t.requestBody) +
          "\"/></Algorithm></SimpleFB>\n";
   }
