@@ -356,8 +356,9 @@ std::optional<TypeSpec> standardBlock(StringRef name) {
   return t;
 }
 
-/// OUT_ANY_CONSOLE and FB_TON/TOF/TP: service FBs of 4diac's library
-/// whose behaviour is the runtime's (a console, the runtime's clock).
+/// OUT_ANY_CONSOLE, FB_TON/TOF/TP and the test utilities: service FBs of
+/// 4diac's library whose behaviour is the runtime's (a console, the
+/// runtime's clock, a test harness).
 std::optional<TypeSpec> serviceBlock(StringRef name) {
   std::string n = name.upper();
   if (n == "OUT_ANY_CONSOLE") {
@@ -366,6 +367,21 @@ std::optional<TypeSpec> serviceBlock(StringRef name) {
     t.outputs = {{"QO", "BOOL"}};
     t.eventInputs.push_back({"REQ", {"QI", "LABEL", "IN"}});
     t.eventOutputs.push_back({"CNF", {"QO"}});
+    return t;
+  }
+  // 4diac's test utilities: TEST_CONDITION reports its `check` (the
+  // expectation a user proves with `check`, docs/iec61499.md), STEST_END
+  // ends a test run; APPEND_STRING_n formats values for a log.
+  if (n == "TEST_CONDITION")
+    return TypeSpec::request({{"check", "BOOL"}}, {});
+  if (n == "STEST_END") {
+    TypeSpec t;
+    t.eventInputs.push_back({"REQ", {}});
+    return t;
+  }
+  if (auto count = countAfter(n, "APPEND_STRING_"); count && *count >= 2) {
+    TypeSpec t = TypeSpec::request({}, {{"OUT", "STRING"}});
+    numbered(t.inputs, t.eventInputs[0].with, "IN_", *count);
     return t;
   }
   if (n == "FB_TON" || n == "FB_TOF" || n == "FB_TP")
