@@ -170,6 +170,19 @@ TypeSyntax *Translator::typeOf(XmlSource &src, pugi::xml_node decl) {
     ts->init = st::parseStInitializer(init, diag, unit);
     if (!ts->init)
       throw Failure();
+    // A duration a block starts with may reach an E_DELAY's DT (a table of
+    // delays feeding E_TABLE): it bounds the delays' clocks as a duration
+    // parameter does.
+    std::function<void(const Initializer *)> durations =
+        [&](const Initializer *i) {
+          if (i->value && i->value->kind == ExprKind::TimeLit)
+            parameterTimes.push_back(i->value->intValue);
+          for (const auto &elem : i->elems)
+            durations(elem.second);
+          for (const auto &field : i->fields)
+            durations(field.second);
+        };
+    durations(ts->init);
   }
   return ts;
 }

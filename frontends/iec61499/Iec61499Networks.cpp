@@ -50,6 +50,13 @@ std::string Translator::parameterModule(XmlSource &src, StringRef type,
                                         pugi::xml_node param) {
   SMLoc at = src.locOf(param);
   StringRef text = src.placeAttribute(param, "Value");
+  // 4diac writes an array or structure parameter as its initialiser.
+  if (text.trim().startswith("[") || text.trim().startswith("("))
+    fail(at, "parameter '" + Twine(param.attribute("Name").value()) +
+                 "' gives an array or structure value ('" + text.trim() +
+                 "'), which netlift does not take as a parameter: connect "
+                 "the input, or give the value as the input's InitialValue "
+                 "in its type");
   Expr *e = st::parseStExpression(text, diag, unit);
   if (!e)
     throw Failure();
