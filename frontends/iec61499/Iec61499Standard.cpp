@@ -5,7 +5,7 @@
 // F_ADD, F_INT_TO_REAL, IX, PUBLISH_1 or FB_CTU is often in no file the
 // user can give with -I. netlift knows these types by name: where a type is
 // neither in the inputs, nor in the -I directories, nor one of
-// lib/iec61499's basic FBs, a name of the standard library's families gets
+// lib/iec61499's blocks, a name of the standard library's families gets
 // the interface the standard gives it (IEC 61131-3's function signatures
 // and function blocks as 4diac wraps them: REQ with the inputs, CNF with
 // the outputs; 4diac's service interfaces for communication and I/O). The
