@@ -378,13 +378,8 @@ void Translator::readGlobalConstants() {
     return;
   globalConstantsRead = true;
   indexLibraries();
-  for (const std::string &path : globalConstantFiles) {
-    auto buf = llvm::MemoryBuffer::getFile(path);
-    if (!buf)
-      fail(SMLoc(), "cannot read '" + path + "': " + buf.getError().message());
-    unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
-    addGlobalConstants(readFile(id));
-  }
+  for (const std::string &path : globalConstantFiles)
+    addGlobalConstants(readPath(path));
 }
 
 void Translator::declareGlobalConstantsUsed(

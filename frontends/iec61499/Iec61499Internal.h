@@ -186,6 +186,8 @@ private:
 
   // Reading.
   File &readFile(unsigned id);
+  /// Reads the file at `path` (found in a -I directory).
+  File &readPath(const std::string &path);
   void registerTypes(File &f, bool builtin);
   void readInterface(FbType &t, pugi::xml_node iface);
   void expandAdapters(FbType &t);

@@ -248,13 +248,17 @@ FbType *Translator::searchLibraries(StringRef name, SMLoc use) {
   return libraryType(name, use);
 }
 
-File &Translator::readLibraryFile(const std::string &path, StringRef name,
-                                  SMLoc use) {
+File &Translator::readPath(const std::string &path) {
   auto buf = llvm::MemoryBuffer::getFile(path);
   if (!buf)
     fail(SMLoc(), "cannot read '" + path + "': " + buf.getError().message());
-  unsigned id = diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc());
-  File &f = readFile(id);
+  return readFile(
+      diag.sourceMgr().AddNewSourceBuffer(std::move(*buf), SMLoc()));
+}
+
+File &Translator::readLibraryFile(const std::string &path, StringRef name,
+                                  SMLoc use) {
+  File &f = readPath(path);
   // The file is found by its name; the type it declares must be the one
   // asked for, or the block would silently run another type (or
   // netlift's own model of the name).

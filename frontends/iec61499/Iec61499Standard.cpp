@@ -33,9 +33,12 @@ struct TypeSpec : InterfaceSpec {
 
   /// REQ with every input, CNF with every output: IEC 61131-3's call of a
   /// function or function block as 4diac wraps it.
+  /// `body` runs on REQ over `internals` (a function block's memory).
   static TypeSpec request(std::vector<PortSpec> in, std::vector<PortSpec> out,
-                          std::string body = "") {
+                          std::string body = "",
+                          std::vector<PortSpec> internals = {}) {
     TypeSpec t;
+    t.internals = std::move(internals);
     t.inputs = std::move(in);
     t.outputs = std::move(out);
     EventSpec req{"REQ", {}}, cnf{"CNF", {}};
@@ -193,6 +196,18 @@ void numbered(std::vector<PortSpec> &to, std::vector<std::string> &with,
   }
 }
 
+/// The part 4diac's service FBs share: INIT with QI and their parameter
+/// (`ID`, `PARAMS`), answered by INITO with QO and STATUS (a string of the
+/// parameter's type).
+TypeSpec initialised(const char *parameter, const char *stringType) {
+  TypeSpec t;
+  t.inputs = {{"QI", "BOOL"}, {parameter, stringType}};
+  t.outputs = {{"QO", "BOOL"}, {"STATUS", stringType}};
+  t.eventInputs.push_back({"INIT", {"QI", parameter}});
+  t.eventOutputs.push_back({"INITO", {"QO", "STATUS"}});
+  return t;
+}
+
 /// PUBLISH_n / SUBSCRIBE_n, CLIENT_m_n / SERVER_m_n (m data sent, n
 /// received; CLIENT_n is CLIENT_n_n): 4diac's communication service FBs.
 std::optional<TypeSpec> communication(StringRef name) {
@@ -221,11 +236,7 @@ std::optional<TypeSpec> communication(StringRef name) {
     if (!k.empty() && (k.getAsInteger(10, received) || received > 99))
       return std::nullopt;
   }
-  TypeSpec t;
-  t.inputs = {{"QI", "BOOL"}, {"ID", "WSTRING"}};
-  t.outputs = {{"QO", "BOOL"}, {"STATUS", "WSTRING"}};
-  t.eventInputs.push_back({"INIT", {"QI", "ID"}});
-  t.eventOutputs.push_back({"INITO", {"QO", "STATUS"}});
+  TypeSpec t = initialised("ID", "WSTRING");
   EventSpec send{requester ? "REQ" : "RSP", {"QI"}};
   EventSpec back{requester ? "CNF" : "IND", {"QO", "STATUS"}};
   numbered(t.inputs, send.with, "SD_", sent);
@@ -250,11 +261,7 @@ std::optional<TypeSpec> processImage(StringRef name) {
                          .Default(nullptr);
   if (!type)
     return std::nullopt;
-  TypeSpec t;
-  t.inputs = {{"QI", "BOOL"}, {"PARAMS", "STRING"}};
-  t.outputs = {{"QO", "BOOL"}, {"STATUS", "STRING"}};
-  t.eventInputs.push_back({"INIT", {"QI", "PARAMS"}});
-  t.eventOutputs.push_back({"INITO", {"QO", "STATUS"}});
+  TypeSpec t = initialised("PARAMS", "STRING");
   if (n[0] == 'I') {
     t.outputs.push_back({"IN", type});
     t.eventInputs.push_back({"REQ", {"QI"}});
@@ -274,12 +281,11 @@ std::optional<TypeSpec> processImage(StringRef name) {
 std::optional<TypeSpec> standardBlock(StringRef name) {
   std::string n = name.upper();
   if (n == "FB_R_TRIG" || n == "FB_F_TRIG") {
-    TypeSpec t = TypeSpec::request(
-        {{"CLK", "BOOL"}}, {{"Q", "BOOL"}},
-        n == "FB_R_TRIG" ? "Q := CLK AND NOT M; M := CLK;"
-                         : "Q := NOT CLK AND NOT M; M := NOT CLK;");
-    t.internals = {{"M", "BOOL"}};
-    return t;
+    return TypeSpec::request({{"CLK", "BOOL"}}, {{"Q", "BOOL"}},
+                             n == "FB_R_TRIG"
+                                 ? "Q := CLK AND NOT M; M := CLK;"
+                                 : "Q := NOT CLK AND NOT M; M := NOT CLK;",
+                             {{"M", "BOOL"}});
   }
   if (n == "FB_SR")
     return TypeSpec::request({{"S1", "BOOL"}, {"R", "BOOL"}}, {{"Q1", "BOOL"}},
@@ -322,25 +328,23 @@ std::optional<TypeSpec> standardBlock(StringRef name) {
   std::string up = "CU AND NOT CU_M AND CV < " + max;
   std::string down = "CD AND NOT CD_M AND CV > " + min;
   if (kind == "FB_CTU") {
-    TypeSpec t = TypeSpec::request(
+    return TypeSpec::request(
         {{"CU", "BOOL"}, {"R", "BOOL"}, {"PV", count}},
         {{"Q", "BOOL"}, {"CV", count}},
         "IF R THEN CV := 0; ELSIF " + up +
-            " THEN CV := CV + 1; END_IF; CU_M := CU; Q := CV >= PV;");
-    t.internals = {{"CU_M", "BOOL"}};
-    return t;
+            " THEN CV := CV + 1; END_IF; CU_M := CU; Q := CV >= PV;",
+        {{"CU_M", "BOOL"}});
   }
   if (kind == "FB_CTD") {
-    TypeSpec t = TypeSpec::request(
+    return TypeSpec::request(
         {{"CD", "BOOL"}, {"LD", "BOOL"}, {"PV", count}},
         {{"Q", "BOOL"}, {"CV", count}},
         "IF LD THEN CV := PV; ELSIF " + down +
-            " THEN CV := CV - 1; END_IF; CD_M := CD; Q := CV <= 0;");
-    t.internals = {{"CD_M", "BOOL"}};
-    return t;
+            " THEN CV := CV - 1; END_IF; CD_M := CD; Q := CV <= 0;",
+        {{"CD_M", "BOOL"}});
   }
   // Both edges at once count neither way.
-  TypeSpec t = TypeSpec::request(
+  return TypeSpec::request(
       {{"CU", "BOOL"},
        {"CD", "BOOL"},
        {"R", "BOOL"},
@@ -351,9 +355,8 @@ std::optional<TypeSpec> standardBlock(StringRef name) {
       "CU_M AND CD AND NOT CD_M) THEN IF " +
           up + " THEN CV := CV + 1; ELSIF " + down +
           " THEN CV := CV - 1; END_IF; END_IF; CU_M := CU; CD_M := CD; "
-          "QU := CV >= PV; QD := CV <= 0;");
-  t.internals = {{"CU_M", "BOOL"}, {"CD_M", "BOOL"}};
-  return t;
+          "QU := CV >= PV; QD := CV <= 0;",
+      {{"CU_M", "BOOL"}, {"CD_M", "BOOL"}});
 }
 
 /// OUT_ANY_CONSOLE, FB_TON/TOF/TP and the test utilities: service FBs of
