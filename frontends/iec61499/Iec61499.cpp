@@ -66,7 +66,13 @@ bool Translator::run(const std::vector<unsigned> &ids,
           }
     }
 
-    // Basic FBs first: their lowering fixes the tick.
+    // Basic FBs first: their lowering fixes the tick. The types of internal
+    // FBs before those: their owners declare instances of them.
+    for (FbType *t : internalOrder)
+      if (t->kind == TypeKind::Basic)
+        basicBlock(*t, /*asInternal=*/true);
+      else
+        internalEnvironmentPou(*t);
     for (FbType *t : order) {
       switch (t->kind) {
       case TypeKind::Basic:

@@ -79,6 +79,7 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
     if (!st::parseAlgorithmBody(text, diag, unit, temps, out))
       throw Failure();
     callFunctionTypes(out);
+    callInternalFbs(t, out);
     if (temps.empty()) {
       rename(out);
       return out;
@@ -265,11 +266,11 @@ void Translator::simpleAsBasic(FbType &t) {
   }
 }
 
-void Translator::basicBlock(FbType &t) {
+void Translator::basicBlock(FbType &t, bool asInternal) {
   SMLoc at = t.src->locOf(t.root);
   auto *pou = unit.make<Pou>();
-  pou->kind = PouKind::Program;
-  pou->name = t.name;
+  pou->kind = asInternal ? PouKind::FunctionBlock : PouKind::Program;
+  pou->name = asInternal ? internalFbPou(t.name) : t.name;
   pou->loc = at;
   unit.pous.push_back(pou);
   copied.clear();
@@ -277,8 +278,9 @@ void Translator::basicBlock(FbType &t) {
   currentPou = pou;
   algorithmTemps.clear();
   // The environment's queue stays event-driven: it feeds the cycle.
-  bool cyclic =
-      semantics == "cyclic" && !StringRef(t.name).startswith("_Inputs_");
+  // An internal FB reacts when its owner calls it, whatever the model.
+  bool cyclic = semantics == "cyclic" && !asInternal &&
+                !StringRef(t.name).startswith("_Inputs_");
 
   auto declare = [&](StringRef name, TypeSyntax *ts, VarSection s, SMLoc loc) {
     if (pou->find(name))
@@ -327,12 +329,20 @@ void Translator::basicBlock(FbType &t) {
   }
   for (const char *list : {"InternalVars", "InternalConstVars"})
     for (pugi::xml_node v : child(t.body, list).children()) {
-      if (localName(v) == "FB")
-        fail(t, v,
-             "internal FB '" + Twine(v.attribute("Name").value()) + "' of '" +
-                 t.name +
-                 "' is not supported (4diac's FB instances inside a "
-                 "basic or simple FB)");
+      if (localName(v) == "FB" && StringRef(list) == "InternalVars") {
+        StringRef name = v.attribute("Name").value();
+        for (auto &[n, inner] : t.internalFbs)
+          if (n == name) {
+            if (scaffoldingName(name))
+              fail(t, v,
+                   "internal FB '" + name + "' of '" + t.name +
+                       "' has a name netlift's model of the block uses; "
+                       "rename it");
+            declare(name, internalFbDecl(t, v, *inner), VarSection::Var,
+                    t.src->locOf(v));
+          }
+        continue;
+      }
       if (localName(v) != "VarDeclaration")
         continue;
       StringRef name = v.attribute("Name").value();
@@ -425,7 +435,10 @@ void Translator::basicBlock(FbType &t) {
   std::vector<std::pair<std::string, SMLoc>> eventOutputs;
   for (const Event &e : t.eventOutputs)
     eventOutputs.push_back({e.name, t.src->locOf(e.node)});
-  if (!t.eventOutputs.empty()) {
+  if (asInternal)
+    declare(kInternalEvent, subrange(0, int64_t(t.eventInputs.size())),
+            VarSection::Input, at);
+  else if (!t.eventOutputs.empty()) {
     auto *queue = unit.make<TypeSyntax>(TypeSyntaxKind::Array, at);
     queue->dims.push_back(
         {intLit(unit, 0, at), intLit(unit, kMaxQueued - 1, at)});
@@ -491,6 +504,9 @@ void Translator::basicBlock(FbType &t) {
         for (const std::string &w : ev->with)
           out.push_back(assign(unit, nameRef(unit, w, loc),
                                nameRef(unit, internal(w), loc), loc));
+        // An internal FB's output events are connected to nothing.
+        if (asInternal)
+          continue;
         int64_t number = ev - &t.eventOutputs.front() + 1;
         out.push_back(assign(unit, queueAt(nameRef(unit, "_queued", loc), loc),
                              intLit(unit, number, loc), loc));
@@ -511,6 +527,8 @@ void Translator::basicBlock(FbType &t) {
   block.eventOutputs = eventOutputs;
   // Sending the queue's head: the rest moves up.
   for (const Event &e : t.eventOutputs) {
+    if (asInternal)
+      break;
     SMLoc loc = t.src->locOf(e.node);
     int64_t number = &e - &t.eventOutputs.front() + 1;
     EventSend send;
@@ -620,8 +638,20 @@ void Translator::basicBlock(FbType &t) {
     h.insert(h.end(), armed.begin(), armed.end());
     h.push_back(loop);
   };
+  // As an internal FB: `CASE _call OF 1: <reaction to the first event>...`.
+  Stmt *selectEvent = unit.make<Stmt>(StmtKind::Case, at);
+  selectEvent->value = nameRef(unit, kInternalEvent, at);
   auto handle = [&](StringRef event, StmtList h, SMLoc loc,
                     bool latch = false) {
+    if (asInternal) {
+      CaseArmSyntax arm;
+      arm.labels.push_back(
+          {intLit(unit, int64_t(selectEvent->caseArms.size()) + 1, loc),
+           nullptr});
+      arm.body = std::move(h);
+      selectEvent->caseArms.push_back(std::move(arm));
+      return;
+    }
     pou->body.insert(pou->body.end(), h.begin(), h.end());
     block.handlers.push_back({event.str(), std::move(h), loc, latch});
   };
@@ -699,6 +729,10 @@ void Translator::basicBlock(FbType &t) {
           loc);
       handle(ei.name, std::move(h), loc);
     }
+  }
+  if (asInternal) {
+    pou->body.push_back(selectEvent);
+    return;
   }
   blocks.push_back(std::move(block));
 }

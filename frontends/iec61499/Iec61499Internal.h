@@ -28,6 +28,7 @@
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -56,6 +57,13 @@ constexpr int kMaxQueued = 8;
 /// reaction is the block's turn in the cycle (CyclicOrder.cpp gives the
 /// turns).
 constexpr const char *kCycleTurn = "_run";
+/// The input of an internal FB's ST function block that says which event
+/// a call delivers (its number, from 1).
+constexpr const char *kInternalEvent = "_call";
+/// The ST function block running type `name` as an internal FB.
+inline std::string internalFbPou(llvm::StringRef name) {
+  return name.str() + "__INTERNAL";
+}
 
 struct Failure {};
 
@@ -115,6 +123,9 @@ struct FbType {
   /// RD_i it received (a subscriber's or server's IND, a client's CNF);
   /// empty where it does not.
   std::string sendEvent, deliverEvent;
+  /// A basic or simple FB's internal FBs (4diac IDE 2 and later: `<FB>`s
+  /// among its `InternalVars`), by instance name, in document order.
+  std::vector<std::pair<std::string, FbType *>> internalFbs;
   bool channelEnd() const {
     return !sendEvent.empty() || !deliverEvent.empty();
   }
@@ -252,7 +263,26 @@ private:
   void noteTypeOnlyFile(File &f);
 
   // Basic FBs.
-  void basicBlock(FbType &t);
+  /// The block's module when `asInternal` is false; otherwise the ST
+  /// function block that runs the type as another basic FB's internal FB
+  /// (internalFbPou): input `_call` selects the event, output events go
+  /// nowhere.
+  void basicBlock(FbType &t, bool asInternal = false);
+  /// Finds the types of `t`'s internal FBs, each before the types using
+  /// it, appending them to internalOrder (Iec61499InternalFbs.cpp).
+  void collectInternalFbs(FbType &t);
+  /// An algorithm's event calls of internal FBs (`fb.REQ(IN := x, OUT =>
+  /// y)`) as calls of the ST function blocks that model them.
+  void callInternalFbs(FbType &t, StmtList &body);
+  /// The declaration of internal FB `fb` (of type `inner`) in its owner's
+  /// POU: its type, with its `<Parameter>`s as initial values.
+  /// A service FB's ST function block as an internal FB: environment (its
+  /// outputs take any value at a call).
+  void internalEnvironmentPou(FbType &t);
+  TypeSyntax *internalFbDecl(FbType &owner, pugi::xml_node fb,
+                             const FbType &inner);
+  std::vector<FbType *> internalOrder;
+  std::set<const FbType *> internalVisiting, internalDone;
   TypeSyntax *typeOf(XmlSource &src, pugi::xml_node decl);
   StmtList algorithm(FbType &t, StringRef name, pugi::xml_node at);
   Expr *guard(FbType &t, pugi::xml_node transition, std::string &event);

@@ -354,6 +354,7 @@ void Translator::collect(FbType &t) {
       collect(generatedType("_Inputs_" + t.name, inputQueueType(t)));
     collectNetwork(*t.src, t.body, &t);
   }
+  collectInternalFbs(t);
   order.push_back(&t);
 }
 
