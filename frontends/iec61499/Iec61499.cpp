@@ -132,7 +132,8 @@ bool Translator::run(const std::vector<unsigned> &ids,
       if (t->kind == TypeKind::Basic || t->kind == TypeKind::Composite ||
           t->kind == TypeKind::SubApp)
         continue;
-      else if (t->name == "E_DELAY" || t->name == "E_CYCLE")
+      else if (t->name == "E_DELAY" || t->name == "E_RDELAY" ||
+               t->name == "E_CYCLE")
         serviceModule(*t);
       else if (t->name == "E_RESTART")
         restartModule(*t);

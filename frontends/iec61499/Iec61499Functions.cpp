@@ -20,7 +20,45 @@ using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 /// simple FB whose REQ algorithm is `OUT := A_TO_B(IN);` (or `OUT := IN;`),
 /// so that the conversion is the ST frontend's (a conversion it refuses,
 /// such as to REAL or STRING, is refused at that algorithm).
+/// Whether `t`'s interface is the one typedFunction gives its name: REQ
+/// and CNF with every variable, the inputs and the output of those names
+/// and types in that order.
+static bool hasInterfaceOf(const FbType &t, const TypedFunction &f) {
+  auto same = [](const std::vector<Var> &vars,
+                 const std::vector<PortSpec> &ports) {
+    if (vars.size() != ports.size())
+      return false;
+    for (size_t i = 0; i < vars.size(); ++i)
+      if (!StringRef(vars[i].name).equals_insensitive(ports[i].name) ||
+          !StringRef(vars[i].type).equals_insensitive(ports[i].type))
+        return false;
+    return true;
+  };
+  return t.eventInputs.size() == 1 && t.eventOutputs.size() == 1 &&
+         StringRef(t.eventInputs[0].name).equals_insensitive("REQ") &&
+         StringRef(t.eventOutputs[0].name).equals_insensitive("CNF") &&
+         same(t.inputs, f.inputs) && same(t.outputs, {f.output});
+}
+
+/// Gives body-less `t` the simple FB whose REQ runs `text`.
+void Translator::runOnRequest(FbType &t, const std::string &text) {
+  t.body = t.root.append_child("SimpleFB");
+  pugi::xml_node alg = t.body.append_child("Algorithm");
+  alg.append_attribute("Name") = t.eventInputs[0].name.c_str();
+  alg.append_child("ST").append_attribute("Text") = text.c_str();
+  simpleAsBasic(t);
+}
+
 bool Translator::modelFunctionFb(FbType &t) {
+  if (std::optional<TypedFunction> f = typedFunction(t.name);
+      f && hasInterfaceOf(t, *f)) {
+    std::string args;
+    for (const PortSpec &p : f->inputs)
+      args += (args.empty() ? "" : ", ") + p.name;
+    runOnRequest(t, "OUT := " + StringRef(t.name).drop_front(2).upper() + "(" +
+                        args + ");");
+    return true;
+  }
   if (t.eventInputs.size() != 1 || t.eventOutputs.size() != 1 ||
       t.inputs.size() != 1 || t.outputs.size() != 1 ||
       !StringRef(t.eventInputs[0].name).equals_insensitive("REQ") ||
@@ -47,11 +85,7 @@ bool Translator::modelFunctionFb(FbType &t) {
     text = "OUT := IN;";
   else
     return false;
-  t.body = t.root.append_child("SimpleFB");
-  pugi::xml_node alg = t.body.append_child("Algorithm");
-  alg.append_attribute("Name") = t.eventInputs[0].name.c_str();
-  alg.append_child("ST").append_attribute("Text") = text.c_str();
-  simpleAsBasic(t);
+  runOnRequest(t, text);
   return true;
 }
 
@@ -102,6 +136,8 @@ static const char *genericFunctionBody(StringRef name) {
       {"F_ATAN", "OUT := ATAN(IN);"},
       {"F_EXPT", "OUT := EXPT(IN1, IN2);"},
       {"F_TRUNC", "OUT := TRUNC(IN);"},
+      {"F_MULTIME", "OUT := MUL_TIME(IN1, IN2);"},
+      {"F_DIVTIME", "OUT := DIV_TIME(IN1, IN2);"},
       {"F_LEN", "OUT := LEN(IN);"},
       {"F_LEFT", "OUT := LEFT(IN, L);"},
       {"F_RIGHT", "OUT := RIGHT(IN, L);"},

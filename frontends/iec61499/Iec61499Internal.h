@@ -296,6 +296,8 @@ private:
                        StringRef from);
   void simpleAsBasic(FbType &t);
   bool modelFunctionFb(FbType &t);
+  /// Gives body-less `t` the simple FB whose REQ runs `text` (ST).
+  void runOnRequest(FbType &t, const std::string &text);
   void functionType(FbType &t);
   /// The function type (`.fct`) named `name`, from the inputs or the -I
   /// directories; null when there is none.
@@ -474,6 +476,16 @@ bool isShipped(StringRef name);
 /// (F_ADD, F_INT_TO_REAL, IX, PUBLISH_2, FB_CTU...; Iec61499Standard.cpp),
 /// or nullopt.
 std::optional<std::string> standardTypeXml(StringRef name);
+/// A body-less function FB of 4diac whose behaviour is the IEC 61131-3
+/// function named like it without `F_` (the date and time arithmetic
+/// F_ADD_DT_TIME..., the BCD conversions F_BYTE_BCD_TO_USINT..., the
+/// durations in a unit F_TIME_IN_MS_TO_LINT...): REQ runs `OUT :=
+/// ADD_DT_TIME(IN1, IN2);` and sends CNF.
+struct TypedFunction {
+  std::vector<PortSpec> inputs;
+  PortSpec output;
+};
+std::optional<TypedFunction> typedFunction(StringRef name);
 /// The FB elements of a network, in document order.
 std::vector<pugi::xml_node> blocksOf(pugi::xml_node net);
 

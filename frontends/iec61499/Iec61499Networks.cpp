@@ -1,6 +1,8 @@
 //===- Iec61499Networks.cpp - networks as modules -------------------------===//
 #include "frontends/iec61499/Iec61499Internal.h"
 
+#include "llvm/ADT/StringSwitch.h"
+
 using namespace netlift;
 using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 
@@ -82,6 +84,23 @@ std::string Translator::constantModule(StringRef type, Expr *e, StringRef text,
   } else if (e->kind == ExprKind::IntLit || e->kind == ExprKind::BoolLit) {
     key = StringRef(type).upper() + "_" + (negative ? "m" : "") +
           std::to_string(e->intValue);
+  } else if (e->kind == ExprKind::DateLit) {
+    // D#, TOD#, DT# (nanoseconds since the epoch or midnight, as in ST).
+    auto spelled = [](StringRef t) {
+      return llvm::StringSwitch<StringRef>(t.upper())
+          .Cases("D", "DATE", "DATE")
+          .Cases("TOD", "TIME_OF_DAY", "TIME_OF_DAY")
+          .Cases("DT", "DATE_AND_TIME", "DATE_AND_TIME")
+          .Cases("LD", "LDATE", "LDATE")
+          .Cases("LTOD", "LTIME_OF_DAY", "LTIME_OF_DAY")
+          .Cases("LDT", "LDATE_AND_TIME", "LDATE_AND_TIME")
+          .Default("");
+    };
+    const PType *declared = elementaryType(spelled(type));
+    if (!declared || declared != elementaryType(spelled(e->typeName)))
+      fail(at, "a " + Twine(e->typeName) + " literal '" + text.trim() +
+                   "' given for a value of type " + type);
+    key = StringRef(type).upper() + "_" + std::to_string(e->intValue);
   } else if (e->kind == ExprKind::RealLit || e->kind == ExprKind::StringLit) {
     bool real = e->kind == ExprKind::RealLit;
     const PType *declared = elementaryType(type);
@@ -99,8 +118,8 @@ std::string Translator::constantModule(StringRef type, Expr *e, StringRef text,
     }
   } else {
     fail(at, "parameter value '" + text.trim() +
-                 "' is not supported (integer, real, Boolean, string and "
-                 "duration literals only)");
+                 "' is not supported (integer, real, Boolean, string, "
+                 "duration and date and time literals only)");
   }
   std::string module = "Const_" + key;
   if (negative && e->kind != ExprKind::IntLit && e->kind != ExprKind::TimeLit &&
@@ -413,6 +432,16 @@ void Translator::serviceModule(FbType &t) {
   b.setEvents(tStart, {net::EventSource{start, true}});
   b.setAction(tStart,
               {assign("_DT", b.ref("DT", at)), assign("_t", b.intLit(0, at))});
+  // 4diac's E_RDELAY: a START while delaying starts the delay again (E_DELAY
+  // and E_CYCLE ignore it).
+  if (t.name == "E_RDELAY") {
+    uint32_t tRestart =
+        b.addTransition("restart", {net::PreArc{running, 1, {}}},
+                        {net::PostArc{running, 1}}, at);
+    b.setEvents(tRestart, {net::EventSource{start, true}});
+    b.setAction(tRestart, {assign("_DT", b.ref("DT", at)),
+                           assign("_t", b.intLit(0, at))});
+  }
   uint32_t tStop = b.addTransition("stop", {net::PreArc{running, 1, {}}},
                                    {net::PostArc{idle, 1}}, at);
   b.setEvents(tStop, {net::EventSource{stop, true}});

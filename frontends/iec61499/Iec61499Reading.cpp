@@ -10,7 +10,8 @@ using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 
 /// Service FBs netlift has a model of (whatever file declares them).
 bool netlift::iec61499::detail::isShipped(StringRef name) {
-  return name == "E_DELAY" || name == "E_CYCLE" || name == "E_RESTART";
+  return name == "E_DELAY" || name == "E_RDELAY" || name == "E_CYCLE" ||
+         name == "E_RESTART";
 }
 
 File &Translator::readFile(unsigned id) {

@@ -116,6 +116,9 @@ std::optional<TypeSpec> genericFunction(StringRef name) {
     return binary("ANY_REAL", "ANY_REAL");
   if (n == "F_TRUNC")
     return unary("ANY_REAL", "ANY_INT");
+  if (n == "F_MULTIME" || n == "F_DIVTIME")
+    return TypeSpec::request({{"IN1", "TIME"}, {"IN2", "ANY_NUM"}},
+                             {{"OUT", "TIME"}});
   // The character string functions (IEC 61131-3 table 29).
   auto strings = [](std::vector<PortSpec> in, const char *out) {
     return TypeSpec::request(std::move(in), {{"OUT", out}});
@@ -177,6 +180,15 @@ std::optional<TypeSpec> conversion(StringRef name) {
     return std::nullopt;
   std::string type = s.take_front(two).str();
   return TypeSpec::request({{"IN", type}}, {{"OUT", type}});
+}
+
+/// The typed functions (typedFunction): their interface; the body comes
+/// from modelFunctionFb, as for a 4diac file declaring them without one.
+std::optional<TypeSpec> typedFunctionBlock(StringRef name) {
+  std::optional<TypedFunction> f = typedFunction(name);
+  if (!f)
+    return std::nullopt;
+  return TypeSpec::request(f->inputs, {f->output});
 }
 
 /// A count written after a prefix (`PUBLISH_3`), or nullopt.
@@ -387,6 +399,14 @@ std::optional<TypeSpec> serviceBlock(StringRef name) {
     numbered(t.inputs, t.eventInputs[0].with, "IN_", *count);
     return t;
   }
+  // CSV_WRITER_n writes SD_1..SD_n as a line of file FILE_NAME.
+  if (auto count = countAfter(n, "CSV_WRITER_"); count && *count >= 1) {
+    TypeSpec t = initialised("FILE_NAME", "STRING");
+    t.eventInputs.push_back({"REQ", {"QI"}});
+    numbered(t.inputs, t.eventInputs[1].with, "SD_", *count);
+    t.eventOutputs.push_back({"CNF", {"QO", "STATUS"}});
+    return t;
+  }
   if (n == "FB_TON" || n == "FB_TOF" || n == "FB_TP")
     return TypeSpec::request({{"IN", "BOOL"}, {"PT", "TIME"}},
                              {{"Q", "BOOL"}, {"ET", "TIME"}});
@@ -410,10 +430,51 @@ std::string xmlOf(StringRef name, const TypeSpec &t) {
 
 } // namespace
 
+std::optional<TypedFunction>
+netlift::iec61499::detail::typedFunction(StringRef name) {
+  std::string n = name.upper();
+  StringRef s = n;
+  if (!s.consume_front("F_"))
+    return std::nullopt;
+  // IEC 61131-3 table 30: the date and time arithmetic 4diac has.
+  static const char *const kDateAndTime[][4] = {
+      {"ADD_DT_TIME", "DATE_AND_TIME", "TIME", "DATE_AND_TIME"},
+      {"ADD_TOD_TIME", "TIME_OF_DAY", "TIME", "TIME_OF_DAY"},
+      {"SUB_DATE_DATE", "DATE", "DATE", "TIME"},
+      {"SUB_DT_DT", "DATE_AND_TIME", "DATE_AND_TIME", "TIME"},
+      {"SUB_DT_TIME", "DATE_AND_TIME", "TIME", "DATE_AND_TIME"},
+      {"SUB_TOD_TIME", "TIME_OF_DAY", "TIME", "TIME_OF_DAY"},
+      {"SUB_TOD_TOD", "TIME_OF_DAY", "TIME_OF_DAY", "TIME"},
+      {"CONCAT_DATE_TOD", "DATE", "TIME_OF_DAY", "DATE_AND_TIME"}};
+  for (const auto &f : kDateAndTime)
+    if (s == f[0])
+      return TypedFunction{{{"IN1", f[1]}, {"IN2", f[2]}}, {"OUT", f[3]}};
+  // BCD digits in a bit string, and back (table 23); not 64-bit ones,
+  // which the ST frontend refuses (4diac's files keep them environment).
+  static const char *const kBcd[][2] = {
+      {"BYTE", "USINT"}, {"WORD", "UINT"}, {"DWORD", "UDINT"}};
+  for (const auto &[bits, number] : kBcd) {
+    if (s == (Twine(bits) + "_BCD_TO_" + number).str())
+      return TypedFunction{{{"IN", bits}}, {"OUT", number}};
+    if (s == (Twine(number) + "_TO_BCD_" + bits).str())
+      return TypedFunction{{{"IN", number}}, {"OUT", bits}};
+  }
+  // A duration as a count of a unit (4diac's F_TIME_IN_MS_TO_LINT...).
+  if (s.consume_front("TIME_IN_")) {
+    auto [unit, type] = s.split("_TO_");
+    if (llvm::is_contained(
+            std::initializer_list<StringRef>{"NS", "US", "MS", "S"}, unit) &&
+        llvm::is_contained(
+            std::initializer_list<StringRef>{"LINT", "ULINT", "LREAL"}, type))
+      return TypedFunction{{{"IN", "TIME"}}, {"OUT", type.str()}};
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string>
 netlift::iec61499::detail::standardTypeXml(StringRef name) {
-  for (auto family : {genericFunction, conversion, communication, processImage,
-                      standardBlock, serviceBlock})
+  for (auto family : {genericFunction, conversion, typedFunctionBlock,
+                      communication, processImage, standardBlock, serviceBlock})
     if (std::optional<TypeSpec> t = family(name))
       return xmlOf(name, *t);
   return std::nullopt;
