@@ -131,6 +131,45 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
            "' does not define");
 }
 
+void Translator::method(FbType &t, pugi::xml_node m) {
+  StringRef name = m.attribute("Name").value();
+  pugi::xml_node st = child(m, "ST");
+  if (!st) {
+    pugi::xml_node other = m.first_child();
+    fail(t, m,
+         "method '" + name + "' of '" + t.name + "' is written in " +
+             (other ? "<" + localName(other).str() + ">" : "no language") +
+             "; netlift reads ST methods only");
+  }
+  bool found;
+  StringRef text = t.src->placeAttribute(st, "Text", &found);
+  if (!found)
+    text = t.src->placeText(st);
+  // 4diac IDE 3 keeps a method's body (its VAR blocks and statements),
+  // its name and result type apart (<Method Name Type>); earlier versions
+  // wrote the whole METHOD ... END_METHOD.
+  bool whole = text.find_insensitive("END_METHOD") != StringRef::npos;
+  Pou *pou = whole
+                 ? st::parseMethod(text, diag, unit, currentPou)
+                 : st::parseMethodBody(text, name, m.attribute("Type").value(),
+                                       t.src->locOf(m), diag, unit, currentPou);
+  if (!pou)
+    throw Failure();
+  if (!StringRef(pou->name).equals_insensitive(name))
+    fail(pou->loc, "method '" + pou->name + "' is declared in <Method Name=\"" +
+                       name + "\"> of '" + t.name + "'");
+  // The body sees the block's variables (its copies of the ports) where
+  // its own parameters and locals do not hide them.
+  std::map<std::string, std::string> outer = copied;
+  for (VarDecl *v : pou->vars)
+    copied.erase(StringRef(v->name).upper());
+  copied.erase(StringRef(pou->name).upper());
+  callFunctionTypes(pou->body);
+  callInternalFbs(t, pou->body);
+  rename(pou->body);
+  copied = std::move(outer);
+}
+
 /// The condition of an ECC transition: `EI`, `EI[guard]`, `1` or `guard`;
 /// `event` is set to the event it waits for (empty: none).
 Expr *Translator::guard(FbType &t, pugi::xml_node tr, std::string &event) {
@@ -370,9 +409,7 @@ void Translator::basicBlock(FbType &t, bool asInternal) {
                "InternalConstVars, ECC and ST algorithms)");
   }
   for (pugi::xml_node m : t.body.children("Method"))
-    fail(t, m,
-         "method '" + Twine(m.attribute("Name").value()) + "' of '" + t.name +
-             "' is not supported (4diac's methods of basic and simple FBs)");
+    method(t, m);
   auto checkWith = [&](const Event &e, const std::vector<Var> &vars) {
     for (const std::string &w : e.with) {
       bool known = false;

@@ -285,6 +285,9 @@ private:
   std::set<const FbType *> internalVisiting, internalDone;
   TypeSyntax *typeOf(XmlSource &src, pugi::xml_node decl);
   StmtList algorithm(FbType &t, StringRef name, pugi::xml_node at);
+  /// A `<Method>` of a basic or simple FB (4diac IDE 3): a METHOD of the
+  /// block's POU, which its algorithms call by name.
+  void method(FbType &t, pugi::xml_node m);
   Expr *guard(FbType &t, pugi::xml_node transition, std::string &event);
   void rename(Expr *e);
   void rename(StmtList &l);

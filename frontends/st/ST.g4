@@ -60,6 +60,13 @@ statementsOnly : bodyStatementList EOF ;
 // An IEC 61499 ST algorithm: 4diac lets VAR_TEMP blocks open it.
 algorithmBody : varBlock* bodyStatementList EOF ;
 
+// A METHOD alone (an IEC 61499 basic FB's method, as 4diac IDE 3 writes it).
+methodOnly : methodDecl EOF ;
+
+// A method's body alone (4diac IDE 3 keeps the name and the result type
+// apart): its variable blocks, then its statements.
+methodBodyOnly : pouVarBlock* body=bodyStatementList EOF ;
+
 // Declarations alone (a long VAR block parsed in groups).
 varDeclsOnly : varDecl* EOF ;
 

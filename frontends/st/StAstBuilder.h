@@ -65,6 +65,15 @@ public:
   /// Refuses the pragmas in a body that change what the program does.
   void bodyPragmas(P::BodyStatementListContext *c);
   Initializer *initializer(P::InitializerContext *c);
+  /// A method of `owner` declared alone (Pou::methodOf set, listed in
+  /// owner->methods).
+  Pou *methodOf(P::MethodDeclContext *c, Pou *owner) {
+    return method(c, owner);
+  }
+  /// A method of `owner` named `name` whose body (variable blocks and
+  /// statements) is `c`, returning `resultType` (none if empty).
+  Pou *methodFromBody(P::MethodBodyOnlyContext *c, StringRef name,
+                      StringRef resultType, SMLoc at, Pou *owner);
 
   bool failed = false;
 

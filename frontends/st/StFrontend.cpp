@@ -1419,6 +1419,27 @@ bool st::parseAlgorithmBody(StringRef text, DiagEngine &diag, Unit &unit,
   return ok;
 }
 
+Pou *st::parseMethod(StringRef text, DiagEngine &diag, Unit &unit, Pou *owner) {
+  Pou *m = nullptr;
+  bool ok = parseAlone(text, diag, unit, &P::methodOnly, kMaxSyntaxErrors,
+                       "end of the method",
+                       [&](AstBuilder &b, P::MethodOnlyContext *t) {
+                         m = b.methodOf(t->methodDecl(), owner);
+                       });
+  return ok ? m : nullptr;
+}
+
+Pou *st::parseMethodBody(StringRef text, StringRef name, StringRef resultType,
+                         SMLoc at, DiagEngine &diag, Unit &unit, Pou *owner) {
+  Pou *m = nullptr;
+  bool ok = parseAlone(text, diag, unit, &P::methodBodyOnly, kMaxSyntaxErrors,
+                       "end of the method",
+                       [&](AstBuilder &b, P::MethodBodyOnlyContext *t) {
+                         m = b.methodFromBody(t, name, resultType, at, owner);
+                       });
+  return ok ? m : nullptr;
+}
+
 bool st::parseStatements(StringRef text, DiagEngine &diag, Unit &unit,
                          StmtList &out) {
   return parseAlone(text, diag, unit, &P::statementsOnly, kMaxSyntaxErrors,

@@ -46,6 +46,18 @@ bool parseStatements(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
 bool parseAlgorithmBody(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
                         std::vector<plc::VarDecl *> &temps, plc::StmtList &out);
 
+/// Parses one METHOD ... END_METHOD (a method of an IEC 61499 basic FB as
+/// 4diac IDE 3 writes it) as a method of `owner`; null after reporting an
+/// error.
+plc::Pou *parseMethod(llvm::StringRef text, DiagEngine &diag, plc::Unit &unit,
+                      plc::Pou *owner);
+/// Parses a method's body alone (variable blocks, statements: 4diac IDE 3
+/// keeps the name and the result type apart) as method `name` of `owner`
+/// returning `resultType` (none if empty); null after reporting an error.
+plc::Pou *parseMethodBody(llvm::StringRef text, llvm::StringRef name,
+                          llvm::StringRef resultType, llvm::SMLoc at,
+                          DiagEngine &diag, plc::Unit &unit, plc::Pou *owner);
+
 /// Parses one ST expression (used for pragma values and --ranges files).
 plc::Expr *parseStExpression(llvm::StringRef text, DiagEngine &diag,
                              plc::Unit &unit);

@@ -430,6 +430,37 @@ Pou *AstBuilder::method(P::MethodDeclContext *c, Pou *owner) {
   return m;
 }
 
+Pou *AstBuilder::methodFromBody(P::MethodBodyOnlyContext *c, StringRef name,
+                                StringRef resultType, SMLoc at, Pou *owner) {
+  Pou *m = unit.make<Pou>();
+  m->kind = PouKind::Function;
+  m->name = name.str();
+  m->loc = at;
+  if (!resultType.empty()) {
+    auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, at);
+    ts->name = resultType.str();
+    m->resultSyntax = ts;
+  }
+  for (auto *vb : c->pouVarBlock())
+    varBlock(vb->varBlock(), m->vars);
+  for (VarDecl *v : m->vars)
+    if (v->section == VarSection::Inst) {
+      refuse(v->loc, "VAR_INST in method '" + name +
+                         "' written as a body alone (write it as "
+                         "METHOD ... END_METHOD)");
+      return nullptr;
+    }
+  bodyStatements(c->body, m->body);
+  if (failed || !plc::expandJumps(unit, *m, diag)) {
+    failed = true;
+    return nullptr;
+  }
+  m->methodOf = owner;
+  owner->methods.push_back(m);
+  unit.pous.push_back(m);
+  return m;
+}
+
 Pou *AstBuilder::function(P::FunctionDeclContext *c) {
   return pou(PouKind::Function, c);
 }
