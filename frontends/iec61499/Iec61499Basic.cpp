@@ -62,18 +62,7 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
   for (pugi::xml_node a : t.body.children("Algorithm")) {
     if (!StringRef(a.attribute("Name").value()).equals_insensitive(name))
       continue;
-    pugi::xml_node st = child(a, "ST");
-    if (!st) {
-      pugi::xml_node other = a.first_child();
-      fail(t, a,
-           "algorithm '" + name + "' of '" + t.name + "' is written in " +
-               (other ? "<" + localName(other).str() + ">" : "no language") +
-               "; netlift reads ST algorithms only");
-    }
-    bool found;
-    StringRef text = t.src->placeAttribute(st, "Text", &found);
-    if (!found)
-      text = t.src->placeText(st);
+    StringRef text = stText(t, a, "algorithm");
     StmtList out;
     std::vector<VarDecl *> temps;
     if (!st::parseAlgorithmBody(text, diag, unit, temps, out))
@@ -131,20 +120,25 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
            "' does not define");
 }
 
-void Translator::method(FbType &t, pugi::xml_node m) {
-  StringRef name = m.attribute("Name").value();
-  pugi::xml_node st = child(m, "ST");
+StringRef Translator::stText(FbType &t, pugi::xml_node element,
+                             const char *what) {
+  pugi::xml_node st = child(element, "ST");
   if (!st) {
-    pugi::xml_node other = m.first_child();
-    fail(t, m,
-         "method '" + name + "' of '" + t.name + "' is written in " +
+    pugi::xml_node other = element.first_child();
+    fail(t, element,
+         Twine(what) + " '" + element.attribute("Name").value() + "' of '" +
+             t.name + "' is written in " +
              (other ? "<" + localName(other).str() + ">" : "no language") +
-             "; netlift reads ST methods only");
+             "; netlift reads ST " + what + "s only");
   }
   bool found;
   StringRef text = t.src->placeAttribute(st, "Text", &found);
-  if (!found)
-    text = t.src->placeText(st);
+  return found ? text : t.src->placeText(st);
+}
+
+void Translator::method(FbType &t, pugi::xml_node m) {
+  StringRef name = m.attribute("Name").value();
+  StringRef text = stText(t, m, "method");
   // 4diac IDE 3 keeps a method's body (its VAR blocks and statements),
   // its name and result type apart (<Method Name Type>); earlier versions
   // wrote the whole METHOD ... END_METHOD.
@@ -326,13 +320,7 @@ void Translator::basicBlock(FbType &t, bool asInternal) {
       fail(loc, "'" + name + "' is declared twice in '" + t.name +
                     "' (netlift keeps interface variables in internal "
                     "copies named _NAME)");
-    auto *v = unit.make<VarDecl>();
-    v->name = name.str();
-    v->loc = loc;
-    v->section = s;
-    v->typeSyntax = ts;
-    pou->vars.push_back(v);
-    return v;
+    return addVar(unit, *pou, name, ts, s, loc);
   };
   auto named = [&](StringRef type, SMLoc loc) {
     auto *ts = unit.make<TypeSyntax>(TypeSyntaxKind::Named, loc);

@@ -60,6 +60,19 @@ constexpr const char *kCycleTurn = "_run";
 /// The input of an internal FB's ST function block that says which event
 /// a call delivers (its number, from 1).
 constexpr const char *kInternalEvent = "_call";
+/// Appends variable `name` of section `s` to `pou`.
+inline plc::VarDecl *addVar(plc::Unit &unit, plc::Pou &pou,
+                            llvm::StringRef name, plc::TypeSyntax *ts,
+                            plc::VarSection s, llvm::SMLoc loc) {
+  auto *v = unit.make<plc::VarDecl>();
+  v->name = name.str();
+  v->loc = loc;
+  v->section = s;
+  v->typeSyntax = ts;
+  pou.vars.push_back(v);
+  return v;
+}
+
 /// The ST function block running type `name` as an internal FB.
 inline std::string internalFbPou(llvm::StringRef name) {
   return name.str() + "__INTERNAL";
@@ -285,6 +298,10 @@ private:
   std::set<const FbType *> internalVisiting, internalDone;
   TypeSyntax *typeOf(XmlSource &src, pugi::xml_node decl);
   StmtList algorithm(FbType &t, StringRef name, pugi::xml_node at);
+  /// The ST text of an `<Algorithm>` or `<Method>` (its `<ST>`'s Text
+  /// attribute or content), or an error naming `what` written in another
+  /// language.
+  StringRef stText(FbType &t, pugi::xml_node element, const char *what);
   /// A `<Method>` of a basic or simple FB (4diac IDE 3): a METHOD of the
   /// block's POU, which its algorithms call by name.
   void method(FbType &t, pugi::xml_node m);

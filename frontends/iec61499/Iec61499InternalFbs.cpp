@@ -97,12 +97,7 @@ void Translator::internalEnvironmentPou(FbType &t) {
   pou->environment = "is " + std::string(kindName(t.kind)) + " ('" + t.name +
                      "'), implemented by the runtime";
   auto declare = [&](StringRef name, TypeSyntax *ts, VarSection s, SMLoc loc) {
-    auto *v = unit.make<VarDecl>();
-    v->name = name.str();
-    v->loc = loc;
-    v->section = s;
-    v->typeSyntax = ts;
-    pou->vars.push_back(v);
+    addVar(unit, *pou, name, ts, s, loc);
   };
   auto *events = unit.make<TypeSyntax>(TypeSyntaxKind::Subrange, at);
   events->name = "INT";
