@@ -425,7 +425,9 @@ void Translator::basicBlock(FbType &t, bool asInternal) {
     transitions.push_back(tr);
   if (states.empty())
     fail(t, ecc ? ecc : t.body, "basic FB '" + t.name + "' has no ECC states");
-  std::string eccType = t.name + "_ECC";
+  // An internal FB's function block has states of its own type: the type
+  // may be a block of a network too.
+  std::string eccType = pou->name + "_ECC";
   auto *enumSyntax = unit.make<TypeSyntax>(TypeSyntaxKind::Enum, at);
   std::map<std::string, pugi::xml_node> stateByName;
   for (pugi::xml_node s : states) {
