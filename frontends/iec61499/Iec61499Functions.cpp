@@ -14,12 +14,6 @@
 using namespace netlift;
 using namespace netlift::iec61499::detail; // and what it uses (plc, llvm)
 
-/// 4diac implements its type conversions in FORTE's C++: `F_<A>_TO_<B>`
-/// (REQ with IN : A, CNF with OUT : B) and `<A>2<A>` (OUT := IN) have no
-/// body in their .fbt. netlift gives them the body their name means, as a
-/// simple FB whose REQ algorithm is `OUT := A_TO_B(IN);` (or `OUT := IN;`),
-/// so that the conversion is the ST frontend's (a conversion it refuses,
-/// such as to REAL or STRING, is refused at that algorithm).
 /// Whether `t`'s interface is the one typedFunction gives its name: REQ
 /// and CNF with every variable, the inputs and the output of those names
 /// and types in that order.
@@ -49,6 +43,14 @@ void Translator::runOnRequest(FbType &t, const std::string &text) {
   simpleAsBasic(t);
 }
 
+/// 4diac implements its type conversions in FORTE's C++: `F_<A>_TO_<B>`
+/// (REQ with IN : A, CNF with OUT : B) and `<A>2<A>` (OUT := IN) have no
+/// body in their .fbt. netlift gives them the body their name means, as a
+/// simple FB whose REQ algorithm is `OUT := A_TO_B(IN);` (or `OUT := IN;`),
+/// so that the conversion is the ST frontend's (a conversion it refuses,
+/// such as to REAL or STRING, is refused at that algorithm); the typed
+/// functions (typedFunction: F_ADD_DT_TIME, F_BYTE_BCD_TO_USINT...) run
+/// the function of their name without `F_` on IN1, IN2 or IN.
 bool Translator::modelFunctionFb(FbType &t) {
   if (std::optional<TypedFunction> f = typedFunction(t.name);
       f && hasInterfaceOf(t, *f)) {
