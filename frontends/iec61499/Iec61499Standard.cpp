@@ -88,6 +88,12 @@ std::optional<TypeSpec> genericFunction(StringRef name) {
     return binary("ANY_ELEMENTARY", "BOOL");
   if (n == "F_MAX" || n == "F_MIN")
     return binary("ANY_ELEMENTARY", "ANY_ELEMENTARY");
+  // Configured with a structure (StructuredType), they get a port per
+  // member (Iec61499Functions.cpp); unconfigured, environment.
+  if (n == "STRUCT_MUX")
+    return TypeSpec::request({}, {{"OUT", "ANY_STRUCT"}});
+  if (n == "STRUCT_DEMUX")
+    return TypeSpec::request({{"IN", "ANY_STRUCT"}}, {});
   if (n == "F_MOVE")
     return unary("ANY", "ANY");
   if (n == "F_ABS")
