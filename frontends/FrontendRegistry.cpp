@@ -231,3 +231,63 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
   }
   return true;
 }
+
+/// Appends the lines of `text` that say something (comments `#` and `//`
+/// removed) as ranges.
+static bool splitRangeLines(StringRef text, DiagEngine &diag,
+                            std::vector<RangeLine> &out) {
+  while (!text.empty()) {
+    auto [line, rest] = text.split('\n');
+    text = rest;
+    StringRef body = line.split('#').first.split("//").first.trim();
+    if (body.empty())
+      continue;
+    auto [name, range] = body.split(char(' '));
+    range = range.trim();
+    RangeLine r;
+    r.name = name;
+    r.loc = llvm::SMLoc::getFromPointer(name.data());
+    auto [word, null] = range.split(char(' '));
+    if (!name.empty() && word.equals_insensitive("NOT") &&
+        null.trim().equals_insensitive("NULL")) {
+      r.notNull = true;
+      out.push_back(r);
+      continue;
+    }
+    auto [lo, hi] = range.split("..");
+    if (name.empty() || lo.trim().empty() || hi.trim().empty() ||
+        !range.contains("..")) {
+      diag.error(llvm::SMLoc::getFromPointer(line.data()),
+                 "expected 'NAME LO..HI', or 'NAME NOT NULL'");
+      return false;
+    }
+    r.lo = lo.trim();
+    r.hi = hi.trim();
+    out.push_back(r);
+  }
+  return true;
+}
+
+bool netlift::readRangeLines(const FrontendOptions &fo, DiagEngine &diag,
+                             std::vector<RangeLine> &out) {
+  if (!fo.rangesFile.empty()) {
+    unsigned id = addInputFile(diag.sourceMgr(), fo.rangesFile);
+    if (!id ||
+        !splitRangeLines(diag.sourceMgr().getMemoryBuffer(id)->getBuffer(),
+                         diag, out))
+      return false;
+  }
+  if (fo.rangeOptions.empty())
+    return true;
+  // The options become a buffer of their own, one line each, so that an
+  // error points at the option it is about.
+  std::string lines;
+  for (const std::string &opt : fo.rangeOptions) {
+    auto [name, range] = StringRef(opt).split('=');
+    lines += name.trim().str() + " " + range.trim().str() + "\n";
+  }
+  unsigned id = diag.sourceMgr().AddNewSourceBuffer(
+      llvm::MemoryBuffer::getMemBufferCopy(lines, "<--range>"), llvm::SMLoc());
+  return splitRangeLines(diag.sourceMgr().getMemoryBuffer(id)->getBuffer(),
+                         diag, out);
+}

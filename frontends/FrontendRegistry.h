@@ -32,7 +32,10 @@ struct FrontendOptions {
   std::string top;
   std::optional<int64_t> timescaleNs;
   std::optional<int64_t> scanPeriodNs;
+  /// --ranges FILE and each --range NAME=LO..HI: value ranges of PLC
+  /// inputs and of hybrid models' reals (readRangeLines reads both).
   std::string rangesFile;
+  std::vector<std::string> rangeOptions;
   /// -I: directories holding IEC 61499 types.
   std::vector<std::string> typeLibraries;
   /// --fb-semantics: the IEC 61499 execution model (empty: the default).
@@ -68,6 +71,21 @@ struct FrontendOptions {
   unsigned stLongPartTokens = 16384;
   unsigned stGroupTokens = 4096;
 };
+
+/// One range a user gives, `NAME LO..HI` (or `NAME NOT NULL` for a PLC
+/// reference input), with the place it was written (in the file, or in a
+/// buffer `<--range>` holding the options one a line). The bounds are left
+/// as text: PLC inputs take integers, hybrid reals any number.
+struct RangeLine {
+  llvm::StringRef name, lo, hi;
+  bool notNull = false;
+  llvm::SMLoc loc;
+};
+
+/// Reads --ranges FILE, then each --range option; false after reporting a
+/// file that cannot be read or a malformed line.
+bool readRangeLines(const FrontendOptions &fo, DiagEngine &diag,
+                    std::vector<RangeLine> &out);
 
 /// A duration option such as `--timescale 10ms` into nanoseconds (empty
 /// text: left unset); false after reporting a malformed or non-positive one.

@@ -110,40 +110,25 @@ bool netlift::loadPlcOpen(FrontendContext &ctx, unsigned bufferID,
   return plcopen::readPlcOpen(bufferID, diag, unitFor(ctx, bufferID));
 }
 
-/// `--ranges FILE`: one `NAME LO..HI` (or `NAME NOT NULL`, for a
-/// reference input) per line; `#` or `//` start comments.
-static bool readRanges(StringRef path, DiagEngine &diag,
+/// `--ranges FILE` and `--range NAME=LO..HI`: integer bounds of inputs (or
+/// `NAME NOT NULL`, for a reference input).
+static bool readRanges(const FrontendOptions &fo, DiagEngine &diag,
                        plc::LowerOptions &opts) {
-  unsigned id = addInputFile(diag.sourceMgr(), path);
-  if (!id)
+  std::vector<RangeLine> lines;
+  if (!readRangeLines(fo, diag, lines))
     return false;
-  StringRef text = diag.sourceMgr().getMemoryBuffer(id)->getBuffer();
-  while (!text.empty()) {
-    auto [line, rest] = text.split('\n');
-    text = rest;
-    StringRef body = line;
-    body = body.split('#').first.split("//").first.trim();
-    if (body.empty())
-      continue;
-    auto [name, range] = body.split(char(' '));
-    range = range.trim();
-    auto [word, null] = range.split(char(' '));
-    if (!name.empty() && word.equals_insensitive("NOT") &&
-        null.trim().equals_insensitive("NULL")) {
-      opts.ranges[name.upper()] = {1, 1, name.str(),
-                                   SMLoc::getFromPointer(name.data()), true};
+  for (const RangeLine &r : lines) {
+    if (r.notNull) {
+      opts.ranges[r.name.upper()] = {1, 1, r.name.str(), r.loc, true};
       continue;
     }
-    auto [lo, hi] = range.split("..");
     int64_t l, h;
-    if (name.empty() || lo.trim().getAsInteger(10, l) ||
-        hi.trim().getAsInteger(10, h) || l > h) {
-      diag.error(SMLoc::getFromPointer(line.data()),
-                 "expected 'NAME LO..HI' with LO <= HI, or 'NAME NOT NULL'");
+    if (r.lo.getAsInteger(10, l) || r.hi.getAsInteger(10, h) || l > h) {
+      diag.error(r.loc, "the range of '" + r.name + "' is not LO..HI with " +
+                            "integers LO <= HI");
       return false;
     }
-    opts.ranges[name.upper()] = {l, h, name.str(),
-                                 SMLoc::getFromPointer(name.data())};
+    opts.ranges[r.name.upper()] = {l, h, r.name.str(), r.loc};
   }
   return true;
 }
@@ -162,7 +147,7 @@ bool netlift::finishPlcInputs(FrontendContext &ctx, DiagEngine &diag,
   opts.scanPeriodNs = fo.scanPeriodNs;
   opts.unitStart = SMLoc::getFromPointer(
       diag.sourceMgr().getMemoryBuffer(ctx.firstPlcFile)->getBufferStart());
-  if (!fo.rangesFile.empty() && !readRanges(fo.rangesFile, diag, opts))
+  if (!readRanges(fo, diag, opts))
     return false;
   if (!st::addStandardLibrary(diag, *unit) ||
       (unit->twinCat && !st::addTwinCatLibrary(diag, *unit)) ||

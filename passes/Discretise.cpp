@@ -120,6 +120,79 @@ bool Discretiser::markedWhenever(uint32_t p, uint32_t q) {
   return true;
 }
 
+/// Calls `fn` for each assignment to variable `var` in `tr`'s action, with
+/// whether it runs only under a condition (inside an IF).
+static void
+forEachReset(const Transition &tr, uint32_t var,
+             llvm::function_ref<void(const AssignStmt *, bool)> fn) {
+  if (!tr.hasAction())
+    return;
+  std::function<void(Block, bool)> walk = [&](Block blk, bool conditional) {
+    for (Stmt *s : blk) {
+      if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
+        auto *target = llvm::dyn_cast<Ref>(a->target);
+        if (target && target->sym.kind == SymKind::Var &&
+            target->sym.index == var)
+          fn(a, conditional);
+      } else if (auto *i = llvm::dyn_cast<IfStmt>(s)) {
+        for (const IfArm &arm : i->arms)
+          walk(arm.body, true);
+        walk(i->elseBody, true);
+      }
+    }
+  };
+  walk(tr.action(), false);
+}
+
+/// Is `a` a reset to a constant or to an interval between constants?
+static bool resetsToConstants(const AssignStmt *a) {
+  auto *reset = llvm::dyn_cast<CallExpr>(a->value);
+  if (reset && reset->fn == Builtin::Between)
+    return llvm::all_of(reset->args,
+                        [](Expr *end) { return evalConstReal(end); });
+  return evalConstReal(a->value).has_value();
+}
+
+bool Discretiser::staysPast(uint32_t var, uint32_t from, int sign) {
+  for (const Transition &tr : m.transitions) {
+    bool other = false;
+    forEachReset(tr, var, [&](const AssignStmt *a, bool) {
+      other |= !resetsToConstants(a);
+    });
+    if (other)
+      return false; // an image of a far value may come back (x := x - 10)
+  }
+  std::vector<uint32_t> work{from};
+  std::set<uint32_t> seen{from};
+  while (!work.empty()) {
+    uint32_t p = work.back();
+    work.pop_back();
+    for (const Flow &f : m.flows)
+      if (f.place == p)
+        for (const Flow::Equation &eq : f.equations)
+          if (eq.varIndex == var) {
+            std::optional<int> dir = constantDirection(eq);
+            if (!dir || *dir * sign < 0)
+              return false;
+          }
+    for (const Transition &tr : m.transitions) {
+      if (llvm::none_of(tr.pre(),
+                        [&](const PreArc &a) { return a.place == p; }))
+        continue;
+      bool reset = false;
+      forEachReset(tr, var, [&](const AssignStmt *, bool conditional) {
+        reset |= !conditional;
+      });
+      if (reset)
+        continue; // x starts afresh at a constant
+      for (const PostArc &a : tr.post())
+        if (seen.insert(a.place).second)
+          work.push_back(a.place);
+    }
+  }
+  return true;
+}
+
 /// The range a real's model gives it where its type does not (SpaceEx
 /// declares none): every value it can take lies between its initial value,
 /// the constants it is reset to, and, in each place whose flow moves it,
@@ -164,33 +237,17 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
     if (needHi)
       newHi = std::max(newHi, c);
   };
-  for (const Transition &tr : m.transitions) {
-    if (!tr.hasAction())
-      continue;
-    std::function<void(Block)> walk = [&](Block blk) {
-      for (Stmt *s : blk) {
-        if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
-          auto *target = llvm::dyn_cast<Ref>(a->target);
-          auto *reset = llvm::dyn_cast<CallExpr>(a->value);
-          if (target && target->sym.kind == SymKind::Var &&
-              target->sym.index == var) {
-            if (reset && reset->fn == Builtin::Between) {
-              for (Expr *end : reset->args)
-                if (auto c = evalConstReal(end))
-                  widen(*c);
-            } else if (auto c = evalConstReal(a->value)) {
-              widen(*c);
-            }
-          }
-        } else if (auto *i = llvm::dyn_cast<IfStmt>(s)) {
-          for (const IfArm &arm : i->arms)
-            walk(arm.body);
-          walk(i->elseBody);
-        }
+  for (const Transition &tr : m.transitions)
+    forEachReset(tr, var, [&](const AssignStmt *a, bool) {
+      auto *reset = llvm::dyn_cast<CallExpr>(a->value);
+      if (reset && reset->fn == Builtin::Between) {
+        for (Expr *end : reset->args)
+          if (auto c = evalConstReal(end))
+            widen(*c);
+      } else if (auto c = evalConstReal(a->value)) {
+        widen(*c);
       }
-    };
-    walk(tr.action());
-  }
+    });
   for (const Flow &f : m.flows)
     for (const Flow::Equation &eq : f.equations) {
       if (eq.varIndex != var)
@@ -222,11 +279,17 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
             lower = lower ? std::max(*lower, vb->value) : vb->value;
         }
       }
-      if (up && needHi && !upper && monotone(+1)) {
+      // Past its last constant nothing tells x's values apart, as long as
+      // nothing brings it back: everywhere it moves it moves one way, or
+      // the place moving it leads only to places that do (a final
+      // location: how far x went there matters to nobody).
+      if (up && needHi && !upper &&
+          (monotone(+1) || (dir && staysPast(var, f.place, +1)))) {
         r.openTop = true;
         continue;
       }
-      if (down && needLo && !lower && monotone(-1)) {
+      if (down && needLo && !lower &&
+          (monotone(-1) || (dir && staysPast(var, f.place, -1)))) {
         r.openBottom = true;
         continue;
       }
@@ -236,9 +299,9 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
               (rising ? "up" : "down") + " and its invariant gives no " +
               (rising ? "upper" : "lower") + " bound, and it does not only " +
               (rising ? "rise" : "fall") +
-              " at constant rates (then its guards would bound it) nor "
-              "follow x' = a*x + b with a < 0 there (then its equilibrium "
-              "would)";
+              " at constant rates there and in every place it can go on "
+              "to (then its guards would bound it) nor follow x' = a*x + "
+              "b with a < 0 there (then its equilibrium would)";
         return false;
       }
       if (up && needHi)
@@ -265,7 +328,8 @@ void Discretiser::closeOpenRanges() {
   for (Real &r : reals) {
     if (!r.openTop && !r.openBottom)
       continue;
-    std::vector<double> known{r.init, r.initHi, r.openTop ? r.lo : r.hi};
+    // The closed end's bound too: places that move x back bound it there.
+    std::vector<double> known{r.init, r.initHi, r.lo, r.hi};
     known.insert(known.end(), r.thresholds.begin(), r.thresholds.end());
     known.insert(known.end(), r.assigned.begin(), r.assigned.end());
     double last = *std::max_element(known.begin(), known.end());
@@ -407,7 +471,9 @@ bool Discretiser::collectReals() {
                                 "does not bound it: " +
                                 why +
                                 "; discretise needs finite bounds to place "
-                                "its grid (give a range)");
+                                "its grid (give a range: --range "
+                                "NAME=LO..HI for a SpaceEx model, `real "
+                                "NAME : [LO, HI]` in NetIR)");
     }
     if (!(r.lo < r.hi) && !r.openTop && !r.openBottom)
       return error(v.loc, "real '" + v.name + "' has an empty range");

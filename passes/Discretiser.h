@@ -252,6 +252,12 @@ private:
   /// The bounds of every rectangular flow: constants of one sign.
   bool checkRectangularFlows();
   bool inferRange(Real &r, std::string &why);
+  /// Once place `from` has moved real `var` past its last constant in
+  /// direction `sign` (+1 up), does it stay past it until it is reset to a
+  /// constant: every place reachable from `from` (along transitions that do
+  /// not reset it) moves it only that way at constant rates, and no
+  /// transition resets it to anything but constants?
+  bool staysPast(uint32_t var, uint32_t from, int sign);
   /// Is `q` marked whenever `p` is (p == q, or shown inductively on the
   /// one-token places of both: the initial marking and every transition
   /// keep "p marked implies q marked")? Then q's invariant bounds what

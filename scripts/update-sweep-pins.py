@@ -39,15 +39,27 @@ def escape(line):
 
 
 def main():
+    if len(sys.argv) < 2 or sys.argv[1].startswith("-") or not os.access(
+            sys.argv[1], os.X_OK):
+        sys.exit(__doc__.strip().split("\n\n")[-1])
     netlift = os.path.abspath(sys.argv[1])
     root = os.path.normpath(os.path.join(os.path.dirname(__file__), ".."))
     corpus = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
         root, "..", "shared", "corpus")
+    if not os.path.isdir(corpus):
+        sys.exit(f"update-sweep-pins: no corpus at {corpus}")
     for test, (script, formats) in TESTS.items():
         sweep = os.path.join(root, "scripts", script)
-        out = subprocess.run([sys.executable, sweep, netlift, corpus] + formats,
-                             capture_output=True, text=True).stdout
-        lines = out.rstrip("\n").split("\n")
+        run = subprocess.run([sys.executable, sweep, netlift, corpus] +
+                             formats, capture_output=True, text=True)
+        lines = run.stdout.rstrip("\n").split("\n")
+        # A sweep that failed or printed no summary (a wrong NETLIFT, a
+        # missing corpus) must not become the pins.
+        if (run.returncode != 0 or not run.stdout.strip() or
+                re.match(r"\S+: 0 files", lines[0])):
+            sys.exit(f"update-sweep-pins: {test}: the sweep failed, pins "
+                     f"kept "
+                     f"(exit {run.returncode}): {run.stderr.strip()[-500:]}")
         pins = ["# CHECK: " + escape(lines[0].strip())]
         pins += ["# CHECK-NEXT: " + escape(l.strip()) for l in lines[1:]]
         pins.append("# CHECK-NOT: {{.}}")

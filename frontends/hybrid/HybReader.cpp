@@ -695,9 +695,18 @@ bool ChartReader::build() {
   return true;
 }
 
-bool netlift::loadHybridChart(FrontendContext &, unsigned bufferID,
+bool netlift::loadHybridChart(FrontendContext &ctx, unsigned bufferID,
                               DiagEngine &diag, Design &design) {
   const llvm::MemoryBuffer *buf = diag.sourceMgr().getMemoryBuffer(bufferID);
+  // A chart's reals carry their ranges (`real x : [lo, hi]`); a range given
+  // beside it would be ignored, so it is refused.
+  if (!ctx.options.rangesFile.empty() || !ctx.options.rangeOptions.empty()) {
+    diag.error(llvm::SMLoc::getFromPointer(buf->getBufferStart()),
+               "a .hyb chart declares the range of each real (`real x : "
+               "[lo, hi]`); --range and --ranges are for SpaceEx models "
+               "and PLC inputs");
+    return false;
+  }
   EmbeddedParser p(buf->getBuffer(), diag, design);
   ChartReader r(p, design, diag);
   return r.parseFile() && !p.failed();

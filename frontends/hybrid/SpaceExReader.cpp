@@ -30,6 +30,7 @@
 #include "ir/net/Builder.h"
 #include "ir/net/Names.h"
 #include "ir/net/Parser.h"
+#include "ir/support/Suggest.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringSet.h"
@@ -70,10 +71,10 @@ public:
   /// `top`: the component to translate (--top); empty: the last one.
   /// `cfg`: the configuration read with the model, or null.
   SpaceExReader(unsigned bufferID, DiagEngine &diag, Design &design,
-                StringRef top, Config *cfg)
+                StringRef top, Config *cfg, llvm::ArrayRef<RangeLine> ranges)
       : diag(diag), d(design), b(design),
         xml(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()),
-        wantedTop(top.str()), cfg(cfg) {}
+        wantedTop(top.str()), cfg(cfg), ranges(ranges) {}
   bool run();
 
 private:
@@ -96,6 +97,9 @@ private:
     return {};
   }
   std::string real(const std::string &flat, pugi::xml_node where);
+  /// --range and --ranges: bounds the user gives reals whose model leaves
+  /// them open (SpaceEx declares no ranges; discretise needs finite ones).
+  bool applyRanges();
   /// `var' in [-inf, inf]`: SpaceEx leaves the variable's rate free.
   Flow::Equation freeFlow(const std::string &var, llvm::SMLoc at);
   /// What a flow or an assignment says of each primed variable, in the
@@ -139,6 +143,7 @@ private:
   XmlBuffer xml;
   std::string wantedTop;
   Config *cfg;
+  llvm::ArrayRef<RangeLine> ranges;
   pugi::xml_node root;
   Module *mod = nullptr;
   llvm::StringSet<> reals;
@@ -858,7 +863,7 @@ bool SpaceExReader::run() {
   for (const std::string &v : realOrder)
     b.addVar(d.save(v), d.types.getReal(-INFINITY, INFINITY), b.realLit(0),
              paramNode.count(v) ? xml.locOf(paramNode[v]) : llvm::SMLoc());
-  if (cfg && !applyInitialSet(top))
+  if (!applyRanges() || (cfg && !applyInitialSet(top)))
     return false;
   // Transitions: unlabelled ones alone, labelled ones synchronised.
   std::map<std::string, std::vector<std::vector<const ProtoTransition *>>>
@@ -997,6 +1002,31 @@ bool SpaceExReader::addForbidden() {
   return true;
 }
 
+bool SpaceExReader::applyRanges() {
+  for (const RangeLine &r : ranges) {
+    net::Symbol s = mod->lookup(r.name);
+    if (s.kind != SymKind::Var || !mod->vars[s.index].type->isReal()) {
+      std::vector<std::string> reals;
+      for (const Var &v : mod->vars)
+        if (v.type->isReal())
+          reals.push_back(v.name.str());
+      diag.error(r.loc, "--range: '" + r.name +
+                            "' names no real variable of the model" +
+                            didYouMean(r.name, reals));
+      return false;
+    }
+    double lo, hi;
+    if (r.notNull || r.lo.getAsDouble(lo) || r.hi.getAsDouble(hi) ||
+        !std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+      diag.error(r.loc, "the range of '" + r.name +
+                            "' is not LO..HI with numbers LO < HI");
+      return false;
+    }
+    mod->vars[s.index].type = d.types.getReal(lo, hi);
+  }
+  return true;
+}
+
 bool SpaceExReader::applyInitialSet(pugi::xml_node top) {
   InitialSet &init = cfg->initial;
   // Locations.
@@ -1100,9 +1130,11 @@ static bool findConfig(FrontendContext &ctx, unsigned bufferID,
 bool netlift::loadSpaceEx(FrontendContext &ctx, unsigned bufferID,
                           DiagEngine &diag, Design &design) {
   std::optional<Config> cfg;
-  if (!findConfig(ctx, bufferID, diag, cfg))
+  std::vector<RangeLine> ranges;
+  if (!findConfig(ctx, bufferID, diag, cfg) ||
+      !readRangeLines(ctx.options, diag, ranges))
     return false;
   return SpaceExReader(bufferID, diag, design, ctx.options.top,
-                       cfg ? &*cfg : nullptr)
+                       cfg ? &*cfg : nullptr, ranges)
       .run();
 }

@@ -116,10 +116,16 @@ static cl::opt<std::string>
                cl::value_desc("DURATION"), NETLIFT_READING);
 static cl::opt<std::string>
     ranges("ranges",
-           cl::desc("PLC input: value ranges of integer inputs, one "
-                    "'NAME LO..HI' a line ('NAME NOT NULL' for a reference "
-                    "input the caller never passes NULL)"),
+           cl::desc("PLC input: value ranges of integer inputs; hybrid "
+                    "input: ranges of reals; one 'NAME LO..HI' a line "
+                    "('NAME NOT NULL' for a reference input the caller never "
+                    "passes NULL)"),
            cl::value_desc("FILE"), NETLIFT_READING);
+static cl::list<std::string>
+    rangeOptions("range",
+                 cl::desc("One range, as a line of --ranges FILE would give "
+                          "it (a PLC input's or a hybrid model's real)"),
+                 cl::value_desc("NAME=LO..HI"), NETLIFT_READING);
 static cl::opt<std::string> spaceexConfig(
     "cfg",
     cl::desc("SpaceEx input: the configuration giving the system and the "
@@ -323,6 +329,7 @@ static cl::opt<double> timeLimit("time-limit", cl::desc("Stop after SECONDS"),
 bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.top = topName;
   fo.rangesFile = ranges;
+  fo.rangeOptions.assign(rangeOptions.begin(), rangeOptions.end());
   fo.spaceexConfig = spaceexConfig;
   fo.params.assign(params.begin(), params.end());
   fo.typeLibraries.assign(typeLibraries.begin(), typeLibraries.end());
