@@ -202,12 +202,34 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
   uint32_t var = r.var;
   double &lo = r.lo, &hi = r.hi;
   const Var &v = m.vars[var];
-  // Does every place that moves it move it one way, at a constant rate?
+  // The values x starts at or is reset to span [startLo, startHi] (set
+  // below, before the flows are looked at).
+  double startLo = 0, startHi = 0;
+  // Which way `eq` moves x, if one way: a constant rate's sign, or, for an
+  // unstable affine rate (x' = a*x + b, a > 0), away from its equilibrium
+  // where x starts and is reset beyond it on one side (then, if every
+  // place moves x that way, x never comes back to it: exponential growth).
+  auto directionOf = [&](const Flow::Equation &eq) -> std::optional<int> {
+    if (std::optional<int> dir = constantDirection(eq))
+      return dir;
+    if (eq.rateHi)
+      return std::nullopt;
+    auto ab = affineCoefficients(eq.rate, var);
+    if (!ab || !(ab->first > 0))
+      return std::nullopt;
+    double equilibrium = -ab->second / ab->first;
+    if (equilibrium <= startLo)
+      return +1;
+    if (equilibrium >= startHi)
+      return -1;
+    return std::nullopt;
+  };
+  // Does every place that moves it move it one way?
   auto monotone = [&](int sign) {
     for (const Flow &f : m.flows)
       for (const Flow::Equation &eq : f.equations)
         if (eq.varIndex == var) {
-          std::optional<int> dir = constantDirection(eq);
+          std::optional<int> dir = directionOf(eq);
           if (!dir || *dir * sign < 0)
             return false;
         }
@@ -248,6 +270,8 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
         widen(*c);
       }
     });
+  startLo = newLo;
+  startHi = newHi;
   for (const Flow &f : m.flows)
     for (const Flow::Equation &eq : f.equations) {
       if (eq.varIndex != var)
@@ -255,6 +279,9 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
       std::optional<int> dir = constantDirection(eq);
       if (dir && *dir == 0)
         continue;
+      if (!dir)
+        if (std::optional<int> away = directionOf(eq); away && monotone(*away))
+          dir = away;
       bool up = !dir || *dir > 0, down = !dir || *dir < 0;
       std::optional<double> upper, lower;
       // A stable affine rate (x' = a*x + b, a < 0) moves x towards its
@@ -299,9 +326,10 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
               (rising ? "up" : "down") + " and its invariant gives no " +
               (rising ? "upper" : "lower") + " bound, and it does not only " +
               (rising ? "rise" : "fall") +
-              " at constant rates there and in every place it can go on "
-              "to (then its guards would bound it) nor follow x' = a*x + "
-              "b with a < 0 there (then its equilibrium would)";
+              " there and in every place it can go on to, at constant "
+              "rates or away from an unstable equilibrium it starts beyond "
+              "(then its guards would bound it), nor follow x' = a*x + b "
+              "with a < 0 there (then its equilibrium would)";
         return false;
       }
       if (up && needHi)

@@ -119,7 +119,29 @@ public:
         return *std::min_element(args.begin(), args.end());
       case Builtin::Max:
         return *std::max_element(args.begin(), args.end());
-      default: // the float built-ins are not part of hybrid flows
+      case Builtin::Sqrt:
+        return std::sqrt(args[0]);
+      case Builtin::Sin:
+        return std::sin(args[0]);
+      case Builtin::Cos:
+        return std::cos(args[0]);
+      case Builtin::Tan:
+        return std::tan(args[0]);
+      case Builtin::Asin:
+        return std::asin(args[0]);
+      case Builtin::Acos:
+        return std::acos(args[0]);
+      case Builtin::Atan:
+        return std::atan(args[0]);
+      case Builtin::Ln:
+        return std::log(args[0]);
+      case Builtin::Log:
+        return std::log10(args[0]);
+      case Builtin::Exp:
+        return std::exp(args[0]);
+      case Builtin::Expt:
+        return std::pow(args[0], args[1]);
+      default: // conversions, strings, bit patterns: not real arithmetic
         bad = e;
         return std::nullopt;
       }

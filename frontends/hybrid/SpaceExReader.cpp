@@ -286,18 +286,53 @@ struct SpaceExReader::ExprParser {
     Expr *base = unary();
     if (!ok || !eat("^"))
       return base;
-    skip();
-    size_t start = pos;
-    while (pos < s.size() && isdigit((unsigned char)s[pos]))
-      ++pos;
-    unsigned long long n;
-    if (start == pos || s.slice(start, pos).getAsInteger(10, n) || n == 0 ||
-        n > 16)
-      return fail("only whole powers from 1 to 16 are supported (x^k)");
+    Expr *exponent = unary();
+    if (!ok)
+      return nullptr;
+    // A whole power stays a product, which keeps affine and polynomial
+    // rates recognisable; any other is expt (C's pow).
+    auto *lit = llvm::dyn_cast<net::RealLit>(exponent);
+    if (!lit || lit->value != std::floor(lit->value) || lit->value < 1 ||
+        lit->value > 16)
+      return r.b.call(net::Builtin::Expt, {base, exponent});
     Expr *e = base;
-    for (unsigned long long i = 1; i < n; ++i)
+    for (int i = 1; i < int(lit->value); ++i)
       e = r.b.binary(BinaryOp::Mul, e, base);
     return e;
+  }
+  /// `name(args)`: SpaceEx's mathematical functions as NetIR built-ins.
+  Expr *function(StringRef name) {
+    static const std::pair<const char *, net::Builtin> known[] = {
+        {"sqrt", net::Builtin::Sqrt}, {"sin", net::Builtin::Sin},
+        {"cos", net::Builtin::Cos},   {"tan", net::Builtin::Tan},
+        {"asin", net::Builtin::Asin}, {"acos", net::Builtin::Acos},
+        {"atan", net::Builtin::Atan}, {"exp", net::Builtin::Exp},
+        {"ln", net::Builtin::Ln},     {"log", net::Builtin::Ln},
+        {"abs", net::Builtin::Abs},   {"min", net::Builtin::Min},
+        {"max", net::Builtin::Max},   {"pow", net::Builtin::Expt}};
+    const auto *fn =
+        llvm::find_if(known, [&](const auto &k) { return name == k.first; });
+    if (fn == std::end(known))
+      return fail("function '" + name +
+                  "' is not one netlift knows (sqrt, sin, cos, tan, asin, "
+                  "acos, atan, exp, ln, log (natural), abs, min, max, pow)");
+    eat("(");
+    std::vector<Expr *> args;
+    if (!eat(")")) {
+      do {
+        args.push_back(addExpr());
+        if (!ok)
+          return nullptr;
+      } while (eat(","));
+      if (!eat(")"))
+        return fail("expected ')' after the arguments of '" + name + "'");
+    }
+    if (args.size() != net::arity(fn->second))
+      return fail("'" + name + "' takes " +
+                  llvm::Twine(net::arity(fn->second)) + " argument" +
+                  (net::arity(fn->second) == 1 ? "" : "s") + ", not " +
+                  llvm::Twine(args.size()));
+    return r.b.call(fn->second, args);
   }
   Expr *unary() {
     if (eat("-"))
@@ -340,9 +375,7 @@ struct SpaceExReader::ExprParser {
       if (name == "loc" && inConfig && eat("("))
         return location();
       if (pos < s.size() && s[pos] == '(')
-        return fail("function '" + name +
-                    "' has no NetIR counterpart (flows and guards use + - * "
-                    "/ and whole powers)");
+        return function(name);
       if (name == "true")
         return r.b.boolLit(true);
       if (name == "false")

@@ -99,6 +99,31 @@ static Crossing integrate(llvm::function_ref<double(double)> f, double from,
   return {false, 0, "the integration did not reach " + fmtNum(to)};
 }
 
+/// The rate vanishes at `to` and nowhere before it. A Lipschitz rate only
+/// approaches such a point (x - to decays exponentially); one that vanishes
+/// like a power |x - to|^p with p < 1 reaches it in finite time, as a
+/// tank draining through an orifice (h' = -k*sqrt(h)) empties. The order p
+/// is read off the rate near `to`; the time is integrated up to 1e-9 of
+/// the distance from `to`, and the rest taken from the power law.
+static Crossing reachingStop(llvm::function_ref<double(double)> f, double from,
+                             double to, double minSpeed) {
+  double dir = to > from ? 1 : -1, span = std::fabs(to - from);
+  double d1 = span * 1e-6, d2 = span * 1e-9;
+  double v1 = f(to - dir * d1) * dir, v2 = f(to - dir * d2) * dir;
+  std::string why = "x' = 0 at " + fmtNum(to);
+  if (!(v1 > 0) || !(v2 > 0))
+    return {false, 0, why};
+  double order = std::log(v1 / v2) / std::log(d1 / d2);
+  if (!(order < 0.99))
+    return {false, 0, why}; // approached, never reached
+  double end = to - dir * d2;
+  Crossing c =
+      integrate(f, from, end, std::fabs(end - from) / std::min(minSpeed, v2));
+  if (c.reached)
+    c.time += d2 / ((1 - order) * v2);
+  return c;
+}
+
 Crossing netlift::hybrid::timeToReach(const Rate &rate, double from,
                                       double to) {
   if (from == to)
@@ -114,6 +139,8 @@ Crossing netlift::hybrid::timeToReach(const Rate &rate, double from,
   for (int i = 0; i <= kSamples; ++i) {
     double x = from + (to - from) * double(i) / kSamples;
     double v = rate.f(x) * dir;
+    if (i == kSamples && v == 0 && rate.shape == Rate::Shape::General)
+      return reachingStop(rate.f, from, to, minSpeed);
     if (!(v > 0))
       return {false, 0, "x' = " + fmtNum(dir * v) + " at " + fmtNum(x)};
     minSpeed = std::min(minSpeed, v);

@@ -9,7 +9,9 @@
 // level is shortened by Newton iteration until it lands on it). A level
 // that the flow cannot reach — f is zero or points away somewhere between
 // the two values, e.g. the end point of a first-order lag — is reported as
-// unreachable instead of being integrated forever.
+// unreachable instead of being integrated forever; but a rate vanishing at
+// the level like a power below 1 (an orifice, k*sqrt(h)) reaches it in
+// finite time, and that time is computed.
 //
 //===----------------------------------------------------------------------===//
 #ifndef NETLIFT_IR_HYBRID_FLOWSOLVER_H

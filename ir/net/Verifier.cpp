@@ -1069,6 +1069,10 @@ const Type *ModuleVerifier::checkCall(CallExpr *c, Ctx ctx) {
     }
     return c->type = anyReal ? types.getAnyReal() : types.getInteger();
   default: // the float functions
+    // Of hybrid reals too (a tank's outflow k*sqrt(h)): discretise
+    // integrates such rates; nothing else computes with hybrid reals.
+    if (anyReal && !anyFloat)
+      return c->type = types.getAnyReal();
     for (Expr *a : c->args)
       if (!a->type->isFloat() && !a->type->isAnyReal()) {
         error(a->loc, spelling(c->fn) + "() needs a float, not '" +
