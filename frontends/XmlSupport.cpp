@@ -58,6 +58,17 @@ StringRef XmlSource::place(size_t offset, size_t rawLength, StringRef decoded) {
   return StringRef(copy + offset, rawLength);
 }
 
+bool XmlSource::editPlaced(
+    StringRef placed,
+    llvm::function_ref<void(llvm::MutableArrayRef<char>)> edit) {
+  if (!copy || placed.data() < copy ||
+      placed.data() + placed.size() > copy + rawText.size())
+    return false;
+  edit(llvm::MutableArrayRef<char>(copy + (placed.data() - copy),
+                                   placed.size()));
+  return true;
+}
+
 StringRef netlift::localName(pugi::xml_node n) {
   StringRef name = n.name();
   size_t colon = name.find(':');

@@ -14,6 +14,8 @@
 
 #include "ir/support/Diagnostics.h"
 
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/SMLoc.h"
 
@@ -70,6 +72,10 @@ public:
   /// prints); `found` says whether the attribute exists.
   llvm::StringRef placeAttribute(pugi::xml_node element, const char *name,
                                  bool *found = nullptr);
+  /// Lets `edit` change text placed in the copy where it stands, keeping
+  /// its length (so that positions stay); false for text placed elsewhere.
+  bool editPlaced(llvm::StringRef placed,
+                  llvm::function_ref<void(llvm::MutableArrayRef<char>)> edit);
 
 private:
   llvm::StringRef place(size_t offset, size_t rawLength,

@@ -120,6 +120,49 @@ StmtList Translator::algorithm(FbType &t, StringRef name, pugi::xml_node at) {
            "' does not define");
 }
 
+// Strings and comments are left alone (docs/iec61499.md, "Packages").
+void netlift::iec61499::detail::dropPackageQualifiers(
+    llvm::MutableArrayRef<char> text) {
+  size_t n = text.size(), i = 0;
+  auto isIdStart = [](char c) { return isalpha((unsigned char)c) || c == '_'; };
+  auto isId = [](char c) { return isalnum((unsigned char)c) || c == '_'; };
+  auto skipTo = [&](StringRef end) {
+    while (i < n &&
+           StringRef(text.data() + i, n - i).substr(0, end.size()) != end)
+      ++i;
+    i = std::min(n, i + end.size());
+  };
+  while (i < n) {
+    char c = text[i];
+    StringRef rest(text.data() + i, n - i);
+    if (c == '\'' || c == '"') {
+      // A string; `$'` escapes the quote.
+      for (++i; i < n && text[i] != c; ++i)
+        if (text[i] == '$')
+          ++i;
+      ++i;
+    } else if (rest.startswith("(*")) {
+      i += 2;
+      skipTo("*)");
+    } else if (rest.startswith("/*")) {
+      i += 2;
+      skipTo("*/");
+    } else if (rest.startswith("//")) {
+      skipTo("\n");
+    } else if (isIdStart(c)) {
+      size_t start = i;
+      while (i < n && isId(text[i]))
+        ++i;
+      if (i + 1 < n && text[i] == ':' && text[i + 1] == ':') {
+        i += 2;
+        std::fill(text.begin() + start, text.begin() + i, ' ');
+      }
+    } else {
+      ++i;
+    }
+  }
+}
+
 StringRef Translator::stText(FbType &t, pugi::xml_node element,
                              const char *what) {
   pugi::xml_node st = child(element, "ST");
@@ -133,7 +176,11 @@ StringRef Translator::stText(FbType &t, pugi::xml_node element,
   }
   bool found;
   StringRef text = t.src->placeAttribute(st, "Text", &found);
-  return found ? text : t.src->placeText(st);
+  if (!found)
+    text = t.src->placeText(st);
+  if (text.contains("::"))
+    t.src->editPlaced(text, dropPackageQualifiers);
+  return text;
 }
 
 void Translator::method(FbType &t, pugi::xml_node m) {

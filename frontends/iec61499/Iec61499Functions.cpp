@@ -728,11 +728,13 @@ void Translator::functionType(FbType &t) {
   // The body as placed in the file's copy that the SourceMgr owns (so that
   // errors keep their lines and columns), its package lines blanked there.
   StringRef body = t.src->placeText(st);
-  char *placed = const_cast<char *>(body.data());
-  for (auto [from, to] : packageLines(body))
-    for (size_t i = from; i < to; ++i)
-      if (placed[i] != '\n')
-        placed[i] = ' ';
+  t.src->editPlaced(body, [&](llvm::MutableArrayRef<char> placed) {
+    for (auto [from, to] : packageLines(body))
+      for (size_t i = from; i < to; ++i)
+        if (placed[i] != '\n')
+          placed[i] = ' ';
+    dropPackageQualifiers(placed);
+  });
   size_t before = unit.pous.size();
   if (!st::parseStructuredText(body, diag, unit))
     throw Failure();

@@ -521,6 +521,11 @@ void retype(pugi::xml_node fb, const std::string &type);
 /// The type the file gives block `fb`, whatever netlift retyped it to.
 llvm::StringRef declaredType(pugi::xml_node fb);
 
+/// Blanks the package qualifiers of names in ST text (`mylib::scale(x)`
+/// becomes `       scale(x)`, positions kept): 4diac IDE 3 qualifies
+/// types and functions by package, netlift finds them by their own name.
+void dropPackageQualifiers(llvm::MutableArrayRef<char> text);
+
 } // namespace netlift::iec61499::detail
 
 #endif

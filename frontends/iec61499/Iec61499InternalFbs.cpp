@@ -128,8 +128,13 @@ TypeSyntax *Translator::internalFbDecl(FbType &owner, pugi::xml_node fb,
            "parameter '" + input + "' of internal FB '" +
                fb.attribute("Name").value() + "' is not a data input of '" +
                inner.name + "'");
-    bool found;
-    StringRef text = owner.src->placeAttribute(p, "Value", &found);
+    StringRef text = owner.src->placeAttribute(p, "Value");
+    if (text.trim().empty())
+      fail(owner, p,
+           "parameter '" + input + "' of internal FB '" +
+               fb.attribute("Name").value() +
+               "' gives no value (Value is empty or missing): give one, or "
+               "remove the parameter to keep the input's initial value");
     Expr *value = st::parseStExpression(text, diag, unit);
     if (!value)
       throw Failure();

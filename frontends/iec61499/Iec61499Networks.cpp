@@ -52,6 +52,10 @@ std::string Translator::parameterModule(XmlSource &src, StringRef type,
                                         pugi::xml_node param) {
   SMLoc at = src.locOf(param);
   StringRef text = src.placeAttribute(param, "Value");
+  if (text.trim().empty())
+    fail(at, "parameter '" + Twine(param.attribute("Name").value()) +
+                 "' gives no value (Value is empty or missing): give one, "
+                 "or remove the parameter to keep the input's initial value");
   // 4diac writes an array or structure parameter as its initialiser.
   if (text.trim().startswith("[") || text.trim().startswith("("))
     fail(at, "parameter '" + Twine(param.attribute("Name").value()) +
