@@ -51,6 +51,16 @@ struct GridSpec {
   double step = 0;
 };
 
+/// An invariant condition `x op c` / `c op x` (op one of < <= > >=, x a
+/// variable, c a constant): the variable, whether c bounds it from above,
+/// and c.
+struct VarBound {
+  uint32_t var;
+  bool upper;
+  double value;
+};
+std::optional<VarBound> varBound(const Expr *c);
+
 /// Evaluates a real-valued expression of one variable; fails on anything
 /// else and names what it met.
 class RealEval {
@@ -280,6 +290,11 @@ private:
   /// not reset it) moves it only that way at constant rates, and no
   /// transition resets it to anything but constants?
   bool staysPast(uint32_t var, uint32_t from, int sign);
+  /// For real `var` that only moves in direction `sign`, the farthest
+  /// value back that resets shifting it (`x := a*x + b`, a > 0) take it
+  /// to, from the values it can have in the places they leave; none if no
+  /// reset shifts it, or if one applies again and again.
+  std::optional<double> farthestShift(uint32_t var, int sign);
   /// Is `q` marked whenever `p` is (p == q, or shown inductively on the
   /// one-token places of both: the initial marking and every transition
   /// keep "p marked implies q marked")? Then q's invariant bounds what
