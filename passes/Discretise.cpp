@@ -518,9 +518,12 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
-  if (!eliminateDisturbances() || !dropUnobservedReals() ||
-      !checkOneDimensional() || !checkRectangularFlows() || !collectReals() ||
-      !collectUses() || !collectInvariants())
+  if (!eliminateDisturbances())
+    return false;
+  spanUncertainConstants();
+  if (!dropUnobservedReals() || !checkOneDimensional() ||
+      !checkRectangularFlows() || !collectReals() || !collectUses() ||
+      !collectInvariants())
     return false;
   closeOpenRanges();
   for (Real &r : reals)

@@ -54,8 +54,6 @@ std::optional<Operand> operandOf(const Expr *e,
   return std::nullopt;
 }
 
-using Box = std::map<uint32_t, std::pair<double, double>>;
-
 /// Narrows `box` by one invariant condition `a op b` over disturbances and
 /// constants; false if the condition has another form.
 bool narrow(const Expr *c, const std::set<uint32_t> &candidates, Box &box) {
@@ -96,6 +94,57 @@ bool narrow(const Expr *c, const std::set<uint32_t> &candidates, Box &box) {
 }
 
 } // namespace
+
+RateSpan discretise::spanOverBox(const Flow::Equation &eq, const Box &box,
+                                 llvm::ArrayRef<uint32_t> vary) {
+  // The rate must read the box's reals and constants only, through a sum
+  // with constant coefficients: its extremes are at the box's corners,
+  // found coordinate by coordinate.
+  RateSpan span;
+  std::map<uint32_t, double> at;
+  for (auto &[v, range] : box)
+    at[v] = std::isfinite(range.first) ? range.first : 0;
+  RealEval ev(eq.varIndex);
+  ev.others = &at;
+  auto base = ev.eval(eq.rate, 0);
+  if (!base || ev.readsVar) {
+    span.coupled = true;
+    return span;
+  }
+  double lo = *base, hi = *base, sum = 0;
+  for (uint32_t v : vary) {
+    auto range = box.at(v);
+    // Along v alone, the others at their low ends (v itself too).
+    std::map<uint32_t, double> alone;
+    for (auto &[w, wr] : box)
+      alone[w] = std::isfinite(wr.first) ? wr.first : 0;
+    ev.others = &alone;
+    alone[v] = range.second;
+    auto top = ev.eval(eq.rate, 0);
+    alone[v] = (range.first + range.second) / 2;
+    auto mid = ev.eval(eq.rate, 0);
+    ev.others = &at;
+    if (!top || !mid ||
+        std::fabs((*base + *top) / 2 - *mid) >
+            1e-9 * std::max({std::fabs(*mid), 1.0})) {
+      span.notLinearIn = v;
+      return span;
+    }
+    double delta = *top - *base;
+    (delta > 0 ? hi : lo) += delta;
+    sum += delta;
+    at[v] = range.second;
+  }
+  // A product of two of them is not a sum: the far corner shows it.
+  auto corner = ev.eval(eq.rate, 0);
+  if (!corner || std::fabs(*corner - (*base + sum)) >
+                     1e-9 * std::max({std::fabs(*corner), 1.0}))
+    return span;
+  span.ok = true;
+  span.lo = lo;
+  span.hi = hi;
+  return span;
+}
 
 bool Discretiser::eliminateDisturbances() {
   std::set<uint32_t> candidates;
@@ -175,18 +224,9 @@ bool Discretiser::eliminateDisturbances() {
         continue;
       Box box;
       boxAt(f.place, box);
-      // The rate must read the disturbances and constants only, through a
-      // sum with constant coefficients: its extremes are at the box's
-      // corners, found coordinate by coordinate.
-      std::map<uint32_t, double> at;
-      for (auto &[v, range] : box)
-        at[v] = std::isfinite(range.first) ? range.first : 0;
-      RealEval ev(eq.varIndex);
-      ev.others = &at;
-      auto base = ev.eval(eq.rate, 0);
-      if (!base || ev.readsVar)
+      if (spanOverBox(eq, box, {}).coupled)
         return true; // coupled with its own or another real: refused later
-      double lo = *base, hi = *base, sum = 0;
+      std::vector<uint32_t> vary;
       for (auto &[v, range] : box) {
         const Expr *where = nullptr;
         llvm::DenseMap<uint32_t, size_t> one{{v, 0}};
@@ -206,42 +246,26 @@ bool Discretiser::eliminateDisturbances() {
           unenterable.insert({f.place, m.vars[v].name.str()});
           continue;
         }
-        // Along v alone, the others at their low ends (v itself too).
-        std::map<uint32_t, double> alone;
-        for (auto &[w, wr] : box)
-          alone[w] = std::isfinite(wr.first) ? wr.first : 0;
-        ev.others = &alone;
-        alone[v] = range.second;
-        auto top = ev.eval(eq.rate, 0);
-        alone[v] = (range.first + range.second) / 2;
-        auto mid = ev.eval(eq.rate, 0);
-        ev.others = &at;
-        if (!top || !mid ||
-            std::fabs((*base + *top) / 2 - *mid) >
-                1e-9 * std::max({std::fabs(*mid), 1.0}))
-          return error(eq.loc, "the rate of '" + eq.var + "' in place '" +
-                                   f.placeName + "' reads '" +
-                                   m.vars[v].name.str() +
-                                   "', which changes freely, other than "
-                                   "through a sum with a constant "
-                                   "coefficient; discretise needs the "
-                                   "rate's bounds");
-        double delta = *top - *base;
-        (delta > 0 ? hi : lo) += delta;
-        sum += delta;
-        at[v] = range.second;
+        vary.push_back(v);
       }
-      // A product of two disturbances is not a sum: the far corner shows it.
-      auto corner = ev.eval(eq.rate, 0);
-      if (!corner || std::fabs(*corner - (*base + sum)) >
-                         1e-9 * std::max({std::fabs(*corner), 1.0}))
-        return error(eq.loc, "the rate of '" + eq.var + "' in place '" +
-                                 f.placeName +
-                                 "' combines variables that change freely "
-                                 "other than in a sum; discretise needs the "
-                                 "rate's bounds");
+      RateSpan span = spanOverBox(eq, box, vary);
+      if (span.coupled)
+        return true; // coupled with its own or another real: refused later
+      if (!span.ok)
+        return error(eq.loc,
+                     "the rate of '" + eq.var + "' in place '" + f.placeName +
+                         (span.notLinearIn
+                              ? "' reads '" +
+                                    m.vars[*span.notLinearIn].name.str() +
+                                    "', which changes freely, other than "
+                                    "through a sum with a constant "
+                                    "coefficient; discretise needs the "
+                                    "rate's bounds"
+                              : "' combines variables that change freely "
+                                "other than in a sum; discretise needs the "
+                                "rate's bounds"));
       rewritten.push_back(const_cast<Flow::Equation *>(&eq));
-      spans.push_back({lo, hi});
+      spans.push_back({span.lo, span.hi});
     }
   for (auto &[place, var] : unenterable) {
     if (m.places[place].tokens)
@@ -291,4 +315,69 @@ bool Discretiser::eliminateDisturbances() {
   }
   removeReals(candidates);
   return true;
+}
+
+void Discretiser::spanUncertainConstants() {
+  Box box;
+  for (uint32_t i = 0; i < m.vars.size(); ++i) {
+    const Var &v = m.vars[i];
+    if (!v.type->isReal() || !v.initHi)
+      continue;
+    auto lo = evalConstReal(v.init), hi = evalConstReal(v.initHi);
+    if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) ||
+        !(*lo < *hi))
+      continue;
+    bool moves = false;
+    for (const Flow &f : m.flows)
+      for (const Flow::Equation &eq : f.equations)
+        if (eq.varIndex == i) {
+          auto rate = evalConstReal(eq.rate);
+          moves |= !rate || *rate != 0 || eq.rateHi;
+        }
+    for (const Transition &t : m.transitions)
+      forEachReset(t, i, [&](const AssignStmt *, bool) { moves = true; });
+    if (!moves)
+      box[i] = {*lo, *hi};
+  }
+  if (box.empty())
+    return;
+  llvm::DenseMap<uint32_t, size_t> constants;
+  for (auto &[v, range] : box)
+    constants[v] = 0;
+  for (Flow &f : m.flows)
+    for (const Flow::Equation &eq : f.equations) {
+      const Expr *where = nullptr;
+      if (box.count(eq.varIndex) || eq.rateHi ||
+          !mentionsReal(eq.rate, constants, where))
+        continue;
+      std::vector<uint32_t> vary;
+      std::string names;
+      for (auto &[v, range] : box) {
+        llvm::DenseMap<uint32_t, size_t> one{{v, 0}};
+        if (mentionsReal(eq.rate, one, where)) {
+          vary.push_back(v);
+          names += (names.empty() ? "'" : ", '") + m.vars[v].name.str() +
+                   "' in [" + num(range.first) + ", " + num(range.second) + "]";
+        }
+      }
+      // A rate also reading a moving real, or not through a sum, is left
+      // to the coupled-flow check, which names what it reads.
+      RateSpan span = spanOverBox(eq, box, vary);
+      if (!span.ok)
+        continue;
+      diag.note(eq.loc,
+                "the rate of '" + eq.var.str() + "' in place '" + f.placeName +
+                    "' reads " + names +
+                    ", fixed for a run somewhere in the range the initial "
+                    "set gives: it is taken as the rectangular flow [" +
+                    num(span.lo) + ", " + num(span.hi) +
+                    "], which lets the rate vary within it at any instant "
+                    "(an over-approximation)");
+      // The equations live in the design's arena, as the rewrite of
+      // disturbances above changes them.
+      auto &rewrite = const_cast<Flow::Equation &>(eq);
+      rewrite.rate = b.realLit(span.lo, eq.loc);
+      rewrite.rateHi =
+          span.lo == span.hi ? nullptr : b.realLit(span.hi, eq.loc);
+    }
 }

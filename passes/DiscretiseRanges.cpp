@@ -79,11 +79,9 @@ bool Discretiser::markedWhenever(uint32_t p, uint32_t q) {
   return true;
 }
 
-/// Calls `fn` for each assignment to variable `var` in `tr`'s action, with
-/// whether it runs only under a condition (inside an IF).
-static void
-forEachReset(const Transition &tr, uint32_t var,
-             llvm::function_ref<void(const AssignStmt *, bool)> fn) {
+void discretise::forEachReset(
+    const Transition &tr, uint32_t var,
+    llvm::function_ref<void(const AssignStmt *, bool)> fn) {
   if (!tr.hasAction())
     return;
   std::function<void(Block, bool)> walk = [&](Block blk, bool conditional) {

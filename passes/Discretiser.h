@@ -61,6 +61,29 @@ struct VarBound {
 };
 std::optional<VarBound> varBound(const Expr *c);
 
+/// Calls `fn` for each assignment to variable `var` in `tr`'s action, with
+/// whether it runs only under a condition (inside an IF).
+void forEachReset(const Transition &tr, uint32_t var,
+                  llvm::function_ref<void(const AssignStmt *, bool)> fn);
+
+/// Intervals of reals a rate reads (disturbances, uncertain constants).
+using Box = std::map<uint32_t, std::pair<double, double>>;
+/// What spanOverBox finds: the rate's extremes, or why there are none.
+struct RateSpan {
+  bool ok = false;
+  double lo = 0, hi = 0;
+  /// It reads its own variable or a real outside the box: a coupled flow.
+  bool coupled = false;
+  /// The box's real it reads other than through a constant coefficient
+  /// (none: a product of several).
+  std::optional<uint32_t> notLinearIn;
+};
+/// The extremes of `eq`'s rate while the reals of `vary` range over their
+/// intervals in `box` (the box's others at their low ends): a rectangular
+/// flow covering every rate the hybrid model can have there.
+RateSpan spanOverBox(const Flow::Equation &eq, const Box &box,
+                     llvm::ArrayRef<uint32_t> vary);
+
 /// Evaluates a real-valued expression of one variable; fails on anything
 /// else and names what it met.
 class RealEval {
@@ -266,6 +289,10 @@ private:
   /// it spans (a rectangular flow) and the disturbance is removed
   /// (DiscretiseDisturbances.cpp).
   bool eliminateDisturbances();
+  /// Rates reading a constant the initial set gives a range (a real no
+  /// flow moves and nothing assigns: `x' == 1 + drift`) become the
+  /// rectangular flows spanning it.
+  void spanUncertainConstants();
   /// Reals nothing observes (no guard, condition, output, invariant, or
   /// observed real's rate or reset reads them) are dropped with their
   /// flows and resets (DiscretiseUnobserved.cpp).
