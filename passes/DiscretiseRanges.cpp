@@ -101,20 +101,27 @@ void discretise::forEachReset(
   walk(tr.action(), false);
 }
 
-/// Is `a` a reset to a constant or to an interval between constants?
-static bool resetsToConstants(const AssignStmt *a) {
+/// The values `a` resets to when it resets to a constant or to an interval
+/// between constants (`between(lo, hi)`): [lo, hi]; none otherwise.
+static std::optional<std::pair<double, double>>
+constantReset(const AssignStmt *a) {
   auto *reset = llvm::dyn_cast<CallExpr>(a->value);
-  if (reset && reset->fn == Builtin::Between)
-    return llvm::all_of(reset->args,
-                        [](Expr *end) { return evalConstReal(end); });
-  return evalConstReal(a->value).has_value();
+  if (reset && reset->fn == Builtin::Between) {
+    auto lo = evalConstReal(reset->args[0]), hi = evalConstReal(reset->args[1]);
+    if (!lo || !hi)
+      return std::nullopt;
+    return std::make_pair(std::min(*lo, *hi), std::max(*lo, *hi));
+  }
+  if (auto c = evalConstReal(a->value))
+    return std::make_pair(*c, *c);
+  return std::nullopt;
 }
 
 bool Discretiser::staysPast(uint32_t var, uint32_t from, int sign) {
   for (const Transition &tr : m.transitions) {
     bool other = false;
     forEachReset(tr, var, [&](const AssignStmt *a, bool) {
-      other |= !resetsToConstants(a);
+      other |= !constantReset(a);
     });
     if (other)
       return false; // an image of a far value may come back (x := x - 10)
@@ -163,7 +170,7 @@ std::optional<double> Discretiser::farthestShift(uint32_t var, int sign) {
   bool shifts = false;
   for (const Transition &tr : m.transitions)
     forEachReset(tr, var, [&](const AssignStmt *a, bool) {
-      shifts |= !resetsToConstants(a);
+      shifts |= !constantReset(a);
     });
   auto init = evalConstReal(v.init);
   auto initHi = v.initHi ? evalConstReal(v.initHi) : init;
@@ -209,13 +216,8 @@ std::optional<double> Discretiser::farthestShift(uint32_t var, int sign) {
       forEachReset(tr, var, [&](const AssignStmt *a, bool conditional) {
         resets = true;
         always |= !conditional;
-        auto *between = llvm::dyn_cast<CallExpr>(a->value);
-        if (between && between->fn == Builtin::Between) {
-          for (Expr *end : between->args)
-            if (auto c = evalConstReal(end))
-              entry = std::min(entry, sign * *c);
-        } else if (auto c = evalConstReal(a->value)) {
-          entry = std::min(entry, sign * *c);
+        if (auto c = constantReset(a)) {
+          entry = std::min({entry, sign * c->first, sign * c->second});
         } else if (auto ab = affineCoefficients(a->value, var);
                    ab && ab->first > 0 && leaves) {
           entry = std::min(entry, ab->first * from + sign * ab->second);
@@ -322,13 +324,9 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
   };
   for (const Transition &tr : m.transitions)
     forEachReset(tr, var, [&](const AssignStmt *a, bool) {
-      auto *reset = llvm::dyn_cast<CallExpr>(a->value);
-      if (reset && reset->fn == Builtin::Between) {
-        for (Expr *end : reset->args)
-          if (auto c = evalConstReal(end))
-            widen(*c);
-      } else if (auto c = evalConstReal(a->value)) {
-        widen(*c);
+      if (auto c = constantReset(a)) {
+        widen(c->first);
+        widen(c->second);
       }
     });
   startLo = newLo;
