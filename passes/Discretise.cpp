@@ -41,6 +41,8 @@
 //===----------------------------------------------------------------------===//
 #include "passes/Discretiser.h"
 
+#include "ir/net/Walk.h"
+
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::discretise;
@@ -209,8 +211,9 @@ bool Discretiser::collectReals() {
 }
 
 /// Checks a Boolean expression (guard, condition, definition): real
-/// variables may only be compared with constants; records the thresholds.
-bool Discretiser::scanExpr(Expr *e) {
+/// variables may only be compared with constants (records the thresholds)
+/// or related by a linear comparison where it is asserted or denied.
+bool Discretiser::scanExpr(Expr *e, int polarity) {
   if (!e)
     return true;
   switch (e->getKind()) {
@@ -219,8 +222,8 @@ bool Discretiser::scanExpr(Expr *e) {
     if (r->sym.kind == SymKind::Var && realOfVar.count(r->sym.index))
       return error(r->loc, "real '" + r->name +
                                "' is used here other than compared with a "
-                               "constant; discretise can only replace "
-                               "comparisons `x op constant`");
+                               "constant or in a linear comparison; "
+                               "discretise can only replace comparisons");
     return true;
   }
   case ExprKind::Binary: {
@@ -234,26 +237,36 @@ bool Discretiser::scanExpr(Expr *e) {
     };
     if (cmp) {
       Real *l = realSide(bin->lhs), *rr = realSide(bin->rhs);
-      if (l || rr) {
-        Real *x = l ? l : rr;
-        Expr *other = l ? bin->rhs : bin->lhs;
-        auto c = evalConstReal(other);
-        if (!c)
-          return error(other->loc, "real '" + x->name +
-                                       "' is compared with something that "
-                                       "is not a constant; discretise needs "
-                                       "`x op constant`");
-        x->thresholds.insert(*c);
+      Real *x = l ? l : rr;
+      Expr *other = l ? bin->rhs : bin->lhs;
+      if (x && evalConstReal(other)) {
+        x->thresholds.insert(*evalConstReal(other));
         return true;
       }
+      bool isRelation = false;
+      if (!scanRelation(bin, polarity, isRelation))
+        return false;
+      if (isRelation)
+        return true;
+      if (x)
+        return error(other->loc, "real '" + x->name +
+                                     "' is compared with something that "
+                                     "is neither a constant nor a linear "
+                                     "sum of reals; discretise needs `x op "
+                                     "constant` or `a*x + b*y op constant`");
     }
-    return scanExpr(bin->lhs) && scanExpr(bin->rhs);
+    bool keeps = bin->op == BinaryOp::And || bin->op == BinaryOp::Or;
+    return scanExpr(bin->lhs, keeps ? polarity : 0) &&
+           scanExpr(bin->rhs, keeps ? polarity : 0);
   }
-  case ExprKind::Unary:
-    return scanExpr(llvm::cast<UnaryExpr>(e)->operand);
+  case ExprKind::Unary: {
+    auto *u = llvm::cast<UnaryExpr>(e);
+    return scanExpr(u->operand, u->op == UnaryOp::Not ? -polarity : 0);
+  }
   case ExprKind::Cond: {
     auto *c = llvm::cast<CondExpr>(e);
-    return scanExpr(c->cond) && scanExpr(c->thenExpr) && scanExpr(c->elseExpr);
+    return scanExpr(c->cond) && scanExpr(c->thenExpr, polarity) &&
+           scanExpr(c->elseExpr, polarity);
   }
   case ExprKind::Call: {
     for (Expr *a : llvm::cast<CallExpr>(e)->args)
@@ -280,12 +293,81 @@ bool Discretiser::collectAssignments() {
     if (!t.hasAction())
       continue;
     context = t.loc;
+    // What the reals this action has set so far hold, as sums of the
+    // values before the step (statements run in order, and a later reset
+    // reading one reads the new value, where the position tokens stand for
+    // the old ones): nullopt where it is not such a sum (an interval).
+    std::map<uint32_t, std::optional<LinearSum>> settled;
+    auto record = [&](uint32_t ti, uint32_t var, const LinearSum &sum) {
+      size_t ri = realOfVar[var];
+      TransferReset tx;
+      for (auto &[v, k] : sum.coef) {
+        if (v == var)
+          tx.a = k;
+        else
+          tx.terms.push_back({realOfVar[v], k});
+      }
+      tx.c = sum.constant;
+      if (!tx.terms.empty())
+        transferResets[{ti, ri}] = tx;
+      else if (tx.a != 0)
+        affineResets[{ti, ri}] = {tx.a, tx.c};
+      else {
+        reals[ri].assigned.insert(tx.c);
+        assigns[{ti, ri}] = {tx.c, tx.c};
+      }
+    };
     std::function<bool(Block, bool)> walk = [&](Block blk, bool top) -> bool {
       for (Stmt *s : blk) {
         if (auto *a = llvm::dyn_cast<AssignStmt>(s)) {
           auto *tr = llvm::dyn_cast<Ref>(a->target);
           bool toReal = tr && tr->sym.kind == SymKind::Var &&
                         realOfVar.count(tr->sym.index);
+          // A reset reading reals set earlier in the action reads what
+          // they were set to.
+          const Ref *late = nullptr;
+          walkExpr(a->value, [&](const Expr *e) {
+            if (auto *r = llvm::dyn_cast<Ref>(e); r && !late &&
+                                                  r->sym.kind == SymKind::Var &&
+                                                  settled.count(r->sym.index))
+              late = r;
+          });
+          if (late) {
+            std::optional<LinearSum> sum = linearSum(a->value, m);
+            auto lateError = [&] {
+              return error(late->loc.isValid() ? late->loc : a->loc,
+                           "this reset reads real '" + late->name +
+                               "' after the same action has set it to " +
+                               "something discretise cannot follow (an "
+                               "interval, or in a condition); reset it "
+                               "after reading it");
+            };
+            if (!toReal || !top || !tr->fields.empty() || !sum)
+              return lateError();
+            LinearSum before = *sum;
+            before.coef.clear();
+            before.refOf.clear();
+            for (auto &[v, k] : sum->coef) {
+              auto it = settled.find(v);
+              if (it == settled.end()) {
+                LinearSum one;
+                one.coef[v] = 1;
+                one.refOf[v] = sum->refOf[v];
+                before.add(one, k);
+              } else if (!it->second) {
+                return lateError();
+              } else {
+                before.add(*it->second, k);
+              }
+            }
+            before.dropZeros();
+            for (auto &[v, k] : before.coef)
+              if (!realOfVar.count(v))
+                return lateError();
+            record(ti, tr->sym.index, before);
+            settled[tr->sym.index] = before;
+            continue;
+          }
           // `x := x` (SpaceEx tools write one per unchanged variable)
           // leaves the position where it is; it is dropped with the
           // other resets of reals.
@@ -293,22 +375,30 @@ bool Discretiser::collectAssignments() {
           if (toReal && top && same && same->sym == tr->sym &&
               same->fields.empty() && tr->fields.empty())
             continue;
-          // `x := a*x + b` (SpaceEx's `x' == 3*x`, `y' == y - 10`): the
-          // new position is the image of the old one's value or segment.
-          if (toReal && top && tr->fields.empty() && !evalConstReal(a->value)) {
-            auto ab = affineCoefficients(a->value, tr->sym.index);
-            if (ab && ab->first != 0) {
-              affineResets[{ti, realOfVar[tr->sym.index]}] = *ab;
+          // `x := c`, `x := a*x + b` (SpaceEx's `x' == 3*x`, `y' == y -
+          // 10`: the new position is the image of the old one's value or
+          // segment) and `x := a*x + b*y + c` reading other reals (a
+          // transfer).
+          if (toReal && top && tr->fields.empty())
+            if (std::optional<LinearSum> sum = linearSum(a->value, m);
+                sum && llvm::all_of(sum->coef, [&](auto &vk) {
+                  return realOfVar.count(vk.first) != 0;
+                })) {
+              sum->dropZeros();
+              record(ti, tr->sym.index, *sum);
+              settled[tr->sym.index] = *sum;
               continue;
             }
-          }
+          if (toReal)
+            settled[tr->sym.index] = std::nullopt;
           const Expr *where = nullptr;
           if (mentionsReal(a->value, realOfVar, where))
             return error(where->loc.isValid() ? where->loc : t.loc,
                          "an action reads a real variable; after discretise "
                          "reals exist only as position places, which actions "
-                         "can only reset (`x := constant`, `x := a*x + b`); "
-                         "test thresholds in the guard instead");
+                         "can only reset (`x := constant`, `x := a*x + b`, "
+                         "`x := a*x + b*y + c`); test thresholds in the guard "
+                         "instead");
           if (!toReal)
             continue;
           size_t ri = realOfVar[tr->sym.index];
@@ -425,16 +515,31 @@ bool Discretiser::collectUses() {
                                      "discretise");
       continue;
     }
-    if (!scanExpr(p.definition))
+    size_t before = relations.size();
+    if (!scanExpr(p.definition, +1))
       return false;
+    if (relations.size() > before)
+      diag.note(context,
+                "output '" + p.name +
+                    "' relates several reals: discretise makes it true in "
+                    "the combinations of their positions where it may hold "
+                    "(an over-approximation of the set it defines: a "
+                    "`never " +
+                    p.name + "` verified on the net holds on the model)");
   }
   for (Transition &t : m.transitions) {
     context = t.loc;
     for (Expr *c : t.conds())
       if (!scanExpr(c))
         return false;
-    if (!scanExpr(t.guard()))
+    size_t before = relations.size();
+    if (!scanExpr(t.guard(), +1))
       return false;
+    if (relations.size() > before)
+      diag.note(t.loc, "the guard of transition '" + t.name +
+                           "' relates several reals: discretise lets it "
+                           "fire in the combinations of their positions "
+                           "where it may hold (an over-approximation)");
   }
   for (Var &v : m.vars)
     if (v.init) {
@@ -476,6 +581,16 @@ bool Discretiser::collectInvariants() {
         continue;
       }
       std::optional<VarBound> vb = varBound(c);
+      auto *cmp = llvm::dyn_cast<BinaryExpr>(c);
+      if (!vb && cmp && relationOf(cmp)) {
+        diag.note(c->loc.isValid() ? c->loc : inv.loc,
+                  "location invariant '" + exprToString(c) + "' of place '" +
+                      inv.placeName +
+                      "' relates several reals; discretise does not "
+                      "enforce it (the place may be stayed in longer "
+                      "than it allows: an over-approximation)");
+        continue;
+      }
       if (!vb || !realOfVar.count(vb->var))
         return error(c->loc, "location invariant '" + exprToString(c) +
                                  "' of place '" + inv.placeName +
@@ -518,12 +633,13 @@ bool Discretiser::run() {
     timeUnit = "tick of " + std::to_string(d.timescale->amount) +
                d.timescale->unit.str();
   }
+  normaliseComparisons();
   if (!eliminateDisturbances())
     return false;
   spanUncertainConstants();
   if (!dropUnobservedReals() || !checkOneDimensional() ||
       !checkRectangularFlows() || !collectReals() || !collectUses() ||
-      !collectInvariants())
+      !collectInvariants() || !widenForTransfers())
     return false;
   closeOpenRanges();
   for (Real &r : reals)
@@ -617,7 +733,11 @@ bool Discretiser::run() {
       }
     }
   }
-  for (Real &r : reals) {
+  std::vector<size_t> order;
+  if (!codingOrder(order))
+    return false;
+  for (size_t ri : order) {
+    Real &r = reals[ri];
     if (!buildForms(r))
       return false;
     emitTransitions(r);
@@ -632,6 +752,11 @@ bool Discretiser::run() {
             << num(worstRounding) << " tick per segment\n";
   }
   finish();
+  if (relationTooLarge)
+    return error(*relationTooLarge,
+                 "a comparison relating several reals holds in more than " +
+                     std::to_string(kMaxRelationTerms) +
+                     " combinations of their positions; use a coarser grid");
   return true;
 }
 

@@ -455,9 +455,10 @@ std::optional<bool> Discretiser::truthAt(const Expr *e, const Real &r,
   auto *rr = llvm::dyn_cast<Ref>(bin->rhs);
   bool left = lr && lr->sym.kind == SymKind::Var && lr->sym.index == r.var;
   bool right = rr && rr->sym.kind == SymKind::Var && rr->sym.index == r.var;
-  if (!left && !right)
-    return std::nullopt;
-  double c = *evalConstReal(left ? bin->rhs : bin->lhs);
+  std::optional<double> k = evalConstReal(left ? bin->rhs : bin->lhs);
+  if ((!left && !right) || !k)
+    return std::nullopt; // another real's comparison, or a relation
+  double c = *k;
   // A value inside an open segment compares like its midpoint: every
   // threshold is a grid point, so no comparison changes inside a segment.
   double x = v.atPoint ? r.grid[v.k] : (r.grid[v.k - 1] + r.grid[v.k]) / 2;

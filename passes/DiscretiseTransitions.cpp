@@ -19,13 +19,14 @@ void Discretiser::emitTransitions(Real &r) {
     int leaves = -1, enters = -1;
     std::optional<std::pair<double, double>> assign; // [lo, hi]
     std::optional<std::pair<double, double>> affine; // x := a*x + b
+    std::optional<TransferReset> transfer;           // x := a*x + b*y + c
     bool interval() const {
-      return (assign && assign->first < assign->second) || affine;
+      return (assign && assign->first < assign->second) || affine || transfer;
     }
     int locFrom = -1, locTo = -1; // component places; -1: not touched
     bool touchesOtherReal = false;
     bool relevant() const {
-      return leaves >= 0 || enters >= 0 || assign || affine;
+      return leaves >= 0 || enters >= 0 || assign || affine || transfer;
     }
   };
   std::vector<Effect> effects(numOriginal);
@@ -59,10 +60,13 @@ void Discretiser::emitTransitions(Real &r) {
       e.assign = it->second;
     if (auto af = affineResets.find({ti, ri}); af != affineResets.end())
       e.affine = af->second;
+    if (auto tx = transferResets.find({ti, ri}); tx != transferResets.end())
+      e.transfer = tx->second;
     for (size_t rj = 0; rj < reals.size(); ++rj) {
       if (rj == ri)
         continue;
-      if (assigns.count({ti, rj}) || affineResets.count({ti, rj}))
+      if (assigns.count({ti, rj}) || affineResets.count({ti, rj}) ||
+          transferResets.count({ti, rj}))
         e.touchesOtherReal = true;
       for (uint32_t pl : pre)
         if (reals[rj].flowOfPlace.count(pl) && !post.count(pl))
@@ -78,13 +82,16 @@ void Discretiser::emitTransitions(Real &r) {
                     r.grid.begin());
   };
   // `x := a*x + b` from value v: the grid points and open segments the
-  // image of v (a point, or an open segment) meets. Past the end of a
-  // range left open by closeOpenRanges, values rest at its end; past a
-  // closed range the reset is refused.
+  // image of v (a point, or an open segment) meets, widened by [dl, dh]
+  // (what the other reals of a transfer add). Past the end of a range
+  // left open by closeOpenRanges, values rest at its end; past a closed
+  // range the reset is refused.
   constexpr double kInfReal = std::numeric_limits<double>::infinity();
   std::set<uint32_t> refusedResets;
   auto affineImage = [&](uint32_t ti, std::pair<double, double> ab, Value v,
-                         std::vector<Value> &values) {
+                         std::vector<Value> &values, double dl = 0,
+                         double dh = 0, bool closedLo = false,
+                         bool closedHi = false) {
     double lo = v.atPoint ? r.grid[v.k] : r.grid[v.k - 1];
     double hi = r.grid[v.k];
     // The end point of an open range stands for every value past it.
@@ -93,8 +100,12 @@ void Discretiser::emitTransitions(Real &r) {
     if (v.atPoint && r.openBottom && v.k == 0)
       lo = -kInfReal;
     double l = ab.first * lo + ab.second, h = ab.first * hi + ab.second;
+    if (ab.first == 0)
+      l = h = ab.second; // x is not read (an open end would give 0*inf)
     if (l > h)
       std::swap(l, h);
+    l += dl;
+    h += dh;
     double eps = 1e-9 * std::max({1.0, std::fabs(r.grid.front()),
                                   std::fabs(r.grid.back())});
     double bottom = r.grid.front(), top = r.grid.back();
@@ -106,11 +117,15 @@ void Discretiser::emitTransitions(Real &r) {
       if (beyondTop || (underBottom && !r.openBottom)) {
         if (!refusedResets.insert(ti).second)
           return false; // said once per transition
-        std::string image = (ab.first == 1 ? "" : num(ab.first) + "*") +
-                            r.shortName +
-                            (ab.second > 0   ? " + " + num(ab.second)
-                             : ab.second < 0 ? " - " + num(-ab.second)
-                                             : "");
+        std::string image =
+            (ab.first == 0   ? ""
+             : ab.first == 1 ? r.shortName
+                             : num(ab.first) + "*" + r.shortName) +
+            (ab.second > 0   ? " + " + num(ab.second)
+             : ab.second < 0 ? " - " + num(-ab.second)
+                             : "");
+        if (effects[ti].transfer)
+          image = "a value reading other reals";
         error(m.transitions[ti].loc,
               "transition '" + m.transitions[ti].name + "' resets '" + r.name +
                   "' to " + image + ", which can take it to " +
@@ -151,6 +166,17 @@ void Discretiser::emitTransitions(Real &r) {
         add({true, j});
         add({false, j + 1});
       }
+      // What other reals add may include its ends (a token that just
+      // entered its segment stands at its entry point); x's own part
+      // keeps them only where x is at a point.
+      bool xAtPoint = v.atPoint || ab.first == 0;
+      for (auto [end, closed] : {std::pair{l, closedLo}, {h, closedHi}}) {
+        if (!closed || !xAtPoint)
+          continue;
+        unsigned j = valueIndex(end);
+        bool onPoint = j < r.grid.size() && std::fabs(r.grid[j] - end) <= eps;
+        add({onPoint, j});
+      }
     }
     if (restTop)
       add({true, unsigned(r.grid.size() - 1)});
@@ -160,18 +186,27 @@ void Discretiser::emitTransitions(Real &r) {
   // place clock is 0, i.e. a moving token is exactly at its entry point):
   // one form, or one per value of a reset to an interval (its grid points
   // and the open segments between them); empty after an error.
-  auto targetsOf = [&](uint32_t ti, Form f, bool clockZero) {
+  auto targetsOf = [&](uint32_t ti, Form f, bool clockZero,
+                       std::optional<Added> added = std::nullopt) {
     const Effect &e = effects[ti];
     int flowAfter = e.enters >= 0                         ? e.enters
                     : (f.flow >= 0 && e.leaves != f.flow) ? f.flow
                                                           : -1;
     std::vector<Form> out;
-    if (flowAfter == f.flow && !e.assign && !e.affine) {
+    if (flowAfter == f.flow && !e.assign && !e.affine && !e.transfer) {
       out.push_back(f);
       return out;
     }
     std::vector<Value> values;
-    if (e.affine) {
+    if (e.transfer) {
+      // Over every position of the reals read, unless one is given.
+      Added all = transferHull(*e.transfer);
+      const Added &with = added ? *added : all;
+      if (!affineImage(ti, {e.transfer->a, e.transfer->c},
+                       valueOf(r, f, clockZero), values, with.lo, with.hi,
+                       with.closedLo, with.closedHi))
+        return std::vector<Form>();
+    } else if (e.affine) {
       if (!affineImage(ti, *e.affine, valueOf(r, f, clockZero), values))
         return std::vector<Form>();
     } else if (e.assign) {
@@ -366,6 +401,35 @@ void Discretiser::emitTransitions(Real &r) {
       b.setEvents(t, {EventSource{ti, false}});
       ++numTransitions;
     };
+    if (e.transfer) {
+      // Per combination of positions of the reals read (condition arcs:
+      // their values before the step), one forced transition per value.
+      for (auto &[conds, added] :
+           transferCombinations(*e.transfer, m.transitions[ti].guard())) {
+        std::vector<Form> tos = targetsOf(ti, f, false, added);
+        if (split)
+          for (Form to : targetsOf(ti, f, true, added))
+            if (!llvm::is_contained(tos, to))
+              tos.push_back(to);
+        std::string when;
+        std::vector<Expr *> condRefs;
+        for (uint32_t p : conds) {
+          when += "_if_" + m.places[p].name.str();
+          condRefs.push_back(b.ref(m.places[p].name));
+        }
+        for (Form to : tos) {
+          uint32_t t = b.addTransition(
+              d.save(fresh(m.transitions[ti].name.str() + "_" + formName(r, f) +
+                           "_to_" + formName(r, to) + when)),
+              {PreArc{placeOf(r, f), 1, Interval{}}},
+              {PostArc{placeOf(r, to), 1}});
+          b.setConds(t, condRefs);
+          b.setEvents(t, {EventSource{ti, false}});
+          ++numTransitions;
+        }
+      }
+      continue;
+    }
     if (e.interval()) {
       // One forced transition per value: they take the same token, so each
       // firing of t takes one of them.
@@ -491,6 +555,8 @@ Expr *Discretiser::rewrite(Expr *e, Real *only) {
   case ExprKind::Binary: {
     auto *bin = llvm::cast<BinaryExpr>(e);
     if (bin->op >= BinaryOp::Eq && bin->op <= BinaryOp::Ge) {
+      if (auto it = relations.find(bin); it != relations.end())
+        return encodeRelation(it->second, e->loc);
       for (Real &r : reals) {
         auto isX = [&](Expr *x) {
           auto *ref = llvm::dyn_cast<Ref>(x);

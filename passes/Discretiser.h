@@ -51,6 +51,38 @@ struct GridSpec {
   double step = 0;
 };
 
+/// `sum(coef[v] * v) + constant` over real variables (by index).
+struct LinearSum {
+  std::map<uint32_t, double> coef;
+  std::map<uint32_t, Ref *> refOf; // one reference per variable read
+  double constant = 0;
+
+  void scale(double k) {
+    for (auto &[v, c] : coef)
+      c *= k;
+    constant *= k;
+  }
+  void add(const LinearSum &o, double k) {
+    for (auto &[v, c] : o.coef) {
+      coef[v] += k * c;
+      refOf.try_emplace(v, o.refOf.at(v));
+    }
+    constant += k * o.constant;
+  }
+  void dropZeros() {
+    for (auto it = coef.begin(); it != coef.end();)
+      if (it->second == 0) {
+        refOf.erase(it->first);
+        it = coef.erase(it);
+      } else {
+        ++it;
+      }
+  }
+};
+
+/// `e` as a sum of reals with constant coefficients, if it is one.
+std::optional<LinearSum> linearSum(Expr *e, const Module &m);
+
 /// An invariant condition `x op c` / `c op x` (op one of < <= > >=, x a
 /// variable, c a constant): the variable, whether c bounds it from above,
 /// and c.
@@ -333,7 +365,30 @@ private:
   /// constant the real is compared with, set to or starts at.
   void closeOpenRanges();
   bool collectUses();
-  bool scanExpr(Expr *e);
+  /// Checks a Boolean expression read where `polarity` says (+1 asserted,
+  /// -1 denied, 0 both or neither): reals are compared with constants (a
+  /// threshold) or related by a linear comparison (a relation).
+  bool scanExpr(Expr *e, int polarity = 0);
+  /// Comparisons reading one real through a linear sum (`2*x - 1 <= 6`)
+  /// become the bound they mean (`x <= 3.5`) (DiscretiseRelations.cpp).
+  void normaliseComparisons();
+  /// A linear comparison of several reals, `sum(a_i * x_i) + constant op 0`.
+  struct Relation {
+    std::vector<std::pair<size_t, double>> terms; // (real, coefficient)
+    double constant = 0;
+    BinaryOp op;
+    int polarity = 1; // +1: coded where it may hold; -1: where it must
+  };
+  std::optional<Relation> relationOf(BinaryExpr *cmp) const;
+  /// Records `cmp` as a relation if it is one (`isOne`); an error where
+  /// its polarity is unknown.
+  bool scanRelation(BinaryExpr *cmp, int polarity, bool &isOne);
+  /// The disjunction of the combinations of position places where the
+  /// relation may (polarity +1) or must (-1) hold.
+  Expr *encodeRelation(const Relation &rel, llvm::SMLoc loc);
+  std::map<const Expr *, Relation> relations;
+  static constexpr size_t kMaxRelationTerms = 200000;
+  std::optional<llvm::SMLoc> relationTooLarge;
   bool collectAssignments();
   /// Location invariants as bounds of a moving real in a place.
   bool collectInvariants();
@@ -407,6 +462,40 @@ private:
   /// Per transition and real: `x := a*x + b` (a != 0) at the top of its
   /// action, as (a, b): the image of x's grid value or segment.
   std::map<std::pair<uint32_t, size_t>, std::pair<double, double>> affineResets;
+  /// Per transition and real: `x := a*x + sum(b_j * y_j) + c` reading
+  /// other reals y_j (a copy `x2 := x1`, a mean `x := (c1 + c2)/2`): x's
+  /// new position is the image of its own and of the y_j's positions, each
+  /// read by a condition arc (DiscretiseTransfers.cpp).
+  struct TransferReset {
+    double a = 0, c = 0;
+    std::vector<std::pair<size_t, double>> terms; // (other real, b_j)
+  };
+  std::map<std::pair<uint32_t, size_t>, TransferReset> transferResets;
+  /// The order reals are coded in: one whose reset reads another after it
+  /// (its forms are then known); false after an error (resets reading
+  /// each other in a cycle).
+  bool codingOrder(std::vector<size_t> &order);
+  /// Inferred ranges widened to hold every value a transfer gives.
+  bool widenForTransfers();
+  /// The values position `f` of `r` stands for: a grid point, a segment's
+  /// closed hull, the end of an open range everything past it.
+  std::pair<double, double> hullOf(const Real &r, Form f) const;
+  /// Whether those values include the hull's lower and upper ends: a
+  /// point does, an open segment does not, a token moving up (down)
+  /// through a segment may stand at the end it entered at.
+  static std::pair<bool, bool> endsIncluded(Form f);
+  /// What the reals a transfer reads add to x: from lo to hi, each end
+  /// included or not.
+  struct Added {
+    double lo = 0, hi = 0;
+    bool closedLo = true, closedHi = true;
+  };
+  /// Over every position of the reals read.
+  Added transferHull(const TransferReset &tx) const;
+  /// Every combination of positions of the reals a transfer reads where
+  /// `guard` may hold, with what they add.
+  std::vector<std::pair<std::vector<uint32_t>, Added>>
+  transferCombinations(const TransferReset &tx, const Expr *guard) const;
   llvm::StringSet<> taken;
   double ticksPerUnit = 1; // model time units per second or tick
   std::string timeUnit = "tick";

@@ -14,7 +14,8 @@ Covers rectangular models: constant rates and rectangular flows `x' in
 rates reaches), guards, invariants (`false`:
 an urgent location, left in the instant it is entered) and outputs
 built from comparisons of one real with a constant (and/or/not, places),
-resets to constants or intervals (`between(a, b)`), initial values or
+resets to constants, intervals (`between(a, b)`) or expressions of reals
+(run in order, each reading what earlier ones set), initial values or
 intervals (intervals sampled every DT).
 A real may not leave its declared range (time stops there). With HORIZON,
 runs stop at that time (in ticks): a model whose reals grow without bound
@@ -172,16 +173,19 @@ def simulate(model, dt, max_states, horizon):
                 continue
             urgent |= is_urgent
             # Every combination of the reset values (an interval sampled
-            # every DT, its ends included).
+            # every DT, its ends included). Statements run in order: each
+            # reads the values the action's earlier ones set.
             news = [dict(zip(reals, values))]
             for target, expr in resets:
                 if isinstance(expr, tuple):
                     lo, hi = expr
                     choices = sorted({lo, hi} | {lo + k * dt for k in
                                                  range(int((hi - lo) / dt) + 1)})
+                    news = [{**n, target: c} for n in news for c in choices]
                 else:
-                    choices = [holds(expr, marking, values)]
-                news = [{**n, target: c} for n in news for c in choices]
+                    news = [{**n, target: holds(expr, marking,
+                                                tuple(n[r] for r in reals))}
+                            for n in news]
             m2 = (marking - set(pre)) | set(post)
             for new in news:
                 v2 = tuple(new[r] for r in reals)

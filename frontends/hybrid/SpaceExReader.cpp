@@ -28,8 +28,10 @@
 #include "frontends/hybrid/SpaceExText.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Clone.h"
 #include "ir/net/Names.h"
 #include "ir/net/Parser.h"
+#include "ir/net/Walk.h"
 #include "ir/support/Suggest.h"
 
 #include "llvm/ADT/StringMap.h"
@@ -76,6 +78,12 @@ public:
         xml(diag.sourceMgr().getMemoryBuffer(bufferID)->getBuffer()),
         wantedTop(top.str()), cfg(cfg), ranges(ranges) {}
   bool run();
+  /// Orders a transition's resets so that NetIR's statements in sequence
+  /// do what SpaceEx's simultaneous assignment does.
+  void simultaneousOrder(std::vector<Stmt *> &resets, pugi::xml_node at);
+  /// Per variable, the real keeping its old value where resets read each
+  /// other in a cycle.
+  std::map<std::string, std::string> oldValueOf;
 
 private:
   bool error(pugi::xml_node n, const llvm::Twine &msg) {
@@ -816,6 +824,84 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
   return true;
 }
 
+void SpaceExReader::simultaneousOrder(std::vector<Stmt *> &resets,
+                                      pugi::xml_node at) {
+  // SpaceEx assigns every variable at once, from the values before the
+  // transition; NetIR runs an action's statements in order. A reset that
+  // reads a variable another reset writes therefore goes first (`z' == x
+  // & x' == 0`: z := x; x := 0). Resets reading each other in a cycle
+  // (`x' == y & y' == x`) keep the old value of one in a real of its own,
+  // assigned first and read in its place.
+  size_t n = resets.size();
+  auto assignOf = [&](size_t i) { return llvm::cast<AssignStmt>(resets[i]); };
+  auto targetOf = [&](size_t i) {
+    return llvm::cast<Ref>(assignOf(i)->target)->name;
+  };
+  auto readsName = [](const Expr *value, StringRef name) {
+    bool found = false;
+    walkExpr(value, [&](const Expr *e) {
+      if (auto *r = llvm::dyn_cast<Ref>(e); r && r->name == name)
+        found = true;
+    });
+    return found;
+  };
+  std::vector<Stmt *> ordered;
+  std::vector<bool> placed(n);
+  for (size_t done = 0; done < n;) {
+    // The first reset, in the written order, that no unplaced reset reads.
+    auto readByUnplaced = [&](size_t j) {
+      for (size_t i = 0; i < n; ++i)
+        if (i != j && !placed[i] && readsName(assignOf(i)->value, targetOf(j)))
+          return true;
+      return false;
+    };
+    size_t next = n;
+    for (size_t j = 0; j < n && next == n; ++j)
+      if (!placed[j] && !readByUnplaced(j))
+        next = j;
+    if (next < n) {
+      placed[next] = true;
+      ordered.push_back(resets[next]);
+      ++done;
+      continue;
+    }
+    // A cycle: the first unplaced reset's variable keeps its old value in
+    // a real of its own, which the others read instead.
+    size_t j = 0;
+    while (placed[j])
+      ++j;
+    std::string target = targetOf(j).str();
+    auto [it, fresh] = oldValueOf.try_emplace(target);
+    if (fresh) {
+      std::string name = target + "_old";
+      while (mod->lookup(name).kind != SymKind::None)
+        name += "_";
+      it->second = name;
+      b.addVar(d.save(name), d.types.getReal(-INFINITY, INFINITY), b.realLit(0),
+               xml.locOf(at));
+      diag.note(xml.locOf(at),
+                "resets on this transition read each other's values before "
+                "it (SpaceEx assigns them at once): the old value of '" +
+                    target + "' is kept in a real '" + name +
+                    "' of its own, assigned first");
+    }
+    StringRef old = d.save(it->second);
+    ordered.push_back(b.assign(b.ref(old), b.ref(d.save(target))));
+    for (size_t i = 0; i < n; ++i) {
+      if (i == j || placed[i] || !readsName(assignOf(i)->value, target))
+        continue;
+      Expr *value = cloneExpr(b, *mod, assignOf(i)->value,
+                              [](StringRef name) { return name.str(); });
+      walkExpr(value, [&](const Expr *e) {
+        if (auto *r = llvm::dyn_cast<Ref>(e); r && r->name == target)
+          const_cast<Ref *>(r)->name = old;
+      });
+      resets[i] = b.assign(b.ref(targetOf(i)), value);
+    }
+  }
+  resets = std::move(ordered);
+}
+
 bool SpaceExReader::run() {
   pugi::xml_document doc;
   if (!xml.parse(doc, diag))
@@ -924,8 +1010,10 @@ bool SpaceExReader::run() {
       g = g ? b.binary(BinaryOp::And, g, e) : e;
     if (g)
       b.setGuard(t, g);
-    if (!resets.empty())
+    if (!resets.empty()) {
+      simultaneousOrder(resets, parts.front()->node);
       b.setAction(t, resets);
+    }
   };
   for (const ProtoTransition &p : protos)
     if (p.label.empty())
