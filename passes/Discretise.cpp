@@ -417,8 +417,9 @@ bool Discretiser::collectAssignments() {
                                             "' is assigned something that is "
                                             "not a constant" +
                                             (interval ? " interval" : ""));
-          reals[ri].assigned.insert(*c);
-          reals[ri].assigned.insert(*h);
+          for (double v : {*c, *h})
+            if (std::isfinite(v)) // `y' >= 0`: between(0, inf)
+              reals[ri].assigned.insert(v);
           assigns[{ti, ri}] = {*c, *h};
           continue;
         }

@@ -218,6 +218,7 @@ std::optional<double> Discretiser::farthestShift(uint32_t var, int sign) {
         always |= !conditional;
         if (auto c = constantReset(a)) {
           entry = std::min({entry, sign * c->first, sign * c->second});
+          unknown |= !std::isfinite(entry); // `x' >= 0`: from anywhere
         } else if (auto ab = affineCoefficients(a->value, var);
                    ab && ab->first > 0 && leaves) {
           entry = std::min(entry, ab->first * from + sign * ab->second);
@@ -324,10 +325,13 @@ bool Discretiser::inferRange(Real &r, std::string &why) {
   };
   for (const Transition &tr : m.transitions)
     forEachReset(tr, var, [&](const AssignStmt *a, bool) {
-      if (auto c = constantReset(a)) {
-        widen(c->first);
-        widen(c->second);
-      }
+      // An end left open (`y' >= 0`, between(0, inf)) does not widen:
+      // the range must come from elsewhere, and the reset's values past
+      // it rest at an open end or are refused at a closed one.
+      if (auto c = constantReset(a))
+        for (double v : {c->first, c->second})
+          if (std::isfinite(v))
+            widen(v);
     });
   startLo = newLo;
   startHi = newHi;

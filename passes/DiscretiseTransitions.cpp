@@ -210,8 +210,25 @@ void Discretiser::emitTransitions(Real &r) {
       if (!affineImage(ti, *e.affine, valueOf(r, f, clockZero), values))
         return std::vector<Form>();
     } else if (e.assign) {
-      unsigned k0 = valueIndex(e.assign->first);
-      unsigned k1 = valueIndex(e.assign->second);
+      // An end left open (`y' >= 0`) reaches the range's end where that end
+      // stands for every value past it; a closed end is refused.
+      auto [lo, hi] = *e.assign;
+      bool openLo = !std::isfinite(lo), openHi = !std::isfinite(hi);
+      if ((openLo && !r.openBottom) || (openHi && !r.openTop)) {
+        if (refusedResets.insert(ti).second)
+          error(m.transitions[ti].loc,
+                "transition '" + m.transitions[ti].name + "' resets '" +
+                    r.name + "' to any value " +
+                    (openHi ? "from " + num(lo) + " up" : "up to " + num(hi)) +
+                    ", past the end of its range [" + num(r.grid.front()) +
+                    ", " + num(r.grid.back()) +
+                    "], which is closed there (a real that only " +
+                    (openHi ? "rises" : "falls") +
+                    " has that end open; else bound the reset)");
+        return std::vector<Form>();
+      }
+      unsigned k0 = openLo ? 0 : valueIndex(lo);
+      unsigned k1 = openHi ? unsigned(r.grid.size() - 1) : valueIndex(hi);
       for (unsigned k = k0; k <= k1; ++k) {
         if (k > k0)
           values.push_back({false, k});

@@ -98,6 +98,8 @@ def parse(text):
         for a in re.finditer(r"(\S+) := ([^;]+);", m.group(7) or ""):
             # A reset to an interval: (target, (lo, hi)).
             iv = re.fullmatch(r"between\(([^,]+), ([^)]+)\)", a.group(2))
+            if iv and "inf" in iv.group(0):
+                unsupported(f"a reset to an interval open on one side in {m.group(1)}")
             resets.append((a.group(1),
                            (Fraction(iv.group(1)), Fraction(iv.group(2)))
                            if iv else compile_expr(a.group(2))))

@@ -582,6 +582,13 @@ bool SpaceExReader::PrimedBounds::interval(
     hi = o.upper;
     return true;
   }
+  // A reset bounded on one side (`y' >= 0`) leaves it any value past the
+  // bound: an interval open on the other side.
+  if (what == "assignment" && (o.lower || o.upper)) {
+    lo = o.lower ? o.lower : r.b.realLit(-INFINITY);
+    hi = o.upper ? o.upper : r.b.realLit(INFINITY);
+    return true;
+  }
   return r.error(node, what + " of '" + var + "' " + where + " bounds " + var +
                            "' " + (o.lower ? "from below" : "from above") +
                            " only ('" + o.text +

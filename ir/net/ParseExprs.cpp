@@ -253,6 +253,10 @@ Expr *Parser::parsePrimary() {
       consume();
       return b.boolLit(n == "true", loc);
     }
+    if (n == "inf") { // a reserved name: the real infinity
+      consume();
+      return b.realLit(INFINITY, loc);
+    }
     if (n == "string" || n == "wstring") {
       // A conversion to a string type: `string[20](x)`.
       const Type *to;
