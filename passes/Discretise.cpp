@@ -105,7 +105,12 @@ bool Discretiser::checkRectangularFlows() {
                              "after each step, which a rectangular flow ('" +
                                  eq.var + "' in place '" + place +
                                  "') does not fix; use grid= or points=");
-      if (!std::isfinite(*lo) || !std::isfinite(*hi))
+      // A rate bounded on one side only (SpaceEx's `x' >= 1`): any rate
+      // from 1 up, a segment crossed in any time up to its distance / 1.
+      bool oneSided = std::isfinite(*lo) != std::isfinite(*hi);
+      if (oneSided && (std::isfinite(*lo) ? *lo > 0 : *hi < 0))
+        continue;
+      if (!std::isfinite(*lo) && !std::isfinite(*hi))
         return error(eq.loc,
                      "'" + eq.var + "' changes freely in place '" + place +
                          "' (its rates are [" + num(*lo) + ", " + num(*hi) +

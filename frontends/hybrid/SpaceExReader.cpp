@@ -583,8 +583,9 @@ bool SpaceExReader::PrimedBounds::interval(
     return true;
   }
   // A reset bounded on one side (`y' >= 0`) leaves it any value past the
-  // bound: an interval open on the other side.
-  if (what == "assignment" && (o.lower || o.upper)) {
+  // bound, and a rate so bounded (`x' >= 1`) any rate past it: an interval
+  // open on the other side.
+  if (o.lower || o.upper) {
     lo = o.lower ? o.lower : r.b.realLit(-INFINITY);
     hi = o.upper ? o.upper : r.b.realLit(INFINITY);
     return true;
