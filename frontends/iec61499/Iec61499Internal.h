@@ -226,6 +226,9 @@ private:
   File &readLibraryFile(const std::string &path, StringRef name, SMLoc use);
   FbType *libraryType(StringRef name, SMLoc use = SMLoc());
   void collect(FbType &t);
+  /// A basic FB with an algorithm in another language than ST is
+  /// environment (the default) or read, and refused, as it stands.
+  void runtimeAlgorithms(FbType &t);
   void collectNetwork(XmlSource &src, pugi::xml_node net, const FbType *owner);
   FbType &generatedType(const std::string &name, const std::string &text);
   std::string fanOutType(size_t ways);

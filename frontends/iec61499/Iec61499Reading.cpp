@@ -194,6 +194,8 @@ void Translator::registerTypes(File &f, bool builtin) {
       t->kind = TypeKind::Basic;
     } else if ((t->body = child(root, "Service")))
       t->kind = TypeKind::Service;
+    if (t->kind == TypeKind::Basic)
+      runtimeAlgorithms(*t);
   }
   std::string key = StringRef(t->name).upper();
   auto [it, fresh] = types.try_emplace(key, nullptr);
@@ -338,6 +340,34 @@ StringRef netlift::iec61499::detail::declaredType(pugi::xml_node fb) {
   if (pugi::xml_attribute a = fb.attribute(kDeclaredType))
     return a.value();
   return fb.attribute("Type").value();
+}
+
+/// A basic or simple FB with an algorithm or method in another language
+/// than ST (4diac's <Other Language="C++">: FB_RANDOM's generator) runs code
+/// netlift cannot read: like a service FB, it is modelled as environment
+/// (or refused, with --opaque=refuse, where its algorithm is read).
+void Translator::runtimeAlgorithms(FbType &t) {
+  if (!opaqueAsEnvironment)
+    return;
+  for (pugi::xml_node a : t.body.children())
+    if ((localName(a) == "Algorithm" || localName(a) == "Method") &&
+        !child(a, "ST")) {
+      pugi::xml_node other = a.first_child();
+      std::string language = other.attribute("Language").value();
+      diag.note(t.src->locOf(a),
+                std::string(localName(a) == "Algorithm" ? "algorithm '"
+                                                        : "method '") +
+                    a.attribute("Name").value() + "' of '" + t.name +
+                    "' is written in " +
+                    (other ? "<" + localName(other).str() + ">" +
+                                 (language.empty() ? "" : " (" + language + ")")
+                           : std::string("no language")) +
+                    ", which netlift does not read: the block is modelled as "
+                    "environment, like a service FB (--opaque=refuse "
+                    "refuses it)");
+      t.kind = TypeKind::NoBody;
+      return;
+    }
 }
 
 /// Finds every type `t` uses, depth first, so that a type is translated
