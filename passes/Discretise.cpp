@@ -541,11 +541,25 @@ bool Discretiser::collectUses() {
     size_t before = relations.size();
     if (!scanExpr(t.guard(), +1))
       return false;
-    if (relations.size() > before)
+    if (relations.size() > before) {
+      // Coded where it may hold, the guard lets the transition fire where
+      // the hybrid model could not: harmless for a transition that may
+      // fire or not, but one that must fire once enabled (urgent, or
+      // forced by an event) would then leave where the model stays.
+      if (t.urgent || t.isForced())
+        return error(t.loc, "the guard of " +
+                                std::string(t.urgent ? "urgent" : "forced") +
+                                " transition '" + t.name +
+                                "' relates several reals, which discretise "
+                                "codes where it may hold: the transition "
+                                "would have to fire where the model does "
+                                "not (compare each real with a constant, "
+                                "or let the transition fire at will)");
       diag.note(t.loc, "the guard of transition '" + t.name +
                            "' relates several reals: discretise lets it "
                            "fire in the combinations of their positions "
                            "where it may hold (an over-approximation)");
+    }
   }
   for (Var &v : m.vars)
     if (v.init) {

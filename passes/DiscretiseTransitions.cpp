@@ -421,6 +421,19 @@ void Discretiser::emitTransitions(Real &r) {
     if (e.transfer) {
       // Per combination of positions of the reals read (condition arcs:
       // their values before the step), one forced transition per value.
+      double combinations = 1;
+      for (auto [rj, bj] : e.transfer->terms)
+        combinations *= double(reals[rj].places.size());
+      if (combinations > double(kMaxTransferCombinations)) {
+        if (refusedResets.insert(ti).second)
+          error(m.transitions[ti].loc,
+                "transition '" + m.transitions[ti].name + "' resets '" +
+                    r.name + "' from reals whose positions make " +
+                    num(combinations) + " combinations (more than " +
+                    std::to_string(kMaxTransferCombinations) +
+                    "); use a coarser grid");
+        continue;
+      }
       for (auto &[conds, added] :
            transferCombinations(*e.transfer, m.transitions[ti].guard())) {
         std::vector<Form> tos = targetsOf(ti, f, false, added);

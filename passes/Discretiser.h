@@ -471,6 +471,7 @@ private:
     std::vector<std::pair<size_t, double>> terms; // (other real, b_j)
   };
   std::map<std::pair<uint32_t, size_t>, TransferReset> transferResets;
+  static constexpr size_t kMaxTransferCombinations = 100000;
   /// The order reals are coded in: one whose reset reads another after it
   /// (its forms are then known); false after an error (resets reading
   /// each other in a cycle).
