@@ -22,6 +22,8 @@
 
 #include "ir/net/Printer.h"
 
+#include "llvm/Support/FormatVariadic.h"
+
 using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::discretise;
@@ -142,7 +144,11 @@ void Discretiser::normaliseComparisons() {
     // a*x + b op 0  <=>  x op' -b/a, op' mirrored when a < 0.
     auto [var, a] = *diff->coef.begin();
     bin->lhs = diff->refOf[var];
-    bin->rhs = b.realLit(-diff->constant / a, bin->loc);
+    // Snapped to 12 significant digits: `0.1*x <= 0.3` means x <= 3, not
+    // 2.9999999999999996, a grid point a rounding error away from 3.
+    double bound = std::strtod(
+        llvm::formatv("{0:e11}", -diff->constant / a).str().c_str(), nullptr);
+    bin->rhs = b.realLit(bound, bin->loc);
     if (a < 0)
       bin->op = mirrored(bin->op);
   };
