@@ -692,10 +692,20 @@ bool SpaceExReader::instantiateBase(pugi::xml_node comp,
                       it->second.name + "=VALUE' fixes it)");
       continue;
     }
-    if (dyn == "const" && (it == bind.end() || !it->second.value))
+    if (dyn == "const" && (it == bind.end() || !it->second.value)) {
+      std::string global = it != bind.end() ? it->second.name : name;
       return error(p, "constant '" + name + "' of component '" +
                           comp.attribute("id").value() +
-                          "' is given no value (bind it to a number)");
+                          "' is given no value (bind it to a number, give " +
+                          "it a value in the initial set of the " +
+                          "configuration, or " + "--param '" + global +
+                          "=VALUE'" +
+                          (cfg ? std::string(")")
+                               : std::string("; no configuration was read: "
+                                             "netlift reads the .cfg named "
+                                             "like the model beside it, "
+                                             "or --cfg FILE)")));
+    }
   }
   for (pugi::xml_node n : comp.children()) {
     StringRef tag = n.name();
