@@ -243,7 +243,7 @@ Expr *Discretiser::encodeRelation(const Relation &rel, llvm::SMLoc loc) {
     const Real &r = reals[rel.terms[i].first];
     double a = rel.terms[i].second;
     for (auto &[f, place] : r.places) {
-      auto [lo, hi] = hullOf(r, f);
+      auto [lo, hi] = hullOf(r, valueOf(r, f, false));
       scale = std::max(
           {scale, std::fabs(r.grid.front() * a), std::fabs(r.grid.back() * a)});
       options[i].push_back(a > 0 ? Option{place, a * lo, a * hi}

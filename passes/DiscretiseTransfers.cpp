@@ -18,8 +18,7 @@ using namespace netlift;
 using namespace netlift::net;
 using namespace netlift::discretise;
 
-std::pair<double, double> Discretiser::hullOf(const Real &r, Form f) const {
-  Value v = valueOf(r, f, false);
+std::pair<double, double> Discretiser::hullOf(const Real &r, Value v) const {
   double lo = v.atPoint ? r.grid[v.k] : r.grid[v.k - 1];
   double hi = r.grid[v.k];
   if (v.atPoint && v.k + 1 == r.grid.size() && r.openTop)
@@ -87,7 +86,7 @@ Discretiser::transferCombinations(const TransferReset &tx,
       };
       if (never(false) && (!f.moving() || never(true)))
         continue;
-      auto [l, h] = scaled(bj, hullOf(y, f));
+      auto [l, h] = scaled(bj, hullOf(y, valueOf(y, f, false)));
       auto [inLo, inHi] = endsIncluded(f);
       if (bj < 0)
         std::swap(inLo, inHi);

@@ -86,19 +86,12 @@ void Discretiser::emitTransitions(Real &r) {
   // (what the other reals of a transfer add). Past the end of a range
   // left open by closeOpenRanges, values rest at its end; past a closed
   // range the reset is refused.
-  constexpr double kInfReal = std::numeric_limits<double>::infinity();
   std::set<uint32_t> refusedResets;
   auto affineImage = [&](uint32_t ti, std::pair<double, double> ab, Value v,
                          std::vector<Value> &values, double dl = 0,
                          double dh = 0, bool closedLo = false,
                          bool closedHi = false) {
-    double lo = v.atPoint ? r.grid[v.k] : r.grid[v.k - 1];
-    double hi = r.grid[v.k];
-    // The end point of an open range stands for every value past it.
-    if (v.atPoint && r.openTop && v.k + 1 == r.grid.size())
-      hi = kInfReal;
-    if (v.atPoint && r.openBottom && v.k == 0)
-      lo = -kInfReal;
+    auto [lo, hi] = hullOf(r, v);
     double l = ab.first * lo + ab.second, h = ab.first * hi + ab.second;
     if (ab.first == 0)
       l = h = ab.second; // x is not read (an open end would give 0*inf)

@@ -478,9 +478,9 @@ private:
   bool codingOrder(std::vector<size_t> &order);
   /// Inferred ranges widened to hold every value a transfer gives.
   bool widenForTransfers();
-  /// The values position `f` of `r` stands for: a grid point, a segment's
-  /// closed hull, the end of an open range everything past it.
-  std::pair<double, double> hullOf(const Real &r, Form f) const;
+  /// The values a value state of `r` stands for: a grid point, a
+  /// segment's closed hull, the end of an open range everything past it.
+  std::pair<double, double> hullOf(const Real &r, Value v) const;
   /// Whether those values include the hull's lower and upper ends: a
   /// point does, an open segment does not, a token moving up (down)
   /// through a segment may stand at the end it entered at.
