@@ -61,6 +61,26 @@ static bool readsPort(const Expr *e, uint32_t port) {
   return found;
 }
 
+/// The transitions that read any free input of `m`; when none does, those
+/// with an action.
+static std::set<int> inputSamplers(const Module &m) {
+  std::set<int> out;
+  forEachRead(m, [&](const Expr *e, int t) {
+    if (t < 0 || out.count(t))
+      return;
+    walkExpr(e, [&](const Expr *x) {
+      if (auto *r = llvm::dyn_cast<Ref>(x);
+          r && r->sym.kind == SymKind::Port && m.ports[r->sym.index].isInput())
+        out.insert(t);
+    });
+  });
+  if (out.empty())
+    for (const Transition &t : m.transitions)
+      if (t.hasAction())
+        out.insert(int(&t - &m.transitions[0]));
+  return out;
+}
+
 bool netlift::latchInputs(Design &d, Module &m,
                           const std::vector<std::string> &names,
                           DiagEngine &diag) {
@@ -91,6 +111,12 @@ bool netlift::latchInputs(Design &d, Module &m,
       if (t >= 0 && readsPort(e, s.index))
         readers.insert(t);
     });
+    // An input the program never reads is still in the input image a
+    // PLC's scan samples: it is latched by the step that samples the
+    // module's other inputs, or, when none does, by its one transition
+    // with an action.
+    if (readers.empty())
+      readers = inputSamplers(m);
     if (readers.size() != 1) {
       std::string which;
       for (int t : readers)
@@ -98,7 +124,8 @@ bool netlift::latchInputs(Design &d, Module &m,
             (which.empty() ? "'" : ", '") + m.transitions[t].name.str() + "'";
       diag.error(port->loc,
                  "input '" + name + "' is read by " +
-                     (readers.empty() ? std::string("no transition")
+                     (readers.empty() ? std::string("no transition, and no "
+                                                    "transition has an action")
                                       : std::to_string(readers.size()) +
                                             " transitions (" + which + ")") +
                      ": a property can name an input through the value "

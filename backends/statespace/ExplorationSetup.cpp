@@ -164,7 +164,6 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
         std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
     setup->tick = design.timescale;
     setup->sources = &diag.sourceMgr();
-    setup->sources = &diag.sourceMgr();
     setup->latchedInputs = std::move(latch);
     return setup;
   }
@@ -180,6 +179,7 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   auto setup =
       std::unique_ptr<ExplorationSetup>(new ExplorationSetup(*top, options));
   setup->tick = design.timescale;
+  setup->sources = &diag.sourceMgr();
   setup->latchedInputs = std::move(latch);
   setup->timers = std::move(timers);
   setup->exactTop = exact;
