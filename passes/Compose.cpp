@@ -55,6 +55,7 @@ private:
   bool chooseComponents();
   bool readConnectionFile();
   bool matchByName();
+  bool reportUnconnected(bool match, size_t byName) const;
   const Component *component(StringRef name) const {
     for (const Component &c : comps)
       if (c.name == name)
@@ -258,6 +259,53 @@ bool Composer::matchByName() {
   return ok;
 }
 
+/// A composition that wired nothing by name is almost always a mistake
+/// (ports named differently, a forgotten connection file): the components
+/// would run side by side with every input free. With --match names asked
+/// for, it is an error; by default, without a connection file, a warning
+/// naming the unconnected ports.
+bool Composer::reportUnconnected(bool match, size_t byName) const {
+  if (!match || byName > 0 || comps.size() < 2)
+    return true;
+  bool asked = opts.matchNames.value_or(false);
+  if (!asked && !wires.empty())
+    return true;
+  std::string inputs, outputs;
+  unsigned numInputs = 0, numOutputs = 0;
+  llvm::StringSet<> driven;
+  for (const Wire &w : wires)
+    driven.insert(endName(w.to));
+  auto add = [](std::string &list, unsigned &n, const std::string &name) {
+    if (n++ < 8)
+      list += (list.empty() ? "'" : ", '") + name + "'";
+    else if (n == 9)
+      list += ", ...";
+  };
+  for (const Component &c : comps)
+    for (const Port &p : c.mod->ports) {
+      std::string n = c.name + "." + p.name.str();
+      if (p.isInput() && !driven.count(n))
+        add(inputs, numInputs, n);
+      else if (p.isOutput())
+        add(outputs, numOutputs, n);
+    }
+  std::string msg =
+      "compose: no input of " + componentList() +
+      " has the name of another component's output, so matching by name "
+      "connected nothing; unconnected inputs (" +
+      std::to_string(numInputs) + "): " + (inputs.empty() ? "none" : inputs) +
+      "; outputs (" + std::to_string(numOutputs) +
+      "): " + (outputs.empty() ? "none" : outputs) +
+      "; wire them with a connection file (connect=FILE, --connect FILE)";
+  if (asked) {
+    diag.error(SMLoc(), msg);
+    return false;
+  }
+  diag.warning(SMLoc(), msg + "; the components run side by side, every "
+                              "input free");
+  return true;
+}
+
 void Composer::writeReport(llvm::raw_ostream &os) const {
   os << "system " << opts.systemName << "\n";
   for (const Component &c : comps)
@@ -297,7 +345,10 @@ bool Composer::run(llvm::raw_ostream *report, Statistics &stats) {
   if (!chooseComponents() || !readConnectionFile())
     return false;
   bool match = opts.matchNames.value_or(opts.connectFile.empty());
+  size_t fromFile = wires.size();
   if (match && !matchByName())
+    return false;
+  if (!reportUnconnected(match, wires.size() - fromFile))
     return false;
   Builder b(d);
   b.createModule(opts.systemName, /*isSystem=*/true);
