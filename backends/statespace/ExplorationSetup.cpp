@@ -2,6 +2,7 @@
 #include "backends/statespace/ExplorationSetup.h"
 
 #include "ir/net/ExecutedOnly.h"
+#include "ir/net/ScanResets.h"
 #include "ir/net/Walk.h"
 
 #include <functional>
@@ -9,6 +10,7 @@
 #include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
 #include "passes/Flatten.h"
+#include "passes/KeepValues.h"
 #include "passes/LatchInputs.h"
 #include "passes/Pass.h"
 
@@ -107,6 +109,20 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
         latch.push_back(std::move(name));
   if (!latchInputs(design, *top, latch, diag))
     return nullptr;
+  // PLC memory an observer names keeps its value past the end of the scan
+  // (passes/KeepValues.h): the reset of what the model never reads may only
+  // drop what no one sees.
+  std::vector<std::string> keep = options.keep;
+  if (options.keepAll)
+    for (uint32_t v : net::scanResetVars(*top))
+      keep.push_back(top->vars[v].name.str());
+  for (const std::string &text : options.propertyTexts)
+    for (std::string &name : net::scanResetVarsNamedIn(*top, text))
+      keep.push_back(std::move(name));
+  llvm::sort(keep);
+  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  if (!keepValues(design, *top, keep, diag, /*lenient=*/options.keep.empty()))
+    return nullptr;
   // Enumerating, every value of every input is tried at every step; split
   // on demand, only the values the program tells apart (and strings are
   // still too many).
@@ -203,6 +219,26 @@ std::string ExplorationSetup::summaryJsonFields() const {
     out += "]";
   }
   return out;
+}
+
+void ExplorationSetup::noteUnkeptValues(DiagEngine &diag) const {
+  llvm::DenseSet<uint32_t> vars = net::scanResetVars(*module);
+  if (vars.empty())
+    return;
+  std::vector<uint32_t> sorted(vars.begin(), vars.end());
+  llvm::sort(sorted);
+  std::string names;
+  for (size_t i = 0; i < sorted.size() && i < 10; ++i)
+    names += (i ? ", '" : "'") + module->vars[sorted[i]].name.str() + "'";
+  if (sorted.size() > 10)
+    names += ", ...";
+  diag.note(llvm::SMLoc(),
+            std::to_string(sorted.size()) +
+                " function-block member(s) the program never reads are reset "
+                "at the end of each scan and left out of the state file (" +
+                names +
+                "); --keep NAME,... keeps their values, and a property or "
+                "--find naming one keeps it");
 }
 
 ExploreOptions ExplorationSetup::exploreOptions() const {

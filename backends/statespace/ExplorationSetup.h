@@ -60,6 +60,12 @@ struct ExplorationOptions {
   /// (passes/LatchInputs.h).
   std::vector<std::string> latch;
   std::vector<std::string> propertyTexts;
+  /// --keep, and the PLC memory the properties name: the function-block
+  /// members reset at the end of each scan (attr scan_reset) whose values
+  /// this run keeps (passes/KeepValues.h). `keepAll`: every one (a state
+  /// file written shows every variable as the PLC has it).
+  std::vector<std::string> keep;
+  bool keepAll = false;
   /// --trace-internals: traces show every step and name (TraceView).
   bool traceInternals = false;
   /// --trace-source: each row of a trace lists the source lines its step
@@ -109,6 +115,9 @@ public:
   /// `,"timers":{...}` for --summary json, empty without the option;
   /// `,"latched":[...]` when inputs were latched.
   std::string summaryJsonFields() const;
+  /// Says which function-block members reset at the end of each scan a
+  /// state file leaves out (nothing when none is).
+  void noteUnkeptValues(DiagEngine &diag) const;
   /// The inputs latched for this run, in the module's port order.
   const std::vector<std::string> &latched() const { return latchedInputs; }
 

@@ -5,6 +5,9 @@
 #include "llvm/Support/raw_ostream.h"
 
 #include <chrono>
+
+#include "ir/support/Budget.h"
+#include "llvm/ADT/ScopeExit.h"
 #include <unistd.h>
 
 using namespace netlift;
@@ -105,6 +108,10 @@ std::vector<std::pair<uint32_t, uint32_t>> Explorer::pathTo(uint32_t s) const {
 bool Explorer::run(ExploreResult &r) {
   const sem::StateLayout &L = sem.layout();
   auto start = Clock::now();
+  // Time and memory are checked inside each expansion too (Budget.h).
+  Budget budget(opts.timeLimit, opts.maxMemory);
+  sem.setBudget(&budget);
+  auto noBudget = llvm::make_scope_exit([&] { sem.setBudget(nullptr); });
   std::vector<uint64_t> init(L.numWords());
   sem::RuntimeError err;
   if (!sem.initialState(init.data(), err)) {
@@ -184,6 +191,11 @@ bool Explorer::run(ExploreResult &r) {
   // Stores a batch's successors; false when the search stops.
   auto commit = [&](const Batch &b) {
     uint32_t s = b.from;
+    // The budget spent inside the expansion: the state stays unexpanded.
+    if (!b.ok && b.err.budget) {
+      r.limitReached = b.err.budget;
+      return false;
+    }
     tokenStats.account(states.state(s), r);
     bool step = false;
     uint32_t tick = kNone;
@@ -262,7 +274,9 @@ bool Explorer::run(ExploreResult &r) {
         r.limitReached = "time";
         break;
       }
-      if (opts.maxMemory > 0 && mem > opts.maxMemory) {
+      uint64_t resident = 0;
+      if (opts.maxMemory > 0 &&
+          (mem > opts.maxMemory || budget.overMemory(resident))) {
         r.limitReached = "memory";
         break;
       }

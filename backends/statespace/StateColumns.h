@@ -32,7 +32,11 @@ struct StateColumn {
   bool isString() const { return type && type->isString(); }
 };
 
-std::vector<StateColumn> stateColumns(const sem::Semantics &sem);
+/// `stateFile`: the columns of a state file, which leaves out the PLC memory
+/// the semantics resets at the end of each scan (its stored value is not
+/// the PLC's; --keep keeps it, docs/semantics.md "Observers").
+std::vector<StateColumn> stateColumns(const sem::Semantics &sem,
+                                      bool stateFile = false);
 
 /// A column's value in one state: the number it holds (a string: its
 /// length) and how it is written (a string: as a NetIR literal).

@@ -1,5 +1,6 @@
 //===- TimerReplay.cpp - abstract counterexamples replayed in exact time --===//
 #include "backends/statespace/TimerReplay.h"
+#include "backends/statespace/TraceValues.h"
 
 #include "backends/statespace/ExplorationSetup.h"
 #include "backends/statespace/Writers.h"
@@ -201,8 +202,9 @@ void statespace::writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
   for (const std::vector<uint64_t> &s : o.states)
     states.push_back(s.data());
   std::vector<std::string> labels(o.labels.begin(), o.labels.end());
-  withInputClasses(exact, labels, states);
-  writeStatePath(exact, labels, states, os, view);
+  PlcPath plc = plcValues(exact, labels, states);
+  withInputClasses(plc.in(exact), labels, plc.states);
+  writeStatePath(plc.in(exact), labels, plc.states, os, view);
 }
 
 ReplayOutcome::Verdict

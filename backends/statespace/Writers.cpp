@@ -1,10 +1,12 @@
 //===- Writers.cpp - state spaces as files --------------------------------===//
 #include "backends/statespace/Writers.h"
+#include "backends/statespace/TraceValues.h"
 #include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
 #include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/ScanResets.h"
 #include "ir/net/FloatOps.h"
 #include "ir/net/StringOps.h"
 
@@ -35,10 +37,14 @@ std::vector<char> deadlockFlags(const Explorer &x, const ExploreResult &r) {
 }
 } // namespace
 
-std::vector<StateColumn> listing::stateColumns(const sem::Semantics &sem) {
+std::vector<StateColumn> listing::stateColumns(const sem::Semantics &sem,
+                                               bool stateFile) {
   const sem::StateLayout &L = sem.layout();
   const Module &m = sem.module();
   std::vector<StateColumn> out;
+  llvm::DenseSet<uint32_t> unkept;
+  if (stateFile && sem.options().scanResets)
+    unkept = net::scanResetVars(m);
   for (uint32_t p = 0; p < m.places.size(); ++p)
     out.push_back({m.places[p].name.str(), StateColumn::Place, L.markingSlot(p),
                    nullptr});
@@ -48,7 +54,7 @@ std::vector<StateColumn> listing::stateColumns(const sem::Semantics &sem) {
                      uint32_t(L.clockSlot(p)), nullptr});
   for (uint32_t v = 0; v < m.vars.size(); ++v) {
     int32_t first = L.varSlot(v);
-    if (first < 0)
+    if (first < 0 || unkept.count(v))
       continue;
     for (uint32_t i = 0; i < sem::StateLayout::slotsOf(m.vars[v].type); ++i)
       if (const sem::Slot &s = L.slots()[first + i]; s.type)
@@ -100,7 +106,7 @@ std::string netlift::statespace::describeState(sem::Semantics &sem,
                                                const uint64_t *state,
                                                llvm::StringRef separator) {
   std::string out;
-  for (const StateColumn &a : stateColumns(sem)) {
+  for (const StateColumn &a : stateColumns(sem, /*stateFile=*/true)) {
     Cell c = cellOf(sem, a, state);
     if (a.kind == StateColumn::Place && c.v == 0)
       continue; // markings list the marked places only
@@ -134,7 +140,7 @@ void netlift::statespace::writeDot(const Explorer &x, sem::Semantics &sem,
 
 void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
                                    llvm::raw_ostream &os) {
-  std::vector<StateColumn> attrs = stateColumns(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem, /*stateFile=*/true);
   // Edges grouped by source state, each group in generation order.
   uint32_t n = x.store().size();
   std::vector<uint32_t> first(n + 1, 0);
@@ -170,7 +176,7 @@ void netlift::statespace::writeArc(const Explorer &x, sem::Semantics &sem,
 void netlift::statespace::writeJson(const Explorer &x, sem::Semantics &sem,
                                     const ExploreResult &r,
                                     llvm::raw_ostream &os) {
-  std::vector<StateColumn> attrs = stateColumns(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem, /*stateFile=*/true);
   std::vector<char> isDeadlock = deadlockFlags(x, r);
   llvm::json::OStream j(os, 1);
   j.object([&] {
@@ -231,7 +237,7 @@ static std::string csvField(const std::string &f) {
 void netlift::statespace::writeCsvStates(const Explorer &x, sem::Semantics &sem,
                                          const ExploreResult &r,
                                          llvm::raw_ostream &os) {
-  std::vector<StateColumn> attrs = stateColumns(sem);
+  std::vector<StateColumn> attrs = stateColumns(sem, /*stateFile=*/true);
   std::vector<char> isDeadlock = deadlockFlags(x, r);
   os << "id,deadlock";
   for (const StateColumn &a : attrs)
@@ -335,10 +341,9 @@ void netlift::statespace::withInputClasses(
   }
 }
 
-static void labelledPath(const Explorer &x, sem::Semantics &sem,
-                         llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
-                         std::vector<std::string> &labels,
-                         std::vector<const uint64_t *> &states);
+static PlcPath labelledPath(const Explorer &x, sem::Semantics &sem,
+                            llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                            std::vector<std::string> &labels);
 
 void netlift::statespace::writePath(
     const Explorer &x, sem::Semantics &sem,
@@ -346,9 +351,8 @@ void netlift::statespace::writePath(
     const TraceView &view, int64_t loopTo, uint32_t loopLabel) {
   // Which inputs took each step (issue 40), unless the labels say it.
   std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  labelledPath(x, sem, path, labels, states);
-  writeStatePath(sem, labels, states, os, view, loopTo,
+  PlcPath plc = labelledPath(x, sem, path, labels);
+  writeStatePath(plc.in(sem), labels, plc.states, os, view, loopTo,
                  loopLabel == Explorer::kNone ? "" : x.label(loopLabel));
 }
 
@@ -409,17 +413,20 @@ void statespace::writeJsonSteps(sem::Semantics &sem,
 }
 
 /// A path's step labels (with the input classes that took each step,
-/// unless the labels already say them) and its states.
-static void labelledPath(const Explorer &x, sem::Semantics &sem,
-                         llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
-                         std::vector<std::string> &labels,
-                         std::vector<const uint64_t *> &states) {
+/// unless the labels already say them) and its states, with the values the
+/// PLC has (TraceValues.h).
+static PlcPath labelledPath(const Explorer &x, sem::Semantics &sem,
+                            llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
+                            std::vector<std::string> &labels) {
+  std::vector<const uint64_t *> states;
   for (const auto &[l, st] : path) {
     labels.push_back(l == Explorer::kNone ? "" : x.label(l));
     states.push_back(x.store().state(st));
   }
+  PlcPath plc = plcValues(sem, labels, states);
   if (!x.options().inputLabels)
-    withInputClasses(sem, labels, states);
+    withInputClasses(plc.in(sem), labels, plc.states);
+  return plc;
 }
 
 /// The JSON trace document (docs/formats.md, "JSON traces").
@@ -486,16 +493,15 @@ bool statespace::writeJsonTraceFile(const Explorer &x, sem::Semantics &sem,
                                     llvm::StringRef file, DiagEngine &diag) {
   auto path = x.pathTo(target);
   std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  labelledPath(x, sem, path, labels, states);
+  PlcPath plc = labelledPath(x, sem, path, labels);
   return writeOutputFile(
              file,
              [&](llvm::raw_ostream &os) {
-               writeJsonTrace(header, x, sem, tick, path, labels, states, -1,
-                              Explorer::kNone, os);
+               writeJsonTrace(header, x, plc.in(sem), tick, path, labels,
+                              plc.states, -1, Explorer::kNone, os);
              },
              diag) &&
-         verifyJsonTrace(sem, file, diag);
+         verifyJsonTrace(plc.in(sem), file, diag);
 }
 
 void statespace::writeVcd(sem::Semantics &sem,
@@ -666,11 +672,12 @@ bool statespace::writeVcdFile(const Explorer &x, sem::Semantics &sem,
                               llvm::StringRef file, DiagEngine &diag) {
   // The inputs of each step, as the text trace shows them.
   std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  labelledPath(x, sem, x.pathTo(target), labels, states);
+  PlcPath plc = labelledPath(x, sem, x.pathTo(target), labels);
   return writeOutputFile(
       file.str(),
-      [&](llvm::raw_ostream &os) { writeVcd(sem, labels, states, tick, os); },
+      [&](llvm::raw_ostream &os) {
+        writeVcd(plc.in(sem), labels, plc.states, tick, os);
+      },
       diag);
 }
 
@@ -680,12 +687,12 @@ bool statespace::writeHtmlTraceFile(const Explorer &x, sem::Semantics &sem,
                                     const TraceView &view, llvm::StringRef file,
                                     DiagEngine &diag) {
   std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  labelledPath(x, sem, x.pathTo(target), labels, states);
+  PlcPath plc = labelledPath(x, sem, x.pathTo(target), labels);
   return writeOutputFile(
       file.str(),
       [&](llvm::raw_ostream &os) {
-        writeHtmlTrace(sem, labels, states, header, view, -1, "", os);
+        writeHtmlTrace(plc.in(sem), labels, plc.states, header, view, -1, "",
+                       os);
       },
       diag);
 }
@@ -700,29 +707,30 @@ bool statespace::writeTraceFiles(
   };
   const std::optional<net::Timescale> &tick = view.tick;
   std::vector<std::string> labels;
-  std::vector<const uint64_t *> states;
-  labelledPath(x, sem, steps, labels, states);
+  PlcPath plc = labelledPath(x, sem, steps, labels);
+  sem::Semantics &shown = plc.in(sem);
+  const std::vector<const uint64_t *> &states = plc.states;
   bool ok = writeOutputFile(
       base + ".json",
       [&](llvm::raw_ostream &os) {
-        writeJsonTrace(header, x, sem, tick, steps, labels, states, loopTo,
+        writeJsonTrace(header, x, shown, tick, steps, labels, states, loopTo,
                        loopLabel, os);
       },
       diag);
-  ok = ok && verifyJsonTrace(sem, base + ".json", diag);
+  ok = ok && verifyJsonTrace(shown, base + ".json", diag);
   ok = ok &&
        writeOutputFile(
            base + ".html",
            [&](llvm::raw_ostream &os) {
              writeHtmlTrace(
-                 sem, labels, states, header, view, loopTo,
+                 shown, labels, states, header, view, loopTo,
                  loopLabel == Explorer::kNone ? "" : x.label(loopLabel), os);
            },
            diag);
   ok = ok && writeOutputFile(
                  base + ".vcd",
                  [&](llvm::raw_ostream &os) {
-                   writeVcd(sem, labels, states, tick, os);
+                   writeVcd(shown, labels, states, tick, os);
                  },
                  diag);
   // Labels as `reach --format aut` writes them.

@@ -19,6 +19,8 @@
 //    end of the scan action, so states do not differ in dead values: the
 //    locals of inlined functions, VAR_TEMP, control flags, FB members never
 //    read, and FB inputs every call passes and nobody reads from outside.
+//    The FB members' resets are marked (`scan_reset`): they are real PLC
+//    memory, and a command that observes one keeps its value.
 //
 //===----------------------------------------------------------------------===//
 #include "frontends/plc/Lowering.h"
@@ -505,6 +507,11 @@ void Lowering::deadValueResets(ProgramRun &run) {
     if (i >= 0 && mod->vars[i].init) {
       run.resets.push_back({m, mod->vars[i].init});
       resetNames.insert(m);
+      // Marked, so that a command observing the member keeps its value
+      // (net::kScanResetAttribute).
+      b.addAttribute(m, net::kScanResetAttribute,
+                     "no statement reads it before a scan writes it",
+                     mod->vars[i].loc);
     }
   }
 }

@@ -222,6 +222,7 @@ public:
     } else {
       message = "syntax error: unexpected " + found;
     }
+    findUnclosed(parser, expected);
     // Only the first error of a parse is reported (the next parse, with
     // the broken statement hidden, finds the next real one), so the rest
     // of the text need not be parsed: full-LL prediction is what makes a
@@ -232,6 +233,31 @@ public:
   size_t offset = 0, tokenIndex = 0;
   std::string message;
   std::string eofName = "end of file";
+  /// Where the innermost statement the error leaves unclosed opened (an IF
+  /// whose END_IF is missing), as a compiler points at an unclosed brace.
+  std::optional<size_t> unclosedOffset;
+  std::string unclosedWhat;
+
+private:
+  void findUnclosed(antlr4::Parser *parser,
+                    const antlr4::misc::IntervalSet &expected) {
+    static const std::pair<size_t, size_t> pairs[] = {
+        {P::IF, P::END_IF},       {P::CASE, P::END_CASE},
+        {P::FOR, P::END_FOR},     {P::WHILE, P::END_WHILE},
+        {P::REPEAT, P::END_REPEAT}};
+    for (antlr4::ParserRuleContext *ctx = parser->getContext(); ctx;
+         ctx = dynamic_cast<antlr4::ParserRuleContext *>(ctx->parent)) {
+      antlr4::Token *start = ctx->getStart();
+      if (!start)
+        continue;
+      for (auto [open, close] : pairs)
+        if (start->getType() == open && expected.contains(close)) {
+          unclosedOffset = start->getStartIndex();
+          unclosedWhat = start->getText();
+          return;
+        }
+    }
+  }
 };
 
 /// Takes the statement (or declaration) holding token `at` out of the
@@ -1271,6 +1297,7 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
   // statement is hidden and the text parsed again (files with syntax
   // errors are rare and small; correct files never come here twice).
   unsigned reported = 0;
+  std::optional<size_t> lastUnclosed;
   Ctx *tree = nullptr;
   for (;;) {
     tokens.seek(0);
@@ -1292,7 +1319,15 @@ Ctx *parseWith(StringRef text, DiagEngine &diag, st::StLexer &lexer,
       return nullptr;
     if (!listener.seen)
       break;
+    // The same statement left open again (the parse after hiding the
+    // first error's statement reaches the end): said once.
+    if (listener.unclosedOffset && listener.unclosedOffset == lastUnclosed)
+      break;
+    lastUnclosed = listener.unclosedOffset;
     diag.syntaxError(lexer.locAt(listener.offset), listener.message);
+    if (listener.unclosedOffset)
+      diag.note(lexer.locAt(*listener.unclosedOffset),
+                "the " + listener.unclosedWhat + " opened here is not closed");
     tokens.fill(); // the parse stopped at the error: the rest is unread
     if (++reported >= maxErrors || listener.atEof ||
         !hideStatement(tokens, parser.getVocabulary(), listener.tokenIndex))

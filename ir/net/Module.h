@@ -292,6 +292,17 @@ inline constexpr llvm::StringLiteral kObservedAttribute = "observed";
 /// (--trace-internals); analyses treat them like any other entity.
 inline constexpr llvm::StringLiteral kInternalAttribute = "internal";
 
+/// `attr t.ET scan_reset = "...";`: the PLC memory `t.ET` (a function-block
+/// member the program never reads, or an input every call writes before the
+/// block reads it) is reset to its initial value by the statements ending
+/// each scan that writes it, so that states do not differ in a value the
+/// model never reads. The PLC keeps the value: a command that observes the
+/// variable (a property, --find, an sr attribute) keeps it too
+/// (passes/KeepValues.h), traces show the value it has before the reset,
+/// and the model's meaning for a reader of the text is the one without
+/// the resets (docs/semantics.md, "Observers").
+inline constexpr llvm::StringLiteral kScanResetAttribute = "scan_reset";
+
 struct Attribute {
   /// An entity or instance of the module, a scope of its qualified names
   /// (`c` of `c.scan`, after flatten), or empty: the module itself.

@@ -6,6 +6,7 @@
 // fast paths of later work keep.
 //
 //===----------------------------------------------------------------------===//
+#include "ir/net/ScanResets.h"
 #include "ir/semantics/SemanticsImpl.h"
 
 using namespace netlift;
@@ -51,6 +52,8 @@ Semantics::Semantics(const Module &mod, const StateLayout &layout, Options o)
   for (uint32_t t = 0; t < m.transitions.size(); ++t)
     (m.transitions[t].isForced() ? I.forcedList : I.spontaneous).push_back(t);
   I.eventInputIndex.assign(m.ports.size(), -1);
+  if (!opts.scanResets)
+    I.skipped = scanResetStatements(m);
   for (uint32_t p = 0; p < m.ports.size(); ++p) {
     const Port &port = m.ports[p];
     if (!port.isInput())
@@ -130,6 +133,8 @@ bool Semantics::initialState(uint64_t *out, RuntimeError &err) const {
   return true;
 }
 
+void Semantics::setBudget(Budget *b) { impl->budget = b; }
+
 bool Semantics::successors(const uint64_t *state, Callback cb,
                            RuntimeError &err) {
   Impl &I = *impl;
@@ -198,6 +203,7 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
   I.classes = 1;
   try {
     for (uint64_t n = 0; split || n < combos; ++n) {
+      I.checkBudget();
       if (split && n > 0) {
         if (!I.splitter.advance())
           break;
@@ -311,7 +317,9 @@ bool Semantics::successors(const uint64_t *state, Callback cb,
     }
   } catch (const EvalError &e) {
     I.unsplit = 0;
-    err = {e.message, e.loc, e.limit, e.statement};
+    err = {e.message, e.loc, e.limit, e.statement, e.budget};
+    if (e.budget)
+      return false;
     // Which inputs the failing step saw: its class, as far as it was split.
     if (split && manyValuations && !e.limit)
       err.message +=

@@ -26,6 +26,10 @@
 #include <string>
 #include <vector>
 
+namespace netlift {
+class Budget;
+}
+
 namespace netlift::sem {
 
 enum class StepPolicy : uint8_t { Interleaving, Maximal };
@@ -57,6 +61,11 @@ struct Options {
   /// Expand plain P/T nets with the compiled kernel (PtKernel.h); off, the
   /// general interpreter does it (the two must agree: a cross-check).
   bool compilePT = true;
+  /// Run the end-of-scan resets of PLC memory the model never reads
+  /// (ir/net/ScanResets.h). Off, every variable keeps the value the PLC
+  /// gives it: the successors are those of the model without the resets,
+  /// which traces are shown in (they agree on every other variable).
+  bool scanResets = true;
 };
 
 /// A runtime error of the model (write conflict, out-of-range write,
@@ -69,6 +78,9 @@ struct RuntimeError {
   bool limit = false;
   /// The statement running when it happened (none in a guard or output).
   llvm::SMLoc statement;
+  /// "time" or "memory": not an error but the run's budget spent inside
+  /// one expansion (setBudget); the exploration stops as at a limit.
+  const char *budget = nullptr;
 };
 
 class Semantics {
@@ -80,6 +92,11 @@ public:
   const Options &options() const { return opts; }
   /// Does the model have place clocks or clock variables?
   bool isTimed() const { return timed; }
+
+  /// The time and memory the run may take, checked at every class of input
+  /// valuations and every 1024 loop iterations of a firing: a successors()
+  /// call that spends it fails with RuntimeError::budget set. Null: none.
+  void setBudget(Budget *b);
 
   /// Writes the initial state. False (and `err`) if an initial value does
   /// not fit.

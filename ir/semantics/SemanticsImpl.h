@@ -17,6 +17,7 @@
 #include "ir/semantics/InputSplitter.h"
 #include "ir/semantics/PtKernel.h"
 #include "ir/semantics/Semantics.h"
+#include "ir/support/Budget.h"
 
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/SmallVector.h"
@@ -40,6 +41,8 @@ struct EvalError {
   bool limit = false;
   /// The innermost statement running when it happened (set by exec).
   llvm::SMLoc statement;
+  /// "time" or "memory": the run's budget was spent (Budget.h).
+  const char *budget = nullptr;
 };
 
 /// Every maximal subset of `cand` (kept in `cand` order) that `fits`
@@ -74,6 +77,20 @@ struct Semantics::Impl {
   std::vector<uint8_t> fixedPresent;
   /// The compiled successor function, when the module is a plain P/T net.
   std::unique_ptr<PtKernel> kernel;
+  /// Options::scanResets off: the end-of-scan resets not run.
+  llvm::DenseSet<const Stmt *> skipped;
+  /// The run's time and memory (setBudget), checked inside one expansion.
+  Budget *budget = nullptr;
+  void checkBudget() {
+    if (!budget)
+      return;
+    if (const char *what = budget->spent())
+      throw EvalError{std::string("the ") + what + " limit was reached",
+                      {},
+                      true,
+                      {},
+                      what};
+  }
 
   // Per-state working data.
   std::vector<int64_t> vals; // all slots: packed state, then inputs
@@ -464,6 +481,8 @@ struct Semantics::Impl {
   /// iterations, all loops counted together, as a PLC's watchdog bounds
   /// the time of one scan.
   void countIteration(const Stmt *loop) {
+    if ((iterations & 1023) == 1023)
+      checkBudget();
     if (++iterations > opts.maxLoopIterations)
       throw EvalError{
           "watchdog: transition '" + m.transitions[firing].name.str() +
@@ -505,6 +524,8 @@ struct Semantics::Impl {
   void exec(Block block, std::vector<int64_t> &v,
             std::vector<uint32_t> &written) {
     for (const Stmt *st : block) {
+      if (!skipped.empty() && skipped.count(st))
+        continue;
       try {
         execStmt(st, v, written);
       } catch (EvalError &e) {

@@ -218,6 +218,9 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   statespace::ExploreResult r;
   if (!setup->explore(explorer, r, diag))
     return 1;
+  if (graphFormat != GraphFormat::None &&
+      graphFormat != GraphFormat::Aut)
+    setup->noteUnkeptValues(diag);
   if (writeResult(
           outputFile,
           [&](llvm::raw_ostream &os) {

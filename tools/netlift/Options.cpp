@@ -299,6 +299,15 @@ static cl::list<std::string> latch(
              "are latched without it (docs/check.md)"),
     cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
     cl::sub(checkCommand()), cl::cat(category()));
+static cl::list<std::string> keep(
+    "keep",
+    cl::desc("Keep the values of these function-block members (or every "
+             "member of these instances) that the PLC frontend resets at "
+             "the end of each scan because the program never reads them; "
+             "those a property, --find or --attr names are kept without it "
+             "(docs/semantics.md, \"Observers\")"),
+    cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
+    cl::sub(checkCommand()), cl::sub(srCommand()), cl::cat(category()));
 static cl::opt<bool> traceInternals(
     "trace-internals",
     cl::desc("Show traces as the net has them: every step (ticks too) and "
@@ -395,6 +404,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   }
   eo.abstractTimers = timersMode == TimersMode::Abstract;
   eo.latch.assign(latch.begin(), latch.end());
+  eo.keep.assign(keep.begin(), keep.end());
   eo.traceInternals = traceInternals;
   eo.traceSource = traceSource;
   eo.refineRounds = refineRounds;

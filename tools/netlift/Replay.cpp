@@ -35,6 +35,10 @@ int driver::runReplay(DiagEngine &diag) {
   statespace::ExplorationOptions xo;
   if (!explorationOptions(xo, diag))
     return 1;
+  // One run is followed, as the PLC makes it: no end-of-scan resets, so
+  // every value a trace or a log records is the PLC's (docs/semantics.md,
+  // "Observers").
+  xo.semantics.scanResets = false;
   net::Design design;
   std::vector<std::string> inputs{replayModel};
   if (!loadModels(inputs, diag, design))
