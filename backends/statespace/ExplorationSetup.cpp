@@ -116,9 +116,10 @@ ExplorationSetup::create(net::Design &design, const ExplorationOptions &options,
   if (options.keepAll)
     for (uint32_t v : net::scanResetVars(*top))
       keep.push_back(top->vars[v].name.str());
-  for (const std::string &text : options.propertyTexts)
-    for (std::string &name : net::scanResetVarsNamedIn(*top, text))
-      keep.push_back(std::move(name));
+  for (const auto *texts : {&options.propertyTexts, &options.observerTexts})
+    for (const std::string &text : *texts)
+      for (std::string &name : net::scanResetVarsNamedIn(*top, text))
+        keep.push_back(std::move(name));
   llvm::sort(keep);
   keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
   if (!keepValues(design, *top, keep, diag, /*lenient=*/options.keep.empty()))

@@ -66,6 +66,9 @@ struct ExplorationOptions {
   /// file written shows every variable as the PLC has it).
   std::vector<std::string> keep;
   bool keepAll = false;
+  /// Texts that observe what they name without latching inputs (sr
+  /// attributes, which refuse inputs).
+  std::vector<std::string> observerTexts;
   /// --trace-internals: traces show every step and name (TraceView).
   bool traceInternals = false;
   /// --trace-source: each row of a trace lists the source lines its step

@@ -403,7 +403,27 @@ void Expander::expandAction(StringRef actionName, SMLoc at) {
     // A Boolean variable as the action: it holds whether the action runs
     // (no final scan: a variable has no body to run once more).
     llvm::append_range(terms, pulses);
-    out.push_back(assign(name(actionName, at), anyOf(terms, at), at));
+    Expr *value = anyOf(terms, at);
+    // The same value, but a change made while a step resetting the action
+    // is active is shown at that step's R association (a trace's `busy:
+    // 1 -> 0` points at `busy(R)`, not at the `busy(S)` that set it).
+    if (has("R")) {
+      Stmt *s = unit.make<Stmt>(StmtKind::If, at);
+      for (auto &[step, loc] : inputs["R"])
+        s->arms.push_back({field(step, "X", loc),
+                           {assign(name(actionName, loc), copy(value), loc)}});
+      SMLoc other = at; // the first association that does not reset it
+      for (auto &[step, a] : list)
+        if (a->qualifier != "R") {
+          other = a->loc;
+          break;
+        }
+      s->hasElse = true;
+      s->elseBody.push_back(assign(name(actionName, other), value, other));
+      out.push_back(s);
+      return;
+    }
+    out.push_back(assign(name(actionName, at), value, at));
     return;
   }
   // Q, the scan after Q falls (the final run of the body) and the pulses
@@ -437,10 +457,22 @@ bool Expander::run() {
     if (timedSteps.count(key(s->name)))
       if (!(caps[s] = stepTimeCap(s)))
         return false;
-  if (!timedSteps.empty())
-    diag.note(chart.steps[0]->loc,
-              "the elapsed time of a step (.T) stops counting at twice the "
-              "largest value it is compared with: comparisons are exact");
+  // One note, at the first step whose time is read, naming them all.
+  SfcStep *firstTimed = nullptr;
+  std::string timedNames;
+  unsigned numTimed = 0;
+  for (SfcStep *s : chart.steps)
+    if (timedSteps.count(key(s->name))) {
+      firstTimed = firstTimed ? firstTimed : s;
+      timedNames += (timedNames.empty() ? "'" : ", '") + s->name + "'";
+      ++numTimed;
+    }
+  if (firstTimed)
+    diag.note(firstTimed->loc,
+              std::string("the elapsed time (.T) of step") +
+                  (numTimed > 1 ? "s " : " ") + timedNames +
+                  " stops counting at twice the largest value it is "
+                  "compared with: comparisons are exact");
   auto isTimed = [&](SfcStep *s) { return timedSteps.count(key(s->name)); };
   for (SfcStep *s : chart.steps) {
     VarDecl *v = declare(

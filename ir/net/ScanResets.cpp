@@ -3,7 +3,11 @@
 
 #include "ir/net/Walk.h"
 
+#include "ir/net/Printer.h"
+
+#include "llvm/ADT/DenseMap.h"
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/ADT/StringSet.h"
 
 using namespace netlift;
 using namespace netlift::net;
@@ -37,9 +41,12 @@ net::scanResetStatements(const Module &m,
   for (const Transition &t : m.transitions) {
     if (!t.hasAction())
       continue;
-    // Backwards: a reset is followed by no other write of its variable
-    // (an aggregate's reset is one assignment per element).
-    llvm::DenseSet<uint32_t> writtenLater;
+    // Backwards: a variable's reset is one run of constant assignments
+    // (one per element of an aggregate, each element once) followed by no
+    // other write of it; a write before the run, `c.PV := 3` before
+    // `c.PV := 0`, is the program's own.
+    llvm::DenseSet<uint32_t> writtenLater, closed;
+    llvm::DenseMap<uint32_t, llvm::StringSet<>> resetTargets;
     Block action = t.action();
     for (auto it = action.rbegin(); it != action.rend(); ++it) {
       Stmt *const *at = &*it;
@@ -47,12 +54,16 @@ net::scanResetStatements(const Module &m,
       if (auto *a = llvm::dyn_cast<AssignStmt>(st)) {
         Symbol root = targetRoot(a->target);
         if (root.kind == SymKind::Var && marked.count(root.index) &&
-            !writtenLater.count(root.index) && isConstant(a->value)) {
+            !writtenLater.count(root.index) && !closed.count(root.index) &&
+            isConstant(a->value) &&
+            resetTargets[root.index].insert(exprToString(a->target)).second) {
           if (resetVar(root.index))
             out.insert(st);
           continue;
         }
       }
+      for (auto &[v, targets] : resetTargets)
+        closed.insert(v);
       forEachAssign(Block(at, 1), [&](const AssignStmt *w) {
         Symbol root = targetRoot(w->target);
         if (root.kind == SymKind::Var)

@@ -308,6 +308,13 @@ static cl::list<std::string> keep(
              "(docs/semantics.md, \"Observers\")"),
     cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
     cl::sub(checkCommand()), cl::sub(srCommand()), cl::cat(category()));
+static cl::opt<bool> keepAll(
+    "keep-all",
+    cl::desc("Keep the value of every function-block member the PLC "
+             "frontend would reset at the end of each scan (no reset: the "
+             "state space tells apart everything the PLC holds)"),
+    cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),
+    cl::cat(category()));
 static cl::opt<bool> traceInternals(
     "trace-internals",
     cl::desc("Show traces as the net has them: every step (ticks too) and "
@@ -405,6 +412,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.abstractTimers = timersMode == TimersMode::Abstract;
   eo.latch.assign(latch.begin(), latch.end());
   eo.keep.assign(keep.begin(), keep.end());
+  eo.keepAll = keepAll;
   eo.traceInternals = traceInternals;
   eo.traceSource = traceSource;
   eo.refineRounds = refineRounds;

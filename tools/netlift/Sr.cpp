@@ -138,7 +138,7 @@ int driver::runSr(DiagEngine &diag) {
     if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
       return 1;
     // The attributes observe what they name (docs/semantics.md).
-    xo.propertyTexts.assign(attrTexts.begin(), attrTexts.end());
+    xo.observerTexts.assign(attrTexts.begin(), attrTexts.end());
     auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
     if (!setup || !structural::classifyExplored(*setup, design, attrs,
                                                 report == Report::Html, an,
