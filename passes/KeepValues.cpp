@@ -21,9 +21,8 @@ bool netlift::keepValues(Design &d, Module &m,
   for (const std::string &n : names) {
     bool any = false;
     for (const Var &v : m.vars)
-      if (v.name == n ||
-          (v.name.startswith(n) && v.name.size() > n.size() &&
-           v.name[n.size()] == '.')) {
+      if (v.name == n || (v.name.startswith(n) && v.name.size() > n.size() &&
+                          v.name[n.size()] == '.')) {
         kept.insert(v.name);
         any = true;
       }
@@ -34,10 +33,8 @@ bool netlift::keepValues(Design &d, Module &m,
       return false;
     }
   }
-  llvm::DenseSet<const Stmt *> resets =
-      scanResetStatements(m, [&](uint32_t v) {
-        return kept.count(m.vars[v].name) != 0;
-      });
+  llvm::DenseSet<const Stmt *> resets = scanResetStatements(
+      m, [&](uint32_t v) { return kept.count(m.vars[v].name) != 0; });
   if (resets.empty())
     return true;
   Builder b(d);

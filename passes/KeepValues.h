@@ -1,4 +1,5 @@
-//===- KeepValues.h - observed PLC memory kept past the scan -----*- C++ -*-===//
+//===- KeepValues.h - observed PLC memory kept past the scan -----*- C++
+//-*-===//
 //
 // `keep-values` (docs/semantics.md, "Observers"): a PLC frontend resets the
 // function-block members the program never reads at the end of each scan

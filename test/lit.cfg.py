@@ -74,6 +74,12 @@ if shutil.which("chromium"):
     except (OSError, subprocess.TimeoutExpired):
         pass
 
+# Suite-wide cross-checks that rerun other tests' commands (minutes): in the
+# main run only (`--param roundtrip=1`, as CI runs it), not under sanitizers.
+if lit_config.params.get("roundtrip", "0") not in ("0", "") and \
+        not config.sanitize:
+    config.available_features.add("crosscheck")
+
 if config.sanitize:
     config.environment["ASAN_OPTIONS"] = "detect_leaks=1"
     config.environment["UBSAN_OPTIONS"] = "print_stacktrace=1:halt_on_error=1"

@@ -37,9 +37,9 @@ PlcPath statespace::plcValues(sem::Semantics &sem,
   out.storage.reserve(states.size());
   out.storage.emplace_back(states[0], states[0] + words);
   for (size_t i = 1; i < states.size(); ++i) {
-    std::string taken =
-        i < labels.size() ? llvm::StringRef(labels[i]).split(" [").first.str()
-                          : std::string();
+    std::string taken = i < labels.size()
+                            ? llvm::StringRef(labels[i]).split(" [").first.str()
+                            : std::string();
     const uint64_t *prev = out.storage.back().data();
     std::vector<uint64_t> next;
     sem::RuntimeError err;

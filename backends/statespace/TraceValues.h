@@ -1,4 +1,5 @@
-//===- TraceValues.h - a path shown with the values the PLC has --*- C++ -*-===//
+//===- TraceValues.h - a path shown with the values the PLC has --*- C++
+//-*-===//
 //
 // A model explored with end-of-scan resets (ir/net/ScanResets.h) holds the
 // initial value of a reset function-block member between scans, where the

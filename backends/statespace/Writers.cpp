@@ -1,13 +1,13 @@
 //===- Writers.cpp - state spaces as files --------------------------------===//
 #include "backends/statespace/Writers.h"
-#include "backends/statespace/TraceValues.h"
 #include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
+#include "backends/statespace/TraceValues.h"
 #include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
-#include "ir/net/ScanResets.h"
 #include "ir/net/FloatOps.h"
+#include "ir/net/ScanResets.h"
 #include "ir/net/StringOps.h"
 
 #include "llvm/Support/JSON.h"

@@ -242,8 +242,10 @@ private:
   void findUnclosed(antlr4::Parser *parser,
                     const antlr4::misc::IntervalSet &expected) {
     static const std::pair<size_t, size_t> pairs[] = {
-        {P::IF, P::END_IF},       {P::CASE, P::END_CASE},
-        {P::FOR, P::END_FOR},     {P::WHILE, P::END_WHILE},
+        {P::IF, P::END_IF},
+        {P::CASE, P::END_CASE},
+        {P::FOR, P::END_FOR},
+        {P::WHILE, P::END_WHILE},
         {P::REPEAT, P::END_REPEAT}};
     for (antlr4::ParserRuleContext *ctx = parser->getContext(); ctx;
          ctx = dynamic_cast<antlr4::ParserRuleContext *>(ctx->parent)) {

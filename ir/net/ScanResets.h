@@ -1,4 +1,5 @@
-//===- ScanResets.h - the end-of-scan resets of PLC memory -------*- C++ -*-===//
+//===- ScanResets.h - the end-of-scan resets of PLC memory -------*- C++
+//-*-===//
 //
 // A PLC frontend resets function-block members the program never reads to
 // their initial values at the end of each scan, so that states do not

@@ -1,4 +1,5 @@
-//===- Budget.h - the time and memory a run may take --------------*- C++ -*-===//
+//===- Budget.h - the time and memory a run may take --------------*- C++
+//-*-===//
 //
 // --time-limit and --max-memory are promises to someone's CI job: a run
 // ends within a second of its time limit and near its memory limit, with

@@ -218,8 +218,7 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   statespace::ExploreResult r;
   if (!setup->explore(explorer, r, diag))
     return 1;
-  if (graphFormat != GraphFormat::None &&
-      graphFormat != GraphFormat::Aut)
+  if (graphFormat != GraphFormat::None && graphFormat != GraphFormat::Aut)
     setup->noteUnkeptValues(diag);
   if (writeResult(
           outputFile,
