@@ -222,7 +222,8 @@ std::string ExplorationSetup::summaryJsonFields() const {
   return out;
 }
 
-void ExplorationSetup::noteUnkeptValues(DiagEngine &diag) const {
+void ExplorationSetup::noteUnkeptValues(DiagEngine &diag,
+                                        llvm::StringRef what) const {
   llvm::DenseSet<uint32_t> vars = net::scanResetVars(*module);
   if (vars.empty())
     return;
@@ -236,7 +237,9 @@ void ExplorationSetup::noteUnkeptValues(DiagEngine &diag) const {
   diag.note(llvm::SMLoc(),
             std::to_string(sorted.size()) +
                 " function-block member(s) the program never reads are reset "
-                "at the end of each scan and left out of the state file (" +
+                "at the end of each scan " +
+                (what == "state file" ? "and left out of the state file ("
+                                      : "in this " + what.str() + " (") +
                 names +
                 "); --keep NAME,... keeps their values, and a property or "
                 "--find naming one keeps it");

@@ -120,7 +120,8 @@ public:
   std::string summaryJsonFields() const;
   /// Says which function-block members reset at the end of each scan a
   /// state file leaves out (nothing when none is).
-  void noteUnkeptValues(DiagEngine &diag) const;
+  void noteUnkeptValues(DiagEngine &diag,
+                        llvm::StringRef what = "state file") const;
   /// The inputs latched for this run, in the module's port order.
   const std::vector<std::string> &latched() const { return latchedInputs; }
 

@@ -79,12 +79,16 @@ int driver::runEmit(DiagEngine &diag) {
   if (backend->input == EmitInputKind::Steps) {
     statespace::ExplorationOptions xo;
     xo.enumeratesInputs = false; // the checkers take the input's type
+    // The claims observe what they name; the user's own properties in the
+    // checker see only what is kept (docs/semantics.md, "Observers").
+    xo.observerTexts.assign(properties.begin(), properties.end());
     if (!explorationOptions(xo, diag) ||
         !(setup =
               statespace::ExplorationSetup::create(design, xo, diag, "emit")) ||
         !checkers::parseProperties(properties, design, setup->top(), diag,
                                    formulas))
       return 1;
+    setup->noteUnkeptValues(diag, "export");
     for (const auto &f : formulas)
       claims.push_back(f.get());
     in.top = &setup->top();

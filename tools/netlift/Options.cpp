@@ -307,14 +307,15 @@ static cl::list<std::string> keep(
              "those a property, --find or --attr names are kept without it "
              "(docs/semantics.md, \"Observers\")"),
     cl::value_desc("NAME,..."), cl::CommaSeparated, cl::sub(reachCommand()),
-    cl::sub(checkCommand()), cl::sub(srCommand()), cl::cat(category()));
+    cl::sub(checkCommand()), cl::sub(srCommand()), cl::sub(emitCommand()),
+    cl::cat(category()));
 static cl::opt<bool> keepAll(
     "keep-all",
     cl::desc("Keep the value of every function-block member the PLC "
              "frontend would reset at the end of each scan (no reset: the "
              "state space tells apart everything the PLC holds)"),
     cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),
-    cl::cat(category()));
+    cl::sub(emitCommand()), cl::cat(category()));
 static cl::opt<bool> traceInternals(
     "trace-internals",
     cl::desc("Show traces as the net has them: every step (ticks too) and "
