@@ -78,6 +78,12 @@ llvm::DenseSet<const Stmt *> net::scanResetStatements(const Module &m) {
   return scanResetStatements(m, [](uint32_t) { return true; });
 }
 
+bool net::isNameInScope(llvm::StringRef name, llvm::StringRef scope) {
+  return name == scope ||
+         (name.startswith(scope) && name.size() > scope.size() &&
+          name[scope.size()] == '.');
+}
+
 std::vector<std::string> net::scanResetVarsNamedIn(const Module &m,
                                                    llvm::StringRef text) {
   llvm::DenseSet<uint32_t> marked = scanResetVars(m);
@@ -106,8 +112,7 @@ std::vector<std::string> net::scanResetVarsNamedIn(const Module &m,
   for (uint32_t v : vars) {
     llvm::StringRef name = m.vars[v].name;
     for (const std::string &w : words)
-      if (name == w || (name.startswith(w) && name.size() > w.size() &&
-                        name[w.size()] == '.')) {
+      if (isNameInScope(name, w)) {
         out.push_back(name.str());
         break;
       }

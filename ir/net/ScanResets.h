@@ -34,6 +34,9 @@ scanResetStatements(const Module &m,
 /// All of them.
 llvm::DenseSet<const Stmt *> scanResetStatements(const Module &m);
 
+/// Whether `name` is `scope` or a name under it (`t.ET` under `t`).
+bool isNameInScope(llvm::StringRef name, llvm::StringRef scope);
+
 /// Identifiers of `text` (a property, a --find expression, an sr
 /// attribute) that name a `scan_reset` variable of `m`, or a scope of
 /// such variables (`t` for `t.ET`), as the variables' names.
