@@ -21,8 +21,7 @@ bool netlift::keepValues(Design &d, Module &m,
   for (const std::string &n : names) {
     bool any = false;
     for (const Var &v : m.vars)
-      if (v.name == n || (v.name.startswith(n) && v.name.size() > n.size() &&
-                          v.name[n.size()] == '.')) {
+      if (isNameInScope(v.name, n)) {
         kept.insert(v.name);
         any = true;
       }
