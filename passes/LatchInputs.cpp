@@ -15,6 +15,7 @@
 #include "passes/ReduceSupport.h"
 
 #include "ir/net/Builder.h"
+#include "ir/net/Names.h"
 #include "ir/net/Walk.h"
 
 #include <cctype>
@@ -29,22 +30,8 @@ std::string netlift::latchedEnvironmentInput(llvm::StringRef name) {
 
 std::vector<std::string> netlift::inputsNamedIn(const Module &m,
                                                 llvm::StringRef text) {
-  std::set<std::string> words;
-  for (size_t i = 0; i < text.size();) {
-    auto isWord = [&](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
-             c == '.';
-    };
-    if (!isWord(text[i])) {
-      ++i;
-      continue;
-    }
-    size_t j = i;
-    while (j < text.size() && isWord(text[j]))
-      ++j;
-    words.insert(text.substr(i, j - i).str());
-    i = j;
-  }
+  std::vector<std::string> named = qualifiedNamesIn(text);
+  std::set<std::string> words(named.begin(), named.end());
   std::vector<std::string> out;
   for (const Port &p : m.ports)
     if (p.isInput() && p.kind != PortKind::Event && words.count(p.name.str()))

@@ -17,7 +17,7 @@ PlcPath statespace::plcValues(sem::Semantics &sem,
   const net::Module &m = sem.module();
   const sem::StateLayout &L = sem.layout();
   llvm::DenseSet<uint32_t> resetVars = net::scanResetVars(m);
-  if (resetVars.empty() || net::scanResetStatements(m).empty())
+  if (resetVars.empty()) // (keep-values drops the mark with the reset)
     return out;
   std::vector<bool> reset(L.numSlots(), false);
   for (uint32_t v : resetVars)

@@ -1,6 +1,7 @@
 //===- Names.cpp - NetIR identifiers --------------------------------------===//
 #include "ir/net/Names.h"
 
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSwitch.h"
 
 using namespace netlift;
@@ -31,4 +32,24 @@ std::string netlift::net::toIdentifier(StringRef name, bool keepDots) {
 
 bool netlift::net::hasGeneratedComponent(StringRef name) {
   return name.startswith("_") || name.contains("._");
+}
+
+std::vector<std::string> net::qualifiedNamesIn(llvm::StringRef text) {
+  std::vector<std::string> words;
+  std::string word;
+  auto flush = [&] {
+    while (!word.empty() && word.back() == '.')
+      word.pop_back();
+    if (!word.empty())
+      words.push_back(word);
+    word.clear();
+  };
+  for (char c : text) {
+    if (llvm::isAlnum(c) || c == '_' || c == '.')
+      word += c;
+    else
+      flush();
+  }
+  flush();
+  return words;
 }

@@ -11,6 +11,7 @@
 #include "llvm/ADT/StringRef.h"
 
 #include <string>
+#include <vector>
 
 namespace netlift::net {
 
@@ -31,6 +32,11 @@ std::string toIdentifier(llvm::StringRef name, bool keepDots = false);
 /// The IEC 61499 frontend and its passes give what they generate such
 /// names, and mark it internal (ir/net/Module.h kInternalAttribute).
 bool hasGeneratedComponent(llvm::StringRef name);
+
+/// The qualified names a property, a --find expression or an sr attribute
+/// mentions: its runs of letters, digits, `_` and `.`, without a trailing
+/// dot, in the order they stand.
+std::vector<std::string> qualifiedNamesIn(llvm::StringRef text);
 
 } // namespace netlift::net
 

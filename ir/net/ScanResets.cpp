@@ -3,6 +3,7 @@
 
 #include "ir/net/Walk.h"
 
+#include "ir/net/Names.h"
 #include "ir/net/Printer.h"
 
 #include "llvm/ADT/DenseMap.h"
@@ -90,23 +91,7 @@ std::vector<std::string> net::scanResetVarsNamedIn(const Module &m,
   std::vector<std::string> out;
   if (marked.empty())
     return out;
-  // Identifiers with their dots and (quoted) characters of qualified names.
-  std::vector<std::string> words;
-  std::string word;
-  auto flush = [&] {
-    while (!word.empty() && word.back() == '.')
-      word.pop_back();
-    if (!word.empty())
-      words.push_back(word);
-    word.clear();
-  };
-  for (char c : text) {
-    if (llvm::isAlnum(c) || c == '_' || c == '.')
-      word += c;
-    else
-      flush();
-  }
-  flush();
+  std::vector<std::string> words = qualifiedNamesIn(text);
   std::vector<uint32_t> vars(marked.begin(), marked.end());
   llvm::sort(vars);
   for (uint32_t v : vars) {
