@@ -11,7 +11,7 @@
 #define NETLIFT_BACKENDS_BACKENDREGISTRY_H
 
 #include "backends/checkers/Ctl.h"
-#include "backends/statespace/ExplorationSetup.h"
+#include "engine/ExplorationSetup.h"
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
@@ -28,7 +28,7 @@ struct EmitInput {
   /// FlatTop and Steps: the flattened top.
   const net::Module *top = nullptr;
   /// Steps: the top's semantics.
-  statespace::ExplorationSetup *setup = nullptr;
+  engine::ExplorationSetup *setup = nullptr;
   /// Steps: the --ctl properties.
   llvm::ArrayRef<const checkers::CtlFormula *> properties;
   /// NetIR text: statements carry their source locations (`@N:line:col`).

@@ -1,8 +1,9 @@
 //===- CheckProperties.cpp - CTL properties on an explored model ----------===//
 #include "backends/checkers/CheckProperties.h"
+#include "backends/statespace/Exploring.h"
 
-#include "backends/statespace/TimerReplay.h"
 #include "backends/statespace/Writers.h"
+#include "engine/TimerReplay.h"
 
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -28,22 +29,22 @@ bool checkers::parseProperties(llvm::ArrayRef<std::string> texts,
 }
 
 /// The explored graph in CSR form, edges of one state together.
-static CtlGraph graphOf(const statespace::Explorer &explorer,
-                        const statespace::ExploreResult &r) {
+static CtlGraph graphOf(const engine::Explorer &explorer,
+                        const engine::ExploreResult &r) {
   CtlGraph g;
   size_t n = explorer.store().size();
   g.deadlock.assign(n, 0);
   for (uint32_t d : r.deadlocks)
     g.deadlock[d] = 1;
   g.succStart.assign(n + 1, 0);
-  for (const statespace::Edge &e : explorer.edges())
+  for (const engine::Edge &e : explorer.edges())
     ++g.succStart[e.from + 1];
   for (size_t i = 0; i < n; ++i)
     g.succStart[i + 1] += g.succStart[i];
   g.succ.resize(explorer.edges().size());
   g.succLabel.resize(explorer.edges().size());
   std::vector<uint32_t> fill(g.succStart.begin(), g.succStart.end() - 1);
-  for (const statespace::Edge &e : explorer.edges()) {
+  for (const engine::Edge &e : explorer.edges()) {
     g.succLabel[fill[e.from]] = e.label;
     g.succ[fill[e.from]++] = e.to;
   }
@@ -79,9 +80,8 @@ bool checkers::isInvariant(const CtlFormula &f) {
 /// initial one was stored before the limit). Anything else is undecided.
 /// Exit code as checkProperties'.
 static int
-checkExploredPart(statespace::ExplorationSetup &setup,
-                  statespace::Explorer &explorer,
-                  const statespace::ExploreResult &r,
+checkExploredPart(engine::ExplorationSetup &setup, engine::Explorer &explorer,
+                  const engine::ExploreResult &r,
                   llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
                   const std::string &traceDir, llvm::raw_ostream &out,
                   DiagEngine &diag, bool abstractTimers) {
@@ -128,12 +128,14 @@ checkExploredPart(statespace::ExplorationSetup &setup,
     out << ctlToString(*f) << ": " << (exists ? "holds" : "fails") << "\n"
         << (exists ? "witness: " : "counterexample: ") << claim << "\n";
     std::vector<std::pair<uint32_t, uint32_t>> steps = explorer.pathTo(*hit);
-    statespace::writePath(explorer, semantics, steps, out, setup.traceView());
+    statespace::writePath(explorer, semantics, steps, out,
+                          statespace::traceViewOf(setup));
     if (!traceDir.empty()) {
       statespace::TraceFileHeader h{ctlToString(*f), exists, exists, claim};
-      if (!statespace::writeTraceFiles(
-              traceDir + "/p" + std::to_string(index), h, explorer, semantics,
-              setup.traceView(), steps, -1, statespace::Explorer::kNone, diag))
+      if (!statespace::writeTraceFiles(traceDir + "/p" + std::to_string(index),
+                                       h, explorer, semantics,
+                                       statespace::traceViewOf(setup), steps,
+                                       -1, engine::Explorer::kNone, diag))
         return 1;
     }
   }
@@ -145,18 +147,19 @@ checkExploredPart(statespace::ExplorationSetup &setup,
 }
 
 int checkers::checkProperties(
-    statespace::ExplorationSetup &setup,
+    engine::ExplorationSetup &setup,
     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
     const std::string &traceDir, llvm::raw_ostream &out, DiagEngine &diag,
     std::vector<std::string> *spuriousClocks) {
   bool abstractTimers =
       setup.exactSemantics() && !setup.timerAbstraction().abstracted.empty();
   sem::Semantics &semantics = setup.semantics();
-  statespace::ExploreResult r;
-  std::unique_ptr<statespace::Explorer> graph = setup.exploreGraph(r, diag);
+  engine::ExploreResult r;
+  std::unique_ptr<engine::Explorer> graph =
+      statespace::exploreGraph(setup, r, diag);
   if (!graph)
     return 1;
-  statespace::Explorer &explorer = *graph;
+  engine::Explorer &explorer = *graph;
   sem::RuntimeError err;
   if (!traceDir.empty())
     if (std::error_code ec = llvm::sys::fs::create_directories(traceDir)) {
@@ -177,7 +180,7 @@ int checkers::checkProperties(
     for (uint32_t k = g.succStart[from]; k < g.succStart[from + 1]; ++k)
       if (g.succ[k] == to)
         return g.succLabel[k];
-    return statespace::Explorer::kNone;
+    return engine::Explorer::kNone;
   };
   bool allHold = true, undecided = false;
   unsigned index = 0;
@@ -196,21 +199,22 @@ int checkers::checkProperties(
     std::vector<std::pair<uint32_t, uint32_t>> steps;
     for (size_t i = 0; i < trace->states.size(); ++i)
       steps.push_back({i ? labelOf(trace->states[i - 1], trace->states[i])
-                         : statespace::Explorer::kNone,
+                         : engine::Explorer::kNone,
                        trace->states[i]});
     out << (trace->witness ? "witness: " : "counterexample: ") << trace->claim
         << "\n";
     uint32_t loopLabel =
         trace->loopTo >= 0
             ? labelOf(trace->states.back(), trace->states[trace->loopTo])
-            : statespace::Explorer::kNone;
-    statespace::writePath(explorer, semantics, steps, out, setup.traceView(),
-                          trace->loopTo, loopLabel);
+            : engine::Explorer::kNone;
+    statespace::writePath(explorer, semantics, steps, out,
+                          statespace::traceViewOf(setup), trace->loopTo,
+                          loopLabel);
     if (abstractTimers && !holds) {
       std::vector<std::string> involved;
       if (statespace::replayAndReport(setup, explorer, steps, false, out,
                                       involved) !=
-          statespace::ReplayOutcome::Confirmed)
+          engine::ReplayOutcome::Confirmed)
         undecided = true;
       if (spuriousClocks)
         spuriousClocks->insert(spuriousClocks->end(), involved.begin(),
@@ -219,9 +223,10 @@ int checkers::checkProperties(
     if (!traceDir.empty()) {
       statespace::TraceFileHeader h{ctlToString(*f), holds, trace->witness,
                                     trace->claim};
-      if (!statespace::writeTraceFiles(
-              traceDir + "/p" + std::to_string(index), h, explorer, semantics,
-              setup.traceView(), steps, trace->loopTo, loopLabel, diag))
+      if (!statespace::writeTraceFiles(traceDir + "/p" + std::to_string(index),
+                                       h, explorer, semantics,
+                                       statespace::traceViewOf(setup), steps,
+                                       trace->loopTo, loopLabel, diag))
         return 1;
     }
   }

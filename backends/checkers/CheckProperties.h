@@ -10,7 +10,7 @@
 #define NETLIFT_BACKENDS_CHECKERS_CHECKPROPERTIES_H
 
 #include "backends/checkers/Ctl.h"
-#include "backends/statespace/ExplorationSetup.h"
+#include "engine/ExplorationSetup.h"
 
 #include "llvm/Support/raw_ostream.h"
 
@@ -33,7 +33,7 @@ bool parseProperties(llvm::ArrayRef<std::string> texts, net::Design &design,
 /// counterexample is replayed in exact time; the clocks involved in the
 /// spurious ones are added to `spuriousClocks` (exit code 3 then means
 /// "refine").
-int checkProperties(statespace::ExplorationSetup &setup,
+int checkProperties(engine::ExplorationSetup &setup,
                     llvm::ArrayRef<std::unique_ptr<CtlFormula>> formulas,
                     const std::string &traceDir, llvm::raw_ostream &out,
                     DiagEngine &diag,

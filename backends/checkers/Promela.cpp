@@ -2,8 +2,8 @@
 #include "backends/checkers/Promela.h"
 #include "backends/checkers/PtSubset.h"
 #include "backends/checkers/StateUnits.h"
+#include "engine/Semantics.h"
 #include "ir/net/Printer.h"
-#include "ir/semantics/Semantics.h"
 
 #include "llvm/ADT/DenseMap.h"
 #include "llvm/Support/Casting.h"

@@ -17,7 +17,7 @@
 #define NETLIFT_BACKENDS_CHECKERS_PROMELA_H
 
 #include "backends/checkers/Ctl.h"
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"

@@ -1,8 +1,8 @@
 //===- Smv.cpp - flat modules as SMV models for NuSMV/nuXmv ---------------===//
 #include "backends/checkers/Smv.h"
 #include "backends/checkers/StateUnits.h"
+#include "engine/Semantics.h"
 #include "ir/net/Printer.h"
-#include "ir/semantics/Semantics.h"
 
 #include "llvm/Support/Casting.h"
 

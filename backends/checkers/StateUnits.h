@@ -13,9 +13,9 @@
 #ifndef NETLIFT_BACKENDS_CHECKERS_STATEUNITS_H
 #define NETLIFT_BACKENDS_CHECKERS_STATEUNITS_H
 
+#include "engine/Semantics.h"
+#include "engine/StateLayout.h"
 #include "ir/net/Module.h"
-#include "ir/semantics/Semantics.h"
-#include "ir/semantics/StateLayout.h"
 #include "ir/support/Diagnostics.h"
 
 #include <optional>

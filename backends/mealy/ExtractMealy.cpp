@@ -1,10 +1,10 @@
 //===- ExtractMealy.cpp - the Mealy machine of a controller ---------------===//
 #include "backends/mealy/ExtractMealy.h"
 
-#include "backends/statespace/ExplorationSetup.h"
-#include "backends/statespace/ScanStep.h"
-#include "backends/statespace/StateStore.h"
-#include "ir/semantics/StateLayout.h"
+#include "engine/ExplorationSetup.h"
+#include "engine/ScanStep.h"
+#include "engine/StateLayout.h"
+#include "engine/StateStore.h"
 
 #include "llvm/ADT/SmallVector.h"
 
@@ -75,10 +75,10 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
     out.outputs.push_back(m.ports[p].name.str());
 
   auto runtimeError = [&](const sem::RuntimeError &e) {
-    statespace::reportRuntimeErrorAt(e, diag);
+    engine::reportRuntimeErrorAt(e, diag);
     return false;
   };
-  statespace::StateStore states(W);
+  engine::StateStore states(W);
   std::vector<uint64_t> init(W);
   sem::RuntimeError err;
   if (!sem.initialState(init.data(), err))
@@ -98,20 +98,19 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
       };
       // Time passes while no step is possible; the first step is the
       // scan (it is unique, or the controller is not a Mealy machine).
-      statespace::ScanOutcome scan;
-      if (!statespace::nextScan(sem, states.state(s), opts.maxWaitTicks, scan,
-                                err))
+      engine::ScanOutcome scan;
+      if (!engine::nextScan(sem, states.state(s), opts.maxWaitTicks, scan, err))
         return runtimeError(err);
-      if (scan.kind == statespace::ScanOutcome::Nondeterministic) {
+      if (scan.kind == engine::ScanOutcome::Nondeterministic) {
         diag.error(m.loc, "module '" + m.name +
                               "' is not deterministic: " + where() + " both " +
                               scan.step + " and " + scan.other + " can happen");
         return false;
       }
-      if (scan.kind != statespace::ScanOutcome::Stepped) {
+      if (scan.kind != engine::ScanOutcome::Stepped) {
         diag.error(m.loc,
                    "module '" + m.name + "' never takes a step " + where() +
-                       (scan.kind == statespace::ScanOutcome::Waited
+                       (scan.kind == engine::ScanOutcome::Waited
                             ? " (waited " + std::to_string(opts.maxWaitTicks) +
                                   " ticks)"
                             : std::string(" (a deadlock)")));
@@ -133,7 +132,7 @@ bool netlift::mealy::extractMealy(sem::Semantics &sem,
         output += value ? '1' : '0';
       }
       if (states.size() >= opts.maxStates &&
-          states.find(next.data()) == statespace::StateStore::kNotFound) {
+          states.find(next.data()) == engine::StateStore::kNotFound) {
         diag.error(m.loc, "module '" + m.name + "' has more than " +
                               std::to_string(opts.maxStates) +
                               " states at cycle boundaries: not extracted");

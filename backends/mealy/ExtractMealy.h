@@ -16,9 +16,9 @@
 #ifndef NETLIFT_BACKENDS_MEALY_EXTRACTMEALY_H
 #define NETLIFT_BACKENDS_MEALY_EXTRACTMEALY_H
 
+#include "engine/Semantics.h"
 #include "ir/automata/Mealy.h"
 #include "ir/net/Module.h"
-#include "ir/semantics/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
 namespace netlift::mealy {

@@ -1,14 +1,15 @@
 //===- ReplayLog.cpp - a field log run through the model ------------------===//
 #include "backends/statespace/ReplayLog.h"
-#include "backends/statespace/ExplorationSetup.h"
-#include "backends/statespace/ScanStep.h"
 #include "backends/statespace/StateColumns.h"
+#include "engine/ExplorationSetup.h"
+#include "engine/ScanStep.h"
 #include "ir/support/OutputFile.h"
 
 #include <deque>
 
 using namespace netlift;
 using namespace netlift::net;
+using namespace netlift::engine;
 using namespace netlift::statespace;
 using namespace netlift::statespace::listing;
 

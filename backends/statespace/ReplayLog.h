@@ -14,7 +14,7 @@
 #define NETLIFT_BACKENDS_STATESPACE_REPLAYLOG_H
 
 #include "backends/statespace/Writers.h"
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 #include "ir/support/Diagnostics.h"
 
 #include "llvm/Support/raw_ostream.h"

@@ -10,16 +10,17 @@
 // trace (and closes its loop, for a lasso) or where it first does not.
 //
 //===----------------------------------------------------------------------===//
-#include "backends/statespace/ExplorationSetup.h"
-#include "backends/statespace/Explorer.h"
 #include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
+#include "engine/ExplorationSetup.h"
+#include "engine/Explorer.h"
 
 #include "llvm/Support/JSON.h"
 
 #include <deque>
 
 using namespace netlift;
+using namespace netlift::engine;
 using namespace netlift::statespace;
 using namespace netlift::statespace::listing;
 

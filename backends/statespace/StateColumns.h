@@ -10,9 +10,9 @@
 #define NETLIFT_BACKENDS_STATESPACE_STATECOLUMNS_H
 
 #include "backends/statespace/Writers.h"
+#include "engine/Semantics.h"
 #include "ir/net/Module.h"
 #include "ir/net/StringOps.h"
-#include "ir/semantics/Semantics.h"
 
 #include "llvm/Support/JSON.h"
 

@@ -18,6 +18,7 @@
 #include <map>
 
 using namespace netlift;
+using namespace netlift::engine;
 using namespace netlift::statespace;
 using namespace netlift::statespace::listing;
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 
 using namespace netlift;
+using namespace netlift::engine;
 using namespace netlift::statespace;
 using namespace netlift::statespace::listing;
 

@@ -2,7 +2,7 @@
 #include "backends/statespace/Writers.h"
 #include "backends/statespace/ReplayLog.h"
 #include "backends/statespace/StateColumns.h"
-#include "backends/statespace/TraceValues.h"
+#include "engine/TraceValues.h"
 #include "ir/support/OutputFile.h"
 
 #include "ir/net/Builder.h"
@@ -18,6 +18,7 @@
 #include <cmath>
 
 using namespace netlift;
+using namespace netlift::engine;
 using namespace netlift::statespace;
 using namespace netlift::net;
 using namespace netlift::statespace::listing;

@@ -11,7 +11,7 @@
 #ifndef NETLIFT_BACKENDS_STATESPACE_WRITERS_H
 #define NETLIFT_BACKENDS_STATESPACE_WRITERS_H
 
-#include "backends/statespace/Explorer.h"
+#include "engine/Explorer.h"
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
@@ -26,32 +26,35 @@ namespace netlift::statespace {
 /// The formats `reach --format` writes a state space in.
 enum class GraphFormat { None, Aut, Dot, Json, Csv, Arc };
 /// Writes the state space in `format` (None: nothing).
-void writeStateSpace(GraphFormat format, const Explorer &x, sem::Semantics &sem,
-                     const ExploreResult &r, llvm::raw_ostream &os);
+void writeStateSpace(GraphFormat format, const engine::Explorer &x,
+                     sem::Semantics &sem, const engine::ExploreResult &r,
+                     llvm::raw_ostream &os);
 
-void writeAut(const Explorer &x, llvm::raw_ostream &os);
+void writeAut(const engine::Explorer &x, llvm::raw_ostream &os);
 /// A state's values as `name=value` items joined by `separator`: marked
 /// places only, then clocks, variables and outputs.
 std::string describeState(sem::Semantics &sem, const uint64_t *state,
                           llvm::StringRef separator);
-void writeDot(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
+void writeDot(const engine::Explorer &x, sem::Semantics &sem,
+              llvm::raw_ostream &os);
 /// ViVe-style reachability graph text (docs/formats.md): per state a line
 /// `state nr. N`, its marked places and values, then one line
 /// `== {t1,t3} ==> M` per step leaving it.
-void writeArc(const Explorer &x, sem::Semantics &sem, llvm::raw_ostream &os);
-void writeJson(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
-               llvm::raw_ostream &os);
+void writeArc(const engine::Explorer &x, sem::Semantics &sem,
+              llvm::raw_ostream &os);
+void writeJson(const engine::Explorer &x, sem::Semantics &sem,
+               const engine::ExploreResult &r, llvm::raw_ostream &os);
 /// CSV: a header `id,deadlock,<attribute>...` and one row per state.
-void writeCsvStates(const Explorer &x, sem::Semantics &sem,
-                    const ExploreResult &r, llvm::raw_ostream &os);
+void writeCsvStates(const engine::Explorer &x, sem::Semantics &sem,
+                    const engine::ExploreResult &r, llvm::raw_ostream &os);
 /// CSV: `from,label,to`, one row per edge.
-void writeCsvEdges(const Explorer &x, llvm::raw_ostream &os);
+void writeCsvEdges(const engine::Explorer &x, llvm::raw_ostream &os);
 /// `extraFields` (`,"key":value...`) goes before the closing brace.
-void writeSummaryJson(const Explorer &x, const ExploreResult &r,
+void writeSummaryJson(const engine::Explorer &x, const engine::ExploreResult &r,
                       llvm::raw_ostream &os, llvm::StringRef extraFields = "");
 /// `reach`'s text summary: states, transitions, deadlocks, dead states,
 /// complete.
-void writeSummaryText(const Explorer &x, const ExploreResult &r,
+void writeSummaryText(const engine::Explorer &x, const engine::ExploreResult &r,
                       llvm::raw_ostream &os);
 /// How a trace is shown as text (docs/reach.md, "Traces").
 struct TraceView {
@@ -73,15 +76,16 @@ struct TraceView {
 
 /// The path to `target` as a table: the initial values, then for each step
 /// its label and the values it changed.
-void writeTrace(const Explorer &x, sem::Semantics &sem, uint32_t target,
+void writeTrace(const engine::Explorer &x, sem::Semantics &sem, uint32_t target,
                 llvm::raw_ostream &os, const TraceView &view = {});
 /// The same table for any path: (label of the step into it, state) pairs,
 /// the first label unused. `loopTo` >= 0 adds a closing line: the step
 /// `loopLabel` leads back to that step and the run goes round forever.
-void writePath(const Explorer &x, sem::Semantics &sem,
+void writePath(const engine::Explorer &x, sem::Semantics &sem,
                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                llvm::raw_ostream &os, const TraceView &view = {},
-               int64_t loopTo = -1, uint32_t loopLabel = Explorer::kNone);
+               int64_t loopTo = -1,
+               uint32_t loopLabel = engine::Explorer::kNone);
 
 /// Adds to each step's label the classes of input valuations that take
 /// it, `{scan} [go=1, level=91..100]`, found by running the step again from
@@ -110,8 +114,8 @@ void writeVcd(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
               const std::optional<net::Timescale> &tick, llvm::raw_ostream &os);
 
 /// The path to `target` as a VCD in `file`; false after reporting.
-bool writeVcdFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
-                  const std::optional<net::Timescale> &tick,
+bool writeVcdFile(const engine::Explorer &x, sem::Semantics &sem,
+                  uint32_t target, const std::optional<net::Timescale> &tick,
                   llvm::StringRef file, DiagEngine &diag);
 
 /// `reach --find` and `--deadlock-trace` after a run: the shortest path to
@@ -121,10 +125,11 @@ bool writeVcdFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
 /// decided.
 /// With a `vcdFile`, the path is also written there as a VCD (the view's
 /// tick the design's timescale).
-int reportSearch(const Explorer &x, sem::Semantics &sem, const ExploreResult &r,
-                 llvm::StringRef findText, bool deadlockTrace, int limitCode,
-                 llvm::raw_ostream &os, const TraceView &view = {},
-                 llvm::StringRef vcdFile = "", DiagEngine *diag = nullptr);
+int reportSearch(const engine::Explorer &x, sem::Semantics &sem,
+                 const engine::ExploreResult &r, llvm::StringRef findText,
+                 bool deadlockTrace, int limitCode, llvm::raw_ostream &os,
+                 const TraceView &view = {}, llvm::StringRef vcdFile = "",
+                 DiagEngine *diag = nullptr);
 
 /// What a trace file says of the path it holds.
 struct TraceFileHeader {
@@ -154,14 +159,15 @@ void writeHtmlTrace(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
 
 /// The path to `target` as an HTML page in `file` (reach --trace-html).
 /// False after reporting.
-bool writeHtmlTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
-                        const TraceFileHeader &header, const TraceView &view,
-                        llvm::StringRef file, DiagEngine &diag);
+bool writeHtmlTraceFile(const engine::Explorer &x, sem::Semantics &sem,
+                        uint32_t target, const TraceFileHeader &header,
+                        const TraceView &view, llvm::StringRef file,
+                        DiagEngine &diag);
 
 /// The path to `target` as a JSON trace document in `file` (reach
 /// --trace-json). False after reporting.
-bool writeJsonTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
-                        const TraceFileHeader &header,
+bool writeJsonTraceFile(const engine::Explorer &x, sem::Semantics &sem,
+                        uint32_t target, const TraceFileHeader &header,
                         const std::optional<net::Timescale> &tick,
                         llvm::StringRef file, DiagEngine &diag);
 
@@ -171,7 +177,7 @@ bool writeJsonTraceFile(const Explorer &x, sem::Semantics &sem, uint32_t target,
 /// the loop as an edge back), `BASE.vcd` (writeVcd) and `BASE.html`
 /// (writeHtmlTrace). False after reporting.
 bool writeTraceFiles(const std::string &base, const TraceFileHeader &header,
-                     const Explorer &x, sem::Semantics &sem,
+                     const engine::Explorer &x, sem::Semantics &sem,
                      const TraceView &view,
                      llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
                      int64_t loopTo, uint32_t loopLabel, DiagEngine &diag);

@@ -1,5 +1,6 @@
 //===- ExploredRegions.cpp - sr over an explored state space --------------===//
 #include "backends/structural/ExploredRegions.h"
+#include "backends/statespace/Exploring.h"
 
 #include "backends/statespace/Writers.h"
 #include "backends/structural/StateFile.h"
@@ -31,7 +32,7 @@ bool structural::parseAttributes(llvm::ArrayRef<std::string> texts,
   return true;
 }
 
-bool structural::classifyExplored(statespace::ExplorationSetup &setup,
+bool structural::classifyExplored(engine::ExplorationSetup &setup,
                                   net::Design &design,
                                   llvm::ArrayRef<Attribute> attrs,
                                   bool collectExamples, Analysis &an,
@@ -41,11 +42,12 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
     if (!net::verifyPredicate(design, setup.top(), a.predicate, diag))
       return false;
   sem::Semantics &semantics = setup.semantics();
-  statespace::ExploreResult r;
-  std::unique_ptr<statespace::Explorer> graph = setup.exploreGraph(r, diag);
+  engine::ExploreResult r;
+  std::unique_ptr<engine::Explorer> graph =
+      statespace::exploreGraph(setup, r, diag);
   if (!graph)
     return false;
-  statespace::Explorer &explorer = *graph;
+  engine::Explorer &explorer = *graph;
   out.complete = r.complete;
   // Region of every state, then the counts (memory: one word per state
   // here; the counts themselves are per region).
@@ -62,7 +64,7 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
     dead[d] = 1;
   for (uint32_t s = 0; s < region.size(); ++s)
     an.addState(region[s], dead[s]);
-  for (const statespace::Edge &e : explorer.edges())
+  for (const engine::Edge &e : explorer.edges())
     an.addEdge(region[e.from], region[e.to]);
   if (collectExamples)
     for (uint32_t s = 0; s < region.size(); ++s)
@@ -90,7 +92,8 @@ bool structural::classifyExplored(statespace::ExplorationSetup &setup,
     std::string file =
         (witnessDir + "/region-" + llvm::Twine(region[s]) + ".html").str();
     if (!statespace::writeHtmlTraceFile(explorer, semantics, s, h,
-                                        setup.traceView(), file, diag))
+                                        statespace::traceViewOf(setup), file,
+                                        diag))
       return false;
     out.witnesses[region[s]] = file;
   }

@@ -11,8 +11,8 @@
 #ifndef NETLIFT_BACKENDS_STRUCTURAL_EXPLOREDREGIONS_H
 #define NETLIFT_BACKENDS_STRUCTURAL_EXPLOREDREGIONS_H
 
-#include "backends/statespace/ExplorationSetup.h"
 #include "backends/structural/StructuralReasoning.h"
+#include "engine/ExplorationSetup.h"
 #include "ir/net/Module.h"
 #include "ir/support/Diagnostics.h"
 
@@ -47,7 +47,7 @@ struct ExploredRegions {
 /// first state as an HTML trace (`region-N.html`, N the region's number).
 /// False after reporting (an attribute that is not a state property, or a
 /// runtime error of the model with its trace).
-bool classifyExplored(statespace::ExplorationSetup &setup, net::Design &design,
+bool classifyExplored(engine::ExplorationSetup &setup, net::Design &design,
                       llvm::ArrayRef<Attribute> attrs, bool collectExamples,
                       Analysis &an, ExploredRegions &out, DiagEngine &diag,
                       llvm::StringRef witnessDir = "");

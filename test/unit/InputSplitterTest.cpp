@@ -1,6 +1,6 @@
 //===- InputSplitterTest.cpp - decision prefixes and input order keys -----===//
+#include "engine/SemanticsImpl.h"
 #include "ir/net/FloatOps.h"
-#include "ir/semantics/SemanticsImpl.h"
 
 #include <gtest/gtest.h>
 

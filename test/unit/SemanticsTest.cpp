@@ -1,5 +1,5 @@
 //===- SemanticsTest.cpp - state encoding and step semantics --------------===//
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 #include "ir/semantics/StructuralBounds.h"

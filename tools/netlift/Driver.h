@@ -8,7 +8,7 @@
 #ifndef NETLIFT_TOOLS_NETLIFT_DRIVER_H
 #define NETLIFT_TOOLS_NETLIFT_DRIVER_H
 
-#include "backends/statespace/ExplorationSetup.h"
+#include "engine/ExplorationSetup.h"
 #include "frontends/FrontendRegistry.h"
 #include "ir/automata/Mealy.h"
 #include "ir/net/Module.h"
@@ -47,7 +47,7 @@ bool loadModels(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
 
 /// The exploration options (--top, --semantics, --timing, --place-bits,
 /// --interpreter, limits); false after reporting.
-bool explorationOptions(statespace::ExplorationOptions &out, DiagEngine &diag);
+bool explorationOptions(engine::ExplorationOptions &out, DiagEngine &diag);
 
 /// translate, opt and emit of a whole design: --top only chooses what a
 /// PLC frontend translates, so with NetIR input alone it is refused.

@@ -70,21 +70,20 @@ int driver::runEmit(DiagEngine &diag) {
   EmitInput in;
   in.design = &design;
   in.sourceLocations = !noSourceLocations;
-  std::unique_ptr<statespace::ExplorationSetup> setup;
+  std::unique_ptr<engine::ExplorationSetup> setup;
   std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
   std::vector<const checkers::CtlFormula *> claims;
   if (backend->input == EmitInputKind::FlatTop &&
-      !(in.top = statespace::explorableTop(design, topName, diag, "emit")))
+      !(in.top = engine::explorableTop(design, topName, diag, "emit")))
     return 1;
   if (backend->input == EmitInputKind::Steps) {
-    statespace::ExplorationOptions xo;
+    engine::ExplorationOptions xo;
     xo.enumeratesInputs = false; // the checkers take the input's type
     // The claims observe what they name; the user's own properties in the
     // checker see only what is kept (docs/semantics.md, "Observers").
     xo.observerTexts.assign(properties.begin(), properties.end());
     if (!explorationOptions(xo, diag) ||
-        !(setup =
-              statespace::ExplorationSetup::create(design, xo, diag, "emit")) ||
+        !(setup = engine::ExplorationSetup::create(design, xo, diag, "emit")) ||
         !checkers::parseProperties(properties, design, setup->top(), diag,
                                    formulas))
       return 1;

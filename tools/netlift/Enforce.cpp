@@ -1,8 +1,9 @@
 //===- Enforce.cpp - edit-automaton and enforce ---------------------------===//
 #include "backends/enforce/Enforce.h"
 #include "backends/enforce/EditAutomatonJson.h"
-#include "backends/statespace/ExplorationSetup.h"
+#include "backends/statespace/Exploring.h"
 #include "backends/statespace/ReplayLog.h"
+#include "engine/ExplorationSetup.h"
 #include "ir/automata/EditAutomaton.h"
 #include "tools/netlift/Driver.h"
 
@@ -142,13 +143,12 @@ static int explainStop(const automata::EditAutomaton &ea, unsigned traceID,
       llvm::MemoryBuffer::getMemBufferCopy(csv, "<the vectors enforced on " +
                                                     trace + ">"),
       llvm::SMLoc());
-  statespace::ExplorationOptions xo;
+  engine::ExplorationOptions xo;
   net::Design design;
   std::vector<std::string> inputs{program};
   if (!explorationOptions(xo, diag) || !loadModels(inputs, diag, design))
     return 1;
-  auto setup =
-      statespace::ExplorationSetup::create(design, xo, diag, "enforce");
+  auto setup = engine::ExplorationSetup::create(design, xo, diag, "enforce");
   if (!setup)
     return 1;
   statespace::ReplayLogOptions options;
@@ -159,8 +159,9 @@ static int explainStop(const automata::EditAutomaton &ea, unsigned traceID,
   options.recordName = "trace";
   llvm::outs() << "the program on the enforced vectors, then on vector "
                << stop.stopIndex << ":\n";
-  int code = statespace::replayLog(setup->semantics(), id, setup->traceView(),
-                                   options, diag, llvm::outs());
+  int code = statespace::replayLog(setup->semantics(), id,
+                                   statespace::traceViewOf(*setup), options,
+                                   diag, llvm::outs());
   return code == 1 ? 1 : 3;
 }
 

@@ -1,7 +1,8 @@
 //===- Explore.cpp - reach and check: exploring a model -------------------===//
 #include "backends/checkers/CheckProperties.h"
-#include "backends/statespace/TimerReplay.h"
+#include "backends/statespace/Exploring.h"
 #include "backends/statespace/Writers.h"
+#include "engine/TimerReplay.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
 #include "tools/netlift/Driver.h"
@@ -71,7 +72,7 @@ static cl::opt<EdgeLabels> edgeLabels(
                           "it, [go=1, level=91..100] | [go=0]")),
     cl::sub(reachCommand()), cl::cat(category()));
 
-static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
+static int reachOnce(engine::ExplorationOptions &xo, unsigned round,
                      DiagEngine &diag);
 
 /// reachOnce's answer when a spurious counterexample made more clocks
@@ -81,13 +82,13 @@ static constexpr int kRefine = -1;
 /// `target`): keeps the clocks of a spurious one exact for the next round
 /// while --refine allows (kRefine), else says the result is undecided (2).
 /// `failCode` is the exit code of a confirmed violation.
-static int afterReplay(statespace::ReplayOutcome::Verdict v,
+static int afterReplay(engine::ReplayOutcome::Verdict v,
                        const std::vector<std::string> &involved, int failCode,
-                       statespace::ExplorationOptions &xo, unsigned round,
+                       engine::ExplorationOptions &xo, unsigned round,
                        llvm::raw_ostream &out) {
-  if (v == statespace::ReplayOutcome::Confirmed)
+  if (v == engine::ReplayOutcome::Confirmed)
     return failCode;
-  if (v == statespace::ReplayOutcome::Undecided)
+  if (v == engine::ReplayOutcome::Undecided)
     return 2;
   std::vector<std::string> fresh;
   for (const std::string &c : involved)
@@ -120,16 +121,16 @@ static net::Expr *parseFind(const std::string &text, net::Design &design,
 /// directly, within --replay-states, for a state satisfying `findText`
 /// (empty: a deadlock). Confirms with its path, or settles that there is
 /// none when the whole exact model fits; kRefine when it does not.
-static int searchExactModel(statespace::ExplorationSetup &setup,
+static int searchExactModel(engine::ExplorationSetup &setup,
                             net::Design &design, const std::string &findText,
-                            const statespace::ExplorationOptions &xo,
+                            const engine::ExplorationOptions &xo,
                             DiagEngine &diag, llvm::raw_ostream &out) {
   sem::Semantics &exact = *setup.exactSemantics();
   net::Expr *find = nullptr;
   if (!findText.empty() &&
       !(find = parseFind(findText, design, *setup.exactModule(), diag)))
     return 1;
-  statespace::ExploreOptions eo;
+  engine::ExploreOptions eo;
   eo.maxStates = xo.replayStates;
   sem::RuntimeError err;
   auto stop = [&](const uint64_t *s) {
@@ -137,8 +138,8 @@ static int searchExactModel(statespace::ExplorationSetup &setup,
   };
   if (find)
     eo.stopAt = stop; // a function_ref: `stop` outlives the search
-  statespace::Explorer x(exact, eo);
-  statespace::ExploreResult r;
+  engine::Explorer x(exact, eo);
+  engine::ExploreResult r;
   if (!x.run(r) || r.error)
     return kRefine; // the exact model fails on its own: refinement says so
   std::optional<uint32_t> hit;
@@ -149,7 +150,7 @@ static int searchExactModel(statespace::ExplorationSetup &setup,
   if (hit) {
     out << "confirmed by a search of the exact model (" << x.store().size()
         << " states), " << x.pathTo(*hit).size() - 1 << " steps:\n";
-    statespace::writeTrace(x, exact, *hit, out, setup.traceView());
+    statespace::writeTrace(x, exact, *hit, out, statespace::traceViewOf(setup));
     return find ? 0 : 3;
   }
   if (!r.complete)
@@ -164,7 +165,7 @@ static int searchExactModel(statespace::ExplorationSetup &setup,
 /// Exit codes (docs/reach.md): 0 complete, 1 error, 2 a limit stopped the
 /// search, 3 the property checked is violated.
 int driver::runReach(DiagEngine &diag) {
-  statespace::ExplorationOptions xo;
+  engine::ExplorationOptions xo;
   if (!explorationOptions(xo, diag))
     return 1;
   // --timers=abstract: a spurious counterexample's clocks are kept exact
@@ -176,7 +177,7 @@ int driver::runReach(DiagEngine &diag) {
   }
 }
 
-static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
+static int reachOnce(engine::ExplorationOptions &xo, unsigned round,
                      DiagEngine &diag) {
   net::Design design;
   std::vector<std::string> inputs{reachInput};
@@ -195,7 +196,7 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
     }
     xo.semantics.inputConditions = true;
   }
-  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "reach");
+  auto setup = engine::ExplorationSetup::create(design, xo, diag, "reach");
   if (!setup)
     return 1;
   sem::Semantics &semantics = setup->semantics();
@@ -203,7 +204,7 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   if (!findText.empty() &&
       !(findExpr = parseFind(findText, design, setup->top(), diag)))
     return 1;
-  statespace::ExploreOptions eo = setup->exploreOptions();
+  engine::ExploreOptions eo = setup->exploreOptions();
   eo.depthFirst = depthFirst;
   eo.recordEdges = graphFormat != GraphFormat::None || !edgesFile.empty();
   eo.progress = !noProgress;
@@ -214,9 +215,9 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   };
   if (findExpr)
     eo.stopAt = stop;
-  statespace::Explorer explorer(semantics, eo);
-  statespace::ExploreResult r;
-  if (!setup->explore(explorer, r, diag))
+  engine::Explorer explorer(semantics, eo);
+  engine::ExploreResult r;
+  if (!statespace::exploreAndReport(*setup, explorer, r, diag))
     return 1;
   if (graphFormat != GraphFormat::None && graphFormat != GraphFormat::Aut)
     setup->noteUnkeptValues(diag);
@@ -266,21 +267,23 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
       return 1;
     if (!traceHtml.empty() &&
         !statespace::writeHtmlTraceFile(explorer, semantics, *violation, h,
-                                        setup->traceView(), traceHtml, diag))
+                                        statespace::traceViewOf(*setup),
+                                        traceHtml, diag))
       return 1;
   }
   if (!xo.abstractTimers || !violation ||
       setup->timerAbstraction().abstracted.empty())
     return statespace::reportSearch(
         explorer, semantics, r, findExpr ? llvm::StringRef(findText) : "",
-        deadlockTrace, code, out, setup->traceView(), traceVcd, &diag);
+        deadlockTrace, code, out, statespace::traceViewOf(*setup), traceVcd,
+        &diag);
   auto path = explorer.pathTo(*violation);
   out << (findExpr ? "found a state satisfying '" + findText + "'"
                    : std::string("deadlock"))
       << " after " << path.size() - 1 << " steps with abstract timers ("
       << setup->timerAbstraction().abstracted.size() << " abstracted):\n";
   statespace::writeTrace(explorer, semantics, *violation, out,
-                         setup->traceView());
+                         statespace::traceViewOf(*setup));
   if (!traceVcd.empty() &&
       !statespace::writeVcdFile(explorer, semantics, *violation,
                                 design.timescale, traceVcd, diag))
@@ -288,7 +291,7 @@ static int reachOnce(statespace::ExplorationOptions &xo, unsigned round,
   std::vector<std::string> involved;
   auto verdict = statespace::replayAndReport(*setup, explorer, path, !findExpr,
                                              out, involved);
-  if (verdict != statespace::ReplayOutcome::Confirmed)
+  if (verdict != engine::ReplayOutcome::Confirmed)
     if (int code = searchExactModel(*setup, design, findText, xo, diag, out);
         code != kRefine)
       return code;
@@ -311,7 +314,7 @@ int driver::runCheck(DiagEngine &diag) {
     diag.error(llvm::SMLoc(), "check needs a property (--ctl FORMULA)");
     return 1;
   }
-  statespace::ExplorationOptions xo;
+  engine::ExplorationOptions xo;
   if (!explorationOptions(xo, diag))
     return 1;
   xo.propertyTexts.assign(properties.begin(), properties.end());
@@ -321,8 +324,7 @@ int driver::runCheck(DiagEngine &diag) {
     xo.timerNotes = round == 0;
     if (!loadModels(inputs, diag, design))
       return 1;
-    auto setup =
-        statespace::ExplorationSetup::create(design, xo, diag, "check");
+    auto setup = engine::ExplorationSetup::create(design, xo, diag, "check");
     std::vector<std::unique_ptr<checkers::CtlFormula>> formulas;
     if (!setup || !checkers::parseProperties(properties, design, setup->top(),
                                              diag, formulas))
@@ -345,8 +347,8 @@ int driver::runCheck(DiagEngine &diag) {
     if (code != 3 || involved.empty())
       return code;
     // A counterexample was spurious: refine as reach does.
-    code = afterReplay(statespace::ReplayOutcome::Spurious, involved, 3, xo,
-                       round, llvm::outs());
+    code = afterReplay(engine::ReplayOutcome::Spurious, involved, 3, xo, round,
+                       llvm::outs());
     if (code != kRefine)
       return code;
   }

@@ -49,10 +49,10 @@ bool driver::readMealySpec(const std::string &path, DiagEngine &diag,
   }
   net::Design design;
   std::vector<std::string> inputs{path};
-  statespace::ExplorationOptions xo;
+  engine::ExplorationOptions xo;
   if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
     return false;
-  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "mealy");
+  auto setup = engine::ExplorationSetup::create(design, xo, diag, "mealy");
   if (!setup)
     return false;
   mealy::MealyExtractOptions opts;

@@ -383,7 +383,7 @@ bool driver::loadModels(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
          loadInputs(paths, inputFormat, fo, diag, design);
 }
 
-bool driver::explorationOptions(statespace::ExplorationOptions &eo,
+bool driver::explorationOptions(engine::ExplorationOptions &eo,
                                 DiagEngine &diag) {
   eo.top = topName;
   eo.semantics.policy = stepPolicy;
@@ -420,8 +420,7 @@ bool driver::explorationOptions(statespace::ExplorationOptions &eo,
   eo.replayStates = replayStates;
   eo.maxStates = maxStates;
   eo.timeLimit = timeLimit;
-  if (!maxMemory.empty() &&
-      !statespace::parseByteSize(maxMemory, eo.maxMemory)) {
+  if (!maxMemory.empty() && !engine::parseByteSize(maxMemory, eo.maxMemory)) {
     diag.error(llvm::SMLoc(), "--max-memory: '" + maxMemory +
                                   "' is not a size (e.g. 512M, 4G)");
     return false;

@@ -5,6 +5,7 @@
 // wrote followed step by step (backends/statespace/ReplayLog.h).
 //
 //===----------------------------------------------------------------------===//
+#include "backends/statespace/Exploring.h"
 #include "tools/netlift/Driver.h"
 
 #include "backends/statespace/ReplayLog.h"
@@ -32,7 +33,7 @@ static cl::opt<uint64_t> replayWait(
 /// Exit 0 the model agrees with the log, 3 it differs, 1 an error
 /// (docs/reach.md, "Replaying a log").
 int driver::runReplay(DiagEngine &diag) {
-  statespace::ExplorationOptions xo;
+  engine::ExplorationOptions xo;
   if (!explorationOptions(xo, diag))
     return 1;
   // One run is followed, as the PLC makes it: no end-of-scan resets, so
@@ -43,7 +44,7 @@ int driver::runReplay(DiagEngine &diag) {
   std::vector<std::string> inputs{replayModel};
   if (!loadModels(inputs, diag, design))
     return 1;
-  auto setup = statespace::ExplorationSetup::create(design, xo, diag, "replay");
+  auto setup = engine::ExplorationSetup::create(design, xo, diag, "replay");
   if (!setup)
     return 1;
   unsigned log = addInputFile(diag.sourceMgr(), replayLogFile);
@@ -54,8 +55,10 @@ int driver::runReplay(DiagEngine &diag) {
   options.maxWaitTicks = replayWait;
   // A JSON trace netlift wrote, or a CSV log recorded on the PLC.
   if (llvm::StringRef(replayLogFile).endswith(".json"))
-    return statespace::replayTrace(setup->semantics(), log, setup->traceView(),
-                                   options, diag, llvm::outs());
-  return statespace::replayLog(setup->semantics(), log, setup->traceView(),
-                               options, diag, llvm::outs());
+    return statespace::replayTrace(setup->semantics(), log,
+                                   statespace::traceViewOf(*setup), options,
+                                   diag, llvm::outs());
+  return statespace::replayLog(setup->semantics(), log,
+                               statespace::traceViewOf(*setup), options, diag,
+                               llvm::outs());
 }

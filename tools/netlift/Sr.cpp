@@ -134,12 +134,12 @@ int driver::runSr(DiagEngine &diag) {
       return 1;
   } else {
     std::vector<std::string> inputs{srInput};
-    statespace::ExplorationOptions xo;
+    engine::ExplorationOptions xo;
     if (!loadModels(inputs, diag, design) || !explorationOptions(xo, diag))
       return 1;
     // The attributes observe what they name (docs/semantics.md).
     xo.observerTexts.assign(attrTexts.begin(), attrTexts.end());
-    auto setup = statespace::ExplorationSetup::create(design, xo, diag, "sr");
+    auto setup = engine::ExplorationSetup::create(design, xo, diag, "sr");
     if (!setup || !structural::classifyExplored(*setup, design, attrs,
                                                 report == Report::Html, an,
                                                 regions, diag, witnessDir))

@@ -11,16 +11,16 @@
 // the explored one only in those values: it is the run the PLC makes.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_TRACEVALUES_H
-#define NETLIFT_BACKENDS_STATESPACE_TRACEVALUES_H
+#ifndef NETLIFT_ENGINE_TRACEVALUES_H
+#define NETLIFT_ENGINE_TRACEVALUES_H
 
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 /// A path's states as the PLC has them.
 struct PlcPath {
@@ -42,6 +42,6 @@ struct PlcPath {
 PlcPath plcValues(sem::Semantics &sem, llvm::ArrayRef<std::string> labels,
                   llvm::ArrayRef<const uint64_t *> states);
 
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

@@ -1,9 +1,6 @@
 //===- TimerReplay.cpp - abstract counterexamples replayed in exact time --===//
-#include "backends/statespace/TimerReplay.h"
-#include "backends/statespace/TraceValues.h"
+#include "engine/TimerReplay.h"
 
-#include "backends/statespace/ExplorationSetup.h"
-#include "backends/statespace/Writers.h"
 #include "passes/AbstractTimers.h"
 
 #include "llvm/ADT/StringSet.h"
@@ -12,7 +9,7 @@
 #include <unordered_set>
 
 using namespace netlift;
-using namespace netlift::statespace;
+using namespace netlift::engine;
 
 namespace {
 
@@ -73,7 +70,7 @@ struct Node {
 
 } // namespace
 
-ReplayOutcome statespace::replayInExactTime(
+ReplayOutcome engine::replayInExactTime(
     sem::Semantics &exact, sem::Semantics &abstract, const Explorer &x,
     llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
     llvm::ArrayRef<std::string> abstracted,
@@ -193,60 +190,4 @@ ReplayOutcome statespace::replayInExactTime(
   if (out.involved.empty())
     out.involved.assign(abstracted.begin(), abstracted.end());
   return out;
-}
-
-void statespace::writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
-                                  llvm::raw_ostream &os,
-                                  const TraceView &view) {
-  std::vector<const uint64_t *> states;
-  for (const std::vector<uint64_t> &s : o.states)
-    states.push_back(s.data());
-  std::vector<std::string> labels(o.labels.begin(), o.labels.end());
-  PlcPath plc = plcValues(exact, labels, states);
-  withInputClasses(plc.in(exact), labels, plc.states);
-  writeStatePath(plc.in(exact), labels, plc.states, os, view);
-}
-
-ReplayOutcome::Verdict
-statespace::replayAndReport(ExplorationSetup &setup, const Explorer &x,
-                            llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
-                            bool deadlock, llvm::raw_ostream &out,
-                            std::vector<std::string> &involved) {
-  sem::Semantics &exact = *setup.exactSemantics();
-  auto endsRun = [&](const uint64_t *s) {
-    if (!deadlock)
-      return true;
-    bool moves = false;
-    sem::RuntimeError err;
-    exact.successors(
-        s, [&](llvm::ArrayRef<uint32_t>, const uint64_t *) { moves = true; },
-        err);
-    return !moves;
-  };
-  ReplayOutcome o = replayInExactTime(exact, setup.semantics(), x, path,
-                                      setup.timerAbstraction().abstracted,
-                                      endsRun, setup.options().replayStates);
-  switch (o.verdict) {
-  case ReplayOutcome::Confirmed:
-    out << "confirmed in exact time: " << o.states.size() - 1 << " steps ("
-        << o.visited << " exact states searched):\n";
-    writeReplayedRun(exact, o, out, setup.traceView());
-    break;
-  case ReplayOutcome::Undecided:
-    out << "undecided: the replay in exact time stopped after " << o.visited
-        << " states; run with --timers=exact\n";
-    break;
-  case ReplayOutcome::Spurious: {
-    std::string names;
-    for (const std::string &n : o.involved)
-      names += (names.empty() ? "" : ", ") + n;
-    out << "spurious: no run of the exact model follows it past step "
-        << o.divergesAt << " (" << o.visited
-        << " exact states searched; abstract clocks running there: " << names
-        << ")\n";
-    involved = o.involved;
-    break;
-  }
-  }
-  return o.verdict;
 }

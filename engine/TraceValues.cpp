@@ -1,15 +1,15 @@
 //===- TraceValues.cpp - a path shown with the values the PLC has ---------===//
-#include "backends/statespace/TraceValues.h"
+#include "engine/TraceValues.h"
 
-#include "backends/statespace/Explorer.h"
+#include "engine/Explorer.h"
 #include "ir/net/ScanResets.h"
 
 using namespace netlift;
-using namespace netlift::statespace;
+using namespace netlift::engine;
 
-PlcPath statespace::plcValues(sem::Semantics &sem,
-                              llvm::ArrayRef<std::string> labels,
-                              llvm::ArrayRef<const uint64_t *> states) {
+PlcPath engine::plcValues(sem::Semantics &sem,
+                          llvm::ArrayRef<std::string> labels,
+                          llvm::ArrayRef<const uint64_t *> states) {
   PlcPath out;
   out.states.assign(states.begin(), states.end());
   if (!sem.options().scanResets || states.empty())

@@ -14,10 +14,10 @@
 // firing would overflow an unbounded place (to report that error).
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_IR_SEMANTICS_PTKERNEL_H
-#define NETLIFT_IR_SEMANTICS_PTKERNEL_H
+#ifndef NETLIFT_ENGINE_PTKERNEL_H
+#define NETLIFT_ENGINE_PTKERNEL_H
 
-#include "ir/semantics/StateLayout.h"
+#include "engine/StateLayout.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 

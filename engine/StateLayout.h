@@ -12,8 +12,8 @@
 // valuation the interpreter works on.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_IR_SEMANTICS_STATELAYOUT_H
-#define NETLIFT_IR_SEMANTICS_STATELAYOUT_H
+#ifndef NETLIFT_ENGINE_STATELAYOUT_H
+#define NETLIFT_ENGINE_STATELAYOUT_H
 
 #include "ir/net/Expr.h"
 #include "ir/net/Module.h"

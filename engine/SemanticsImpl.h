@@ -7,16 +7,16 @@
 // the API.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_IR_SEMANTICS_SEMANTICSIMPL_H
-#define NETLIFT_IR_SEMANTICS_SEMANTICSIMPL_H
+#ifndef NETLIFT_ENGINE_SEMANTICSIMPL_H
+#define NETLIFT_ENGINE_SEMANTICSIMPL_H
 
+#include "engine/InputSplitter.h"
+#include "engine/PtKernel.h"
+#include "engine/Semantics.h"
 #include "ir/net/FloatOps.h"
 #include "ir/net/Printer.h"
 #include "ir/net/ScalarOps.h"
 #include "ir/net/StringOps.h"
-#include "ir/semantics/InputSplitter.h"
-#include "ir/semantics/PtKernel.h"
-#include "ir/semantics/Semantics.h"
 #include "ir/support/Budget.h"
 
 #include "llvm/ADT/DenseMap.h"

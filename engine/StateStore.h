@@ -8,8 +8,8 @@
 // state's identity in every output.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_STATESTORE_H
-#define NETLIFT_BACKENDS_STATESPACE_STATESTORE_H
+#ifndef NETLIFT_ENGINE_STATESTORE_H
+#define NETLIFT_ENGINE_STATESTORE_H
 
 #include "ir/support/HugePageAllocator.h"
 
@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 class StateStore {
 public:
@@ -117,6 +117,6 @@ private:
   std::vector<Bucket, HugePageAllocator<Bucket>> table;
 };
 
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

@@ -13,11 +13,11 @@
 // Every analysis uses this one implementation.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_IR_SEMANTICS_SEMANTICS_H
-#define NETLIFT_IR_SEMANTICS_SEMANTICS_H
+#ifndef NETLIFT_ENGINE_SEMANTICS_H
+#define NETLIFT_ENGINE_SEMANTICS_H
 
+#include "engine/StateLayout.h"
 #include "ir/net/StringOps.h"
-#include "ir/semantics/StateLayout.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/Support/SMLoc.h"

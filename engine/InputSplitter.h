@@ -20,8 +20,8 @@
 // the classes are exhausted.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_IR_SEMANTICS_INPUTSPLITTER_H
-#define NETLIFT_IR_SEMANTICS_INPUTSPLITTER_H
+#ifndef NETLIFT_ENGINE_INPUTSPLITTER_H
+#define NETLIFT_ENGINE_INPUTSPLITTER_H
 
 #include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/STLFunctionalExtras.h"

@@ -6,8 +6,8 @@
 // fast paths of later work keep.
 //
 //===----------------------------------------------------------------------===//
+#include "engine/SemanticsImpl.h"
 #include "ir/net/ScanResets.h"
-#include "ir/semantics/SemanticsImpl.h"
 
 using namespace netlift;
 using namespace netlift::sem;

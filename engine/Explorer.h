@@ -9,11 +9,11 @@
 // an output needs them; parents are always kept, for traces.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_EXPLORER_H
-#define NETLIFT_BACKENDS_STATESPACE_EXPLORER_H
+#ifndef NETLIFT_ENGINE_EXPLORER_H
+#define NETLIFT_ENGINE_EXPLORER_H
 
-#include "backends/statespace/StateStore.h"
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
+#include "engine/StateStore.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringMap.h"
@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 struct ExploreOptions {
   bool depthFirst = false;
@@ -119,6 +119,6 @@ private:
   std::vector<std::string> labels;
 };
 
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

@@ -1,9 +1,9 @@
 //===- StateStore.cpp - the set of visited states -------------------------===//
-#include "backends/statespace/StateStore.h"
+#include "engine/StateStore.h"
 
 #include <algorithm>
 
-using namespace netlift::statespace;
+using namespace netlift::engine;
 
 uint32_t StateStore::hashState(const uint64_t *s, uint32_t n) {
   // Words are combined by multiply-xorshift, then the whole is finished by

@@ -1,7 +1,7 @@
 //===- PtKernel.cpp - compiled successors of plain P/T nets ---------------===//
-#include "ir/semantics/PtKernel.h"
+#include "engine/PtKernel.h"
 
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 
 #include "llvm/ADT/SmallVector.h"
 

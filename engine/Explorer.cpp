@@ -1,5 +1,5 @@
 //===- Explorer.cpp - state-space exploration -----------------------------===//
-#include "backends/statespace/Explorer.h"
+#include "engine/Explorer.h"
 
 #include "llvm/Support/Process.h"
 #include "llvm/Support/raw_ostream.h"
@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 using namespace netlift;
-using namespace netlift::statespace;
+using namespace netlift::engine;
 using Clock = std::chrono::steady_clock;
 
 namespace {

@@ -1,13 +1,13 @@
 //===- ScanStep.cpp - one scan of a controller with given inputs ----------===//
-#include "backends/statespace/ScanStep.h"
-#include "backends/statespace/Explorer.h"
+#include "engine/ScanStep.h"
+#include "engine/Explorer.h"
 
 using namespace netlift;
-using namespace netlift::statespace;
+using namespace netlift::engine;
 
-bool statespace::nextScan(sem::Semantics &sem, const uint64_t *from,
-                          uint64_t maxWaitTicks, ScanOutcome &out,
-                          sem::RuntimeError &err) {
+bool engine::nextScan(sem::Semantics &sem, const uint64_t *from,
+                      uint64_t maxWaitTicks, ScanOutcome &out,
+                      sem::RuntimeError &err) {
   const uint32_t words = sem.layout().numWords();
   out = ScanOutcome();
   std::vector<uint64_t> at(from, from + words), tick(words);

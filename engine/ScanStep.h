@@ -7,16 +7,16 @@
 // field log, scan by scan) both run a controller this way.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_SCANSTEP_H
-#define NETLIFT_BACKENDS_STATESPACE_SCANSTEP_H
+#ifndef NETLIFT_ENGINE_SCANSTEP_H
+#define NETLIFT_ENGINE_SCANSTEP_H
 
-#include "ir/semantics/Semantics.h"
+#include "engine/Semantics.h"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 struct ScanOutcome {
   enum Kind {
@@ -36,6 +36,6 @@ struct ScanOutcome {
 bool nextScan(sem::Semantics &sem, const uint64_t *from, uint64_t maxWaitTicks,
               ScanOutcome &out, sem::RuntimeError &err);
 
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

@@ -10,14 +10,13 @@
 // and a state space explored are always about the same model.
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_EXPLORATIONSETUP_H
-#define NETLIFT_BACKENDS_STATESPACE_EXPLORATIONSETUP_H
+#ifndef NETLIFT_ENGINE_EXPLORATIONSETUP_H
+#define NETLIFT_ENGINE_EXPLORATIONSETUP_H
 
-#include "backends/statespace/Explorer.h"
-#include "backends/statespace/Writers.h"
+#include "engine/Explorer.h"
+#include "engine/Semantics.h"
+#include "engine/StateLayout.h"
 #include "ir/net/Module.h"
-#include "ir/semantics/Semantics.h"
-#include "ir/semantics/StateLayout.h"
 #include "ir/support/Diagnostics.h"
 
 #include "passes/AbstractTimers.h"
@@ -27,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 /// The options every exploring command takes alike.
 struct ExplorationOptions {
@@ -101,10 +100,8 @@ public:
   /// The design's tick (`timescale`), when it declares one: how long a
   /// trace's `tick` steps last.
   const std::optional<net::Timescale> &timescale() const { return tick; }
-  /// How this command's traces are shown.
-  TraceView traceView() const {
-    return {opts.traceInternals, tick, sources, opts.traceSource};
-  }
+  /// Where the model was read from (traces show source lines).
+  const llvm::SourceMgr *sourceManager() const { return sources; }
 
   /// Explorer options with the limits set; callers add what they record.
   ExploreOptions exploreOptions() const;
@@ -125,13 +122,10 @@ public:
   /// The inputs latched for this run, in the module's port order.
   const std::vector<std::string> &latched() const { return latchedInputs; }
 
-  /// Runs `explorer` (made on this set-up's semantics) into `result`;
-  /// false after reporting a runtime error of the model with its trace.
-  bool explore(Explorer &explorer, ExploreResult &result, DiagEngine &diag);
-  /// Explores the whole graph (edges recorded, the set-up's limits) for
-  /// the analyses over it (check, sr); null after a runtime error.
-  std::unique_ptr<Explorer> exploreGraph(ExploreResult &result,
-                                         DiagEngine &diag);
+  /// --timers=abstract left clocks abstracted in the model explored.
+  bool hasAbstractedClocks() const {
+    return opts.abstractTimers && !timers.abstracted.empty();
+  }
 
 private:
   ExplorationSetup(net::Module &top, const ExplorationOptions &options);
@@ -148,18 +142,11 @@ private:
   std::vector<std::string> latchedInputs;
 };
 
-/// Reports the runtime error an exploration stopped at, at its place in
-/// the model and with the path that leads there (when the initial state
-/// could be built). Every command that explores says it the same way.
-void reportRuntimeError(const ExploreResult &result, bool started,
-                        Explorer &explorer, sem::Semantics &semantics,
-                        DiagEngine &diag, const TraceView &view = {});
-
 /// `runtime error: ...` at the error's place, and where it is an
 /// expression read from NetIR text, a note at the statement of the
 /// program it was translated from.
 void reportRuntimeErrorAt(const sem::RuntimeError &error, DiagEngine &diag);
 
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

@@ -18,7 +18,7 @@
 //    interval (up to --max-input-values), runs of equal value merged.
 //
 //===----------------------------------------------------------------------===//
-#include "ir/semantics/SemanticsImpl.h"
+#include "engine/SemanticsImpl.h"
 
 #include "ir/net/Walk.h"
 

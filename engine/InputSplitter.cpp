@@ -1,5 +1,5 @@
 //===- InputSplitter.cpp - classes of input valuations, one by one --------===//
-#include "ir/semantics/InputSplitter.h"
+#include "engine/InputSplitter.h"
 
 #include <cassert>
 

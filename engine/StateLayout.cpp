@@ -1,5 +1,5 @@
 //===- StateLayout.cpp - where each part of a state lives -----------------===//
-#include "ir/semantics/StateLayout.h"
+#include "engine/StateLayout.h"
 
 #include "ir/semantics/StructuralBounds.h"
 

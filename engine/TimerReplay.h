@@ -14,19 +14,18 @@
 // exact).
 //
 //===----------------------------------------------------------------------===//
-#ifndef NETLIFT_BACKENDS_STATESPACE_TIMERREPLAY_H
-#define NETLIFT_BACKENDS_STATESPACE_TIMERREPLAY_H
+#ifndef NETLIFT_ENGINE_TIMERREPLAY_H
+#define NETLIFT_ENGINE_TIMERREPLAY_H
 
-#include "backends/statespace/Explorer.h"
-#include "backends/statespace/Writers.h"
-#include "ir/semantics/Semantics.h"
+#include "engine/Explorer.h"
+#include "engine/Semantics.h"
 
 #include "llvm/Support/raw_ostream.h"
 
 #include <string>
 #include <vector>
 
-namespace netlift::statespace {
+namespace netlift::engine {
 
 struct ReplayOutcome {
   enum Verdict { Confirmed, Spurious, Undecided } verdict = Undecided;
@@ -52,23 +51,6 @@ ReplayOutcome replayInExactTime(
     llvm::ArrayRef<std::string> abstracted,
     llvm::function_ref<bool(const uint64_t *)> lastOk, uint64_t budget);
 
-/// The exact run of a confirmed replay, as `reach` prints paths.
-void writeReplayedRun(sem::Semantics &exact, const ReplayOutcome &o,
-                      llvm::raw_ostream &os, const TraceView &view = {});
-
-class ExplorationSetup;
-
-/// Replays the path to `target` of a set-up with abstract timers and says
-/// what came of it: `confirmed in exact time` with the exact run,
-/// `spurious` with the step and the clocks involved (returned in
-/// `involved`), or `undecided`. `deadlock`: the run must end in a state
-/// without successors.
-ReplayOutcome::Verdict
-replayAndReport(ExplorationSetup &setup, const Explorer &x,
-                llvm::ArrayRef<std::pair<uint32_t, uint32_t>> path,
-                bool deadlock, llvm::raw_ostream &out,
-                std::vector<std::string> &involved);
-
-} // namespace netlift::statespace
+} // namespace netlift::engine
 
 #endif

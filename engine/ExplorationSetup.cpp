@@ -1,5 +1,5 @@
 //===- ExplorationSetup.cpp - one state space for every command -----------===//
-#include "backends/statespace/ExplorationSetup.h"
+#include "engine/ExplorationSetup.h"
 
 #include "ir/net/ExecutedOnly.h"
 #include "ir/net/ScanResets.h"
@@ -7,7 +7,6 @@
 
 #include <functional>
 
-#include "backends/statespace/Writers.h"
 #include "ir/net/Verifier.h"
 #include "passes/Flatten.h"
 #include "passes/KeepValues.h"
@@ -17,9 +16,9 @@
 #include "llvm/Support/raw_ostream.h"
 
 using namespace netlift;
-using namespace netlift::statespace;
+using namespace netlift::engine;
 
-bool statespace::parseByteSize(llvm::StringRef text, uint64_t &out) {
+bool engine::parseByteSize(llvm::StringRef text, uint64_t &out) {
   uint64_t mult = 1;
   if (text.endswith_insensitive("k"))
     mult = 1ull << 10;
@@ -59,10 +58,8 @@ static std::vector<bool> inputsRead(const net::Module &m) {
   return read;
 }
 
-net::Module *statespace::explorableTop(net::Design &design,
-                                       llvm::StringRef topName,
-                                       DiagEngine &diag,
-                                       llvm::StringRef command) {
+net::Module *engine::explorableTop(net::Design &design, llvm::StringRef topName,
+                                   DiagEngine &diag, llvm::StringRef command) {
   std::string why;
   net::Module *top = design.findTop(topName, why);
   if (!top) {
@@ -253,31 +250,8 @@ ExploreOptions ExplorationSetup::exploreOptions() const {
   return eo;
 }
 
-bool ExplorationSetup::explore(Explorer &explorer, ExploreResult &r,
-                               DiagEngine &diag) {
-  bool started = explorer.run(r);
-  if (!r.error)
-    return true;
-  reportRuntimeError(r, started, explorer, *sem, diag, traceView());
-  if (!r.error->limit && opts.abstractTimers && !timers.abstracted.empty())
-    diag.note(llvm::SMLoc(),
-              "found with abstract timers: the error may need a timer to "
-              "expire sooner or later than it can; --timers=exact decides");
-  return false;
-}
-
-std::unique_ptr<Explorer> ExplorationSetup::exploreGraph(ExploreResult &r,
-                                                         DiagEngine &diag) {
-  ExploreOptions eo = exploreOptions();
-  eo.recordEdges = true;
-  auto explorer = std::make_unique<Explorer>(*sem, eo);
-  if (!explore(*explorer, r, diag))
-    return nullptr;
-  return explorer;
-}
-
-void statespace::reportRuntimeErrorAt(const sem::RuntimeError &error,
-                                      DiagEngine &diag) {
+void engine::reportRuntimeErrorAt(const sem::RuntimeError &error,
+                                  DiagEngine &diag) {
   if (!error.loc.isValid()) {
     diag.error(llvm::SMLoc(), error.message);
     return;
@@ -290,16 +264,4 @@ void statespace::reportRuntimeErrorAt(const sem::RuntimeError &error,
       sm.FindBufferContainingLoc(error.statement) !=
           sm.FindBufferContainingLoc(error.loc))
     diag.note(error.statement, "in this statement of the program");
-}
-
-void statespace::reportRuntimeError(const ExploreResult &r, bool started,
-                                    Explorer &explorer,
-                                    sem::Semantics &semantics, DiagEngine &diag,
-                                    const TraceView &view) {
-  reportRuntimeErrorAt(*r.error, diag);
-  if (started) {
-    llvm::errs() << "trace to the state where it happens (the next step "
-                    "fails):\n";
-    writeTrace(explorer, semantics, r.errorState, llvm::errs(), view);
-  }
 }
