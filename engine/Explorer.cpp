@@ -54,7 +54,15 @@ private:
 } // namespace
 
 Explorer::Explorer(sem::Semantics &s, ExploreOptions o)
-    : sem(s), opts(o), states(s.layout().numWords()) {}
+    : ownRelation(std::make_unique<ModuleStepRelation>(s)), rel(*ownRelation),
+      opts(o), states(rel.stateWords()) {}
+
+Explorer::Explorer(StepRelation &relation, ExploreOptions o)
+    : rel(relation), opts(o), states(rel.stateWords()) {}
+
+std::string ModuleStepRelation::stepText(llvm::ArrayRef<uint32_t> step) const {
+  return Explorer::stepText(sem.module(), step);
+}
 
 uint32_t Explorer::internConditionLabel(llvm::ArrayRef<uint32_t> step,
                                         llvm::StringRef condition) {
@@ -81,12 +89,12 @@ uint32_t Explorer::internNewLabel(llvm::ArrayRef<uint32_t> step) {
   if (step.size() <= 1) {
     uint32_t key = step.empty() ? 0 : step[0] + 1;
     if (key >= singleLabel.size())
-      singleLabel.resize(sem.module().transitions.size() + 1, kNone);
+      singleLabel.resize(std::max<size_t>(rel.numMoves(), key) + 1, kNone);
     if (singleLabel[key] != kNone)
       return singleLabel[key];
     single = &singleLabel[key];
   }
-  std::string l = stepText(sem.module(), step);
+  std::string l = rel.stepText(step);
   auto [it, fresh] = labelIds.try_emplace(l, labels.size());
   if (fresh)
     labels.push_back(l);
@@ -106,21 +114,20 @@ std::vector<std::pair<uint32_t, uint32_t>> Explorer::pathTo(uint32_t s) const {
 }
 
 bool Explorer::run(ExploreResult &r) {
-  const sem::StateLayout &L = sem.layout();
   auto start = Clock::now();
   // Time and memory are checked inside each expansion too (Budget.h).
   Budget budget(opts.timeLimit, opts.maxMemory);
-  sem.setBudget(&budget);
-  auto noBudget = llvm::make_scope_exit([&] { sem.setBudget(nullptr); });
-  std::vector<uint64_t> init(L.numWords());
+  rel.setBudget(&budget);
+  auto noBudget = llvm::make_scope_exit([&] { rel.setBudget(nullptr); });
+  std::vector<uint64_t> init(rel.stateWords());
   sem::RuntimeError err;
-  if (!sem.initialState(init.data(), err)) {
+  if (!rel.initialState(init.data(), err)) {
     r.error = err;
     return false;
   }
   states.insert(init.data());
   tree.push_back({kNone, kNone});
-  bool timed = sem.isTimed();
+  bool timed = rel.isTimed();
   std::vector<uint8_t> hasStep;
   std::vector<uint32_t> tickSucc;
   std::vector<uint32_t> stack; // depth-first order only
@@ -159,20 +166,22 @@ bool Explorer::run(ExploreResult &r) {
     head = (head + 1) % ring.size();
     --inFlight;
   };
-  TokenStats tokenStats(L);
-  const uint32_t W = L.numWords();
-  const bool freeInputs = sem.hasFreeInputs();
+  std::optional<TokenStats> tokenStats;
+  if (const sem::StateLayout *L = rel.tokenLayout())
+    tokenStats.emplace(*L);
+  const uint32_t W = rel.stateWords();
+  const bool freeInputs = rel.hasFreeInputs();
   auto generate = [&](uint32_t s, Batch &b) {
     b.from = s;
     b.pending.clear();
     b.words.clear();
-    b.ok = sem.successors(
+    b.ok = rel.successors(
         states.state(s),
         [&](llvm::ArrayRef<uint32_t> st, const uint64_t *succ) {
           uint32_t h = states.hash(succ);
           states.prefetchBucket(h);
-          uint32_t label = opts.inputLabels && !sem.edgeCondition().empty()
-                               ? internConditionLabel(st, sem.edgeCondition())
+          uint32_t label = opts.inputLabels && !rel.edgeCondition().empty()
+                               ? internConditionLabel(st, rel.edgeCondition())
                                : internLabel(st);
           b.pending.push_back({h, label, st.empty()});
           size_t at = b.words.size();
@@ -182,7 +191,7 @@ bool Explorer::run(ExploreResult &r) {
         },
         b.err);
     if (freeInputs) // what splitting saved; nothing to count otherwise
-      ++r.inputClasses[sem.lastInputClasses()];
+      ++r.inputClasses[rel.lastInputClasses()];
   };
   auto prefetchCandidates = [&](const Batch &b) {
     for (const Pending &p : b.pending)
@@ -196,7 +205,8 @@ bool Explorer::run(ExploreResult &r) {
       r.limitReached = b.err.budget;
       return false;
     }
-    tokenStats.account(states.state(s), r);
+    if (tokenStats)
+      tokenStats->account(states.state(s), r);
     bool step = false;
     uint32_t tick = kNone;
     for (size_t i = 0; i < b.pending.size(); ++i) {

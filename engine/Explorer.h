@@ -14,6 +14,7 @@
 
 #include "engine/Semantics.h"
 #include "engine/StateStore.h"
+#include "engine/StepRelation.h"
 
 #include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ADT/StringMap.h"
@@ -64,13 +65,18 @@ struct ExploreResult {
 
 class Explorer {
 public:
+  /// The search of a module's states under its semantics.
   Explorer(sem::Semantics &semantics, ExploreOptions opts);
+  /// The search of any step relation's states (`relation` outlives it).
+  Explorer(StepRelation &relation, ExploreOptions opts);
   /// Runs to completion or to a limit. False only if the initial state
   /// itself is invalid (error set).
   bool run(ExploreResult &result);
 
   const StateStore &store() const { return states; }
-  const sem::Semantics &semantics() const { return sem; }
+  /// The semantics explored; only for a module's search.
+  const sem::Semantics &semantics() const { return *rel.semantics(); }
+  StepRelation &relation() const { return rel; }
   const std::vector<Edge, HugePageAllocator<Edge>> &edges() const {
     return edgeList;
   }
@@ -104,7 +110,8 @@ private:
   uint32_t internConditionLabel(llvm::ArrayRef<uint32_t> step,
                                 llvm::StringRef condition);
 
-  sem::Semantics &sem;
+  std::unique_ptr<StepRelation> ownRelation;
+  StepRelation &rel;
   ExploreOptions opts;
   StateStore states;
   std::vector<Edge, HugePageAllocator<Edge>> edgeList;

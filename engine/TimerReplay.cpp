@@ -5,9 +5,6 @@
 
 #include "llvm/ADT/StringSet.h"
 
-#include <deque>
-#include <unordered_set>
-
 using namespace netlift;
 using namespace netlift::engine;
 
@@ -61,11 +58,66 @@ struct Projection {
   }
 };
 
-struct Node {
-  std::vector<uint64_t> state;
-  size_t target; // the abstract control state reached
-  int64_t parent;
-  std::string label;
+/// The exact model paired with how far along the abstract path a run has
+/// come: a state is the exact state and, in one more word, the index of
+/// the abstract control state it matches. A step of the exact model is a
+/// step of the pair when the run stays in that control state or moves on
+/// to the next one; the rest leave the path and are not followed.
+class AlongAbstractPath final : public StepRelation {
+public:
+  AlongAbstractPath(sem::Semantics &exact, const sem::StateLayout &abs,
+                    const Projection &proj,
+                    llvm::ArrayRef<const uint64_t *> targets)
+      : exact(exact), abs(abs), proj(proj), targets(targets),
+        words(exact.layout().numWords()), buffer(words + 1) {}
+
+  uint32_t stateWords() const override { return words + 1; }
+  bool initialState(uint64_t *out, sem::RuntimeError &err) override {
+    out[words] = 0;
+    return exact.initialState(out, err);
+  }
+  std::string stepText(llvm::ArrayRef<uint32_t> step) const override {
+    return Explorer::stepText(exact.module(), step);
+  }
+  uint32_t numMoves() const override {
+    return uint32_t(exact.module().transitions.size());
+  }
+  bool successors(const uint64_t *state, sem::Semantics::Callback each,
+                  sem::RuntimeError &) override {
+    size_t target = state[words];
+    sem::RuntimeError err;
+    exact.successors(
+        state,
+        [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
+          size_t t = target;
+          const sem::StateLayout &el = exact.layout();
+          if (!proj.same(abs, targets[t], el, succ)) {
+            if (t + 1 < targets.size() &&
+                proj.same(abs, targets[t + 1], el, succ))
+              ++t;
+            else
+              return; // leaves the abstract path
+          }
+          std::copy(succ, succ + words, buffer.begin());
+          buffer[words] = t;
+          deepest = std::max(deepest, t);
+          each(step, buffer.data());
+        },
+        err);
+    // A runtime error of the exact model ends that run only.
+    return true;
+  }
+
+  /// The furthest abstract control state an exact run reached.
+  size_t deepest = 0;
+
+private:
+  sem::Semantics &exact;
+  const sem::StateLayout &abs;
+  const Projection &proj;
+  llvm::ArrayRef<const uint64_t *> targets;
+  uint32_t words;
+  std::vector<uint64_t> buffer;
 };
 
 } // namespace
@@ -89,85 +141,42 @@ ReplayOutcome engine::replayInExactTime(
   }
   ReplayOutcome out;
   uint32_t words = el.numWords();
-  std::vector<Node> nodes;
-  std::deque<size_t> queue;
-  auto keyOf = [&](const uint64_t *s, size_t target) {
-    std::string k(reinterpret_cast<const char *>(s), words * 8);
-    k.append(reinterpret_cast<const char *>(&target), sizeof target);
-    return k;
-  };
-  std::unordered_set<std::string> seen;
-  std::vector<uint64_t> init(words, 0);
+  AlongAbstractPath relation(exact, al, proj, targets);
+  // A run that does not start in the path's first control state follows
+  // none of it.
+  std::vector<uint64_t> init(words + 1, 0);
   sem::RuntimeError err;
-  size_t deepest = 0;
-  auto finish = [&](size_t n) {
-    out.verdict = ReplayOutcome::Confirmed;
-    std::vector<size_t> chain;
-    for (int64_t k = int64_t(n); k >= 0; k = nodes[k].parent)
-      chain.push_back(size_t(k));
-    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-      out.labels.push_back(nodes[*it].label);
-      out.states.push_back(nodes[*it].state);
-    }
-  };
-  if (exact.initialState(init.data(), err) &&
-      proj.same(al, targets[0], el, init.data())) {
-    nodes.push_back({init, 0, -1, ""});
-    seen.insert(keyOf(init.data(), 0));
-    queue.push_back(0);
-    if (targets.size() == 1 && lastOk(init.data())) {
-      finish(0);
-      out.visited = 1;
+  bool starts = relation.initialState(init.data(), err) &&
+                proj.same(al, targets[0], el, init.data());
+  if (starts) {
+    // Breadth-first, so that the exact run found is a shortest one.
+    ExploreOptions eo;
+    eo.maxStates = budget;
+    auto arrived = [&](const uint64_t *s) {
+      return s[words] + 1 == targets.size() && lastOk(s);
+    };
+    eo.stopAt = arrived;
+    Explorer search(relation, eo);
+    ExploreResult r;
+    search.run(r);
+    out.visited = search.store().size();
+    if (r.found) {
+      out.verdict = ReplayOutcome::Confirmed;
+      for (auto [label, state] : search.pathTo(*r.found)) {
+        const uint64_t *words0 = search.store().state(state);
+        out.labels.push_back(label == Explorer::kNone ? std::string()
+                                                      : search.label(label));
+        out.states.emplace_back(words0, words0 + words);
+      }
       return out;
     }
-  }
-  while (!queue.empty()) {
-    size_t n = queue.front();
-    queue.pop_front();
-    if (nodes.size() >= budget) {
+    if (!r.complete) {
       out.verdict = ReplayOutcome::Undecided;
-      out.visited = nodes.size();
       return out;
     }
-    std::vector<uint64_t> state = nodes[n].state;
-    size_t target = nodes[n].target;
-    int64_t done = -1;
-    bool ok = exact.successors(
-        state.data(),
-        [&](llvm::ArrayRef<uint32_t> step, const uint64_t *succ) {
-          if (done >= 0)
-            return;
-          size_t t = target;
-          if (!proj.same(al, targets[t], el, succ)) {
-            if (t + 1 < targets.size() &&
-                proj.same(al, targets[t + 1], el, succ))
-              ++t;
-            else
-              return; // leaves the abstract path
-          }
-          std::string key = keyOf(succ, t);
-          if (!seen.insert(key).second)
-            return;
-          nodes.push_back({std::vector<uint64_t>(succ, succ + words), t,
-                           int64_t(n),
-                           Explorer::stepText(exact.module(), step)});
-          deepest = std::max(deepest, t);
-          if (t + 1 == targets.size() && lastOk(succ))
-            done = int64_t(nodes.size() - 1);
-          else
-            queue.push_back(nodes.size() - 1);
-        },
-        err);
-    if (done >= 0) {
-      finish(size_t(done));
-      out.visited = nodes.size();
-      return out;
-    }
-    if (!ok)
-      continue; // a runtime error of the exact model ends that run
   }
+  size_t deepest = relation.deepest;
   out.verdict = ReplayOutcome::Spurious;
-  out.visited = nodes.size();
   size_t next = std::min(deepest + 1, targets.size() - 1);
   out.divergesAt = targetStep[next];
   // The abstracted clocks running (set, then ticked, below their cap) in
