@@ -22,12 +22,41 @@ namespace cl = llvm::cl;
 
 cl::OptionCategory &category();
 
-// The subcommands, made on first use so that options in any file can name
-// them.
-cl::SubCommand &translateCommand(), &optCommand(), &composeCommand();
-cl::SubCommand &emitCommand(), &reachCommand(), &checkCommand();
-cl::SubCommand &srCommand(), &mealyCommand(), &editAutomatonCommand();
-cl::SubCommand &enforceCommand(), &replayCommand();
+// The subcommands (SubcommandRegistry.def), made on first use so that
+// options in any file can name them.
+#define NETLIFT_SUBCOMMAND(ID, NAME, USAGE, SUMMARY, READS, EXPLORES, HANDLER) \
+  cl::SubCommand &ID##Command();                                               \
+  int HANDLER(DiagEngine &);
+#include "tools/netlift/SubcommandRegistry.def"
+
+/// A row of the subcommand table.
+struct Subcommand {
+  cl::SubCommand &(*command)();
+  const char *usage;
+  bool readsModels, explores;
+  int (*run)(DiagEngine &);
+};
+llvm::ArrayRef<Subcommand> subcommands();
+/// The overview `netlift --help` prints, from the table.
+std::string overview();
+/// Every subcommand's name, comma-separated, in the table's order.
+std::string subcommandNames();
+
+/// An option modifier (like cl::sub) attaching the option to every
+/// subcommand that reads models, or to every one that explores: such
+/// options are declared once, and a subcommand added to the table takes
+/// them.
+struct OnSubcommands {
+  bool exploring;
+  template <class Opt> void apply(Opt &option) const {
+    for (const Subcommand &c : subcommands())
+      if (exploring ? c.explores : c.readsModels)
+        option.addSubCommand(c.command());
+    option.addCategory(category());
+  }
+};
+inline constexpr OnSubcommands readingCommands{false};
+inline constexpr OnSubcommands exploringCommands{true};
 
 // Options several subcommands take.
 extern cl::opt<std::string> outputFile;  // -o
@@ -66,11 +95,6 @@ int writeDesign(const net::Design &design, DiagEngine &diag);
 bool readMealySpec(const std::string &path, DiagEngine &diag,
                    automata::MealyMachine &m);
 
-// The subcommands: the exit code.
-int runTranslate(DiagEngine &), runOpt(DiagEngine &), runCompose(DiagEngine &);
-int runEmit(DiagEngine &), runReach(DiagEngine &), runCheck(DiagEngine &);
-int runSr(DiagEngine &), runMealy(DiagEngine &), runEnforce(DiagEngine &);
-int runEditAutomaton(DiagEngine &), runReplay(DiagEngine &);
 /// Puts the registry's formats into `emit --to`'s description.
 void describeEmitFormats();
 

@@ -16,63 +16,10 @@ cl::OptionCategory &driver::category() {
   return c;
 }
 
-#define NETLIFT_SUBCOMMAND(FN, NAME, DESC)                                     \
-  cl::SubCommand &driver::FN() {                                               \
-    static cl::SubCommand c(NAME, DESC);                                       \
-    return c;                                                                  \
-  }
-NETLIFT_SUBCOMMAND(translateCommand, "translate",
-                   "Read models in any supported format, verify them and "
-                   "print them as canonical NetIR text")
-NETLIFT_SUBCOMMAND(optCommand, "opt",
-                   "Run a pipeline of NetIR passes over a model")
-NETLIFT_SUBCOMMAND(composeCommand, "compose",
-                   "Compose a controller and plant models (any input "
-                   "formats) into one closed-loop system (docs/compose.md)")
-NETLIFT_SUBCOMMAND(emitCommand, "emit",
-                   "Write a model in another format (emit --help lists them)")
-NETLIFT_SUBCOMMAND(reachCommand, "reach",
-                   "Explore the reachable states of a model (its top "
-                   "module, flattened)")
-NETLIFT_SUBCOMMAND(checkCommand, "check",
-                   "Check CTL properties on a model's state space "
-                   "(docs/check.md)")
-NETLIFT_SUBCOMMAND(srCommand, "sr",
-                   "Structural reasoning over a model's state space (regions, "
-                   "attribute graph, densities, key attributes)")
-NETLIFT_SUBCOMMAND(mealyCommand, "mealy",
-                   "Read a Mealy machine (KISS2, DOT) or extract a "
-                   "controller's, check it, minimise or compare it")
-NETLIFT_SUBCOMMAND(editAutomatonCommand, "edit-automaton",
-                   "Build the edit automaton of a Mealy specification "
-                   "(desynchronised reading of simultaneous input changes)")
-NETLIFT_SUBCOMMAND(replayCommand, "replay",
-                   "Run a log recorded on the PLC (CSV: the inputs and "
-                   "any outputs, one row per scan) through the model and "
-                   "say where the two differ")
-NETLIFT_SUBCOMMAND(enforceCommand, "enforce",
-                   "Enforce an observed I/O trace (CSV) against a Mealy "
-                   "specification and give a verdict")
-#undef NETLIFT_SUBCOMMAND
-
-// Every subcommand that reads a model takes the frontends' options.
-#define NETLIFT_READING                                                        \
-  cl::sub(translateCommand()), cl::sub(optCommand()),                          \
-      cl::sub(composeCommand()), cl::sub(emitCommand()),                       \
-      cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),  \
-      cl::sub(mealyCommand()), cl::sub(editAutomatonCommand()),                \
-      cl::sub(enforceCommand()), cl::sub(replayCommand()), cl::cat(category())
-// Every subcommand that explores (or encodes the step relation) takes the
-// exploration set-up's options, so they all mean the same model.
-#define NETLIFT_EXPLORING                                                      \
-  cl::sub(reachCommand()), cl::sub(checkCommand()), cl::sub(srCommand()),      \
-      cl::sub(mealyCommand()), cl::sub(editAutomatonCommand()),                \
-      cl::sub(enforceCommand()), cl::sub(replayCommand()), cl::cat(category())
-
 cl::opt<std::string> driver::outputFile("o",
                                         cl::desc("Output file ('-' = stdout)"),
                                         cl::value_desc("file"), cl::init("-"),
-                                        NETLIFT_READING);
+                                        readingCommands);
 cl::opt<bool> driver::noSourceLocations(
     "no-locations",
     cl::desc("Write NetIR without the program's source locations (the "
@@ -82,12 +29,12 @@ cl::opt<bool> driver::noSourceLocations(
 cl::opt<std::string>
     driver::inputFormat("from",
                         cl::desc("Input format (default: by file extension)"),
-                        cl::value_desc("format"), NETLIFT_READING);
+                        cl::value_desc("format"), readingCommands);
 cl::opt<std::string> driver::topName(
     "top",
     cl::desc("The module to explore; for PLC input also the program, "
              "program instance or function block to translate"),
-    cl::value_desc("NAME"), NETLIFT_READING);
+    cl::value_desc("NAME"), readingCommands);
 static cl::alias topAlias("module", cl::desc("Alias for --top"),
                           cl::aliasopt(topName));
 cl::list<std::string> driver::properties(
@@ -108,51 +55,51 @@ static cl::opt<std::string> timescale(
     "timescale",
     cl::desc("PLC and IEC 61499 input: the length of one tick, e.g. 10ms "
              "(default: the greatest common divisor of the TIME values)"),
-    cl::value_desc("DURATION"), NETLIFT_READING);
+    cl::value_desc("DURATION"), readingCommands);
 static cl::opt<std::string>
     scanPeriod("scan-period",
                cl::desc("PLC input: the scan period (default: the task "
                         "INTERVAL, else one tick)"),
-               cl::value_desc("DURATION"), NETLIFT_READING);
+               cl::value_desc("DURATION"), readingCommands);
 static cl::opt<std::string>
     ranges("ranges",
            cl::desc("PLC input: value ranges of integer inputs; hybrid "
                     "input: ranges of reals; one 'NAME LO..HI' a line "
                     "('NAME NOT NULL' for a reference input the caller never "
                     "passes NULL)"),
-           cl::value_desc("FILE"), NETLIFT_READING);
+           cl::value_desc("FILE"), readingCommands);
 static cl::list<std::string>
     rangeOptions("range",
                  cl::desc("One range, as a line of --ranges FILE would give "
                           "it (a PLC input's or a hybrid model's real)"),
-                 cl::value_desc("NAME=LO..HI"), NETLIFT_READING);
+                 cl::value_desc("NAME=LO..HI"), readingCommands);
 static cl::opt<std::string> spaceexConfig(
     "cfg",
     cl::desc("SpaceEx input: the configuration giving the system and the "
              "initial set (default: the .cfg beside the model with its name; "
              "'none': none)"),
-    cl::value_desc("FILE"), NETLIFT_READING);
+    cl::value_desc("FILE"), readingCommands);
 static cl::list<std::string>
     params("param",
            cl::desc("SpaceEx input: the value of a constant (overrides the "
                     "configuration's)"),
-           cl::value_desc("NAME=VALUE"), NETLIFT_READING);
+           cl::value_desc("NAME=VALUE"), readingCommands);
 static cl::list<std::string>
     typeLibraries("I",
                   cl::desc("IEC 61499 input: a directory searched (with its "
                            "subdirectories) for the .fbt/.sub types a "
                            "network uses"),
-                  cl::value_desc("DIR"), cl::Prefix, NETLIFT_READING);
+                  cl::value_desc("DIR"), cl::Prefix, readingCommands);
 static cl::list<std::string>
     defines("D",
             cl::desc("PLC input: a name defined for conditional compilation "
                      "({IF defined(NAME)}), with a value for hasvalue"),
-            cl::value_desc("NAME[=VALUE]"), cl::Prefix, NETLIFT_READING);
+            cl::value_desc("NAME[=VALUE]"), cl::Prefix, readingCommands);
 static cl::opt<bool> warnUnusedRefused(
     "Wunused-refused",
     cl::desc("PLC input: warn about constructs netlift refuses in POUs the "
              "translation does not use"),
-    NETLIFT_READING);
+    readingCommands);
 static cl::opt<std::string> fbSemantics(
     "fb-semantics",
     cl::desc("IEC 61499 input: the execution model, forte (default: one "
@@ -161,14 +108,14 @@ static cl::opt<std::string> fbSemantics(
              "events of different blocks in any order) or cyclic (fb2smv's "
              "model: blocks take turns in network order, each reacting to "
              "all its pending events at once)"),
-    cl::value_desc("MODEL"), NETLIFT_READING);
+    cl::value_desc("MODEL"), readingCommands);
 static cl::opt<unsigned> callerElements(
     "caller-elements",
     cl::desc("Elements modelled of a caller's array a pointer input of the "
              "block run as the top designates, when the array is too large "
              "to choose whole (OSCAT's POINTER TO ARRAY[0..32000] OF BYTE); "
              "an element past them is a run-time error (default 16)"),
-    cl::init(16), cl::value_desc("N"), NETLIFT_READING);
+    cl::init(16), cl::value_desc("N"), readingCommands);
 enum class OpaqueBlocks { Environment, Refuse };
 static cl::opt<OpaqueBlocks> opaqueBlocks(
     "opaque",
@@ -181,7 +128,7 @@ static cl::opt<OpaqueBlocks> opaqueBlocks(
                           "default): their outputs do what their interface "
                           "allows"),
                clEnumValN(OpaqueBlocks::Refuse, "refuse", "refused")),
-    NETLIFT_READING);
+    readingCommands);
 enum class Channels { Lossless, Lossy };
 static cl::opt<Channels> channels(
     "channels",
@@ -192,7 +139,7 @@ static cl::opt<Channels> channels(
                           "every message is delivered (the default)"),
                clEnumValN(Channels::Lossy, "lossy",
                           "each message may be lost")),
-    NETLIFT_READING);
+    readingCommands);
 static cl::opt<plc::SfcDialect> sfcDialect(
     "sfc-dialect", cl::desc("SFC input: the order of a scan (docs/sfc.md)"),
     cl::init(plc::SfcDialect::Iec),
@@ -202,7 +149,7 @@ static cl::opt<plc::SfcDialect> sfcDialect(
                clEnumValN(plc::SfcDialect::Codesys, "codesys",
                           "run the actions of the current step activity, "
                           "then evolve (CODESYS, TwinCAT)")),
-    NETLIFT_READING);
+    readingCommands);
 static cl::opt<std::string> timeUnit(
     "time-unit",
     cl::desc("PLC input: what TIME_TO_INT, TIME_TO_REAL, INT_TO_TIME and "
@@ -210,7 +157,7 @@ static cl::opt<std::string> timeUnit(
              "(CODESYS, TwinCAT); default: s for ST with a textual "
              "CONFIGURATION and PLCopen XML not written by CODESYS or "
              "TwinCAT, else ms (docs/st.md)"),
-    cl::value_desc("s|ms"), NETLIFT_READING);
+    cl::value_desc("s|ms"), readingCommands);
 // Hidden knobs, so that tests can make small ST inputs take the grouped
 // parse of long parts.
 static cl::opt<unsigned> stLongPartTokens(
@@ -230,23 +177,23 @@ static cl::opt<sem::StepPolicy> stepPolicy(
                           "one spontaneous transition per step"),
                clEnumValN(sem::StepPolicy::Maximal, "maximal",
                           "a maximal set of spontaneous transitions")),
-    NETLIFT_EXPLORING, cl::sub(emitCommand()));
+    exploringCommands, cl::sub(emitCommand()));
 static cl::opt<sem::Timing>
     timing("timing", cl::desc("Timing"), cl::init(sem::Timing::Weak),
            cl::values(clEnumValN(sem::Timing::Weak, "weak",
                                  "a passed upper bound disables"),
                       clEnumValN(sem::Timing::Strong, "strong",
                                  "time may not pass an enabled upper bound")),
-           NETLIFT_EXPLORING, cl::sub(emitCommand()));
+           exploringCommands, cl::sub(emitCommand()));
 static cl::opt<unsigned>
     placeBits("place-bits",
               cl::desc("Bits for the marking of unbounded places (default 8)"),
-              cl::init(8), NETLIFT_EXPLORING, cl::sub(emitCommand()));
+              cl::init(8), exploringCommands, cl::sub(emitCommand()));
 static cl::opt<uint64_t> maxLoopIterations(
     "max-loop-iterations",
     cl::desc("Watchdog: most loop iterations one firing may run "
              "(default 100000)"),
-    cl::init(100000), NETLIFT_EXPLORING);
+    cl::init(100000), exploringCommands);
 enum class InputsMode { Split, Enumerate };
 static cl::opt<InputsMode> inputsMode(
     "inputs",
@@ -256,18 +203,18 @@ static cl::opt<InputsMode> inputsMode(
                           "split their values into classes on demand"),
                clEnumValN(InputsMode::Enumerate, "enumerate",
                           "enumerate every valuation")),
-    NETLIFT_EXPLORING);
+    exploringCommands);
 static cl::opt<uint64_t> maxInputValues(
     "max-input-values",
     cl::desc("Most values one free input is split into at one point, or "
              "(enumerating) most valuations of all free inputs per step "
              "(default 65536)"),
-    cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
+    cl::init(uint64_t(1) << 16), exploringCommands);
 static cl::opt<uint64_t> maxInputClasses(
     "max-input-classes",
     cl::desc("Most classes of input valuations one step may split into "
              "(default 65536)"),
-    cl::init(uint64_t(1) << 16), NETLIFT_EXPLORING);
+    cl::init(uint64_t(1) << 16), exploringCommands);
 enum class TimersMode { Exact, Abstract };
 static cl::opt<TimersMode> timersMode(
     "timers",
@@ -321,27 +268,27 @@ static cl::opt<bool> traceInternals(
     cl::desc("Show traces as the net has them: every step (ticks too) and "
              "every name (clocks, library blocks' state, generated "
              "scaffolding), instead of the program's own names per step"),
-    NETLIFT_EXPLORING);
+    exploringCommands);
 static cl::opt<bool> traceSource(
     "trace-source",
     cl::desc("In traces, list under each step the source lines it ran "
              "(statements in the order a PLC debugger would step them)"),
-    NETLIFT_EXPLORING);
+    exploringCommands);
 static cl::opt<bool>
     interpreter("interpreter",
                 cl::desc("Use the general interpreter even for plain P/T "
                          "nets (to cross-check the compiled P/T kernel)"),
-                NETLIFT_EXPLORING);
+                exploringCommands);
 static cl::opt<uint64_t> maxStates("max-states",
                                    cl::desc("Stop after N states"), cl::init(0),
-                                   NETLIFT_EXPLORING);
+                                   exploringCommands);
 static cl::opt<std::string>
     maxMemory("max-memory", cl::desc("Stop above SIZE bytes (suffix K, M, G)"),
-              NETLIFT_EXPLORING);
+              exploringCommands);
 static cl::opt<double> timeLimit("time-limit", cl::desc("Stop after SECONDS"),
-                                 cl::init(0), NETLIFT_EXPLORING);
-#undef NETLIFT_READING
-#undef NETLIFT_EXPLORING
+                                 cl::init(0), exploringCommands);
+#undef readingCommands
+#undef exploringCommands
 
 bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.top = topName;

@@ -23,47 +23,6 @@ using namespace netlift::driver;
 #define NETLIFT_REVISION "unknown"
 #endif
 
-static const char *const overview =
-    "netlift: lift industrial control software into formal models\n\n"
-    "  netlift translate IN... [-o OUT] [--from FMT] [--top NAME] "
-    "[--timescale 10ms] [--ranges FILE]\n"
-    "  netlift opt IN -p PIPELINE [-o OUT] [--verify-each] "
-    "[--print-after-all] [--stats]\n"
-    "  netlift compose CTRL PLANT... [--connect FILE] [--match names|none] "
-    "[--inst NAME:MODULE]... [-o OUT]\n"
-    "  netlift emit IN --to net|dot|promela|smv|pnml|nces-xml|pnt [-o OUT]\n"
-    "  netlift reach IN [--format aut|dot|json|csv|arc] [-o OUT] [--summary "
-    "json] [--find EXPR]\n"
-    "  netlift mealy IN.kiss2|IN.dot|MODEL [--to kiss2|dot] [-o OUT] [--info] "
-    "[--minimize]\n"
-    "  netlift edit-automaton SPEC [--to table|dot|json] [-o OUT]\n"
-    "  netlift enforce SPEC TRACE.csv [-o ENFORCED.csv]\n"
-    "  netlift check MODEL --ctl FORMULA...\n"
-    "  netlift replay MODEL LOG.csv [--trace-html FILE]\n"
-    "  netlift sr MODEL --attr NAME[=PRED]... [--report text|json|html] [--ev "
-    "F.svg] [--ag FILE.dot]\n\n"
-    "Exploring commands (reach, check, sr, mealy, edit-automaton, enforce) "
-    "and emit take\n--semantics interleaving|maximal and --timing "
-    "weak|strong alike.\n"
-    "Run 'netlift <subcommand> --help' for a subcommand's options.\n";
-
-static const struct {
-  cl::SubCommand &(*command)();
-  int (*run)(DiagEngine &);
-} commands[] = {
-    {translateCommand, runTranslate},
-    {optCommand, runOpt},
-    {composeCommand, runCompose},
-    {emitCommand, runEmit},
-    {reachCommand, runReach},
-    {mealyCommand, runMealy},
-    {editAutomatonCommand, runEditAutomaton},
-    {enforceCommand, runEnforce},
-    {srCommand, runSr},
-    {checkCommand, runCheck},
-    {replayCommand, runReplay},
-};
-
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
   // A reader that closes the pipe (`| head`) ends netlift as it ends other
@@ -82,7 +41,7 @@ int main(int argc, char **argv) {
   DiagEngine diag(sm);
   if (argc > 1 && argv[1][0] != '-') {
     std::vector<std::string> names;
-    for (const auto &c : commands)
+    for (const Subcommand &c : subcommands())
       names.push_back(c.command().getName().str());
     if (!llvm::is_contained(names, argv[1])) {
       diag.error(llvm::SMLoc(), "unknown subcommand '" + llvm::Twine(argv[1]) +
@@ -91,13 +50,12 @@ int main(int argc, char **argv) {
       return 1;
     }
   }
-  if (!cl::ParseCommandLineOptions(argc, argv, overview, &llvm::errs()))
+  if (!cl::ParseCommandLineOptions(argc, argv, overview(), &llvm::errs()))
     return 1;
-  for (const auto &c : commands)
+  for (const Subcommand &c : subcommands())
     if (c.command())
       return c.run(diag);
-  diag.error(llvm::SMLoc(),
-             "no subcommand given (translate, opt, compose, emit, reach, "
-             "check, sr, mealy, edit-automaton, enforce); see netlift --help");
+  diag.error(llvm::SMLoc(), "no subcommand given (" + subcommandNames() +
+                                "); see netlift --help");
   return 1;
 }
