@@ -41,7 +41,7 @@ package: build
 	cd $(BUILD) && cpack -G DEB
 
 $(ASAN_BUILD)/CMakeCache.txt:
-	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Debug \
+	cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DNETLIFT_SANITIZE=address,undefined
 
 sanitize-test: setup $(ASAN_BUILD)/CMakeCache.txt

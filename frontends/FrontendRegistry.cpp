@@ -94,8 +94,8 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
                                       llvm::SMLoc());
   net::Design again;
   if (!net::parseNetIR(id, inner, again) || !net::verifyDesign(again, inner)) {
-    llvm::errs() << "netlift: error: round trip: the printed form of '" << path
-                 << "' does not parse back (see above)\n";
+    diag.error(llvm::SMLoc(), "round trip: the printed form of '" + path +
+                                  "' does not parse back (see above)");
     return false;
   }
   std::string second;
@@ -103,10 +103,9 @@ static bool checkRoundTrip(StringRef path, const net::Design &design,
   net::printDesign(again, os2, &sm);
   os2.flush();
   if (first != second) {
-    llvm::errs() << "netlift: error: round trip: printing '" << path
-                 << "' is not a fixed point\n--- first\n"
-                 << first << "--- second\n"
-                 << second;
+    diag.error(llvm::SMLoc(),
+               "round trip: printing '" + path + "' is not a fixed point");
+    diag.note(llvm::SMLoc(), "--- first\n" + first + "--- second\n" + second);
     return false;
   }
   return true;
@@ -146,7 +145,8 @@ static const FrontendInfo *sniffXml(StringRef text, StringRef &root) {
   return nullptr;
 }
 
-static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
+static const FrontendInfo *chooseFrontend(StringRef path, StringRef from,
+                                          DiagEngine &diag) {
   if (from.empty()) {
     const FrontendInfo *fe = byExtension(path);
     return fe ? fe : &registry[0]; // NetIR text is the default, as for stdin
@@ -157,8 +157,8 @@ static const FrontendInfo *chooseFrontend(StringRef path, StringRef from) {
   std::string known;
   for (const FrontendInfo &f : registry)
     known += (known.empty() ? "" : ", ") + f.id.str();
-  llvm::errs() << "netlift: error: unknown input format '" << from
-               << "' (known: " << known << ")\n";
+  diag.error(llvm::SMLoc(),
+             "unknown input format '" + from + "' (known: " + known + ")");
   return nullptr;
 }
 
@@ -174,7 +174,7 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
   FrontendContext ctx(withProject);
   bool allNet = true;
   for (const std::string &path : paths) {
-    const FrontendInfo *fe = chooseFrontend(path, from);
+    const FrontendInfo *fe = chooseFrontend(path, from, diag);
     if (!fe)
       return false;
     allNet &= fe->id == "net";
@@ -223,8 +223,7 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
   if (!net::verifyDesign(design, diag))
     return false;
   if (allNet) {
-    auto env = llvm::sys::Process::GetEnv("NETLIFT_VERIFY_ROUNDTRIP");
-    if (env && *env != "0" &&
+    if (options.verifyRoundTrip &&
         !checkRoundTrip(paths.size() == 1 ? StringRef(paths[0]) : "input",
                         design, diag))
       return false;

@@ -48,6 +48,10 @@ struct FrontendOptions {
   /// --channels=lossy: IEC 61499 publish/subscribe channels may lose
   /// messages.
   bool lossyChannels = false;
+  /// Check that NetIR input read alone prints, parses back and prints the
+  /// same (the driver sets it from NETLIFT_VERIFY_ROUNDTRIP, as
+  /// `lit --param roundtrip=1` runs the suite).
+  bool verifyRoundTrip = false;
   /// --sfc-dialect: the order of an SFC scan, iec (default) or codesys.
   bool sfcCodesys = false;
   /// --time-unit: what TIME_TO_INT and the like count in, "s" or "ms";

@@ -341,7 +341,7 @@ public:
     std::string why;
     Module *t = d.findTop(top, why);
     if (!t) {
-      llvm::errs() << "netlift: error: flatten: " << why << "\n";
+      diag.error(llvm::SMLoc(), "flatten: " + why);
       return false;
     }
     Flattener f(d, diag);

@@ -398,8 +398,8 @@ bool PassManager::run(net::Design &design, DiagEngine &diag) {
     if (!e.pass->run(design, diag, stats))
       return false;
     if (verifyEach && !net::verifyDesign(design, diag)) {
-      llvm::errs() << "netlift: error: the IR is invalid after pass '"
-                   << e.info->name << "'\n";
+      diag.error(llvm::SMLoc(),
+                 "the IR is invalid after pass '" + e.info->name + "'");
       return false;
     }
     if (printAfterAll) {

@@ -67,7 +67,7 @@ public:
     Module *m = reduce::flatTop(d, diag, opts, "reduce-chains");
     if (!m)
       return false;
-    auto observed = reduce::observedElements(*m, opts, "reduce-chains");
+    auto observed = reduce::observedElements(*m, opts, "reduce-chains", diag);
     if (!observed)
       return false;
     // Observation is by name: indices change as rounds remove entities.

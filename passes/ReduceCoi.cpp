@@ -164,7 +164,7 @@ public:
     if (!m)
       return false;
     Cone cone(*m);
-    auto observed = reduce::observedElements(*m, opts, "reduce-coi");
+    auto observed = reduce::observedElements(*m, opts, "reduce-coi", diag);
     if (!observed)
       return false;
     cone.place = observed->place;

@@ -18,19 +18,19 @@ Module *reduce::flatTop(Design &d, DiagEngine &diag, const PassOptions &opts,
   std::string why;
   Module *m = d.findTop(opts.text("top"), why);
   if (!m) {
-    llvm::errs() << "netlift: error: " << pass << ": " << why << "\n";
+    diag.error(llvm::SMLoc(), pass + ": " + why);
     return nullptr;
   }
   if (!m->instances.empty()) {
-    llvm::errs() << "netlift: error: " << pass << ": '" << m->name
-                 << "' has instances; reductions work on a flat module "
-                    "(run flatten first: -p 'flatten,"
-                 << pass << "')\n";
+    diag.error(llvm::SMLoc(), pass + ": '" + m->name +
+                                  "' has instances; reductions work on a flat "
+                                  "module (run flatten first: -p 'flatten," +
+                                  pass + "')");
     return nullptr;
   }
   if (hasHybridParts(*m)) {
-    llvm::errs() << "netlift: error: " << pass << ": '" << m->name
-                 << "' has real variables; run discretise first\n";
+    diag.error(llvm::SMLoc(), pass + ": '" + m->name +
+                                  "' has real variables; run discretise first");
     return nullptr;
   }
   return m;
@@ -151,14 +151,13 @@ void reduce::removePorts(Design &d, Module &m,
 bool reduce::reverify(Design &d, DiagEngine &diag, StringRef pass) {
   if (verifyDesign(d, diag))
     return true;
-  llvm::errs() << "netlift: error: " << pass
-               << " produced invalid IR (a bug in netlift)\n";
+  diag.error(llvm::SMLoc(), pass + " produced invalid IR (a bug in netlift)");
   return false;
 }
 
 std::optional<reduce::Observed>
 reduce::observedElements(const Module &m, const PassOptions &opts,
-                         StringRef pass) {
+                         StringRef pass, DiagEngine &diag) {
   Observed o;
   o.place.assign(m.places.size(), false);
   o.var.assign(m.vars.size(), false);
@@ -181,10 +180,10 @@ reduce::observedElements(const Module &m, const PassOptions &opts,
     else if (s.kind == SymKind::Transition)
       o.trans[s.index] = true;
     else {
-      llvm::errs() << "netlift: error: " << pass << ": '" << n
-                   << "' in observe= is not a place, variable, port or "
-                      "transition of '"
-                   << m.name << "'\n";
+      diag.error(llvm::SMLoc(), pass + ": '" + n +
+                                    "' in observe= is not a place, variable, "
+                                    "port or transition of '" +
+                                    m.name + "'");
       return std::nullopt;
     }
   }

@@ -59,7 +59,8 @@ struct Observed {
 /// Null after reporting a name in `observe=` that is none of those.
 std::optional<Observed> observedElements(const net::Module &m,
                                          const PassOptions &opts,
-                                         llvm::StringRef pass);
+                                         llvm::StringRef pass,
+                                         DiagEngine &diag);
 
 /// Resolves the design again after a rewrite. False after reporting.
 bool reverify(net::Design &d, DiagEngine &diag, llvm::StringRef pass);

@@ -1,6 +1,7 @@
 //===- Exploring.cpp - what the engine found, said to the user ------------===//
 #include "backends/statespace/Exploring.h"
 
+#include "engine/Refinement.h"
 #include "engine/TraceValues.h"
 
 using namespace netlift;
@@ -103,4 +104,40 @@ statespace::replayAndReport(ExplorationSetup &setup, const Explorer &x,
   }
   }
   return o.verdict;
+}
+
+int statespace::searchExactModel(ExplorationSetup &setup, const net::Expr *find,
+                                 llvm::StringRef findText,
+                                 llvm::raw_ostream &out) {
+  sem::Semantics &exact = *setup.exactSemantics();
+  ExploreOptions eo;
+  eo.maxStates = setup.options().replayStates;
+  sem::RuntimeError err;
+  auto stop = [&](const uint64_t *s) {
+    return exact.evalPredicate(find, s, err);
+  };
+  if (find)
+    eo.stopAt = stop; // a function_ref: `stop` outlives the search
+  Explorer x(exact, eo);
+  ExploreResult r;
+  if (!x.run(r) || r.error)
+    return kRefine; // the exact model fails on its own: refinement says so
+  std::optional<uint32_t> hit;
+  if (find && r.found)
+    hit = *r.found;
+  else if (!find && !r.deadlocks.empty())
+    hit = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
+  if (hit) {
+    out << "confirmed by a search of the exact model (" << x.store().size()
+        << " states), " << x.pathTo(*hit).size() - 1 << " steps:\n";
+    writeTrace(x, exact, *hit, out, traceViewOf(setup));
+    return find ? 0 : 3;
+  }
+  if (!r.complete)
+    return kRefine;
+  out << "the exact model (" << x.store().size() << " states, all searched) "
+      << (find ? "has no state satisfying '" + findText.str() + "'"
+               : std::string("has no deadlock"))
+      << "\n";
+  return find ? 3 : 0;
 }

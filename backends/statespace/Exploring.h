@@ -55,6 +55,15 @@ replayAndReport(engine::ExplorationSetup &setup, const engine::Explorer &x,
                 bool deadlock, llvm::raw_ostream &out,
                 std::vector<std::string> &involved);
 
+/// When an abstract path could not be followed: the exact model of
+/// `setup` searched directly, within --replay-states, for a state
+/// satisfying `find` (`findText` as the user wrote it; null: a deadlock).
+/// Confirms with its path (0 found, 3 a deadlock), or settles that there
+/// is none when the whole exact model fits (3 not found, 0 no deadlock);
+/// engine::kRefine when it does not.
+int searchExactModel(engine::ExplorationSetup &setup, const net::Expr *find,
+                     llvm::StringRef findText, llvm::raw_ostream &out);
+
 } // namespace netlift::statespace
 
 #endif

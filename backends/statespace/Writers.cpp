@@ -467,13 +467,15 @@ static void writeJsonTrace(const TraceFileHeader &header, const Explorer &x,
   os << "\n";
 }
 
-/// NETLIFT_VERIFY_TRACES=1 (set by `lit --param roundtrip=1`, as CI runs
-/// the suite): every JSON trace written is read back and replayed on the
-/// model at once (replayTrace), so the whole suite shows that each trace
-/// netlift writes ends in the state it claims.
+static bool verifyTraceFiles = false;
+
+void statespace::setTraceFileVerification(bool on) { verifyTraceFiles = on; }
+
+/// A JSON trace just written, read back and replayed (replayTrace) when
+/// setTraceFileVerification asks.
 static bool verifyJsonTrace(sem::Semantics &sem, llvm::StringRef file,
                             DiagEngine &diag) {
-  if (!getenv("NETLIFT_VERIFY_TRACES") || file == "-")
+  if (!verifyTraceFiles || file == "-")
     return true;
   unsigned id = addInputFile(diag.sourceMgr(), file);
   if (!id)

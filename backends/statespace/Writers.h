@@ -164,6 +164,12 @@ bool writeHtmlTraceFile(const engine::Explorer &x, sem::Semantics &sem,
                         const TraceView &view, llvm::StringRef file,
                         DiagEngine &diag);
 
+/// Every JSON trace file written is read back and replayed on the model at
+/// once, so a suite run shows that each ends in the state it claims (the
+/// driver sets it from NETLIFT_VERIFY_TRACES, as `lit --param roundtrip=1`
+/// runs the suite). Off by default.
+void setTraceFileVerification(bool on);
+
 /// The path to `target` as a JSON trace document in `file` (reach
 /// --trace-json). False after reporting.
 bool writeJsonTraceFile(const engine::Explorer &x, sem::Semantics &sem,

@@ -2,6 +2,7 @@
 #include "backends/checkers/CheckProperties.h"
 #include "backends/statespace/Exploring.h"
 #include "backends/statespace/Writers.h"
+#include "engine/Refinement.h"
 #include "engine/TimerReplay.h"
 #include "ir/net/Parser.h"
 #include "ir/net/Verifier.h"
@@ -75,39 +76,6 @@ static cl::opt<EdgeLabels> edgeLabels(
 static int reachOnce(engine::ExplorationOptions &xo, unsigned round,
                      DiagEngine &diag);
 
-/// reachOnce's answer when a spurious counterexample made more clocks
-/// exact: search again.
-static constexpr int kRefine = -1;
-/// After a search with abstract timers found something (the path to
-/// `target`): keeps the clocks of a spurious one exact for the next round
-/// while --refine allows (kRefine), else says the result is undecided (2).
-/// `failCode` is the exit code of a confirmed violation.
-static int afterReplay(engine::ReplayOutcome::Verdict v,
-                       const std::vector<std::string> &involved, int failCode,
-                       engine::ExplorationOptions &xo, unsigned round,
-                       llvm::raw_ostream &out) {
-  if (v == engine::ReplayOutcome::Confirmed)
-    return failCode;
-  if (v == engine::ReplayOutcome::Undecided)
-    return 2;
-  std::vector<std::string> fresh;
-  for (const std::string &c : involved)
-    if (!xo.exactClocks.count(c))
-      fresh.push_back(c);
-  if (fresh.empty() || round >= xo.refineRounds) {
-    out << "not refined further (--refine " << xo.refineRounds
-        << "): the result is undecided; run with --timers=exact\n";
-    return 2;
-  }
-  xo.exactClocks.insert(fresh.begin(), fresh.end());
-  std::string names;
-  for (const std::string &n : fresh)
-    names += (names.empty() ? "" : ", ") + n;
-  out << "refining (round " << round + 1 << " of " << xo.refineRounds
-      << "): keeping " << names << " exact\n";
-  return kRefine;
-}
-
 /// `--find EXPR` as a predicate over `top`'s states; null after reporting.
 static net::Expr *parseFind(const std::string &text, net::Design &design,
                             net::Module &top, DiagEngine &diag) {
@@ -115,51 +83,6 @@ static net::Expr *parseFind(const std::string &text, net::Design &design,
       llvm::MemoryBuffer::getMemBufferCopy(text, "<find>"), llvm::SMLoc());
   net::Expr *e = net::parseExpression(id, diag, design);
   return e && net::verifyPredicate(design, top, e, diag) ? e : nullptr;
-}
-
-/// When the abstract path could not be followed: the exact model searched
-/// directly, within --replay-states, for a state satisfying `findText`
-/// (empty: a deadlock). Confirms with its path, or settles that there is
-/// none when the whole exact model fits; kRefine when it does not.
-static int searchExactModel(engine::ExplorationSetup &setup,
-                            net::Design &design, const std::string &findText,
-                            const engine::ExplorationOptions &xo,
-                            DiagEngine &diag, llvm::raw_ostream &out) {
-  sem::Semantics &exact = *setup.exactSemantics();
-  net::Expr *find = nullptr;
-  if (!findText.empty() &&
-      !(find = parseFind(findText, design, *setup.exactModule(), diag)))
-    return 1;
-  engine::ExploreOptions eo;
-  eo.maxStates = xo.replayStates;
-  sem::RuntimeError err;
-  auto stop = [&](const uint64_t *s) {
-    return exact.evalPredicate(find, s, err);
-  };
-  if (find)
-    eo.stopAt = stop; // a function_ref: `stop` outlives the search
-  engine::Explorer x(exact, eo);
-  engine::ExploreResult r;
-  if (!x.run(r) || r.error)
-    return kRefine; // the exact model fails on its own: refinement says so
-  std::optional<uint32_t> hit;
-  if (find && r.found)
-    hit = *r.found;
-  else if (!find && !r.deadlocks.empty())
-    hit = *std::min_element(r.deadlocks.begin(), r.deadlocks.end());
-  if (hit) {
-    out << "confirmed by a search of the exact model (" << x.store().size()
-        << " states), " << x.pathTo(*hit).size() - 1 << " steps:\n";
-    statespace::writeTrace(x, exact, *hit, out, statespace::traceViewOf(setup));
-    return find ? 0 : 3;
-  }
-  if (!r.complete)
-    return kRefine;
-  out << "the exact model (" << x.store().size() << " states, all searched) "
-      << (find ? "has no state satisfying '" + findText + "'"
-               : std::string("has no deadlock"))
-      << "\n";
-  return find ? 3 : 0;
 }
 
 /// Exit codes (docs/reach.md): 0 complete, 1 error, 2 a limit stopped the
@@ -170,18 +93,16 @@ int driver::runReach(DiagEngine &diag) {
     return 1;
   // --timers=abstract: a spurious counterexample's clocks are kept exact
   // and the search runs again, up to --refine times.
-  for (unsigned round = 0;; ++round) {
-    int code = reachOnce(xo, round, diag);
-    if (code != kRefine)
-      return code;
-  }
+  return engine::refineUntilSettled(
+      xo, [&](engine::ExplorationOptions &o, unsigned round) {
+        return reachOnce(o, round, diag);
+      });
 }
 
 static int reachOnce(engine::ExplorationOptions &xo, unsigned round,
                      DiagEngine &diag) {
   net::Design design;
   std::vector<std::string> inputs{reachInput};
-  xo.timerNotes = round == 0;
   xo.propertyTexts.clear();
   if (!findText.empty())
     xo.propertyTexts.push_back(findText);
@@ -291,11 +212,18 @@ static int reachOnce(engine::ExplorationOptions &xo, unsigned round,
   std::vector<std::string> involved;
   auto verdict = statespace::replayAndReport(*setup, explorer, path, !findExpr,
                                              out, involved);
-  if (verdict != engine::ReplayOutcome::Confirmed)
-    if (int code = searchExactModel(*setup, design, findText, xo, diag, out);
-        code != kRefine)
+  if (verdict != engine::ReplayOutcome::Confirmed) {
+    net::Expr *exactFind = nullptr;
+    if (findExpr &&
+        !(exactFind = parseFind(findText, design, *setup->exactModule(), diag)))
+      return 1;
+    if (int code =
+            statespace::searchExactModel(*setup, exactFind, findText, out);
+        code != engine::kRefine)
       return code;
-  return afterReplay(verdict, involved, findExpr ? 0 : 3, xo, round, out);
+  }
+  return engine::afterReplay(verdict, involved, findExpr ? 0 : 3, xo, round,
+                             out);
 }
 
 static cl::opt<std::string> checkInput(cl::Positional, cl::desc("<model>"),
@@ -318,10 +246,10 @@ int driver::runCheck(DiagEngine &diag) {
   if (!explorationOptions(xo, diag))
     return 1;
   xo.propertyTexts.assign(properties.begin(), properties.end());
-  for (unsigned round = 0;; ++round) {
+  return engine::refineUntilSettled(xo, [&](engine::ExplorationOptions &xo,
+                                            unsigned round) {
     net::Design design;
     std::vector<std::string> inputs{checkInput};
-    xo.timerNotes = round == 0;
     if (!loadModels(inputs, diag, design))
       return 1;
     auto setup = engine::ExplorationSetup::create(design, xo, diag, "check");
@@ -347,9 +275,7 @@ int driver::runCheck(DiagEngine &diag) {
     if (code != 3 || involved.empty())
       return code;
     // A counterexample was spurious: refine as reach does.
-    code = afterReplay(engine::ReplayOutcome::Spurious, involved, 3, xo, round,
-                       llvm::outs());
-    if (code != kRefine)
-      return code;
-  }
+    return engine::afterReplay(engine::ReplayOutcome::Spurious, involved, 3, xo,
+                               round, llvm::outs());
+  });
 }

@@ -292,6 +292,8 @@ static cl::opt<double> timeLimit("time-limit", cl::desc("Stop after SECONDS"),
 
 bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
   fo.top = topName;
+  const char *roundTrip = std::getenv("NETLIFT_VERIFY_ROUNDTRIP");
+  fo.verifyRoundTrip = roundTrip && llvm::StringRef(roundTrip) != "0";
   fo.rangesFile = ranges;
   fo.rangeOptions.assign(rangeOptions.begin(), rangeOptions.end());
   fo.spaceexConfig = spaceexConfig;

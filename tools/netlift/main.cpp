@@ -5,6 +5,7 @@
 // parses the command line and dispatches.
 //
 //===----------------------------------------------------------------------===//
+#include "backends/statespace/Writers.h"
 #include "ir/support/Suggest.h"
 #include "tools/netlift/Driver.h"
 
@@ -12,6 +13,7 @@
 #include "llvm/Support/Signals.h"
 
 #include <csignal>
+#include <cstdlib>
 
 using namespace netlift;
 using namespace netlift::driver;
@@ -36,6 +38,10 @@ int main(int argc, char **argv) {
        << NETLIFT_REVISION << ")\n";
   });
   describeEmitFormats();
+  // The suite's self-checks (test/lit.cfg.py): the environment is read
+  // here, libraries take options.
+  if (const char *verify = std::getenv("NETLIFT_VERIFY_TRACES"))
+    statespace::setTraceFileVerification(llvm::StringRef(verify) != "0");
   cl::HideUnrelatedOptions({&category()});
   llvm::SourceMgr sm;
   DiagEngine diag(sm);
