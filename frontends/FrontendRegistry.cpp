@@ -4,7 +4,6 @@
 #include "ir/net/Parser.h"
 #include "ir/net/Printer.h"
 #include "ir/net/Verifier.h"
-#include "passes/Pass.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -164,7 +163,8 @@ static const FrontendInfo *chooseFrontend(StringRef path, StringRef from,
 
 bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
                          const FrontendOptions &options, DiagEngine &diag,
-                         net::Design &design) {
+                         net::Design &design,
+                         std::vector<std::string> &pipelines) {
   FrontendOptions withProject = options;
   std::optional<std::vector<std::string>> expanded =
       expandProjectInputs(given, diag, withProject);
@@ -215,11 +215,9 @@ bool netlift::loadInputs(llvm::ArrayRef<std::string> given, StringRef from,
       if (!f.finish(ctx, diag, design))
         return false;
     }
-  for (const std::string &pipeline : ctx.pipelines) {
-    PassManager pm;
-    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag))
-      return false;
-  }
+  pipelines = std::move(ctx.pipelines);
+  if (!pipelines.empty())
+    return true; // verified by the caller, after the pipelines
   if (!net::verifyDesign(design, diag))
     return false;
   if (allNet) {

@@ -147,9 +147,15 @@ llvm::ArrayRef<FrontendInfo> frontends();
 /// (empty: chosen by each file's extension, NetIR text by default) into one
 /// `design`, then verifies it as a whole (a module may instantiate one from
 /// another file). Returns false after reporting an error.
+///
+/// A frontend may leave part of its lowering to passes (the IEC 61499
+/// execution models, `iec61499-resources{...}`): those pipelines are
+/// returned in `pipelines`, in order, for the caller to run through its
+/// PassManager (a frontend runs no passes); the design is then verified by
+/// the caller, after them.
 bool loadInputs(llvm::ArrayRef<std::string> paths, llvm::StringRef from,
                 const FrontendOptions &options, DiagEngine &diag,
-                net::Design &design);
+                net::Design &design, std::vector<std::string> &pipelines);
 
 /// The files a translation reads for `paths`: a TwinCAT `.plcproj` stands
 /// for the sources it compiles, a directory for the `.plcproj` files under

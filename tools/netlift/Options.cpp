@@ -1,7 +1,9 @@
 //===- Options.cpp - the options every reading subcommand shares ----------===//
 #include "frontends/plc/PlcAst.h"
 #include "ir/net/Printer.h"
+#include "ir/net/Verifier.h"
 #include "ir/support/OutputFile.h"
+#include "passes/Pass.h"
 #include "tools/netlift/Driver.h"
 
 #include "llvm/Support/Path.h"
@@ -208,8 +210,19 @@ bool driver::frontendOptions(FrontendOptions &fo, DiagEngine &diag) {
 bool driver::loadModels(llvm::ArrayRef<std::string> paths, DiagEngine &diag,
                         net::Design &design) {
   FrontendOptions fo;
-  return frontendOptions(fo, diag) &&
-         loadInputs(paths, inputFormat, fo, diag, design);
+  std::vector<std::string> pipelines;
+  if (!frontendOptions(fo, diag) ||
+      !loadInputs(paths, inputFormat, fo, diag, design, pipelines))
+    return false;
+  if (pipelines.empty())
+    return true;
+  // What a frontend left to passes (the IEC 61499 execution models).
+  for (const std::string &pipeline : pipelines) {
+    PassManager pm;
+    if (!pm.parsePipeline(pipeline, diag) || !pm.run(design, diag))
+      return false;
+  }
+  return net::verifyDesign(design, diag);
 }
 
 bool driver::topUsable(llvm::ArrayRef<std::string> inputs,
